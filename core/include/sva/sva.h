@@ -1,0 +1,384 @@
+/// sva.h -- the on-board mission planner core: the one public header.
+///
+/// ## What it does
+/// A fleet of identical UAVs (capacity one, limited fuel, start where the fleet state
+/// says, end at the depot) must cover target areas; target t needs t.need UAVs
+/// present for its whole window [start, end]. sva_plan() assigns UAVs to targets and
+/// orders their visits: first cover as many targets as possible, then minimise the
+/// sum of route distances (Manhattan, integer). The rules are SPEC.md section 1.
+///
+/// ## Pipeline (algorithm SVA_ALGO_SVA, the paper's Simplex VRP Algorithm)
+///   validate -> sort targets by (start, end, id) -> cluster by window overlap ->
+///   for each cluster (in chunks of SVA_MAX_TP_SINKS targets):
+///     ready UAVs -> source groups (position, reachable targets) ->
+///     transportation problem -> integer tableau simplex -> commit, advance
+///   -> routes with the return leg, uncovered targets, cost.
+/// SVA_ALGO_HGA runs the same pipeline but solves each transportation problem by
+/// enumeration; SVA_ALGO_GA fills targets one by one with the cheapest ready UAVs;
+/// SVA_ALGO_BFA searches exhaustively for the optimum (small missions only).
+///
+/// ## Where every byte lives
+/// Nothing is allocated. The caller owns three structs and may place them anywhere
+/// (firmware writes `static sva_planner_t planner;`):
+///   sva_mission_t  the input (mission and fleet state), read only by the planner;
+///   sva_plan_t     the output;
+///   sva_planner_t  all working memory (tableau, per-UAV state, search stacks).
+/// Their sizes follow from sva_config.h (formulas there and in DESIGN.md); the default
+/// profile's sizes are reported by sva_limits(). The core uses no heap, no stdio, no
+/// floating point, no recursion and no variable-length arrays; its stack use is
+/// bounded and measured with -fstack-usage (DESIGN.md section 6).
+///
+/// ## Complexity (U = UAVs, T = targets, S/K = sources/sinks of one problem)
+///   validation O(U^2 + T^2); sorting and clustering O(T^2);
+///   sva: per problem at most SVA_MAX_PIVOTS pivots of O((S+K) * S*K) each;
+///   ga: O(T * U log U); hga: at most SVA_HGA_MAX_NODES nodes per problem;
+///   bfa: at most SVA_BFA_MAX_NODES nodes.
+///
+/// ## Thread safety
+/// Functions are reentrant: they touch only the structs passed in. One planner may be
+/// used by one thread at a time; distinct planners may run concurrently.
+///
+/// ## Trust
+/// sva_mission_t contents are untrusted: sva_plan() validates them first and reports
+/// any violation through sva_diag_t, never through an assert. SVA_ASSERT guards API
+/// misuse only (NULL pointers, enum values out of range). See docs/security.md.
+
+#ifndef SVA_H
+#define SVA_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "sva_config.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// Library version.
+#define SVA_VERSION_MAJOR 0
+#define SVA_VERSION_MINOR 1
+#define SVA_VERSION_PATCH 0
+/// Version of the mission and plan JSON schema (SPEC.md section 3).
+#define SVA_SCHEMA_VERSION 1
+
+#if defined(__GNUC__) || defined(__clang__)
+#define SVA_NODISCARD __attribute__((warn_unused_result))
+#else
+#define SVA_NODISCARD
+#endif
+
+// =================================================================================
+// Status and diagnostics
+
+/// Result of every status-returning function. 0 is success; errors are negative.
+typedef enum {
+    SVA_OK = 0,
+    /// API misuse caught at run time when SVA_ENABLE_ASSERT is 0 (NULL pointer, enum
+    /// out of range). No diagnostic.
+    SVA_ERR_ARGUMENT = -1,
+    /// The mission breaks a rule of SPEC.md section 1 or a bound of sva_config.h; the
+    /// diagnostic names the field, the rule and the limit.
+    SVA_ERR_INVALID = -2,
+    /// The mission is valid but exceeds a limit of the chosen algorithm (bfa's size
+    /// limits or node budget); the diagnostic names the limit.
+    SVA_ERR_LIMIT = -3,
+    /// The simplex hit SVA_MAX_PIVOTS or met a pivot element other than +1 (the
+    /// transportation matrix is totally unimodular, so this means a defect, reported
+    /// loudly instead of returning a wrong plan).
+    SVA_ERR_SOLVER = -4,
+} sva_status_t;
+
+/// Which input field a diagnostic is about.
+typedef enum {
+    SVA_FIELD_NONE = 0,
+    SVA_FIELD_DEPOT_X,
+    SVA_FIELD_DEPOT_Y,
+    SVA_FIELD_TICKS_PER_CELL,
+    SVA_FIELD_HOVER_FUEL,
+    SVA_FIELD_OVERLAP_PERCENT,
+    SVA_FIELD_UAVS,  ///< the list as a whole (its length)
+    SVA_FIELD_UAV_ID,
+    SVA_FIELD_UAV_X,
+    SVA_FIELD_UAV_Y,
+    SVA_FIELD_UAV_FUEL,
+    SVA_FIELD_UAV_READY_AT,
+    SVA_FIELD_TARGETS,  ///< the list as a whole (its length)
+    SVA_FIELD_TARGET_ID,
+    SVA_FIELD_TARGET_X,
+    SVA_FIELD_TARGET_Y,
+    SVA_FIELD_TARGET_START,
+    SVA_FIELD_TARGET_END,
+    SVA_FIELD_TARGET_NEED,
+    SVA_FIELD_COUNT_  ///< number of fields (not a field)
+} sva_field_t;
+
+/// Which rule was broken.
+typedef enum {
+    SVA_RULE_NONE = 0,
+    SVA_RULE_MIN,        ///< value < limit
+    SVA_RULE_MAX,        ///< value > limit (limit_name names the bound, if any)
+    SVA_RULE_COUNT,      ///< list longer than limit (limit_name names the bound)
+    SVA_RULE_DUPLICATE,  ///< id equal to the one at index `limit` of the same list
+    SVA_RULE_AFTER,      ///< end <= start: value is end, limit is start
+    SVA_RULE_ALGO_LIMIT, ///< an algorithm limit (limit_name names it)
+    SVA_RULE_COUNT_      ///< number of rules (not a rule)
+} sva_rule_t;
+
+/// A diagnostic: the first error found wins. index is the list position (-1 when the
+/// field is not in a list); value is what was found; limit is what the rule allows.
+typedef struct {
+    sva_field_t field;
+    sva_rule_t rule;
+    int32_t index;
+    int64_t value;
+    int64_t limit;
+    const char* limit_name;  ///< e.g. "SVA_MAX_UAVS"; NULL when the limit is a SPEC rule
+} sva_diag_t;
+
+/// Fills *self with "no error". Allocates nothing; O(1).
+void sva_diag_clear(sva_diag_t* self);
+
+/// Writes a one-line message, e.g. "targets[3].need: must be >= 1, got 0" or
+/// "uavs: 65 entries exceed SVA_MAX_UAVS (64)", into buf (always NUL-terminated when
+/// size > 0, truncated to fit). Returns the length the whole message needs, without
+/// the NUL (as snprintf does). Uses no stdio; allocates nothing; O(size).
+size_t sva_diag_format(const sva_diag_t* self, char* buf, size_t size);
+
+/// The JSON path of a field without the list index ("targets.need"), or "" for
+/// SVA_FIELD_NONE. Never NULL.
+const char* sva_field_name(sva_field_t field);
+
+// =================================================================================
+// Mission (input)
+
+/// One UAV of the fleet state. Units: cells, fuel units, ticks.
+typedef struct {
+    int32_t id;            ///< positive, unique in the mission
+    int32_t x;             ///< [SVA_COORD_MIN, SVA_COORD_MAX]
+    int32_t y;             ///< [SVA_COORD_MIN, SVA_COORD_MAX]
+    int32_t fuel;          ///< remaining fuel, [0, SVA_MAX_FUEL]
+    int32_t ready_at_ticks;///< free to fly from this tick, [0, SVA_MAX_TICK]
+} sva_uav_t;
+
+/// One target area.
+typedef struct {
+    int32_t id;            ///< positive, unique in the mission
+    int32_t x;
+    int32_t y;
+    int32_t start_ticks;   ///< window start, [0, SVA_MAX_TICK)
+    int32_t end_ticks;     ///< window end, (start, SVA_MAX_TICK]
+    int32_t need;          ///< UAVs required for the whole window, [1, SVA_MAX_UAVS]
+} sva_target_t;
+
+/// A whole planning problem: the instance constants, the fleet and the targets.
+typedef struct {
+    int32_t depot_x;
+    int32_t depot_y;
+    int32_t ticks_per_cell;   ///< travel ticks per cell, [1, SVA_MAX_TICKS_PER_CELL]
+    int32_t hover_fuel;       ///< fuel per served window, [0, SVA_MAX_HOVER_FUEL]
+    int32_t overlap_percent;  ///< clustering threshold, [0, 100]
+    uint16_t uav_count;       ///< [0, SVA_MAX_UAVS]
+    uint16_t target_count;    ///< [0, SVA_MAX_TARGETS]
+    sva_uav_t uavs[SVA_MAX_UAVS];
+    sva_target_t targets[SVA_MAX_TARGETS];
+} sva_mission_t;
+
+/// Sets the SPEC defaults: depot (0,0), ticks_per_cell 1, hover_fuel 0,
+/// overlap_percent 70, no UAVs, no targets. Allocates nothing; O(1).
+void sva_mission_init(sva_mission_t* self);
+
+/// Checks every rule of SPEC.md section 4 and every bound of sva_config.h.
+/// Returns SVA_OK, or SVA_ERR_INVALID with *diag describing the first violation in
+/// field order (instance fields, then UAVs, then targets). diag may be NULL.
+/// Allocates nothing; O(U^2 + T^2); stack O(1).
+SVA_NODISCARD sva_status_t sva_mission_validate(const sva_mission_t* self, sva_diag_t* diag);
+
+// =================================================================================
+// Plan (output)
+
+typedef enum {
+    SVA_ALGO_SVA = 0,  ///< the paper's Simplex VRP Algorithm
+    SVA_ALGO_GA,       ///< greedy
+    SVA_ALGO_HGA,      ///< SVA pipeline, transportation problems by enumeration
+    SVA_ALGO_BFA,      ///< exhaustive search: the optimum (small missions)
+    SVA_ALGO_COUNT_    ///< number of algorithms (not an algorithm)
+} sva_algorithm_t;
+
+/// The SPEC name ("sva", "ga", "hga", "bfa"), or "" when out of range. Never NULL.
+const char* sva_algorithm_name(sva_algorithm_t algorithm);
+
+/// Looks up an algorithm by its SPEC name. Returns SVA_OK, or SVA_ERR_ARGUMENT when
+/// the name is unknown or NULL (then *out is untouched).
+SVA_NODISCARD sva_status_t sva_algorithm_from_name(const char* name, sva_algorithm_t* out);
+
+typedef enum {
+    SVA_PLAN_NONE = 0,  ///< no plan (the planner failed or was not run)
+    SVA_PLAN_COMPLETE,  ///< every target covered
+    SVA_PLAN_PARTIAL,   ///< some target left uncovered
+} sva_plan_status_t;
+
+/// One UAV's route: its position, then targets in visit order, then the depot.
+typedef struct {
+    int32_t uav_id;
+    uint16_t target_count;
+    /// Indices into sva_mission_t.targets, in visit order.
+    uint16_t targets[SVA_MAX_ROUTE_TARGETS];
+    int64_t distance_cells;  ///< legs summed, return leg included
+    int64_t fuel_used;       ///< distance + hover_fuel * target_count
+    /// The UAV's fuel cannot bring it home: not planned for (no targets, distance 0).
+    bool stranded;
+} sva_route_t;
+
+/// Counters of one planning run (peaks let integrators shrink bounds to measurements).
+typedef struct {
+    uint32_t clusters;              ///< clusters formed (sva, hga)
+    uint32_t largest_cluster;       ///< most targets in one cluster
+    uint32_t transport_problems;    ///< problems solved (chunks included)
+    uint32_t largest_sources;       ///< most source groups in one problem
+    uint32_t largest_sinks;         ///< most sinks in one problem
+    uint32_t largest_tableau_cells; ///< most tableau cells used (sva)
+    uint32_t pivots;                ///< simplex pivots, all problems (sva)
+    uint32_t max_pivots;            ///< most pivots in one problem (sva)
+    uint32_t dropped_sources;       ///< source groups left out by SVA_MAX_TP_SOURCES
+    uint32_t chunked_clusters;      ///< clusters split by SVA_MAX_TP_SINKS
+    uint64_t search_nodes;          ///< nodes visited (hga, bfa)
+    uint32_t truncated_searches;    ///< hga problems cut at SVA_HGA_MAX_NODES
+} sva_stats_t;
+
+typedef struct {
+    sva_algorithm_t algorithm;
+    sva_plan_status_t status;
+    uint16_t covered;               ///< targets covered
+    uint16_t uncovered_count;
+    uint16_t uncovered[SVA_MAX_TARGETS];  ///< indices into mission targets, mission order
+    int64_t cost;                   ///< sum of route distances
+    uint16_t route_count;           ///< == mission uav_count
+    uint16_t stranded_count;
+    sva_route_t routes[SVA_MAX_UAVS];  ///< one per UAV, in mission order
+    sva_stats_t stats;
+} sva_plan_t;
+
+// =================================================================================
+// Planner
+
+/// What a transportation problem looked like once solved (sva and hga): handed to
+/// sva_planner_t.on_transport, valid only during the call. Row-major costs with
+/// SVA_TP_NO_ARC where a UAV group cannot serve a target.
+#define SVA_TP_NO_ARC (-1L)
+typedef struct {
+    sva_algorithm_t algorithm;
+    uint16_t source_count;
+    uint16_t sink_count;
+    const int32_t* supply;        ///< [source_count] UAVs per group
+    const int32_t* demand;        ///< [sink_count] need per target
+    const int32_t* cost;          ///< [source_count * sink_count] cells or SVA_TP_NO_ARC
+    const int32_t* flow;          ///< [source_count * sink_count] UAVs sent
+    const uint16_t* sink_targets; ///< [sink_count] target index of each sink
+    const uint16_t* source_first_uav;  ///< [source_count] lowest UAV index of each group
+    int64_t cost_total;           ///< sum of cost * flow
+    uint16_t covered;             ///< sinks whose demand is met in full
+    uint32_t pivots;              ///< simplex pivots for this problem (0 for hga)
+} sva_tp_view_t;
+
+typedef void (*sva_tp_observer_t)(void* user, const sva_tp_view_t* problem);
+
+/// Private working memory; read-only to users, layout may change in any release.
+typedef struct {
+    // per-UAV planning state
+    int32_t uav_x[SVA_MAX_UAVS];
+    int32_t uav_y[SVA_MAX_UAVS];
+    int64_t uav_free_at[SVA_MAX_UAVS];
+    int64_t uav_fuel_left[SVA_MAX_UAVS];
+    // targets sorted by (start, end, id), and the cluster each belongs to
+    uint16_t order[SVA_MAX_TARGETS];
+    uint16_t cluster_end[SVA_MAX_TARGETS];  ///< exclusive end (in order) of each cluster
+    uint16_t cluster_count;
+    // one transportation problem
+    uint16_t tp_sources;
+    uint16_t tp_sinks;
+    uint16_t tp_sink_target[SVA_MAX_TP_SINKS];
+    bool tp_sink_dropped[SVA_MAX_TP_SINKS];
+    uint16_t tp_source_first[SVA_MAX_TP_SOURCES];
+    int32_t tp_supply[SVA_MAX_TP_SOURCES];
+    int32_t tp_demand[SVA_MAX_TP_SINKS];
+    int32_t tp_cost[SVA_MAX_TP_SOURCES * SVA_MAX_TP_SINKS];
+    int32_t tp_flow[SVA_MAX_TP_SOURCES * SVA_MAX_TP_SINKS];
+    int16_t uav_group[SVA_MAX_UAVS];  ///< source group of each UAV, -1 if none
+    bool uav_reach[SVA_MAX_UAVS * SVA_MAX_TP_SINKS];  ///< UAV can serve sink
+    // the tableau: rows x cols of {-1, 0, +1}, right-hand side, reduced costs, basis
+    int8_t tab[SVA_TABLEAU_CELLS];
+    int32_t rhs[SVA_TABLEAU_ROWS];
+    int64_t obj[SVA_TABLEAU_COLS];
+    int64_t col_cost[SVA_TABLEAU_COLS];
+    int16_t basis[SVA_TABLEAU_ROWS];
+    // exhaustive search (bfa, hga): explicit stack, one frame per target depth
+    uint16_t search_targets[SVA_MAX_TARGETS];
+    uint16_t search_cand[SVA_MAX_TARGETS < 64 ? SVA_MAX_TARGETS * SVA_MAX_UAVS : 64 * SVA_MAX_UAVS];
+    uint8_t search_pick[SVA_MAX_TARGETS < 64 ? SVA_MAX_TARGETS * SVA_MAX_UAVS : 64 * SVA_MAX_UAVS];
+    uint16_t best_route_len[SVA_MAX_UAVS];
+    uint16_t best_routes[SVA_MAX_UAVS * SVA_MAX_ROUTE_TARGETS];
+    uint16_t cur_route_len[SVA_MAX_UAVS];
+    uint16_t cur_routes[SVA_MAX_UAVS * SVA_MAX_ROUTE_TARGETS];
+} sva_planner_priv_t;
+
+/// The planner: caller-owned working memory plus an optional observer.
+typedef struct {
+    /// Called after each transportation problem is solved (sva, hga); NULL for none.
+    /// Must not call back into this planner.
+    sva_tp_observer_t on_transport;
+    void* on_transport_user;
+    sva_planner_priv_t priv;  ///< read-only to users
+} sva_planner_t;
+
+/// Prepares a planner (no observer). Allocates nothing; O(1).
+/// Returns SVA_OK, or SVA_ERR_ARGUMENT when self is NULL.
+SVA_NODISCARD sva_status_t sva_planner_init(sva_planner_t* self);
+
+/// Validates *mission, then plans it with `algorithm` into *plan.
+/// Returns
+///   SVA_OK            plan->status is SVA_PLAN_COMPLETE or SVA_PLAN_PARTIAL;
+///   SVA_ERR_ARGUMENT  a NULL pointer or an algorithm out of range;
+///   SVA_ERR_INVALID   the mission breaks a rule (diag filled, see sva_mission_validate);
+///   SVA_ERR_LIMIT     bfa only: the mission exceeds SVA_BFA_MAX_TARGETS,
+///                     SVA_BFA_MAX_UAVS or SVA_BFA_MAX_NODES (diag names it);
+///   SVA_ERR_SOLVER    the simplex exceeded SVA_MAX_PIVOTS or met a non-unit pivot.
+/// All-or-nothing: it fails iff it returns non-zero, and then plan->status is
+/// SVA_PLAN_NONE with no routes. Deterministic: the same mission gives the same plan
+/// on every platform (ties broken by ids). diag may be NULL.
+/// Allocates nothing; stack bounded (DESIGN.md section 6); complexity above.
+SVA_NODISCARD sva_status_t sva_plan(sva_planner_t* self,
+                                    const sva_mission_t* mission,
+                                    sva_algorithm_t algorithm,
+                                    sva_plan_t* plan,
+                                    sva_diag_t* diag);
+
+// =================================================================================
+// Compiled limits
+
+/// The compiled bounds, for tools and ports to report and check against.
+typedef struct {
+    uint32_t max_uavs;
+    uint32_t max_targets;
+    uint32_t max_route_targets;
+    uint32_t max_tp_sources;
+    uint32_t max_tp_sinks;
+    uint32_t max_pivots;
+    uint32_t bfa_max_targets;
+    uint32_t bfa_max_uavs;
+    uint32_t bfa_max_nodes;
+    uint32_t hga_max_nodes;
+    uint32_t mission_bytes;  ///< sizeof(sva_mission_t)
+    uint32_t plan_bytes;     ///< sizeof(sva_plan_t)
+    uint32_t planner_bytes;  ///< sizeof(sva_planner_t)
+} sva_limits_t;
+
+/// Returns the compiled limits. Allocates nothing; O(1).
+sva_limits_t sva_limits(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif  // SVA_H

@@ -1,0 +1,178 @@
+/// sva_config.h -- every compile-time bound and switch of the sva core.
+///
+/// Each bound has a default, a range check that names it, and a documented memory
+/// cost. To change bounds, either define them on the compiler command line or point
+/// SVA_CONFIG_HEADER at a header that defines them (CMake's SVA_PROFILE option writes
+/// one and exports it PUBLIC, so every consumer sees the same struct layout).
+/// sva_limits() reports the compiled values at run time.
+///
+/// Memory formulas (bytes, default profile in brackets) are in DESIGN.md section 4;
+/// the headline terms are:
+///   sva_mission_t  ~ 20 * SVA_MAX_UAVS + 24 * SVA_MAX_TARGETS
+///   sva_plan_t     ~ SVA_MAX_UAVS * (24 + 2 * SVA_MAX_ROUTE_TARGETS) + 2 * SVA_MAX_TARGETS
+///   sva_planner_t  ~ SVA_TABLEAU_CELLS * 1 + SVA_TABLEAU_COLS * 22 + per-UAV/target state
+
+#ifndef SVA_CONFIG_H
+#define SVA_CONFIG_H
+
+#ifdef SVA_CONFIG_HEADER
+#include SVA_CONFIG_HEADER
+#endif
+
+// ---------------------------------------------------------------------------------
+// Mission size.
+
+/// Largest fleet. Cost: ~ 20 B in the mission, ~ 24 B + route in the plan, ~ 40 B of
+/// planner state per UAV.
+#ifndef SVA_MAX_UAVS
+#define SVA_MAX_UAVS 64
+#endif
+#if (SVA_MAX_UAVS < 1) || (SVA_MAX_UAVS > 1024)
+#error "SVA_MAX_UAVS must be in [1, 1024]"
+#endif
+
+/// Most targets in one mission. Cost: 24 B in the mission, ~ 16 B of planner state.
+#ifndef SVA_MAX_TARGETS
+#define SVA_MAX_TARGETS 256
+#endif
+#if (SVA_MAX_TARGETS < 1) || (SVA_MAX_TARGETS > 4096)
+#error "SVA_MAX_TARGETS must be in [1, 4096]"
+#endif
+
+/// Most targets one UAV may serve in a plan. A UAV whose route is full is no longer
+/// ready for further targets. Cost: 2 B per UAV per slot in the plan.
+#ifndef SVA_MAX_ROUTE_TARGETS
+#define SVA_MAX_ROUTE_TARGETS SVA_MAX_TARGETS
+#endif
+#if (SVA_MAX_ROUTE_TARGETS < 1) || (SVA_MAX_ROUTE_TARGETS > SVA_MAX_TARGETS)
+#error "SVA_MAX_ROUTE_TARGETS must be in [1, SVA_MAX_TARGETS]"
+#endif
+
+// ---------------------------------------------------------------------------------
+// Transportation problem (the tableau). A cluster with more targets than
+// SVA_MAX_TP_SINKS is solved as consecutive chunks of that size; when more source
+// groups are ready than SVA_MAX_TP_SOURCES, the ones nearest the chunk are kept
+// (DESIGN.md section 3). Neither is an error.
+
+/// Most source groups (UAVs grouped by position and reachable targets) per problem.
+#ifndef SVA_MAX_TP_SOURCES
+#define SVA_MAX_TP_SOURCES 24
+#endif
+#if (SVA_MAX_TP_SOURCES < 1) || (SVA_MAX_TP_SOURCES > 255)
+#error "SVA_MAX_TP_SOURCES must be in [1, 255]"
+#endif
+
+/// Most targets (sinks) per transportation problem.
+#ifndef SVA_MAX_TP_SINKS
+#define SVA_MAX_TP_SINKS 48
+#endif
+#if (SVA_MAX_TP_SINKS < 1) || (SVA_MAX_TP_SINKS > 255)
+#error "SVA_MAX_TP_SINKS must be in [1, 255]"
+#endif
+
+/// Pivot budget per transportation problem; exceeding it is SVA_ERR_SOLVER.
+#ifndef SVA_MAX_PIVOTS
+#define SVA_MAX_PIVOTS 20000
+#endif
+#if (SVA_MAX_PIVOTS < 16) || (SVA_MAX_PIVOTS > 100000000)
+#error "SVA_MAX_PIVOTS must be in [16, 100000000]"
+#endif
+
+/// Derived tableau shape: one row per source and per sink; one column per arc, per
+/// unmet-demand slack and per surplus slack. Cost: 1 B per cell, ~ 22 B per column.
+#define SVA_TABLEAU_ROWS (SVA_MAX_TP_SOURCES + SVA_MAX_TP_SINKS)
+#define SVA_TABLEAU_COLS ((SVA_MAX_TP_SOURCES * SVA_MAX_TP_SINKS) + SVA_TABLEAU_ROWS)
+#define SVA_TABLEAU_CELLS (SVA_TABLEAU_ROWS * SVA_TABLEAU_COLS)
+
+// ---------------------------------------------------------------------------------
+// Exhaustive search (bfa, and hga's per-problem enumeration).
+
+/// bfa refuses missions with more targets than this (SVA_ERR_LIMIT, diag names it).
+#ifndef SVA_BFA_MAX_TARGETS
+#define SVA_BFA_MAX_TARGETS 12
+#endif
+#if (SVA_BFA_MAX_TARGETS < 1) || (SVA_BFA_MAX_TARGETS > 64) || (SVA_BFA_MAX_TARGETS > SVA_MAX_TARGETS)
+#error "SVA_BFA_MAX_TARGETS must be in [1, min(64, SVA_MAX_TARGETS)]"
+#endif
+
+/// bfa refuses missions with more UAVs than this.
+#ifndef SVA_BFA_MAX_UAVS
+#define SVA_BFA_MAX_UAVS 8
+#endif
+#if (SVA_BFA_MAX_UAVS < 1) || (SVA_BFA_MAX_UAVS > 32) || (SVA_BFA_MAX_UAVS > SVA_MAX_UAVS)
+#error "SVA_BFA_MAX_UAVS must be in [1, min(32, SVA_MAX_UAVS)]"
+#endif
+
+/// bfa gives up (SVA_ERR_LIMIT) after visiting this many search nodes: a clear error
+/// instead of hours of work. Deterministic: a node count, not a clock.
+#ifndef SVA_BFA_MAX_NODES
+#define SVA_BFA_MAX_NODES 20000000L
+#endif
+#if (SVA_BFA_MAX_NODES < 1000L) || (SVA_BFA_MAX_NODES > 2000000000L)
+#error "SVA_BFA_MAX_NODES must be in [1000, 2000000000]"
+#endif
+
+/// hga enumerates each transportation problem up to this many nodes, then keeps the
+/// best assignment found (counted in sva_stats_t.truncated_searches).
+#ifndef SVA_HGA_MAX_NODES
+#define SVA_HGA_MAX_NODES 200000L
+#endif
+#if (SVA_HGA_MAX_NODES < 100L) || (SVA_HGA_MAX_NODES > 2000000000L)
+#error "SVA_HGA_MAX_NODES must be in [100, 2000000000]"
+#endif
+
+// ---------------------------------------------------------------------------------
+// Value bounds (SPEC section 1). Coordinates are fixed by the SPEC; the others keep
+// every sum inside int64 with a wide margin and every leg inside int32 (DESIGN.md 5).
+
+#define SVA_COORD_MIN (-32768L)
+#define SVA_COORD_MAX 32767L
+
+/// Latest tick a window or ready time may name.
+#ifndef SVA_MAX_TICK
+#define SVA_MAX_TICK 1000000000L
+#endif
+#if (SVA_MAX_TICK < 1L) || (SVA_MAX_TICK > 1000000000L)
+#error "SVA_MAX_TICK must be in [1, 1000000000]"
+#endif
+
+/// Largest ticks_per_cell (travel time of one grid cell).
+#ifndef SVA_MAX_TICKS_PER_CELL
+#define SVA_MAX_TICKS_PER_CELL 1000L
+#endif
+#if (SVA_MAX_TICKS_PER_CELL < 1L) || (SVA_MAX_TICKS_PER_CELL > 10000L)
+#error "SVA_MAX_TICKS_PER_CELL must be in [1, 10000]"
+#endif
+
+/// Largest fuel a UAV may carry.
+#ifndef SVA_MAX_FUEL
+#define SVA_MAX_FUEL 1000000000L
+#endif
+#if (SVA_MAX_FUEL < 1L) || (SVA_MAX_FUEL > 2000000000L)
+#error "SVA_MAX_FUEL must be in [1, 2000000000]"
+#endif
+
+/// Largest hover_fuel (fuel per served window).
+#ifndef SVA_MAX_HOVER_FUEL
+#define SVA_MAX_HOVER_FUEL 1000000L
+#endif
+#if (SVA_MAX_HOVER_FUEL < 0L) || (SVA_MAX_HOVER_FUEL > 100000000L)
+#error "SVA_MAX_HOVER_FUEL must be in [0, 100000000]"
+#endif
+
+/// Largest UAV or target id (ids are positive).
+#define SVA_MAX_ID 2147483647L
+
+// ---------------------------------------------------------------------------------
+// Switches (0/1, tested with #if).
+
+/// 1: SVA_ASSERT checks API misuse (NULL pointers, bad enum values). Never used on
+/// untrusted input, which is validated and reported through sva_diag_t.
+#ifndef SVA_ENABLE_ASSERT
+#define SVA_ENABLE_ASSERT 1
+#endif
+#if (SVA_ENABLE_ASSERT != 0) && (SVA_ENABLE_ASSERT != 1)
+#error "SVA_ENABLE_ASSERT must be 0 or 1"
+#endif
+
+#endif  // SVA_CONFIG_H
