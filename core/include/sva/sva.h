@@ -273,6 +273,10 @@ typedef struct {
     uint16_t sink_count;
     const int32_t* supply;        ///< [source_count] UAVs per group
     const int32_t* demand;        ///< [sink_count] need per target
+    /// [sink_count] true for a sink left out because the problem could not cover every
+    /// target (SPEC section 2); the flow into dropped sinks is 0, and the other sinks'
+    /// demand is met in full: the flow is an optimum of the problem without them.
+    const bool* sink_dropped;
     const int32_t* cost;          ///< [source_count * sink_count] cells or SVA_TP_NO_ARC
     const int32_t* flow;          ///< [source_count * sink_count] UAVs sent
     const uint16_t* sink_targets; ///< [sink_count] target index of each sink
