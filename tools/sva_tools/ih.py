@@ -43,9 +43,10 @@ class TpRecord:
 
 def _groups(m: M.Mission, sinks: List[M.Target], ready: List[int], pos, free_at, fuel_left):
     """Source groups for one problem: ready UAVs keyed by (position, reachable sinks),
-    ordered by their lowest UAV index. Returns [(key, [uav indices])]."""
+    ordered by their lowest UAV id, members in id order (as the core does).
+    Returns [(key, [uav indices])]."""
     groups: Dict[tuple, List[int]] = {}
-    for ui in ready:
+    for ui in sorted(ready, key=lambda i: m.uavs[i].id):
         reach = []
         for j, t in enumerate(sinks):
             d = M.dist_pt(pos[ui], t)
@@ -54,13 +55,15 @@ def _groups(m: M.Mission, sinks: List[M.Target], ready: List[int], pos, free_at,
                 reach.append(j)
         if reach:
             groups.setdefault((pos[ui], tuple(reach)), []).append(ui)
-    out = sorted(groups.items(), key=lambda kv: kv[1][0])
+    first_id = lambda kv: m.uavs[kv[1][0]].id  # noqa: E731
+    out = sorted(groups.items(), key=first_id)
     if len(out) > M.SVA_MAX_TP_SOURCES:
-        # Mirrors the core's bound: keep the groups nearest the chunk (DESIGN.md 3).
+        # Mirrors the core's bound: keep the groups with the nearest reachable sink
+        # (ties: lower UAV id), numbered in id order (DESIGN.md section 3).
         def near(kv):
             (p, reach), members = kv
-            return (min(M.dist_pt(p, sinks[j]) for j in reach), members[0])
-        out = sorted(sorted(out, key=near)[:M.SVA_MAX_TP_SOURCES], key=lambda kv: kv[1][0])
+            return (min(M.dist_pt(p, sinks[j]) for j in reach), m.uavs[members[0]].id)
+        out = sorted(sorted(out, key=near)[:M.SVA_MAX_TP_SOURCES], key=first_id)
     return out
 
 
@@ -91,7 +94,7 @@ def plan_ih(m: M.Mission, records: Optional[List[TpRecord]] = None) -> M.Plan:
                 records.append(TpRecord([m.uavs[g[0]].id for _, g in groups], supply,
                                         [t.id for t in sinks], demand, cost, sol.flow,
                                         sol.kept, sol.cost, sol.covered))
-            # Commit: within a group, UAVs in mission order go to sinks in cluster order.
+            # Commit: sinks in cluster order, each taking its group's UAVs in id order.
             for gi, (_, members) in enumerate(groups):
                 it = iter(members)
                 for j, t in enumerate(sinks):

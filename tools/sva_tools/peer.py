@@ -21,13 +21,13 @@ import argparse
 import time
 from typing import Dict, List
 
-from ortools.constraint_solver import pywrapcp, routing_enums_pb2
-
 from . import io
 from . import model as M
 
 
 def solve_peer(m: M.Mission, solution_limit: int = 100, time_limit: float = 10.0) -> M.Plan:
+    from ortools.constraint_solver import pywrapcp, routing_enums_pb2
+
     t0 = time.perf_counter()
     vehicles = [u for u in m.uavs if not M.is_stranded(m, u)]
     nv = len(vehicles)

@@ -25,9 +25,6 @@ import sys
 import time
 from typing import Dict, List, Optional, Tuple
 
-from ortools.graph.python import min_cost_flow
-from ortools.sat.python import cp_model
-
 from . import io
 from . import model as M
 
@@ -40,6 +37,8 @@ def _dag(m: M.Mission):
 
 
 def solve_ref(m: M.Mission, time_limit: float = 30.0, workers: int = 1) -> M.Plan:
+    from ortools.sat.python import cp_model  # imported here: keeps start-up fast
+
     t0 = time.perf_counter()
     ts = m.targets
     nt = len(ts)
@@ -140,6 +139,8 @@ def solve_ref(m: M.Mission, time_limit: float = 30.0, workers: int = 1) -> M.Pla
 
 def fuel_free_bound(m: M.Mission) -> dict:
     """Min-cost flow lower bound of a complete plan, fuel ignored (see module doc)."""
+    from ortools.graph.python import min_cost_flow
+
     t0 = time.perf_counter()
     ts = m.targets
     us = [u for u in m.uavs if not M.is_stranded(m, u)]

@@ -13,7 +13,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import List, Optional, Sequence
 
-from ortools.linear_solver import pywraplp
 
 Cost = Sequence[Sequence[Optional[int]]]
 
@@ -33,6 +32,8 @@ def _arcs(cost: Cost):
 def _milp(ncols, col_cost, lb, ub, integer, rows, sense_max=False):
     """rows: list of (lo, hi, [(col, val), ...]), None for no bound. Returns the column
     values of an optimum, or None when infeasible."""
+    from ortools.linear_solver import pywraplp
+
     if ncols == 0:
         return [] if all((lo is None or lo <= 0) and (hi is None or hi >= 0)
                          for lo, hi, _ in rows) else None
