@@ -295,6 +295,18 @@ sva_json_result_t sva_json_parse_mission(const char* text,
         fail(&sink, "%s: empty input", source);
         return SVA_JSON_BAD_INPUT;
     }
+    // jansson stops at a raw NUL byte and reports "end of file"; name it instead.
+    const char* nul = memchr(text, '\0', len);
+    if (nul != NULL) {
+        int line = 1;
+        int column = 1;
+        for (const char* c = text; c < nul; ++c) {
+            line += *c == '\n';
+            column = *c == '\n' ? 1 : column + 1;
+        }
+        fail(&sink, "%s:%d:%d: invalid JSON: NUL byte in input", source, line, column);
+        return SVA_JSON_BAD_INPUT;
+    }
     json_error_t error;
     json_t* root = json_loadb(text, len, JSON_REJECT_DUPLICATES | JSON_DECODE_ANY, &error);
     if (root == NULL) {
