@@ -16,7 +16,7 @@ Parameters (the paper's random set, section 5: 20x20 grid, 5 UAVs):
     need            1 or 2 (uniform)
     hover_fuel      2 fuel units per served window
     fuel            "generous": 400 per UAV (never binds);
-                    "tight": 90 per UAV (binds: routes get cut short)
+                    "tight": 70 per UAV (binds: fewer targets covered than with 400)
 Variants:
     ticks_per_cell  2 in rand_10_2 (travel takes twice as long; starts scaled)
     replan          rand_7_2 is a mid-mission fleet state: UAVs at random cells with
@@ -33,14 +33,14 @@ UAVS = 5
 
 # name: (seed, targets, spread of window starts, fuel, ticks_per_cell, replan)
 MISSIONS = {
-    "rand_7_1": (701, 7, 60, "generous", 1, False),
-    "rand_7_2": (702, 7, 60, "generous", 1, True),
-    "rand_10_1": (1001, 10, 80, "generous", 1, False),
-    "rand_10_2": (1002, 10, 80, "tight", 2, False),
-    "rand_25_1": (2501, 25, 150, "generous", 1, False),
-    "rand_25_2": (2502, 25, 150, "tight", 1, False),
+    "rand_7_1": (701, 7, 100, "generous", 1, False),
+    "rand_7_2": (702, 7, 100, "generous", 1, True),
+    "rand_10_1": (1001, 10, 160, "generous", 1, False),
+    "rand_10_2": (1002, 10, 160, "tight", 2, False),
+    "rand_25_1": (2501, 25, 400, "generous", 1, False),
+    "rand_25_2": (2502, 25, 400, "tight", 1, False),
 }
-FUEL = {"generous": 400, "tight": 90}
+FUEL = {"generous": 400, "tight": 70}
 
 
 def make(name, seed, n_targets, spread, fuel, ticks_per_cell, replan):

@@ -215,13 +215,13 @@ static bool get_element(const json_t* list, const char* key, size_t i, char* pre
 }
 
 static bool parse_uavs(const json_t* root, sva_mission_t* mission, const sink_t* err) {
-    const json_t* list;
+    const json_t* list = NULL;
     if (!get_list(root, "uavs", SVA_FIELD_UAVS, SVA_MAX_UAVS, "SVA_MAX_UAVS", &list, err)) {
         return false;
     }
     for (size_t i = 0; i < json_array_size(list); ++i) {
         char prefix[64];
-        const json_t* e;
+        const json_t* e = NULL;
         sva_uav_t* u = &mission->uavs[i];
         if (!get_element(list, "uavs", i, prefix, sizeof prefix, UAV_KEYS, &e, err) ||
             !get_int(e, prefix, UAV_KEYS, "id", &u->id, err) || !get_int(e, prefix, UAV_KEYS, "x", &u->x, err) ||
@@ -235,13 +235,13 @@ static bool parse_uavs(const json_t* root, sva_mission_t* mission, const sink_t*
 }
 
 static bool parse_targets(const json_t* root, sva_mission_t* mission, const sink_t* err) {
-    const json_t* list;
+    const json_t* list = NULL;
     if (!get_list(root, "targets", SVA_FIELD_TARGETS, SVA_MAX_TARGETS, "SVA_MAX_TARGETS", &list, err)) {
         return false;
     }
     for (size_t i = 0; i < json_array_size(list); ++i) {
         char prefix[64];
-        const json_t* e;
+        const json_t* e = NULL;
         sva_target_t* t = &mission->targets[i];
         if (!get_element(list, "targets", i, prefix, sizeof prefix, TARGET_KEYS, &e, err) ||
             !get_int(e, prefix, TARGET_KEYS, "id", &t->id, err) || !get_int(e, prefix, TARGET_KEYS, "x", &t->x, err) ||
@@ -258,7 +258,7 @@ static bool parse_targets(const json_t* root, sva_mission_t* mission, const sink
 
 static bool parse_root(const json_t* root, sva_mission_t* mission, char name[SVA_JSON_NAME_MAX + 1],
                        const sink_t* err) {
-    const json_t* depot;
+    const json_t* depot = NULL;
     if (!json_is_object(root)) {
         return fail(err, "mission: must be an object, got %s", type_name(root));
     }
