@@ -5,13 +5,16 @@
 
 #include "sva/sva.h"
 
-// Asserts guard API misuse only, never untrusted input (STYLE: Errors).
+// Asserts guard API misuse and internal invariants only, never untrusted input
+// (STYLE: Errors). Default: the C library's assert (so NDEBUG turns it off, as
+// anywhere in C); SVA_ENABLE_ASSERT=0 compiles them out; firmware may define
+// SVA_ASSERT(x) to its own handler. Disabled, the expression is still type-checked.
 #ifndef SVA_ASSERT
-#if SVA_ENABLE_ASSERT
+#if SVA_ENABLE_ASSERT && !defined(NDEBUG)
 #include <assert.h>
 #define SVA_ASSERT(x) assert(x)
 #else
-#define SVA_ASSERT(x) ((void)0)
+#define SVA_ASSERT(x) ((void)sizeof((x) ? 1 : 0))
 #endif
 #endif
 
