@@ -400,3 +400,37 @@ def test_write_failure_is_exit_1(extra):
         result = run(["plan", *extra, str(FIXTURES / "missions" / "rand_25_1.json")], stdout=full)
     assert result.returncode == 1
     assert result.stderr.decode().startswith("sva: error: writing the ")
+
+
+# ---------------------------------------------------------------------------------
+# mutated missions: never a crash, always a plan or exactly one error line
+
+@pytest.mark.sanitize
+def test_mutated_missions_never_crash():
+    import random
+    seed = int(os.environ.get("SVA_MUTATION_SEED", "20240607"))
+    print(f"mutation seed {seed} (replay with SVA_MUTATION_SEED={seed})")
+    rng = random.Random(seed)
+    files = sorted((FIXTURES / "missions").glob("*.json")) + sorted((FIXTURES / "invalid").glob("*.json"))
+    inserts = [b"-", b"9999999999", b"{", b"]", b'"x": 1,', b"0", b"null", b"1e9", b'"', b","]
+    for i in range(200):
+        data = bytearray(rng.choice(files).read_bytes())
+        for _ in range(rng.randint(1, 4)):
+            if not data:
+                break
+            at = rng.randrange(len(data))
+            op = rng.random()
+            if op < 0.4:
+                data[at] = rng.randrange(256)
+            elif op < 0.7:
+                del data[at:at + rng.randint(1, 8)]
+            else:
+                data[at:at] = rng.choice(inserts)
+        algo = rng.choice(ALGORITHMS)
+        result = run(["plan", "--algo", algo, "-"], stdin=bytes(data))
+        where = f"seed {seed}, case {i}, --algo {algo}"
+        if result.returncode == 0:
+            assert result.stderr == b"" and json.loads(result.stdout)["algorithm"] == algo, where
+        else:
+            assert result.returncode in (1, 2), f"{where}: exit {result.returncode}: {result.stderr[-2000:]!r}"
+            assert_one_error_line(result, result.returncode)
