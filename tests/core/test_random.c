@@ -52,7 +52,7 @@ static void test_tiny_missions_bfa_is_optimal_and_never_beaten(void** state)
             test_rng_range(&rng, 1, SVA_BFA_MAX_UAVS < 4 ? SVA_BFA_MAX_UAVS : 4),
             test_rng_range(&rng, 4, 20), 2, 15, 40, 2,
             test_rng_range(&rng, 5, 40), 80, test_rng_range(&rng, 0, 3),
-            test_rng_range(&rng, 1, 2), test_rng_range(&rng, 0, 1)};
+            test_rng_range(&rng, 1, 2), test_rng_range(&rng, 0, 1), 0};
         test_gen_mission(&rng, &p, &mission);
         const brute_result_t best = brute_force_optimum(&mission);
         plan_ok(SVA_ALGO_BFA, seed, round);
@@ -159,7 +159,7 @@ static void test_paper_sizes_feasible_and_problems_optimal(void** state)
             const test_gen_params_t p = {sizes[size][0], sizes[size][1], 20, 10, 20,
                                          4 * sizes[size][0], test_rng_range(&rng, 1, 2),
                                          test_rng_range(&rng, 20, 60), 200, 2, 1,
-                                         test_rng_range(&rng, 0, 1)};
+                                         test_rng_range(&rng, 0, 1), 0};
             test_gen_mission(&rng, &p, &mission);
             for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
                 if (a == SVA_ALGO_BFA && (mission.target_count > 10 || mission.target_count > SVA_BFA_MAX_TARGETS ||

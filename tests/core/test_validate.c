@@ -134,7 +134,7 @@ static void test_count_bounds(void** state)
     test_rng_t rng;
     test_rng_seed(&rng, 7);
     const test_gen_params_t params = {SVA_MAX_TARGETS, SVA_MAX_UAVS, 200, 10, 20, 4 * SVA_MAX_TARGETS,
-                                      2, 200, 2000, 2, 1, 0};
+                                      2, 200, 2000, 2, 1, 0, 0};
     test_gen_mission(&rng, &params, &mission);
     for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
         if (a == SVA_ALGO_BFA) {
@@ -195,7 +195,7 @@ static void test_bfa_limits_are_errors_not_hours(void** state)
     sva_diag_t diag;
     test_rng_t rng;
     test_rng_seed(&rng, 11);
-    const test_gen_params_t params = {SVA_BFA_MAX_TARGETS + 1, 2, 20, 10, 20, 100, 1, 100, 200, 0, 1, 0};
+    const test_gen_params_t params = {SVA_BFA_MAX_TARGETS + 1, 2, 20, 10, 20, 100, 1, 100, 200, 0, 1, 0, 0};
     test_gen_mission(&rng, &params, &mission);
     assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_BFA, &plan, &diag), SVA_ERR_LIMIT);
     assert_int_equal(plan.status, SVA_PLAN_NONE);
@@ -204,7 +204,7 @@ static void test_bfa_limits_are_errors_not_hours(void** state)
              SVA_BFA_MAX_TARGETS + 1, SVA_BFA_MAX_TARGETS);
     assert_string_equal(buf, expect);
 
-    const test_gen_params_t wide = {2, SVA_BFA_MAX_UAVS + 1, 20, 10, 20, 100, 1, 100, 200, 0, 1, 0};
+    const test_gen_params_t wide = {2, SVA_BFA_MAX_UAVS + 1, 20, 10, 20, 100, 1, 100, 200, 0, 1, 0, 0};
     test_gen_mission(&rng, &wide, &mission);
     assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_BFA, &plan, &diag), SVA_ERR_LIMIT);
     assert_string_equal(diag.limit_name, "SVA_BFA_MAX_UAVS");

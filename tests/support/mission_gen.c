@@ -54,7 +54,7 @@ void test_gen_mission(test_rng_t* rng, const test_gen_params_t* p, sva_mission_t
         }
         t->x = test_rng_range(rng, 0, p->grid);
         t->y = test_rng_range(rng, 0, p->grid);
-        t->start_ticks = test_rng_range(rng, 0, p->horizon);
+        t->start_ticks = test_rng_range(rng, p->start_min, p->start_min + p->horizon);
         t->end_ticks = t->start_ticks + test_rng_range(rng, p->window_min, p->window_max);
         t->need = test_rng_range(rng, 1, p->need_max);
     }

@@ -28,6 +28,7 @@ typedef struct {
     int hover_fuel;
     int ticks_per_cell;
     int scattered;     ///< 1: UAVs start anywhere with ready_at > 0 (replanning)
+    int start_min;     ///< earliest window start (0 when left out)
 } test_gen_params_t;
 
 /// Fills *m with a valid random mission.
