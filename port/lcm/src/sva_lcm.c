@@ -177,8 +177,8 @@ static sva_lcm_verdict_t reject(sva_lcm_node_t* self, sva_lcm_reject_t reason, c
     const uint32_t bit = (uint32_t)1U << (uint32_t)reason;
     if ((self->priv.logged & bit) == 0U) {
         self->priv.logged |= bit;
-        char line[256];
-        (void)snprintf(line, sizeof line, "rejected (%s; further ones only counted in %s): %s",
+        char line[360];
+        (void)snprintf(line, sizeof line, "rejected (%s; further ones only counted in %.63s): %.239s",
                        sva_lcm_reject_name(reason), self->channel_status, what);
         logf_line(self, line);
     }
@@ -189,9 +189,9 @@ static sva_lcm_verdict_t reject_diag(sva_lcm_node_t* self, sva_lcm_reject_t reas
                                      const char* channel)
 {
     char msg[160];
-    char what[224];
+    char what[240];
     (void)sva_diag_format(&self->last_diag, msg, sizeof msg);
-    (void)snprintf(what, sizeof what, "%s: %s", channel, msg);
+    (void)snprintf(what, sizeof what, "%.63s: %.159s", channel, msg);
     return reject(self, reason, what);
 }
 
