@@ -2,9 +2,15 @@
 //
 // Rows: one per source (sum of its arcs + surplus = supply) and one per sink still in
 // the problem (sum of its arcs + unmet = demand). Columns: one per arc, one unmet-demand
-// slack per sink (price M, larger than any plan's cost, so the optimum first delivers
-// as many units as possible), one surplus slack per source (price 0: SPEC section 2,
-// "the surplus stays put"). The slacks form the starting basis, an identity.
+// slack per sink, one surplus slack per source (price 0: SPEC section 2, "the surplus
+// stays put"). The slacks form the starting basis, an identity.
+//
+// An unmet unit of sink k costs M * L / need_k, where M exceeds the cost of any whole
+// assignment and L is the lcm of the needs: leaving any whole target unmet costs M * L
+// whatever its need, so the optimum leaves as few targets' worth of demand unmet as the
+// LP can, and only then minimises distance. (A plain M per unit would rather fill one
+// need-2 target than a cheaper need-1 one.) If L would be too large for int64
+// headroom, L = 1 (DESIGN.md section 2).
 //
 // The constraint matrix is the incidence matrix of a bipartite graph plus an identity,
 // hence totally unimodular: every basis inverse is integral and every tableau entry
@@ -29,6 +35,34 @@ typedef struct {
 static int8_t* cell(sva_tableau_t* tab, shape_t sh, uint16_t row, uint16_t col)
 {
     return &tab->cell[((uint32_t)row * sh.cols) + col];
+}
+
+static int64_t gcd(int64_t a, int64_t b)
+{
+    while (b != 0) {
+        const int64_t r = a % b;
+        a = b;
+        b = r;
+    }
+    return a;
+}
+
+// L: the lcm of the kept sinks' needs, or 1 when L * M could overflow the reduced
+// costs (each is at most (rows + 1) * max column cost in magnitude).
+static int64_t needs_lcm(const sva_tp_t* tp, int64_t big_m, uint16_t rows)
+{
+    const int64_t limit = (INT64_MAX / 4) / ((int64_t)rows + 1) / big_m;
+    int64_t lcm = 1;
+    for (uint16_t k = 0U; k < tp->sink_count; k++) {
+        if (!tp->sink_dropped[k]) {
+            const int64_t d = tp->demand[k];
+            lcm = (lcm / gcd(lcm, d)) * d;
+            if (lcm > limit) {
+                return 1;
+            }
+        }
+    }
+    return lcm;
 }
 
 // Lays out the columns and the starting basis; returns the shape.
@@ -59,6 +93,7 @@ static shape_t build(sva_tableau_t* tab, const sva_tp_t* tp)
     sh.cols = (uint16_t)(sh.cols + sh.rows);
     // M exceeds the cost of any assignment of the whole demand (DESIGN.md section 2).
     const int64_t big_m = ((int64_t)max_cost + 1) * (total_demand + 1);
+    const int64_t lcm = needs_lcm(tp, big_m, sh.rows);
 
     (void)memset(tab->cell, 0, (size_t)sh.rows * sh.cols);
     uint16_t j = 0U;
@@ -80,7 +115,7 @@ static shape_t build(sva_tableau_t* tab, const sva_tp_t* tp)
         if (tab->sink_row[k] >= 0) {
             const uint16_t row = (uint16_t)tab->sink_row[k];
             *cell(tab, sh, row, j) = 1;
-            tab->col_cost[j] = big_m;
+            tab->col_cost[j] = big_m * (lcm / tp->demand[k]);
             tab->col_source[j] = -1;
             tab->col_sink[j] = (int16_t)k;
             tab->basis[row] = (int16_t)j;

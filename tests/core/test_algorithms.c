@@ -229,6 +229,32 @@ static void test_idle_uav_flies_home(void** state)
     }
 }
 
+// Regression (found on fixtures/missions/hand_5_5.json): two UAVs at the depot, A needs
+// 2 at 6 cells, B needs 1 at 8 cells, same window. Either covers one target; B costs 16
+// (8 out, 8 back) and A 24 (two UAVs, 12 each). A plain per-unit big M filled A. Now
+// unmet demand is priced per whole target: the LP splits 1 + 1, A is short and dropped,
+// B is covered.
+static void test_whole_targets_not_units_decide(void** state)
+{
+    (void)state;
+    sva_mission_init(&mission);
+    mission.uav_count = 2;
+    mission.uavs[0] = uav(1, 0, 0, 100);
+    mission.uavs[1] = uav(2, 0, 0, 100);
+    mission.target_count = 2;
+    mission.targets[0] = target(1, 6, 0, 10, 20, 2);
+    mission.targets[1] = target(2, 0, 8, 10, 20, 1);
+    for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
+        if (a == SVA_ALGO_GA) {
+            continue;  // greedy fills the earliest target first by design (A: 24)
+        }
+        run((sva_algorithm_t)a);
+        assert_int_equal(plan.covered, 1);
+        assert_int_equal(plan.uncovered[0], 0);
+        assert_int_equal(plan.cost, 16);
+    }
+}
+
 int main(void)
 {
     assert_int_equal(sva_planner_init(&planner), SVA_OK);
@@ -242,6 +268,7 @@ int main(void)
         cmocka_unit_test(test_deterministic_and_order_independent),
         cmocka_unit_test(test_empty_fleet_and_empty_mission),
         cmocka_unit_test(test_idle_uav_flies_home),
+        cmocka_unit_test(test_whole_targets_not_units_decide),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

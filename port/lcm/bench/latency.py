@@ -1,0 +1,51 @@
+"""Ground side of latency.sh: publishes the fleet once, then ROUNDS missions with a new
+revision each (so each one replans) and times mission publish -> matching plan."""
+import json
+import statistics
+import sys
+import time
+
+import lcm
+
+from sva_tools.lcm import wire
+
+URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
+
+
+def main(path: str, rounds: int) -> int:
+    doc = json.load(open(path, encoding="utf-8"))
+    t = wire.types()
+    _, fleet, mission = wire.mission_messages(doc, 1, 1)
+    lc = lcm.LCM(URL)
+    got = []
+    lc.subscribe("BENCH_PLAN", lambda c, d: got.append((time.perf_counter_ns(), t.plan_t.decode(d))))
+    lc.publish("BENCH_FLEET", fleet.encode())
+    lat, solve = [], []
+    for rev in range(2, rounds + 2):
+        mission.revision = rev
+        data = mission.encode()  # encoding is the ground's work, outside the timing
+        del got[:]
+        t0 = time.perf_counter_ns()
+        lc.publish("BENCH_MISSION", data)
+        deadline = time.monotonic() + 2
+        while not any(p.mission_revision == rev for _, p in got):
+            if time.monotonic() > deadline:
+                print(f"no plan for revision {rev}", file=sys.stderr)
+                return 1
+            lc.handle_timeout(100)
+        t1, p = next((ts, p) for ts, p in got if p.mission_revision == rev)
+        if rev > 11:  # 10 warm-up rounds
+            lat.append((t1 - t0) / 1000)
+            solve.append(p.solve_us)
+    lat.sort()
+    q = lambda f: lat[min(len(lat) - 1, int(f * len(lat)))]
+    print(f"mission {doc['name']} ({len(doc['targets'])} targets, {len(doc['uavs'])} UAVs), "
+          f"{len(lat)} rounds, status {p.status}, covered {p.covered}")
+    print(f"latency us: median {statistics.median(lat):.0f}  p90 {q(0.90):.0f}  "
+          f"p99 {q(0.99):.0f}  max {lat[-1]:.0f}")
+    print(f"node solve us: median {statistics.median(solve):.0f}  max {max(solve)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1], int(sys.argv[2]) if len(sys.argv) > 2 else 500))

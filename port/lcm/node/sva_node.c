@@ -1,0 +1,204 @@
+// sva_node -- the on-board planner process: fleet state and missions in over LCM,
+// plans and a 1 Hz status out. One thread calls lcm_handle_timeout in a loop (LCM
+// requires a single handling thread); SIGINT/SIGTERM end the loop cleanly.
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "sva/sva_lcm.h"
+
+#define DEFAULT_URL "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
+#define DEFAULT_PREFIX "SVA_"
+/// Socket receive buffer requested when a udpm URL does not name one: a burst of 1000
+/// mission messages (6 KiB each) is ~ 6 MiB of payload; the kernel caps the request at
+/// net.core.rmem_max (docs/lcm.md).
+#define RECV_BUF_BYTES 4194304
+#define URL_SIZE 512
+
+static volatile sig_atomic_t stop_requested = 0;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    stop_requested = 1;
+}
+
+static void log_stderr(void* user, const char* line)
+{
+    (void)user;
+    fprintf(stderr, "sva_node: %s\n", line);
+}
+
+static int64_t realtime_us(void)
+{
+    struct timespec ts;
+    (void)clock_gettime(CLOCK_REALTIME, &ts);
+    return ((int64_t)ts.tv_sec * 1000000) + ((int64_t)ts.tv_nsec / 1000);
+}
+
+static int64_t monotonic_ms(void)
+{
+    struct timespec ts;
+    (void)clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ((int64_t)ts.tv_sec * 1000) + ((int64_t)ts.tv_nsec / 1000000);
+}
+
+static void usage(FILE* out)
+{
+    fprintf(out,
+            "usage: sva_node [options]\n"
+            "  -u, --url URL          LCM provider (default " DEFAULT_URL ")\n"
+            "                         a udpm URL without recv_buf_size gets %d\n"
+            "  -p, --prefix PREFIX    channel prefix (default " DEFAULT_PREFIX "): channels\n"
+            "                         PREFIX{FLEET,MISSION,PLAN,STATUS}, matched exactly\n"
+            "  -a, --algorithm NAME   sva, ga, hga or bfa (default sva)\n"
+            "  -s, --status-ms MS     status period in milliseconds (default 1000)\n"
+            "  -e, --exit-on-eof      stop when the provider ends (file:// logs)\n"
+            "  -h, --help             this text\n",
+            RECV_BUF_BYTES);
+}
+
+// Appends recv_buf_size to a udpm URL that has none (LCM's default is 2 MiB).
+static int build_url(const char* in, char* out, size_t size)
+{
+    int n;
+    if ((strncmp(in, "udpm://", 7) == 0) && (strstr(in, "recv_buf_size=") == NULL)) {
+        n = snprintf(out, size, "%s%crecv_buf_size=%d", in, (strchr(in, '?') != NULL) ? '&' : '?',
+                     RECV_BUF_BYTES);
+    } else {
+        n = snprintf(out, size, "%s", in);
+    }
+    return ((n < 0) || ((size_t)n >= size)) ? -1 : 0;
+}
+
+static sva_lcm_node_t node;
+
+static void send_status(void)
+{
+    if (sva_lcm_publish_status(&node, realtime_us()) != SVA_OK) {
+        // Counted in node.counters.publish_errors; the node keeps running.
+        return;
+    }
+}
+
+int main(int argc, char** argv)
+{
+    const char* url_arg = DEFAULT_URL;
+    const char* prefix = DEFAULT_PREFIX;
+    const char* algo_name = "sva";
+    long status_ms = 1000;
+    int exit_on_eof = 0;
+    for (int i = 1; i < argc; ++i) {
+        const char* a = argv[i];
+        const int has_value = (i + 1) < argc;
+        if ((strcmp(a, "-h") == 0) || (strcmp(a, "--help") == 0)) {
+            usage(stdout);
+            return 0;
+        } else if (((strcmp(a, "-u") == 0) || (strcmp(a, "--url") == 0)) && has_value) {
+            url_arg = argv[++i];
+        } else if (((strcmp(a, "-p") == 0) || (strcmp(a, "--prefix") == 0)) && has_value) {
+            prefix = argv[++i];
+        } else if (((strcmp(a, "-a") == 0) || (strcmp(a, "--algorithm") == 0)) && has_value) {
+            algo_name = argv[++i];
+        } else if (((strcmp(a, "-s") == 0) || (strcmp(a, "--status-ms") == 0)) && has_value) {
+            char* end = NULL;
+            errno = 0;
+            status_ms = strtol(argv[++i], &end, 10);
+            if ((errno != 0) || (end == argv[i]) || (*end != '\0') || (status_ms < 10) ||
+                (status_ms > 3600000)) {
+                fprintf(stderr, "sva_node: --status-ms: must be an integer in [10, 3600000], got '%s'\n",
+                        argv[i]);
+                return 2;
+            }
+        } else if ((strcmp(a, "-e") == 0) || (strcmp(a, "--exit-on-eof") == 0)) {
+            exit_on_eof = 1;
+        } else {
+            fprintf(stderr, "sva_node: unknown or incomplete option '%s'\n", a);
+            usage(stderr);
+            return 2;
+        }
+    }
+
+    sva_algorithm_t algorithm = SVA_ALGO_SVA;
+    if (sva_algorithm_from_name(algo_name, &algorithm) != SVA_OK) {
+        fprintf(stderr, "sva_node: --algorithm: unknown name '%s' (sva, ga, hga, bfa)\n", algo_name);
+        return 2;
+    }
+    if (strlen(prefix) > SVA_LCM_PREFIX_MAX) {
+        fprintf(stderr, "sva_node: --prefix: %zu characters exceed %d (LCM channel names are <= 63)\n",
+                strlen(prefix), SVA_LCM_PREFIX_MAX);
+        return 2;
+    }
+    char url[URL_SIZE];
+    if (build_url(url_arg, url, sizeof url) != 0) {
+        fprintf(stderr, "sva_node: --url: longer than %d characters\n", URL_SIZE - 1);
+        return 2;
+    }
+
+    lcm_t* lcm = lcm_create(url);
+    if (lcm == NULL) {
+        fprintf(stderr, "sva_node: lcm_create(\"%s\") failed (for udpm: is there a multicast route?)\n",
+                url);
+        return 1;
+    }
+    if ((sva_lcm_node_init(&node, lcm, prefix, algorithm) != SVA_OK) ||
+        (sva_lcm_node_subscribe(&node) != SVA_OK)) {
+        fprintf(stderr, "sva_node: cannot subscribe to %s and %s\n", node.channel_fleet,
+                node.channel_mission);
+        lcm_destroy(lcm);
+        return 1;
+    }
+    node.log = log_stderr;
+
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    (void)sigaction(SIGINT, &sa, NULL);
+    (void)sigaction(SIGTERM, &sa, NULL);
+
+    fprintf(stderr, "sva_node: in %s %s, out %s %s; algorithm %s; %s\n", node.channel_fleet,
+            node.channel_mission, node.channel_plan, node.channel_status,
+            sva_algorithm_name(algorithm), url);
+    send_status();
+    int64_t next_status = monotonic_ms() + status_ms;
+    int rc = 0;
+    while (!stop_requested) {
+        const int64_t wait = next_status - monotonic_ms();
+        const int timeout = (wait < 0) ? 0 : ((wait > 100) ? 100 : (int)wait);
+        const int r = lcm_handle_timeout(lcm, timeout);
+        if (r < 0) {
+            // A signal interrupts the wait: that is a request to stop, not a failure.
+            if (stop_requested || exit_on_eof) {
+                break;
+            }
+            fprintf(stderr, "sva_node: lcm_handle_timeout failed\n");
+            rc = 1;
+            break;
+        }
+        if (monotonic_ms() >= next_status) {
+            send_status();
+            next_status += status_ms;
+            if (next_status < monotonic_ms()) {
+                next_status = monotonic_ms() + status_ms;
+            }
+        }
+    }
+    send_status();
+    sva_lcm_node_unsubscribe(&node);
+    lcm_destroy(lcm);
+
+    const sva_lcm_counters_t* c = &node.counters;
+    fprintf(stderr, "sva_node: exit: fleet %llu, mission %llu, unchanged %llu, plans %llu, rejected",
+            (unsigned long long)c->fleet_rx, (unsigned long long)c->mission_rx,
+            (unsigned long long)c->unchanged, (unsigned long long)c->plans_published);
+    for (int r = 0; r < (int)SVA_LCM_REJECT_COUNT_; ++r) {
+        fprintf(stderr, " %s=%lu", sva_lcm_reject_name((sva_lcm_reject_t)r),
+                (unsigned long)c->rejected[r]);
+    }
+    fprintf(stderr, "\n");
+    return rc;
+}

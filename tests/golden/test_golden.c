@@ -1,0 +1,158 @@
+// test_golden.c -- golden plans (fixtures/golden/<algo>/<mission>.json).
+//
+// For every mission in fixtures/missions and every algorithm: plan it through the
+// CLI's JSON layer (sva_json) and compare with the golden file using json_equal,
+// "stats" removed from both. sva, ga and hga must have a golden file for every
+// mission; a missing bfa golden file is accepted only when bfa refuses the mission
+// with SVA_ERR_LIMIT. A golden file without its mission fails too.
+#define _POSIX_C_SOURCE 200809L
+
+#include <dirent.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include <cmocka.h>
+#include <jansson.h>
+#include <sva/sva.h>
+
+#include "mission_json.h"
+#include "plan_json.h"
+
+#define MAX_MISSIONS 256
+#define PATH_SIZE 1024
+
+typedef struct {
+    char mission[128];
+    sva_algorithm_t algorithm;
+} golden_case_t;
+
+static sva_mission_t g_mission;
+static sva_plan_t g_plan;
+static sva_planner_t g_planner;
+
+static int is_file(const char* path) {
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+// Mission names (file stems) of a directory's *.json files, sorted.
+static int cmp_names(const void* a, const void* b) {
+    return strcmp((const char*)a, (const char*)b);
+}
+
+static size_t list_json(const char* dir, char names[][128], size_t max) {
+    size_t count = 0;
+    DIR* d = opendir(dir);
+    if (d == NULL) {
+        return 0;
+    }
+    struct dirent* e;
+    while ((e = readdir(d)) != NULL) {
+        size_t len = strlen(e->d_name);
+        if (len > 5 && len - 5 < 128 && strcmp(e->d_name + len - 5, ".json") == 0 && count < max) {
+            memcpy(names[count], e->d_name, len - 5);
+            names[count][len - 5] = '\0';
+            ++count;
+        }
+    }
+    closedir(d);
+    qsort(names, count, sizeof names[0], cmp_names);
+    return count;
+}
+
+static void test_golden_plan(void** state) {
+    const golden_case_t* c = *state;
+    const char* algo = sva_algorithm_name(c->algorithm);
+    char mission_path[PATH_SIZE];
+    char golden_path[PATH_SIZE];
+    snprintf(mission_path, sizeof mission_path, "%s/missions/%s.json", SVA_FIXTURES_DIR, c->mission);
+    snprintf(golden_path, sizeof golden_path, "%s/golden/%s/%s.json", SVA_FIXTURES_DIR, algo, c->mission);
+
+    char name[SVA_JSON_NAME_MAX + 1];
+    char err[SVA_JSON_ERROR_SIZE];
+    if (sva_json_load_mission(mission_path, &g_mission, name, err, sizeof err) != SVA_JSON_OK) {
+        fail_msg("%s: %s", mission_path, err);
+    }
+    assert_int_equal(sva_planner_init(&g_planner), SVA_OK);
+    sva_diag_t diag;
+    sva_status_t status = sva_plan(&g_planner, &g_mission, c->algorithm, &g_plan, &diag);
+
+    if (!is_file(golden_path)) {
+        if (c->algorithm == SVA_ALGO_BFA && status == SVA_ERR_LIMIT) {
+            return;  // bfa refuses the mission: no golden plan expected
+        }
+        fail_msg("%s: missing golden plan (run tools/regen-golden.sh), sva_plan status %d", golden_path, (int)status);
+    }
+    if (status != SVA_OK) {
+        fail_msg("%s with %s: sva_plan status %d, but %s exists", c->mission, algo, (int)status, golden_path);
+    }
+    json_error_t error;
+    json_t* golden = json_load_file(golden_path, JSON_REJECT_DUPLICATES, &error);
+    if (golden == NULL) {
+        fail_msg("%s:%d:%d: %s", golden_path, error.line, error.column, error.text);
+    }
+    json_t* actual = sva_json_plan(&g_mission, name, &g_plan, 0);
+    assert_non_null(actual);
+    json_object_del(golden, "stats");
+    json_object_del(actual, "stats");
+    if (!json_equal(golden, actual)) {
+        char* want = json_dumps(golden, JSON_COMPACT | JSON_PRESERVE_ORDER);
+        char* got = json_dumps(actual, JSON_COMPACT | JSON_PRESERVE_ORDER);
+        print_error("golden %s\n  want %s\n  got  %s\n", golden_path, want, got);
+        free(want);
+        free(got);
+        json_decref(golden);
+        json_decref(actual);
+        fail();
+    }
+    json_decref(golden);
+    json_decref(actual);
+}
+
+// A golden file whose mission no longer exists is stale.
+static void test_no_stale_golden_files(void** state) {
+    (void)state;
+    static char missions[MAX_MISSIONS][128];
+    static char goldens[MAX_MISSIONS][128];
+    char dir[PATH_SIZE];
+    snprintf(dir, sizeof dir, "%s/missions", SVA_FIXTURES_DIR);
+    size_t mission_count = list_json(dir, missions, MAX_MISSIONS);
+    assert_true(mission_count > 0);
+    for (int a = 0; a < (int)SVA_ALGO_COUNT_; ++a) {
+        snprintf(dir, sizeof dir, "%s/golden/%s", SVA_FIXTURES_DIR, sva_algorithm_name((sva_algorithm_t)a));
+        size_t golden_count = list_json(dir, goldens, MAX_MISSIONS);
+        for (size_t g = 0; g < golden_count; ++g) {
+            if (bsearch(goldens[g], missions, mission_count, sizeof missions[0], cmp_names) == NULL) {
+                fail_msg("%s/%s.json: no mission of that name", dir, goldens[g]);
+            }
+        }
+    }
+}
+
+int main(void) {
+    static char missions[MAX_MISSIONS][128];
+    static golden_case_t cases[MAX_MISSIONS * SVA_ALGO_COUNT_];
+    static char names[MAX_MISSIONS * SVA_ALGO_COUNT_][160];
+    static struct CMUnitTest tests[MAX_MISSIONS * SVA_ALGO_COUNT_ + 1];
+    char dir[PATH_SIZE];
+    snprintf(dir, sizeof dir, "%s/missions", SVA_FIXTURES_DIR);
+    size_t mission_count = list_json(dir, missions, MAX_MISSIONS);
+    size_t n = 0;
+    tests[n++] = (struct CMUnitTest){"no_stale_golden_files", test_no_stale_golden_files, NULL, NULL, NULL};
+    for (size_t m = 0; m < mission_count; ++m) {
+        for (int a = 0; a < (int)SVA_ALGO_COUNT_; ++a) {
+            golden_case_t* c = &cases[n - 1];
+            snprintf(c->mission, sizeof c->mission, "%s", missions[m]);
+            c->algorithm = (sva_algorithm_t)a;
+            snprintf(names[n - 1], sizeof names[0], "%s/%s", sva_algorithm_name(c->algorithm), missions[m]);
+            tests[n] = (struct CMUnitTest){names[n - 1], test_golden_plan, NULL, NULL, c};
+            ++n;
+        }
+    }
+    return _cmocka_run_group_tests("golden", tests, n, NULL, NULL);
+}

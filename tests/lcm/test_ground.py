@@ -1,0 +1,80 @@
+"""The ground tool's conversions and errors, without any network."""
+import json
+from pathlib import Path
+
+import pytest
+
+from sva_tools.lcm import cli, wire
+
+DATA = Path(__file__).resolve().parent / "data"
+
+
+def small():
+    return json.loads((DATA / "small_5x8.json").read_text())
+
+
+def test_mission_round_trip_through_the_codec():
+    t = wire.types()
+    name, fleet, mission = wire.mission_messages(small(), 5, 6)
+    f2 = t.fleet_state_t.decode(fleet.encode())
+    m2 = t.mission_t.decode(mission.encode())
+    assert name == "lcm_small_5x8"
+    assert (f2.revision, m2.revision) == (5, 6)
+    assert f2.uav_count == 5 and [u.id for u in f2.uavs[:5]] == [1, 2, 3, 4, 5]
+    assert m2.target_count == 8 and m2.targets[7].need == 6
+    assert m2.hover_fuel == 1 and m2.overlap_percent == 70
+    assert len(fleet.encode()) == 1362 and len(mission.encode()) == 6182
+
+
+def test_defaults_apply():
+    doc = small()
+    for k in ("ticks_per_cell", "hover_fuel", "overlap_percent"):
+        del doc[k]
+    _, _, m = wire.mission_messages(doc, 1, 1)
+    assert (m.ticks_per_cell, m.hover_fuel, m.overlap_percent) == (1, 0, 70)
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda d: d.update(extra=1), "extra: unknown key"),
+    (lambda d: d["uavs"][2].pop("fuel"), "uavs[2].fuel: missing key"),
+    (lambda d: d["targets"][1].update(need="2"), "targets[1].need: must be an integer"),
+    (lambda d: d["targets"][1].update(x=True), "targets[1].x: must be an integer"),
+    (lambda d: d["depot"].update(x=2**31), "depot.x: must fit int32"),
+    (lambda d: d.update(uavs=[{"id": i, "x": 0, "y": 0, "fuel": 1} for i in range(65)]),
+     "uavs: 65 entries exceed SVA_MAX_UAVS (64)"),
+    (lambda d: d.update(targets=d["targets"] * 33), "exceed SVA_MAX_TARGETS (256)"),
+])
+def test_bad_mission_files(edit, message):
+    doc = small()
+    edit(doc)
+    with pytest.raises(wire.InputError, match=message.replace("[", r"\[").replace("]", r"\]")
+                       .replace("(", r"\(").replace(")", r"\)")):
+        wire.mission_messages(doc, 1, 1)
+
+
+def test_plan_document_and_diag_text():
+    t = wire.types()
+    p = t.plan_t()
+    p.status, p.algorithm, p.covered, p.cost = p.STATUS_PARTIAL, 1, 1, 30
+    p.uncovered_count, p.uncovered[0] = 1, 9
+    p.route_count = 2
+    p.routes[0].uav_id, p.routes[0].target_count, p.routes[0].distance_cells = 4, 2, 30
+    p.routes[0].fuel_used = 32
+    p.routes[1].uav_id, p.routes[1].stranded = 5, 1
+    p.item_count, p.route_targets[0], p.route_targets[1] = 2, 3, 1
+    p2 = t.plan_t.decode(p.encode())
+    doc = wire.plan_document(p2, "m")
+    assert doc["routes"] == [{"uav": 4, "targets": [3, 1], "distance": 30, "fuel_used": 32},
+                             {"uav": 5, "targets": [], "distance": 0, "fuel_used": 0}]
+    assert doc["stranded"] == [5] and doc["uncovered"] == [9]
+    assert (doc["status"], doc["algorithm"]) == ("partial", "ga")
+    p.status, p.diag_field, p.diag_rule, p.diag_index = p.STATUS_REJECTED, 18, 1, 3
+    p.diag_value, p.diag_limit = 0, 1
+    assert wire.diag_text(p) == "targets[3].need: must be >= 1, got 0"
+
+
+def test_cli_errors_without_network(tmp_path, capsys):
+    assert cli.main(["send", str(tmp_path / "missing.json")]) == 2
+    assert "missing.json" in capsys.readouterr().err
+    assert cli.main(["bogus"]) == 2
+    assert cli.main(["--help"]) == 0

@@ -1,0 +1,296 @@
+// main.c -- the sva command line: plan or validate a SPEC section 3 mission.
+//
+// Exit codes (docs/cli.md): 0 planned (complete or partial) or valid; 2 bad input
+// (mission or usage); 1 anything else (I/O, SVA_ERR_SOLVER, SVA_ERR_LIMIT).
+// Every error is exactly one line "sva: error: <message>" on stderr, and nothing is
+// printed on stdout for a mission that was rejected or could not be planned.
+#define _POSIX_C_SOURCE 200809L
+
+#include <errno.h>
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <jansson.h>
+#include <sva/sva.h>
+
+#include "mission_json.h"
+#include "plan_json.h"
+#include "schedule.h"
+#include "trace_json.h"
+
+enum { EXIT_PLANNED = 0, EXIT_FAILED = 1, EXIT_BAD_INPUT = 2 };
+
+// Large working structs live in static storage, as on firmware.
+static sva_mission_t g_mission;
+static sva_plan_t g_plan;
+static sva_planner_t g_planner;
+
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((format(printf, 2, 3)))
+#endif
+static int error_exit(int code, const char* fmt, ...) {
+    char message[SVA_JSON_ERROR_SIZE];
+    va_list args;
+    va_start(args, fmt);
+    vsnprintf(message, sizeof message, fmt, args);
+    va_end(args);
+    fprintf(stderr, "sva: error: %s\n", message);
+    return code;
+}
+
+static void list_algorithms(char* out, size_t size) {
+    size_t used = 0;
+    out[0] = '\0';
+    for (int a = 0; a < (int)SVA_ALGO_COUNT_; ++a) {
+        int n = snprintf(out + used, size - used, "%s%s", a == 0 ? "" : ", ", sva_algorithm_name((sva_algorithm_t)a));
+        if (n < 0 || (size_t)n >= size - used) {
+            break;
+        }
+        used += (size_t)n;
+    }
+}
+
+static void print_usage(FILE* out) {
+    char algos[128];
+    list_algorithms(algos, sizeof algos);
+    fprintf(out,
+            "usage: sva plan [--algo NAME] [--schedule] [--trace FILE] MISSION.json|-\n"
+            "       sva validate MISSION.json|-\n"
+            "       sva --help | --version\n"
+            "\n"
+            "plan       plan the mission and print the plan JSON (SPEC section 3)\n"
+            "  --algo NAME    algorithm: %s (default sva)\n"
+            "  --schedule     print a readable schedule instead of JSON\n"
+            "  --trace FILE   write each transportation problem to FILE as JSON Lines\n"
+            "validate   check the mission only; prints \"ok: NAME: N UAVs, M targets\"\n"
+            "\n"
+            "exit status: 0 planned or valid, 2 bad input (mission or usage), 1 other errors\n",
+            algos);
+}
+
+static void print_version(void) {
+    sva_limits_t limits = sva_limits();
+    printf("sva %d.%d.%d (mission/plan schema %d)\n", SVA_VERSION_MAJOR, SVA_VERSION_MINOR, SVA_VERSION_PATCH,
+           SVA_SCHEMA_VERSION);
+    printf("limits: SVA_MAX_UAVS %lu, SVA_MAX_TARGETS %lu, SVA_BFA_MAX_UAVS %lu, SVA_BFA_MAX_TARGETS %lu\n",
+           (unsigned long)limits.max_uavs, (unsigned long)limits.max_targets, (unsigned long)limits.bfa_max_uavs,
+           (unsigned long)limits.bfa_max_targets);
+}
+
+typedef struct {
+    const char* mission;
+    const char* algo;
+    const char* trace;
+    bool schedule;
+    bool help;
+} options_t;
+
+// Value of "--name VALUE" or "--name=VALUE"; NULL when `arg` is another option.
+// Advances *i past a separate value. *missing is set when the value is absent.
+static const char* option_value(const char* name, int argc, char** argv, int* i, bool* missing) {
+    const char* arg = argv[*i];
+    size_t len = strlen(name);
+    if (strncmp(arg, name, len) != 0) {
+        return NULL;
+    }
+    if (arg[len] == '=') {
+        return arg + len + 1;
+    }
+    if (arg[len] != '\0') {
+        return NULL;
+    }
+    if (*i + 1 >= argc) {
+        *missing = true;
+        return NULL;
+    }
+    *i += 1;
+    return argv[*i];
+}
+
+// Parses the arguments after the command. `full` allows the plan-only options.
+static int parse_options(const char* command, bool full, int argc, char** argv, options_t* opt) {
+    memset(opt, 0, sizeof *opt);
+    opt->algo = "sva";
+    bool only_files = false;
+    for (int i = 0; i < argc; ++i) {
+        const char* arg = argv[i];
+        bool missing = false;
+        const char* value = NULL;
+        if (!only_files && strcmp(arg, "--") == 0) {
+            only_files = true;
+        } else if (!only_files && (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0)) {
+            opt->help = true;
+        } else if (!only_files && full && strcmp(arg, "--schedule") == 0) {
+            opt->schedule = true;
+        } else if (!only_files && full && ((value = option_value("--algo", argc, argv, &i, &missing)) != NULL || missing)) {
+            if (missing) {
+                return error_exit(EXIT_BAD_INPUT, "%s: --algo needs a value", command);
+            }
+            opt->algo = value;
+        } else if (!only_files && full &&
+                   ((value = option_value("--trace", argc, argv, &i, &missing)) != NULL || missing)) {
+            if (missing || value[0] == '\0') {
+                return error_exit(EXIT_BAD_INPUT, "%s: --trace needs a file name", command);
+            }
+            opt->trace = value;
+        } else if (!only_files && arg[0] == '-' && arg[1] != '\0') {
+            return error_exit(EXIT_BAD_INPUT, "%s: unknown option \"%s\" (try 'sva --help')", command, arg);
+        } else if (opt->mission != NULL) {
+            return error_exit(EXIT_BAD_INPUT, "%s: one mission expected, got \"%s\" and \"%s\"", command, opt->mission,
+                              arg);
+        } else {
+            opt->mission = arg;
+        }
+    }
+    if (!opt->help && opt->mission == NULL) {
+        return error_exit(EXIT_BAD_INPUT, "%s: missing MISSION.json (or - for standard input)", command);
+    }
+    return EXIT_PLANNED;
+}
+
+static int load(const char* path, char name[SVA_JSON_NAME_MAX + 1]) {
+    char err[SVA_JSON_ERROR_SIZE];
+    sva_json_result_t result = sva_json_load_mission(path, &g_mission, name, err, sizeof err);
+    if (result != SVA_JSON_OK) {
+        return error_exit(result == SVA_JSON_BAD_INPUT ? EXIT_BAD_INPUT : EXIT_FAILED, "%s", err);
+    }
+    return EXIT_PLANNED;
+}
+
+static int cmd_validate(int argc, char** argv) {
+    options_t opt;
+    int code = parse_options("validate", false, argc, argv, &opt);
+    if (code != EXIT_PLANNED || opt.help) {
+        if (opt.help) {
+            print_usage(stdout);
+        }
+        return code;
+    }
+    char name[SVA_JSON_NAME_MAX + 1];
+    code = load(opt.mission, name);
+    if (code != EXIT_PLANNED) {
+        return code;
+    }
+    printf("ok: %s: %u UAVs, %u targets\n", name, (unsigned)g_mission.uav_count, (unsigned)g_mission.target_count);
+    if (fflush(stdout) != 0) {
+        return error_exit(EXIT_FAILED, "writing to standard output: %s", strerror(errno));
+    }
+    return EXIT_PLANNED;
+}
+
+static int64_t elapsed_us(const struct timespec* a, const struct timespec* b) {
+    return (int64_t)(b->tv_sec - a->tv_sec) * 1000000 + (int64_t)(b->tv_nsec - a->tv_nsec) / 1000;
+}
+
+// Maps a failed sva_plan() to its message and exit code.
+static int plan_failed(sva_status_t status, const sva_diag_t* diag) {
+    char message[SVA_JSON_ERROR_SIZE];
+    (void)sva_diag_format(diag, message, sizeof message);
+    switch (status) {
+        case SVA_ERR_INVALID: return error_exit(EXIT_BAD_INPUT, "%s", message);
+        case SVA_ERR_LIMIT: return error_exit(EXIT_FAILED, "%s", message);
+        case SVA_ERR_SOLVER:
+            return error_exit(EXIT_FAILED, "planner failed: simplex pivot budget SVA_MAX_PIVOTS (%ld) exceeded or "
+                                           "non-unit pivot (SVA_ERR_SOLVER)",
+                              (long)SVA_MAX_PIVOTS);
+        case SVA_ERR_ARGUMENT:
+        case SVA_OK: break;
+    }
+    return error_exit(EXIT_FAILED, "planner failed with status %d", (int)status);
+}
+
+static int print_plan(const options_t* opt, const char* name, int64_t solve_us) {
+    if (opt->schedule) {
+        if (sva_write_schedule(stdout, &g_mission, name, &g_plan) != 0) {
+            return error_exit(EXIT_FAILED, "writing the schedule: %s", strerror(errno));
+        }
+        return EXIT_PLANNED;
+    }
+    json_t* doc = sva_json_plan(&g_mission, name, &g_plan, solve_us);
+    if (doc == NULL) {
+        return error_exit(EXIT_FAILED, "building the plan JSON: out of memory");
+    }
+    int written = sva_json_write_plan(stdout, doc);
+    json_decref(doc);
+    if (written != 0) {
+        return error_exit(EXIT_FAILED, "writing the plan: %s", strerror(errno));
+    }
+    return EXIT_PLANNED;
+}
+
+static int cmd_plan(int argc, char** argv) {
+    options_t opt;
+    int code = parse_options("plan", true, argc, argv, &opt);
+    if (code != EXIT_PLANNED || opt.help) {
+        if (opt.help) {
+            print_usage(stdout);
+        }
+        return code;
+    }
+    sva_algorithm_t algorithm;
+    if (sva_algorithm_from_name(opt.algo, &algorithm) != SVA_OK) {
+        char algos[128];
+        list_algorithms(algos, sizeof algos);
+        return error_exit(EXIT_BAD_INPUT, "plan: --algo: unknown algorithm \"%s\" (known: %s)", opt.algo, algos);
+    }
+    char name[SVA_JSON_NAME_MAX + 1];
+    code = load(opt.mission, name);
+    if (code != EXIT_PLANNED) {
+        return code;
+    }
+    if (sva_planner_init(&g_planner) != SVA_OK) {
+        return error_exit(EXIT_FAILED, "planner initialisation failed");
+    }
+    FILE* trace_file = NULL;
+    sva_trace_t trace;
+    if (opt.trace != NULL) {
+        trace_file = fopen(opt.trace, "w");
+        if (trace_file == NULL) {
+            return error_exit(EXIT_FAILED, "%s: cannot open for writing: %s", opt.trace, strerror(errno));
+        }
+        sva_trace_attach(&trace, &g_planner, trace_file, &g_mission);
+    }
+    sva_diag_t diag;
+    sva_diag_clear(&diag);
+    struct timespec before, after;
+    clock_gettime(CLOCK_MONOTONIC, &before);
+    sva_status_t status = sva_plan(&g_planner, &g_mission, algorithm, &g_plan, &diag);
+    clock_gettime(CLOCK_MONOTONIC, &after);
+    if (trace_file != NULL) {
+        bool trace_ok = !trace.failed && fflush(trace_file) == 0 && !ferror(trace_file);
+        if (fclose(trace_file) != 0 || !trace_ok) {
+            return error_exit(EXIT_FAILED, "%s: cannot write the trace", opt.trace);
+        }
+    }
+    if (status != SVA_OK) {
+        return plan_failed(status, &diag);
+    }
+    return print_plan(&opt, name, elapsed_us(&before, &after));
+}
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        return error_exit(EXIT_BAD_INPUT, "missing command (try 'sva --help')");
+    }
+    const char* command = argv[1];
+    if (strcmp(command, "--help") == 0 || strcmp(command, "-h") == 0 || strcmp(command, "help") == 0) {
+        print_usage(stdout);
+        return EXIT_PLANNED;
+    }
+    if (strcmp(command, "--version") == 0) {
+        print_version();
+        return EXIT_PLANNED;
+    }
+    if (strcmp(command, "plan") == 0) {
+        return cmd_plan(argc - 2, argv + 2);
+    }
+    if (strcmp(command, "validate") == 0) {
+        return cmd_validate(argc - 2, argv + 2);
+    }
+    return error_exit(EXIT_BAD_INPUT, "unknown command \"%s\" (try 'sva --help')", command);
+}

@@ -1,0 +1,351 @@
+// mission_json.c -- SPEC section 3 mission JSON into sva_mission_t (see mission_json.h).
+#include "mission_json.h"
+
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <jansson.h>
+
+#include "input.h"
+
+// One key of an object: its name, whether it may be left out, and its SPEC default.
+typedef struct {
+    const char* name;
+    bool optional;
+    int32_t fallback;
+} key_spec_t;
+
+// SPEC section 3, in SPEC order (missing keys are reported in this order).
+static const key_spec_t MISSION_KEYS[] = {
+    {"name", false, 0},
+    {"depot", false, 0},
+    {"ticks_per_cell", true, 1},
+    {"hover_fuel", true, 0},
+    {"overlap_percent", true, 70},
+    {"uavs", false, 0},
+    {"targets", false, 0},
+    {NULL, false, 0},
+};
+static const key_spec_t DEPOT_KEYS[] = {{"x", false, 0}, {"y", false, 0}, {NULL, false, 0}};
+static const key_spec_t UAV_KEYS[] = {
+    {"id", false, 0}, {"x", false, 0}, {"y", false, 0}, {"fuel", false, 0}, {"ready_at", true, 0}, {NULL, false, 0},
+};
+static const key_spec_t TARGET_KEYS[] = {
+    {"id", false, 0}, {"x", false, 0},   {"y", false, 0},   {"start", false, 0},
+    {"end", false, 0}, {"need", false, 0}, {NULL, false, 0},
+};
+
+// Where messages go: the caller's buffer.
+typedef struct {
+    char* text;
+    size_t size;
+} sink_t;
+
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((format(printf, 2, 3)))
+#endif
+static bool fail(const sink_t* err, const char* fmt, ...) {
+    va_list args;
+    va_start(args, fmt);
+    if (err->size > 0) {
+        vsnprintf(err->text, err->size, fmt, args);
+    }
+    va_end(args);
+    return false;
+}
+
+static const char* type_name(const json_t* value) {
+    switch (json_typeof(value)) {
+        case JSON_OBJECT: return "object";
+        case JSON_ARRAY: return "array";
+        case JSON_STRING: return "string";
+        case JSON_INTEGER: return "integer";
+        case JSON_REAL: return "real";
+        case JSON_TRUE:
+        case JSON_FALSE: return "boolean";
+        case JSON_NULL: return "null";
+    }
+    return "unknown";
+}
+
+// "uavs[1]" + "x" -> "uavs[1].x"; the root's fields have no prefix.
+static void field_path(char* out, size_t size, const char* prefix, const char* key) {
+    if (prefix[0] == '\0') {
+        snprintf(out, size, "%s", key);
+    } else {
+        snprintf(out, size, "%s.%s", prefix, key);
+    }
+}
+
+// How an object is named in messages: the root is "mission".
+static const char* object_name(const char* prefix) {
+    return prefix[0] == '\0' ? "mission" : prefix;
+}
+
+// Unknown keys are errors at every level (SPEC 3); reported in document order,
+// before missing keys, since a misspelt key explains the missing one.
+static bool check_keys(const json_t* object, const char* prefix, const key_spec_t* keys, const sink_t* err) {
+    const char* key;
+    json_t* value;
+    // json_object_foreach needs a non-const object; nothing is modified.
+    json_t* mutable_object = (json_t*)(uintptr_t)object;
+    json_object_foreach(mutable_object, key, value) {
+        bool known = false;
+        for (const key_spec_t* k = keys; k->name != NULL; ++k) {
+            if (strcmp(k->name, key) == 0) {
+                known = true;
+                break;
+            }
+        }
+        if (!known) {
+            // Quote and escape the key so the message stays one printable line.
+            json_t* as_string = json_string(key);
+            char* quoted = as_string != NULL ? json_dumps(as_string, JSON_ENCODE_ANY | JSON_ENSURE_ASCII) : NULL;
+            fail(err, "%s: unknown key %s", object_name(prefix), quoted != NULL ? quoted : "(unprintable)");
+            free(quoted);
+            json_decref(as_string);
+            return false;
+        }
+    }
+    for (const key_spec_t* k = keys; k->name != NULL; ++k) {
+        if (!k->optional && json_object_get(object, k->name) == NULL) {
+            return fail(err, "%s: missing key \"%s\"", object_name(prefix), k->name);
+        }
+    }
+    return true;
+}
+
+static const key_spec_t* find_key(const key_spec_t* keys, const char* name) {
+    while (keys->name != NULL && strcmp(keys->name, name) != 0) {
+        ++keys;
+    }
+    return keys;
+}
+
+// Reads an integer that must fit int32; range rules of the SPEC are the core's, so
+// in-range violations pass through and the core's message names the SPEC limit.
+static bool get_int(const json_t* object, const char* prefix, const key_spec_t* keys, const char* key, int32_t* out,
+                    const sink_t* err) {
+    const json_t* value = json_object_get(object, key);
+    if (value == NULL) {
+        *out = find_key(keys, key)->fallback;  // check_keys has vetted required keys
+        return true;
+    }
+    char path[128];
+    field_path(path, sizeof path, prefix, key);
+    if (!json_is_integer(value)) {
+        return fail(err, "%s: must be an integer, got %s", path, type_name(value));
+    }
+    json_int_t v = json_integer_value(value);
+    if (v < INT32_MIN || v > INT32_MAX) {
+        return fail(err, "%s: must be an integer in [%ld, %ld], got %lld", path, (long)INT32_MIN, (long)INT32_MAX,
+                    (long long)v);
+    }
+    *out = (int32_t)v;
+    return true;
+}
+
+static bool get_object(const json_t* parent, const char* prefix, const char* key, const json_t** out,
+                       const sink_t* err) {
+    const json_t* value = json_object_get(parent, key);
+    if (!json_is_object(value)) {
+        char path[128];
+        field_path(path, sizeof path, prefix, key);
+        return fail(err, "%s: must be an object, got %s", path, type_name(value));
+    }
+    *out = value;
+    return true;
+}
+
+static bool parse_name(const json_t* root, char name[SVA_JSON_NAME_MAX + 1], const sink_t* err) {
+    const json_t* value = json_object_get(root, "name");
+    if (!json_is_string(value)) {
+        return fail(err, "name: must be a string, got %s", type_name(value));
+    }
+    size_t len = json_string_length(value);
+    if (len == 0 || len > SVA_JSON_NAME_MAX) {
+        return fail(err, "name: must be a non-empty string of at most %d bytes, got %zu", SVA_JSON_NAME_MAX, len);
+    }
+    memcpy(name, json_string_value(value), len);
+    name[len] = '\0';
+    return true;
+}
+
+// The list length is checked against the compiled bound before anything is copied;
+// the message is the core's (sva_diag_format), as for every bound.
+static bool get_list(const json_t* root, const char* key, sva_field_t field, size_t bound, const char* bound_name,
+                     const json_t** out, const sink_t* err) {
+    const json_t* value = json_object_get(root, key);
+    if (!json_is_array(value)) {
+        return fail(err, "%s: must be an array, got %s", key, type_name(value));
+    }
+    size_t count = json_array_size(value);
+    if (count > bound) {
+        sva_diag_t diag;
+        sva_diag_clear(&diag);
+        diag.field = field;
+        diag.rule = SVA_RULE_COUNT;
+        diag.index = -1;
+        diag.value = (int64_t)count;
+        diag.limit = (int64_t)bound;
+        diag.limit_name = bound_name;
+        (void)sva_diag_format(&diag, err->text, err->size);
+        return false;
+    }
+    *out = value;
+    return true;
+}
+
+static bool get_element(const json_t* list, const char* key, size_t i, char* prefix, size_t prefix_size,
+                        const key_spec_t* keys, const json_t** out, const sink_t* err) {
+    const json_t* element = json_array_get(list, i);
+    snprintf(prefix, prefix_size, "%s[%zu]", key, i);
+    if (!json_is_object(element)) {
+        return fail(err, "%s: must be an object, got %s", prefix, type_name(element));
+    }
+    if (!check_keys(element, prefix, keys, err)) {
+        return false;
+    }
+    *out = element;
+    return true;
+}
+
+static bool parse_uavs(const json_t* root, sva_mission_t* mission, const sink_t* err) {
+    const json_t* list = NULL;
+    if (!get_list(root, "uavs", SVA_FIELD_UAVS, SVA_MAX_UAVS, "SVA_MAX_UAVS", &list, err)) {
+        return false;
+    }
+    for (size_t i = 0; i < json_array_size(list); ++i) {
+        char prefix[64];
+        const json_t* e = NULL;
+        sva_uav_t* u = &mission->uavs[i];
+        if (!get_element(list, "uavs", i, prefix, sizeof prefix, UAV_KEYS, &e, err) ||
+            !get_int(e, prefix, UAV_KEYS, "id", &u->id, err) || !get_int(e, prefix, UAV_KEYS, "x", &u->x, err) ||
+            !get_int(e, prefix, UAV_KEYS, "y", &u->y, err) || !get_int(e, prefix, UAV_KEYS, "fuel", &u->fuel, err) ||
+            !get_int(e, prefix, UAV_KEYS, "ready_at", &u->ready_at_ticks, err)) {
+            return false;
+        }
+    }
+    mission->uav_count = (uint16_t)json_array_size(list);
+    return true;
+}
+
+static bool parse_targets(const json_t* root, sva_mission_t* mission, const sink_t* err) {
+    const json_t* list = NULL;
+    if (!get_list(root, "targets", SVA_FIELD_TARGETS, SVA_MAX_TARGETS, "SVA_MAX_TARGETS", &list, err)) {
+        return false;
+    }
+    for (size_t i = 0; i < json_array_size(list); ++i) {
+        char prefix[64];
+        const json_t* e = NULL;
+        sva_target_t* t = &mission->targets[i];
+        if (!get_element(list, "targets", i, prefix, sizeof prefix, TARGET_KEYS, &e, err) ||
+            !get_int(e, prefix, TARGET_KEYS, "id", &t->id, err) || !get_int(e, prefix, TARGET_KEYS, "x", &t->x, err) ||
+            !get_int(e, prefix, TARGET_KEYS, "y", &t->y, err) ||
+            !get_int(e, prefix, TARGET_KEYS, "start", &t->start_ticks, err) ||
+            !get_int(e, prefix, TARGET_KEYS, "end", &t->end_ticks, err) ||
+            !get_int(e, prefix, TARGET_KEYS, "need", &t->need, err)) {
+            return false;
+        }
+    }
+    mission->target_count = (uint16_t)json_array_size(list);
+    return true;
+}
+
+static bool parse_root(const json_t* root, sva_mission_t* mission, char name[SVA_JSON_NAME_MAX + 1],
+                       const sink_t* err) {
+    const json_t* depot = NULL;
+    if (!json_is_object(root)) {
+        return fail(err, "mission: must be an object, got %s", type_name(root));
+    }
+    return check_keys(root, "", MISSION_KEYS, err) && parse_name(root, name, err) &&
+           get_object(root, "", "depot", &depot, err) && check_keys(depot, "depot", DEPOT_KEYS, err) &&
+           get_int(depot, "depot", DEPOT_KEYS, "x", &mission->depot_x, err) &&
+           get_int(depot, "depot", DEPOT_KEYS, "y", &mission->depot_y, err) &&
+           get_int(root, "", MISSION_KEYS, "ticks_per_cell", &mission->ticks_per_cell, err) &&
+           get_int(root, "", MISSION_KEYS, "hover_fuel", &mission->hover_fuel, err) &&
+           get_int(root, "", MISSION_KEYS, "overlap_percent", &mission->overlap_percent, err) &&
+           parse_uavs(root, mission, err) && parse_targets(root, mission, err);
+}
+
+static bool is_blank(const char* text, size_t len) {
+    for (size_t i = 0; i < len; ++i) {
+        if (text[i] != ' ' && text[i] != '\t' && text[i] != '\n' && text[i] != '\r') {
+            return false;
+        }
+    }
+    return true;
+}
+
+sva_json_result_t sva_json_parse_mission(const char* text,
+                                         size_t len,
+                                         const char* source,
+                                         sva_mission_t* mission,
+                                         char name[SVA_JSON_NAME_MAX + 1],
+                                         char* err,
+                                         size_t err_size) {
+    const sink_t sink = {err, err_size};
+    sva_mission_init(mission);
+    name[0] = '\0';
+    if (is_blank(text, len)) {
+        fail(&sink, "%s: empty input", source);
+        return SVA_JSON_BAD_INPUT;
+    }
+    // jansson stops at a raw NUL byte and reports "end of file"; name it instead.
+    const char* nul = memchr(text, '\0', len);
+    if (nul != NULL) {
+        int line = 1;
+        int column = 1;
+        for (const char* c = text; c < nul; ++c) {
+            line += *c == '\n';
+            column = *c == '\n' ? 1 : column + 1;
+        }
+        fail(&sink, "%s:%d:%d: invalid JSON: NUL byte in input", source, line, column);
+        return SVA_JSON_BAD_INPUT;
+    }
+    json_error_t error;
+    json_t* root = json_loadb(text, len, JSON_REJECT_DUPLICATES | JSON_DECODE_ANY, &error);
+    if (root == NULL) {
+        fail(&sink, "%s:%d:%d: invalid JSON: %s", source, error.line, error.column, error.text);
+        return SVA_JSON_BAD_INPUT;
+    }
+    bool ok = parse_root(root, mission, name, &sink);
+    json_decref(root);
+    if (!ok) {
+        // All-or-nothing: a rejected document leaves no half-filled mission behind.
+        sva_mission_init(mission);
+        name[0] = '\0';
+        return SVA_JSON_BAD_INPUT;
+    }
+    return SVA_JSON_OK;
+}
+
+sva_json_result_t sva_json_load_mission(const char* path,
+                                        sva_mission_t* mission,
+                                        char name[SVA_JSON_NAME_MAX + 1],
+                                        char* err,
+                                        size_t err_size) {
+    char* text;
+    size_t len;
+    sva_json_result_t result = sva_json_read_input(path, &text, &len, err, err_size);
+    if (result != SVA_JSON_OK) {
+        return result;
+    }
+    const char* source = strcmp(path, "-") == 0 ? SVA_JSON_STDIN_NAME : path;
+    result = sva_json_parse_mission(text, len, source, mission, name, err, err_size);
+    free(text);
+    if (result != SVA_JSON_OK) {
+        return result;
+    }
+    sva_diag_t diag;
+    sva_diag_clear(&diag);
+    if (sva_mission_validate(mission, &diag) != SVA_OK) {
+        (void)sva_diag_format(&diag, err, err_size);
+        return SVA_JSON_BAD_INPUT;
+    }
+    return SVA_JSON_OK;
+}

@@ -1,0 +1,127 @@
+"""`lcm send | record | replay`: the ground side of the LCM link (docs/lcm.md).
+
+Exit status: 0 success; 1 the node rejected the mission or planning failed; 2 bad
+command line or mission file; 3 no plan before the timeout; 4 an LCM program failed.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+
+from . import wire
+
+DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0"
+DEFAULT_PREFIX = "SVA_"
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="sva-tools lcm", description=__doc__.splitlines()[0])
+    sub = p.add_subparsers(dest="command", required=True)
+
+    s = sub.add_parser("send", help="publish a mission and its fleet, print the plan")
+    s.add_argument("mission", help="SPEC section 3 mission JSON")
+    s.add_argument("-o", "--output", help="write the plan here instead of stdout")
+    s.add_argument("--url", default=DEFAULT_URL, help=f"LCM provider (default {DEFAULT_URL})")
+    s.add_argument("--prefix", default=DEFAULT_PREFIX, help="channel prefix (default SVA_)")
+    s.add_argument("--timeout", type=float, default=5.0, help="seconds to wait for the plan")
+    s.add_argument("--revision", type=int, default=None,
+                   help="fleet and mission revision (default: a fresh one from the clock)")
+
+    r = sub.add_parser("record", help="log LCM traffic with lcm-logger")
+    r.add_argument("-o", "--output", required=True, help="log file to write")
+    r.add_argument("--url", default=DEFAULT_URL)
+    r.add_argument("--channels", default=".*", help="channel regex (default .*)")
+
+    y = sub.add_parser("replay", help="play an LCM log with lcm-logplayer")
+    y.add_argument("log", help="log file")
+    y.add_argument("--url", default=DEFAULT_URL)
+    y.add_argument("--speed", type=float, default=1.0, help="speed multiplier (default 1)")
+    y.add_argument("--channels", default=None, help="channel regex to play")
+    return p
+
+
+def _send(args) -> int:
+    import lcm  # the venv's lcm==1.5.3
+
+    try:
+        with open(args.mission, encoding="utf-8") as f:
+            doc = json.load(f)
+    except (OSError, json.JSONDecodeError) as e:
+        print(f"sva-tools lcm send: {args.mission}: {e}", file=sys.stderr)
+        return 2
+    rev = args.revision if args.revision is not None else time.time_ns() // 1000
+    try:
+        name, fleet, mission = wire.mission_messages(doc, rev, rev)
+    except wire.InputError as e:
+        print(f"sva-tools lcm send: {args.mission}: {e}", file=sys.stderr)
+        return 2
+    t = wire.types()
+    lc = lcm.LCM(args.url)
+    answer = []
+
+    def on_plan(channel, data):
+        try:
+            p = t.plan_t.decode(data)
+        except ValueError:
+            return
+        if p.fleet_revision == rev and p.mission_revision == rev:
+            answer.append(p)
+
+    sub = lc.subscribe(args.prefix.replace("\\", "\\\\") + "PLAN", on_plan)
+    sub.set_queue_capacity(1000)
+    lc.publish(args.prefix + "FLEET", fleet.encode())
+    lc.publish(args.prefix + "MISSION", mission.encode())
+    deadline = time.monotonic() + args.timeout
+    while not answer:
+        left = deadline - time.monotonic()
+        if left <= 0:
+            print(f"sva-tools lcm send: no plan on {args.prefix}PLAN for revision {rev} "
+                  f"within {args.timeout} s (is sva_node running on {args.url}?)", file=sys.stderr)
+            return 3
+        lc.handle_timeout(max(1, int(left * 1000)))
+    plan = answer[0]
+    if plan.status not in (plan.STATUS_COMPLETE, plan.STATUS_PARTIAL):
+        what = {plan.STATUS_REJECTED: "rejected the mission",
+                plan.STATUS_FAILED: f"failed to plan (status {plan.error_code})",
+                plan.STATUS_TOO_LARGE: "made a plan larger than MAX_ROUTE_ITEMS"}.get(
+                    plan.status, f"answered status {plan.status}")
+        detail = "" if plan.status == plan.STATUS_TOO_LARGE else ": " + wire.diag_text(plan)
+        print(f"sva-tools lcm send: the node {what}{detail}", file=sys.stderr)
+        return 1
+    text = json.dumps(wire.plan_document(plan, name), indent=2) + "\n"
+    if args.output:
+        with open(args.output, "w", encoding="utf-8") as f:
+            f.write(text)
+    else:
+        sys.stdout.write(text)
+    return 0
+
+
+def _run(argv: list[str]) -> int:
+    import subprocess
+
+    try:
+        return subprocess.run(argv).returncode and 4
+    except (OSError, FileNotFoundError) as e:
+        print(f"sva-tools lcm: {argv[0]}: {e}", file=sys.stderr)
+        return 4
+    except KeyboardInterrupt:
+        return 0
+
+
+def main(argv: list[str]) -> int:
+    try:
+        args = _parser().parse_args(argv)
+    except SystemExit as e:  # --help (0) or a usage error (2)
+        return int(e.code or 0)
+    if args.command == "send":
+        return _send(args)
+    if args.command == "record":
+        return _run([wire.lcm_tool("lcm-logger"), "-f", "-q", "-c", args.channels,
+                     "-l", args.url, args.output])
+    cmd = [wire.lcm_tool("lcm-logplayer"), "-s", str(args.speed), "-l", args.url]
+    if args.channels:
+        cmd += ["-e", args.channels]
+    return _run(cmd + [args.log])
