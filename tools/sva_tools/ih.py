@@ -142,9 +142,11 @@ def verify_record(rec: dict, verdict: TraceVerdict, where: str = "") -> None:
                                   f"cost_total {rec['cost_total']}")
     flow = rec.get("flow")
     if flow is not None:
+        # null where there is no arc, like cost
+        bad_arc = any(f and c is None for crow, frow in zip(cost, flow) for c, f in zip(crow, frow))
+        flow = [[f or 0 for f in frow] for frow in flow]
         total = sum(c * f for crow, frow in zip(cost, flow) for c, f in zip(crow, frow)
                     if c is not None)
-        bad_arc = any(f and c is None for crow, frow in zip(cost, flow) for c, f in zip(crow, frow))
         col = [sum(frow[j] for frow in flow) for j in range(len(demand))]
         rowsum = [sum(frow) for frow in flow]
         if (bad_arc or total != rec["cost_total"]
