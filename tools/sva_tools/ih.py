@@ -119,6 +119,7 @@ class TraceVerdict:
     drop_worse: int = 0        # max-cover ILP covers more sinks than the tableau kept
     drop_worse_sinks: int = 0  # how many more, summed
     with_drops: int = 0        # problems where the tableau dropped a sink
+    drop_costlier: int = 0     # same number kept, but max-cover keeps a cheaper set
 
 
 def verify_record(rec: dict, verdict: TraceVerdict, where: str = "") -> None:
@@ -161,6 +162,8 @@ def verify_record(rec: dict, verdict: TraceVerdict, where: str = "") -> None:
     if mc.covered > kept:
         verdict.drop_worse += 1
         verdict.drop_worse_sinks += mc.covered - kept
+    elif mc.covered == kept and sol is not None and mc.cost < sol.cost:
+        verdict.drop_costlier += 1
     elif mc.covered < kept and sol is not None:
         verdict.mismatches.append(f"{tag}: max-cover LP covers {mc.covered} < {kept} kept sinks")
 
@@ -178,6 +181,7 @@ def read_trace(path: str) -> List[dict]:
 class CompareVerdict:
     missions: int = 0
     same: int = 0          # identical routes
+    tie_first: int = 0     # plans differ and the first differing problem was a tie
     tie: int = 0           # routes differ, same covered and cost
     differ: List[str] = field(default_factory=list)  # covered or cost differ
     trace: TraceVerdict = field(default_factory=TraceVerdict)
@@ -192,16 +196,36 @@ def compare_mission(m: M.Mission, verdict: CompareVerdict) -> None:
     verdict.missions += 1
     for rec in r.trace or []:
         verify_record(rec, verdict.trace, f"{m.name}: ")
-    p = plan_ih(m)
+    recs: List[TpRecord] = []
+    p = plan_ih(m, recs)
     a = [(x.uav, x.targets) for x in r.plan.routes]
     b = [(x.uav, x.targets) for x in p.routes]
     if a == b:
         verdict.same += 1
-    elif (r.plan.covered, r.plan.cost) == (p.covered, p.cost):
+        return
+    # Walk both pipelines in step: the first problem they solved differently. When it
+    # is the same problem with a different flow of equal cost, the plans diverged
+    # through a tie (later problems then start from other UAV positions and fuel).
+    cause = "the problems differ before any flow does"
+    for k, (c, i) in enumerate(zip(r.trace or [], recs)):
+        same_problem = (c["supply"] == i.supply and c["sink_targets"] == i.sink_targets
+                        and c["cost"] == i.cost)
+        if not same_problem:
+            cause = f"problem {k + 1} differs in its sources or sinks"
+            break
+        cflow = [[f or 0 for f in row] for row in c["flow"]]
+        if cflow != i.flow:
+            if c["cost_total"] == i.cost_total and c["covered"] == i.covered:
+                cause = "tie"
+                verdict.tie_first += 1
+            else:
+                cause = f"problem {k + 1}: different optimum"
+            break
+    if (r.plan.covered, r.plan.cost) == (p.covered, p.cost):
         verdict.tie += 1
     else:
         verdict.differ.append(f"{m.name}: sva covered {r.plan.covered} cost {r.plan.cost}, "
-                              f"ih covered {p.covered} cost {p.cost}")
+                              f"ih covered {p.covered} cost {p.cost}; first divergence: {cause}")
 
 
 def _mission_paths(items: List[str]) -> List[str]:
@@ -235,7 +259,8 @@ def _print_trace_verdict(v: TraceVerdict) -> None:
           f"{v.problems - len(v.mismatches)}/{v.problems}")
     print(f"problems with dropped sinks: {v.with_drops}; where cover-as-many-as-possible "
           f"keeps more sinks than the tableau's drop rule: {v.drop_worse} "
-          f"({v.drop_worse_sinks} sinks in all)")
+          f"({v.drop_worse_sinks} sinks in all); where it keeps as many sinks but a cheaper "
+          f"set: {v.drop_costlier}")
 
 
 def run(args) -> int:
@@ -267,8 +292,10 @@ def run(args) -> int:
                 print(f"sva-tools: error: {e}", file=sys.stderr)
                 return 2
         _print_trace_verdict(cv.trace)
-        print(f"missions: {cv.missions}; identical plans: {cv.same}; differ only by ties "
-              f"(same covered and cost): {cv.tie}; differ in covered or cost: {len(cv.differ)}")
+        print(f"missions: {cv.missions}; identical plans: {cv.same}; differ with the same "
+              f"covered and cost: {cv.tie}; differ in covered or cost: {len(cv.differ)}; "
+              f"differing plans whose first differing problem was a tie (same problem, "
+              f"other flow of equal cost): {cv.tie_first}/{cv.missions - cv.same}")
         for msg in cv.differ:
             print(f"DIFFER {msg}")
         return 1 if cv.trace.mismatches else 0
