@@ -262,7 +262,8 @@ def run(args) -> int:
         {"size": size_sets, "ratio": ratio_sets, "scale": scale_sets}[kind].append(s)
     bar.close()
     elapsed = time.time() - t_start
-    cmd = "tools/sva-tools " + " ".join(sys.argv[2:] if len(sys.argv) > 1 and sys.argv[1] == "bench" else sys.argv[1:])
+    argv = sys.argv[1:]
+    cmd = "tools/sva-tools bench " + " ".join(argv[1:] if argv[:1] == ["bench"] else argv)
     md = ["# sva benchmark: the paper's evaluation, reproduced", "",
           f"Command: `{cmd}`", "",
           f"Machine: {platform.machine()}, {os.cpu_count()} CPUs, Python {platform.python_version()}; "
