@@ -288,43 +288,85 @@ typedef struct {
 
 typedef void (*sva_tp_observer_t)(void* user, const sva_tp_view_t* problem);
 
-/// Private working memory; read-only to users, layout may change in any release.
+// ---------------------------------------------------------------------------------
+// Private working memory. The types below are public only because the planner is
+// caller-owned; they are read-only to users and may change in any release.
+
+/// One transportation problem: sources are UAV groups, sinks are targets.
 typedef struct {
-    // per-UAV planning state
+    uint16_t source_count;
+    uint16_t sink_count;
+    uint16_t sink_target[SVA_MAX_TP_SINKS];      ///< target index of each sink
+    bool sink_dropped[SVA_MAX_TP_SINKS];         ///< left out: not coverable in full
+    uint16_t source_first_uav[SVA_MAX_TP_SOURCES];
+    int32_t source_x[SVA_MAX_TP_SOURCES];
+    int32_t source_y[SVA_MAX_TP_SOURCES];
+    int32_t supply[SVA_MAX_TP_SOURCES];
+    int32_t demand[SVA_MAX_TP_SINKS];
+    int32_t cost[SVA_MAX_TP_SOURCES * SVA_MAX_TP_SINKS];  ///< or SVA_TP_NO_ARC
+    int32_t flow[SVA_MAX_TP_SOURCES * SVA_MAX_TP_SINKS];
+    int32_t unmet[SVA_MAX_TP_SINKS];  ///< demand the tableau's optimum leaves unmet
+    int16_t uav_group[SVA_MAX_UAVS];                      ///< source of each UAV or -1
+    int16_t uav_rep[SVA_MAX_UAVS];   ///< first UAV (index) of the same position and reach
+    int32_t rep_cost[SVA_MAX_UAVS];  ///< nearest reachable sink of a group representative
+    bool uav_reach[SVA_MAX_UAVS * SVA_MAX_TP_SINKS];      ///< UAV can serve sink
+    uint32_t pivots;
+} sva_tp_t;
+
+/// The dense integer tableau of one transportation problem (tableau.c).
+typedef struct {
+    int8_t cell[SVA_TABLEAU_CELLS];  ///< rows x cols, every entry in {-1, 0, +1}
+    int32_t rhs[SVA_TABLEAU_ROWS];
+    int16_t basis[SVA_TABLEAU_ROWS];
+    int64_t reduced[SVA_TABLEAU_COLS];
+    int64_t col_cost[SVA_TABLEAU_COLS];
+    int16_t col_source[SVA_TABLEAU_COLS];  ///< source row of an arc column, else -1
+    int16_t col_sink[SVA_TABLEAU_COLS];    ///< sink of an arc or unmet-demand column, else -1
+    int16_t nonzero[SVA_TABLEAU_COLS];     ///< columns where the pivot row is not 0
+    int16_t sink_row[SVA_MAX_TP_SINKS];    ///< tableau row of each sink, -1 if dropped
+} sva_tableau_t;
+
+/// hga's enumeration of one transportation problem: one frame per sink.
+typedef struct {
+    int32_t pick[SVA_MAX_TP_SINKS * SVA_MAX_TP_SOURCES];  ///< units from each source
+    int32_t best[SVA_MAX_TP_SINKS * SVA_MAX_TP_SOURCES];
+    int32_t left[SVA_MAX_TP_SOURCES];                     ///< supply not yet used
+    uint8_t phase[SVA_MAX_TP_SINKS];
+    int64_t cost_before[SVA_MAX_TP_SINKS];
+} sva_hga_work_t;
+
+/// bfa's explicit search stack: one frame per target, in visit-time order.
+typedef struct {
+    uint16_t cand[SVA_BFA_MAX_TARGETS][SVA_BFA_MAX_UAVS];   ///< UAVs able to serve
+    int64_t cand_cost[SVA_BFA_MAX_TARGETS][SVA_BFA_MAX_UAVS];
+    uint8_t cand_count[SVA_BFA_MAX_TARGETS];
+    uint8_t pick[SVA_BFA_MAX_TARGETS][SVA_BFA_MAX_UAVS];    ///< chosen candidate positions
+    uint8_t phase[SVA_BFA_MAX_TARGETS];
+    int32_t saved_x[SVA_BFA_MAX_TARGETS][SVA_BFA_MAX_UAVS];
+    int32_t saved_y[SVA_BFA_MAX_TARGETS][SVA_BFA_MAX_UAVS];
+    int64_t saved_free_at[SVA_BFA_MAX_TARGETS][SVA_BFA_MAX_UAVS];
+    int64_t saved_fuel_left[SVA_BFA_MAX_TARGETS][SVA_BFA_MAX_UAVS];
+    int64_t cost_before[SVA_BFA_MAX_TARGETS];
+    uint16_t best_route[SVA_BFA_MAX_UAVS][SVA_BFA_MAX_TARGETS];
+    uint8_t best_len[SVA_BFA_MAX_UAVS];
+} sva_bfa_work_t;
+
+/// All of the planner's working memory.
+typedef struct {
+    // Planning state of each UAV (index = mission order) and target.
     int32_t uav_x[SVA_MAX_UAVS];
     int32_t uav_y[SVA_MAX_UAVS];
-    int64_t uav_free_at[SVA_MAX_UAVS];
+    int64_t uav_free_at[SVA_MAX_UAVS];    ///< ticks
     int64_t uav_fuel_left[SVA_MAX_UAVS];
-    // targets sorted by (start, end, id), and the cluster each belongs to
-    uint16_t order[SVA_MAX_TARGETS];
-    uint16_t cluster_end[SVA_MAX_TARGETS];  ///< exclusive end (in order) of each cluster
+    uint16_t uav_order[SVA_MAX_UAVS];     ///< UAV indices by id
+    uint16_t target_order[SVA_MAX_TARGETS];  ///< target indices by (start, end, id)
+    uint16_t target_served[SVA_MAX_TARGETS];
+    uint16_t cluster_end[SVA_MAX_TARGETS];   ///< exclusive end (in target_order)
     uint16_t cluster_count;
-    // one transportation problem
-    uint16_t tp_sources;
-    uint16_t tp_sinks;
-    uint16_t tp_sink_target[SVA_MAX_TP_SINKS];
-    bool tp_sink_dropped[SVA_MAX_TP_SINKS];
-    uint16_t tp_source_first[SVA_MAX_TP_SOURCES];
-    int32_t tp_supply[SVA_MAX_TP_SOURCES];
-    int32_t tp_demand[SVA_MAX_TP_SINKS];
-    int32_t tp_cost[SVA_MAX_TP_SOURCES * SVA_MAX_TP_SINKS];
-    int32_t tp_flow[SVA_MAX_TP_SOURCES * SVA_MAX_TP_SINKS];
-    int16_t uav_group[SVA_MAX_UAVS];  ///< source group of each UAV, -1 if none
-    bool uav_reach[SVA_MAX_UAVS * SVA_MAX_TP_SINKS];  ///< UAV can serve sink
-    // the tableau: rows x cols of {-1, 0, +1}, right-hand side, reduced costs, basis
-    int8_t tab[SVA_TABLEAU_CELLS];
-    int32_t rhs[SVA_TABLEAU_ROWS];
-    int64_t obj[SVA_TABLEAU_COLS];
-    int64_t col_cost[SVA_TABLEAU_COLS];
-    int16_t basis[SVA_TABLEAU_ROWS];
-    // exhaustive search (bfa, hga): explicit stack, one frame per target depth
-    uint16_t search_targets[SVA_MAX_TARGETS];
-    uint16_t search_cand[SVA_MAX_TARGETS < 64 ? SVA_MAX_TARGETS * SVA_MAX_UAVS : 64 * SVA_MAX_UAVS];
-    uint8_t search_pick[SVA_MAX_TARGETS < 64 ? SVA_MAX_TARGETS * SVA_MAX_UAVS : 64 * SVA_MAX_UAVS];
-    uint16_t best_route_len[SVA_MAX_UAVS];
-    uint16_t best_routes[SVA_MAX_UAVS * SVA_MAX_ROUTE_TARGETS];
-    uint16_t cur_route_len[SVA_MAX_UAVS];
-    uint16_t cur_routes[SVA_MAX_UAVS * SVA_MAX_ROUTE_TARGETS];
+    sva_tp_t tp;
+    sva_tableau_t tableau;
+    sva_hga_work_t hga;
+    sva_bfa_work_t bfa;
 } sva_planner_priv_t;
 
 /// The planner: caller-owned working memory plus an optional observer.

@@ -1,0 +1,35 @@
+// algorithm.c -- algorithm names used on every interface (SPEC section 2).
+#include "sva_internal.h"
+
+static const char* const algorithm_names[SVA_ALGO_COUNT_] = {"sva", "ga", "hga", "bfa"};
+
+const char* sva_algorithm_name(sva_algorithm_t algorithm)
+{
+    if (((int)algorithm < 0) || ((int)algorithm >= (int)SVA_ALGO_COUNT_)) {
+        return "";
+    }
+    return algorithm_names[algorithm];
+}
+
+static bool names_equal(const char* a, const char* b)
+{
+    while ((*a != '\0') && (*a == *b)) {
+        a++;
+        b++;
+    }
+    return *a == *b;
+}
+
+sva_status_t sva_algorithm_from_name(const char* name, sva_algorithm_t* out)
+{
+    if ((name == NULL) || (out == NULL)) {
+        return SVA_ERR_ARGUMENT;
+    }
+    for (int i = 0; i < (int)SVA_ALGO_COUNT_; i++) {
+        if (names_equal(name, algorithm_names[i])) {
+            *out = (sva_algorithm_t)i;
+            return SVA_OK;
+        }
+    }
+    return SVA_ERR_ARGUMENT;
+}

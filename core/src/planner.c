@@ -1,0 +1,69 @@
+// planner.c -- the public entry points: planner set-up and sva_plan().
+#include "sva_internal.h"
+
+#include <string.h>
+
+sva_status_t sva_planner_init(sva_planner_t* self)
+{
+    SVA_ASSERT(self != NULL);
+    if (self == NULL) {
+        return SVA_ERR_ARGUMENT;
+    }
+    self->on_transport = NULL;
+    self->on_transport_user = NULL;
+    return SVA_OK;
+}
+
+static void plan_clear(sva_plan_t* plan, sva_algorithm_t algorithm)
+{
+    plan->algorithm = algorithm;
+    plan->status = SVA_PLAN_NONE;
+    plan->covered = 0U;
+    plan->uncovered_count = 0U;
+    plan->cost = 0;
+    plan->route_count = 0U;
+    plan->stranded_count = 0U;
+    (void)memset(&plan->stats, 0, sizeof(plan->stats));
+}
+
+sva_status_t sva_plan(sva_planner_t* self, const sva_mission_t* mission,
+                      sva_algorithm_t algorithm, sva_plan_t* plan, sva_diag_t* diag)
+{
+    SVA_ASSERT((self != NULL) && (mission != NULL) && (plan != NULL));
+    SVA_ASSERT(((int)algorithm >= 0) && ((int)algorithm < (int)SVA_ALGO_COUNT_));
+    if ((self == NULL) || (mission == NULL) || (plan == NULL) || ((int)algorithm < 0) ||
+        ((int)algorithm >= (int)SVA_ALGO_COUNT_)) {
+        return SVA_ERR_ARGUMENT;
+    }
+    plan_clear(plan, algorithm);
+    sva_status_t st = sva_mission_validate(mission, diag);
+    if (st != SVA_OK) {
+        return st;
+    }
+    sva_planner_priv_t* priv = &self->priv;
+    sva_state_reset(priv, mission, plan);
+    switch (algorithm) {
+    case SVA_ALGO_SVA:
+    case SVA_ALGO_HGA:
+        st = sva_run_pipeline(self, mission, algorithm, plan);
+        break;
+    case SVA_ALGO_GA:
+        sva_run_ga(priv, mission, plan);
+        break;
+    case SVA_ALGO_BFA:
+        st = sva_run_bfa(priv, mission, plan, diag);
+        break;
+    case SVA_ALGO_COUNT_:
+    default:
+        st = SVA_ERR_ARGUMENT;
+        break;
+    }
+    if (st != SVA_OK) {
+        const sva_stats_t stats = plan->stats;  // keep the counters for diagnosis
+        plan_clear(plan, algorithm);
+        plan->stats = stats;
+        return st;
+    }
+    sva_plan_finish(priv, mission, plan);
+    return SVA_OK;
+}

@@ -1,0 +1,85 @@
+// sva_internal.h -- private interfaces between the core's source files.
+// Not installed; never included by ports or tools.
+#ifndef SVA_INTERNAL_H
+#define SVA_INTERNAL_H
+
+#include "sva/sva.h"
+
+// Asserts guard API misuse and internal invariants only, never untrusted input
+// (STYLE: Errors). Default: the C library's assert (so NDEBUG turns it off, as
+// anywhere in C); SVA_ENABLE_ASSERT=0 compiles them out; firmware may define
+// SVA_ASSERT(x) to its own handler. Disabled, the expression is still type-checked.
+#ifndef SVA_ASSERT
+#if SVA_ENABLE_ASSERT && !defined(NDEBUG)
+#include <assert.h>
+#define SVA_ASSERT(x) assert(x)
+#else
+#define SVA_ASSERT(x) ((void)sizeof((x) ? 1 : 0))
+#endif
+#endif
+
+// C99 static assertion (negative array size on failure).
+#define SVA_STATIC_ASSERT(cond, name) typedef char sva_static_assert_##name[(cond) ? 1 : -1]
+
+// Integer headroom (DESIGN.md section 5): the longest leg is 2 * 65535 cells; every
+// leg, supply, demand and tableau index fits the types that hold it.
+#define SVA_MAX_LEG_CELLS (2L * (SVA_COORD_MAX - SVA_COORD_MIN))
+SVA_STATIC_ASSERT(SVA_MAX_LEG_CELLS <= 2147483647L, leg_fits_int32);
+SVA_STATIC_ASSERT(SVA_MAX_LEG_CELLS * SVA_MAX_TICKS_PER_CELL + SVA_MAX_TICK <= 2147483647L,
+                  arrival_fits_int32);
+SVA_STATIC_ASSERT(SVA_TABLEAU_COLS <= 32767L, tableau_cols_fit_int16);
+SVA_STATIC_ASSERT(SVA_MAX_TARGETS <= 65535L && SVA_MAX_UAVS <= 65535L, indices_fit_uint16);
+SVA_STATIC_ASSERT(SVA_MAX_UAVS <= 2147483647L / SVA_MAX_TP_SINKS, reach_index_fits);
+
+/// Manhattan distance in cells (SPEC section 1); at most SVA_MAX_LEG_CELLS.
+static inline int32_t sva_distance(int32_t ax, int32_t ay, int32_t bx, int32_t by)
+{
+    const int32_t dx = (ax > bx) ? (ax - bx) : (bx - ax);
+    const int32_t dy = (ay > by) ? (ay - by) : (by - ay);
+    return dx + dy;
+}
+
+// diag.c
+void sva_diag_set(sva_diag_t* diag, sva_field_t field, sva_rule_t rule, int32_t index,
+                  int64_t value, int64_t limit, const char* limit_name);
+
+// cluster.c: targets by (start, end, id) into priv->target_order, then clusters.
+void sva_sort_targets(sva_planner_priv_t* priv, const sva_mission_t* mission);
+void sva_sort_uavs(sva_planner_priv_t* priv, const sva_mission_t* mission);
+bool sva_windows_overlap(const sva_target_t* a, const sva_target_t* b, int32_t overlap_percent);
+void sva_cluster_targets(sva_planner_priv_t* priv, const sva_mission_t* mission);
+
+// plan.c: the planning state shared by every algorithm.
+void sva_state_reset(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan);
+bool sva_can_serve(const sva_planner_priv_t* priv, const sva_mission_t* mission,
+                   const sva_plan_t* plan, uint16_t uav, uint16_t target);
+/// Extra route distance if `uav` serves `target` next instead of flying home now.
+int64_t sva_insertion_cells(const sva_planner_priv_t* priv, const sva_mission_t* mission,
+                            uint16_t uav, uint16_t target);
+void sva_commit(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan,
+                uint16_t uav, uint16_t target);
+void sva_plan_finish(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan);
+
+// transport.c: build one problem from a chunk of a cluster, commit its flow.
+void sva_tp_build(sva_planner_priv_t* priv, const sva_mission_t* mission, const sva_plan_t* plan,
+                  const uint16_t* targets, uint16_t target_count, sva_stats_t* stats);
+void sva_tp_commit(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan);
+int64_t sva_tp_flow_cost(const sva_tp_t* tp);
+uint16_t sva_tp_covered(const sva_tp_t* tp);
+
+// tableau.c: min-cost flow of tp over its sinks not dropped; unmet demand allowed at a
+// big-M price. Fills tp->flow; *unmet (per sink) gets the shortfall.
+sva_status_t sva_tableau_solve(sva_tableau_t* tab, sva_tp_t* tp, int32_t* unmet,
+                               sva_stats_t* stats);
+
+// hga.c: exact enumeration of tp (max covered sinks, then min cost), node-bounded.
+void sva_hga_solve(sva_hga_work_t* work, sva_tp_t* tp, sva_stats_t* stats);
+
+// pipeline.c, ga.c, bfa.c: the algorithms.
+sva_status_t sva_run_pipeline(sva_planner_t* self, const sva_mission_t* mission,
+                              sva_algorithm_t algorithm, sva_plan_t* plan);
+void sva_run_ga(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan);
+sva_status_t sva_run_bfa(sva_planner_priv_t* priv, const sva_mission_t* mission,
+                         sva_plan_t* plan, sva_diag_t* diag);
+
+#endif  // SVA_INTERNAL_H
