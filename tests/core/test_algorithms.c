@@ -1,0 +1,247 @@
+// Algorithms on hand-made missions whose plans are worked out by hand in the comments.
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "spec_checker.h"
+#include "sva/sva.h"
+
+static sva_planner_t planner;
+static sva_mission_t mission;
+static sva_plan_t plan;
+
+static sva_uav_t uav(int32_t id, int32_t x, int32_t y, int32_t fuel)
+{
+    return (sva_uav_t){.id = id, .x = x, .y = y, .fuel = fuel, .ready_at_ticks = 0};
+}
+
+static sva_target_t target(int32_t id, int32_t x, int32_t y, int32_t start, int32_t end, int32_t need)
+{
+    return (sva_target_t){.id = id, .x = x, .y = y, .start_ticks = start, .end_ticks = end, .need = need};
+}
+
+static void run(sva_algorithm_t algorithm)
+{
+    sva_diag_t diag;
+    char why[200] = "";
+    assert_int_equal(sva_plan(&planner, &mission, algorithm, &plan, &diag), SVA_OK);
+    if (spec_check_plan(&mission, &plan, why, sizeof(why)) != 0) {
+        fail_msg("%s: %s", sva_algorithm_name(algorithm), why);
+    }
+}
+
+// One target at (5,7), need 2, three UAVs at the depot: the two lowest ids go,
+// each flying 12 out and 12 back (SPEC section 3 example: distance 24 each).
+static void test_need_two_lowest_ids_go(void** state)
+{
+    (void)state;
+    sva_mission_init(&mission);
+    mission.uav_count = 3;
+    mission.uavs[0] = uav(3, 0, 0, 60);
+    mission.uavs[1] = uav(1, 0, 0, 60);
+    mission.uavs[2] = uav(2, 0, 0, 60);
+    mission.target_count = 1;
+    mission.targets[0] = target(1, 5, 7, 12, 20, 2);
+    for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
+        run((sva_algorithm_t)a);
+        assert_int_equal(plan.status, SVA_PLAN_COMPLETE);
+        assert_int_equal(plan.cost, 48);
+        assert_int_equal(plan.routes[0].target_count, 0);  // id 3 stays
+        assert_int_equal(plan.routes[1].distance_cells, 24);
+        assert_int_equal(plan.routes[2].distance_cells, 24);
+    }
+}
+
+// Fuel with hover and return (SPEC section 1): the round trip is 24 and hover 3, so
+// fuel 27 serves the target and fuel 26 does not; a target that cannot be covered in
+// full takes no UAV at all.
+static void test_fuel_binds_exactly(void** state)
+{
+    (void)state;
+    sva_mission_init(&mission);
+    mission.hover_fuel = 3;
+    mission.uav_count = 1;
+    mission.uavs[0] = uav(1, 0, 0, 27);
+    mission.target_count = 1;
+    mission.targets[0] = target(1, 5, 7, 12, 20, 1);
+    for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
+        mission.uavs[0].fuel = 27;
+        run((sva_algorithm_t)a);
+        assert_int_equal(plan.covered, 1);
+        assert_int_equal(plan.routes[0].fuel_used, 27);
+        mission.uavs[0].fuel = 26;
+        run((sva_algorithm_t)a);
+        assert_int_equal(plan.status, SVA_PLAN_PARTIAL);
+        assert_int_equal(plan.cost, 0);
+        assert_int_equal(plan.uncovered_count, 1);
+    }
+}
+
+// Time with ticks_per_cell: 12 cells take 12 ticks at 1 tick per cell (arrives at the
+// start, 12) but 24 ticks at 2 per cell (too late).
+static void test_ticks_per_cell_decides_reachability(void** state)
+{
+    (void)state;
+    sva_mission_init(&mission);
+    mission.uav_count = 1;
+    mission.uavs[0] = uav(1, 0, 0, 100);
+    mission.target_count = 1;
+    mission.targets[0] = target(1, 5, 7, 12, 20, 1);
+    for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
+        mission.ticks_per_cell = 1;
+        run((sva_algorithm_t)a);
+        assert_int_equal(plan.covered, 1);
+        mission.ticks_per_cell = 2;
+        run((sva_algorithm_t)a);
+        assert_int_equal(plan.covered, 0);
+    }
+}
+
+// A UAV 10 cells from the depot with fuel 9 is stranded: reported, not planned for;
+// a need-3 target with only two other UAVs is not half-covered.
+static void test_stranded_and_never_half_cover(void** state)
+{
+    (void)state;
+    sva_mission_init(&mission);
+    mission.uav_count = 3;
+    mission.uavs[0] = uav(1, 4, 6, 9);
+    mission.uavs[1] = uav(2, 0, 0, 100);
+    mission.uavs[2] = uav(3, 0, 0, 100);
+    mission.target_count = 2;
+    mission.targets[0] = target(1, 2, 2, 10, 20, 3);
+    mission.targets[1] = target(2, 1, 1, 30, 40, 1);
+    for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
+        run((sva_algorithm_t)a);
+        assert_int_equal(plan.stranded_count, 1);
+        assert_true(plan.routes[0].stranded);
+        assert_int_equal(plan.routes[0].distance_cells, 0);
+        assert_int_equal(plan.covered, 1);
+        assert_int_equal(plan.uncovered[0], 0);  // target 1 (need 3) left whole
+        assert_int_equal(plan.cost, 4);          // UAV 2 to (1,1) and back
+    }
+}
+
+// Replanning: UAV X at (0,0) and Y at (5,0); A at (1,0) from tick 10, B at (0,1) from
+// tick 11, windows overlapping (one cluster). Greedy gives A the nearest UAV (X, 1) and
+// B gets Y (6): legs 7. The transportation problem sends X to B (1) and Y to A (4):
+// legs 5. Both return one cell each, so ga costs 9 and sva/hga/bfa cost 7.
+static void test_transport_beats_greedy(void** state)
+{
+    (void)state;
+    sva_mission_init(&mission);
+    mission.uav_count = 2;
+    mission.uavs[0] = uav(1, 0, 0, 100);
+    mission.uavs[1] = uav(2, 5, 0, 100);
+    mission.target_count = 2;
+    mission.targets[0] = target(1, 1, 0, 10, 20, 1);
+    mission.targets[1] = target(2, 0, 1, 11, 21, 1);
+    run(SVA_ALGO_GA);
+    assert_int_equal(plan.cost, 9);
+    for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
+        if (a != SVA_ALGO_GA) {
+            run((sva_algorithm_t)a);
+            assert_int_equal(plan.cost, 7);
+            assert_int_equal(plan.routes[0].targets[0], 1);  // X serves B
+        }
+    }
+}
+
+// Chaining across clusters: one UAV serves A [0,10] at (3,0) then B [20,30] at (3,4)
+// (4 cells, 4 ticks <= 10 ticks of slack): distance 3 + 4 + 7 = 14.
+static void test_one_uav_chains_clusters(void** state)
+{
+    (void)state;
+    sva_mission_init(&mission);
+    mission.uav_count = 1;
+    mission.uavs[0] = uav(1, 0, 0, 100);
+    mission.target_count = 2;
+    mission.targets[0] = target(7, 3, 4, 20, 30, 1);
+    mission.targets[1] = target(5, 3, 0, 3, 10, 1);
+    for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
+        run((sva_algorithm_t)a);
+        assert_int_equal(plan.status, SVA_PLAN_COMPLETE);
+        assert_int_equal(plan.routes[0].target_count, 2);
+        assert_int_equal(plan.routes[0].targets[0], 1);  // the earlier window first
+        assert_int_equal(plan.cost, 14);
+    }
+}
+
+// Same input, same plan; UAVs listed in another order get the same targets by id.
+static void test_deterministic_and_order_independent(void** state)
+{
+    (void)state;
+    sva_mission_init(&mission);
+    mission.uav_count = 3;
+    mission.uavs[0] = uav(10, 0, 0, 100);
+    mission.uavs[1] = uav(20, 0, 0, 100);
+    mission.uavs[2] = uav(30, 0, 0, 100);
+    mission.target_count = 2;
+    mission.targets[0] = target(1, 4, 4, 10, 20, 1);
+    mission.targets[1] = target(2, 4, 4, 11, 21, 1);
+    for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
+        run((sva_algorithm_t)a);
+        const int32_t first = plan.routes[0].target_count;
+        const int32_t second = plan.routes[1].target_count;
+        assert_int_equal(first + second, 2);  // ids 10 and 20 go, 30 stays
+        const sva_uav_t swap = mission.uavs[0];
+        mission.uavs[0] = mission.uavs[2];
+        mission.uavs[2] = swap;
+        run((sva_algorithm_t)a);
+        assert_int_equal(plan.routes[2].target_count, first);  // id 10, now listed last
+        assert_int_equal(plan.routes[0].target_count, 0);      // id 30
+        mission.uavs[2] = mission.uavs[0];
+        mission.uavs[0] = swap;
+    }
+}
+
+// No UAVs, no targets: trivially complete; no UAVs with targets: partial, cost 0.
+static void test_empty_fleet_and_empty_mission(void** state)
+{
+    (void)state;
+    sva_mission_init(&mission);
+    for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
+        run((sva_algorithm_t)a);
+        assert_int_equal(plan.status, SVA_PLAN_COMPLETE);
+    }
+    mission.target_count = 1;
+    mission.targets[0] = target(1, 1, 1, 5, 6, 1);
+    for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
+        run((sva_algorithm_t)a);
+        assert_int_equal(plan.status, SVA_PLAN_PARTIAL);
+        assert_int_equal(plan.cost, 0);
+    }
+}
+
+// A UAV away from the depot that serves nothing still flies home (SPEC section 1).
+static void test_idle_uav_flies_home(void** state)
+{
+    (void)state;
+    sva_mission_init(&mission);
+    mission.uav_count = 1;
+    mission.uavs[0] = uav(1, 3, -4, 100);
+    for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
+        run((sva_algorithm_t)a);
+        assert_int_equal(plan.routes[0].distance_cells, 7);
+        assert_int_equal(plan.cost, 7);
+    }
+}
+
+int main(void)
+{
+    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_need_two_lowest_ids_go),
+        cmocka_unit_test(test_fuel_binds_exactly),
+        cmocka_unit_test(test_ticks_per_cell_decides_reachability),
+        cmocka_unit_test(test_stranded_and_never_half_cover),
+        cmocka_unit_test(test_transport_beats_greedy),
+        cmocka_unit_test(test_one_uav_chains_clusters),
+        cmocka_unit_test(test_deterministic_and_order_independent),
+        cmocka_unit_test(test_empty_fleet_and_empty_mission),
+        cmocka_unit_test(test_idle_uav_flies_home),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,182 @@
+// The integer tableau simplex against hand-solved problems and against an enumeration
+// written here (independent of the core): the tableau's optimum delivers the most
+// units, then costs least; hga's enumeration agrees on problems it can cover in full.
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "mission_gen.h"
+#include "sva_internal.h"
+
+static sva_planner_t planner;
+#define NO SVA_TP_NO_ARC
+
+static void load(sva_tp_t* tp, int m, int n, const int32_t* supply, const int32_t* demand,
+                 const int32_t* cost)
+{
+    memset(tp, 0, sizeof(*tp));
+    tp->source_count = (uint16_t)m;
+    tp->sink_count = (uint16_t)n;
+    for (int s = 0; s < m; s++) {
+        tp->supply[s] = supply[s];
+    }
+    for (int k = 0; k < n; k++) {
+        tp->demand[k] = demand[k];
+    }
+    for (int i = 0; i < m * n; i++) {
+        tp->cost[i] = cost[i];
+    }
+}
+
+static long long units(const sva_tp_t* tp)
+{
+    long long u = 0;
+    for (int i = 0; i < tp->source_count * tp->sink_count; i++) {
+        u += tp->flow[i];
+    }
+    return u;
+}
+
+// Flow respects supply, demand and arcs.
+static void assert_flow_feasible(const sva_tp_t* tp)
+{
+    const int m = tp->source_count, n = tp->sink_count;
+    for (int s = 0; s < m; s++) {
+        int32_t out = 0;
+        for (int k = 0; k < n; k++) {
+            assert_true(tp->flow[s * n + k] >= 0);
+            if (tp->cost[s * n + k] == NO) {
+                assert_int_equal(tp->flow[s * n + k], 0);
+            }
+            out += tp->flow[s * n + k];
+        }
+        assert_true(out <= tp->supply[s]);
+    }
+    for (int k = 0; k < n; k++) {
+        int32_t in = 0;
+        for (int s = 0; s < m; s++) {
+            in += tp->flow[s * n + k];
+        }
+        assert_true(in <= tp->demand[k]);
+    }
+}
+
+static void test_hand_solved_problem(void** state)
+{
+    (void)state;
+    sva_tp_t* tp = &planner.priv.tp;
+    sva_stats_t stats = {0};
+    int32_t unmet[4];
+    // Sources: 2 UAVs at A, 1 at B. Sinks: need 1 and need 2.
+    // A->k0 4, A->k1 6, B->k0 1, B->k1 9. Best: B->k0 (1), A->k1 x2 (12) = 13.
+    const int32_t supply[] = {2, 1}, demand[] = {1, 2}, cost[] = {4, 6, 1, 9};
+    load(tp, 2, 2, supply, demand, cost);
+    assert_int_equal(sva_tableau_solve(&planner.priv.tableau, tp, unmet, &stats), SVA_OK);
+    assert_int_equal(sva_tp_flow_cost(tp), 13);
+    assert_int_equal(tp->flow[1], 2);
+    assert_int_equal(tp->flow[2], 1);
+    assert_int_equal(unmet[0] + unmet[1], 0);
+    assert_true(stats.pivots > 0);
+}
+
+static void test_surplus_stays_and_missing_arcs_are_unmet(void** state)
+{
+    (void)state;
+    sva_tp_t* tp = &planner.priv.tp;
+    sva_stats_t stats = {0};
+    int32_t unmet[4];
+    // 3 units at the only source, one sink of need 1 reachable, one unreachable.
+    const int32_t supply[] = {3}, demand[] = {1, 2}, cost[] = {5, NO};
+    load(tp, 1, 2, supply, demand, cost);
+    assert_int_equal(sva_tableau_solve(&planner.priv.tableau, tp, unmet, &stats), SVA_OK);
+    assert_int_equal(tp->flow[0], 1);
+    assert_int_equal(tp->flow[1], 0);
+    assert_int_equal(unmet[0], 0);
+    assert_int_equal(unmet[1], 2);
+}
+
+// Enumeration of every integer flow: best = most units, then least cost.
+static void enumerate(const sva_tp_t* tp, int cell, int32_t* left, int32_t* got, long long u,
+                      long long c, long long* best_u, long long* best_c)
+{
+    const int m = tp->source_count, n = tp->sink_count;
+    if (cell == m * n) {
+        if (u > *best_u || (u == *best_u && c < *best_c)) {
+            *best_u = u;
+            *best_c = c;
+        }
+        return;
+    }
+    const int s = cell / n, k = cell % n;
+    int32_t most = left[s] < (tp->demand[k] - got[k]) ? left[s] : (tp->demand[k] - got[k]);
+    if (tp->cost[cell] == NO) {
+        most = 0;
+    }
+    for (int32_t x = 0; x <= most; x++) {
+        left[s] -= x;
+        got[k] += x;
+        enumerate(tp, cell + 1, left, got, u + x, c + (long long)x * (x ? tp->cost[cell] : 0), best_u, best_c);
+        left[s] += x;
+        got[k] -= x;
+    }
+}
+
+static void test_random_problems_match_enumeration(void** state)
+{
+    (void)state;
+    test_rng_t rng;
+    test_rng_seed(&rng, test_seed(20261121));
+    sva_tp_t* tp = &planner.priv.tp;
+    int full = 0;
+    for (int round = 0; round < 3000; round++) {
+        const int m = test_rng_range(&rng, 1, 4), n = test_rng_range(&rng, 1, 4);
+        int32_t supply[4], demand[4], cost[16], unmet[4], left[4], got[4] = {0};
+        for (int s = 0; s < m; s++) {
+            supply[s] = test_rng_range(&rng, 1, 3);
+            left[s] = supply[s];
+        }
+        for (int k = 0; k < n; k++) {
+            demand[k] = test_rng_range(&rng, 1, 3);
+        }
+        for (int i = 0; i < m * n; i++) {
+            cost[i] = test_rng_range(&rng, 0, 5) == 0 ? (int32_t)NO : test_rng_range(&rng, 0, 40);
+        }
+        load(tp, m, n, supply, demand, cost);
+        long long best_u = -1, best_c = 0;
+        enumerate(tp, 0, left, got, 0, 0, &best_u, &best_c);
+        sva_stats_t stats = {0};
+        assert_int_equal(sva_tableau_solve(&planner.priv.tableau, tp, unmet, &stats), SVA_OK);
+        assert_flow_feasible(tp);
+        if (units(tp) != best_u || sva_tp_flow_cost(tp) != best_c) {
+            fail_msg("round %d: tableau (%lld units, %lld) vs enumeration (%lld, %lld)", round,
+                     units(tp), (long long)sva_tp_flow_cost(tp), best_u, best_c);
+        }
+        long long demand_total = 0;
+        for (int k = 0; k < n; k++) {
+            demand_total += demand[k];
+        }
+        if (best_u == demand_total) {  // coverable in full: hga's enumeration agrees
+            full++;
+            load(tp, m, n, supply, demand, cost);
+            sva_hga_solve(&planner.priv.hga, tp, &stats);
+            assert_int_equal(sva_tp_covered(tp), n);
+            assert_int_equal(sva_tp_flow_cost(tp), best_c);
+        }
+    }
+    printf("# 3000 random problems, %d coverable in full\n", full);
+    assert_true(full > 100);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_hand_solved_problem),
+        cmocka_unit_test(test_surplus_stays_and_missing_arcs_are_unmet),
+        cmocka_unit_test(test_random_problems_match_enumeration),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
