@@ -40,3 +40,8 @@ if [ ! -x "$venv/bin/python" ] || [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; 
     fi
     echo "$want" > "$stamp"
 fi
+# The host tools (tools/pyproject.toml) into an existing venv that predates them.
+if [ -f tools/pyproject.toml ] && [ ! -x "$venv/bin/sva-tools" ]; then
+    log "installing the host tools (tools/) into .venv"
+    "$venv/bin/pip" install -q --disable-pip-version-check --no-deps -e tools
+fi

@@ -1,0 +1,99 @@
+"""Bad mission and plan files get SPEC 4's treatment: exit 2, one line naming the field."""
+import copy
+import json
+
+import pytest
+from conftest import sva_tools, write
+
+GOOD = {"name": "m", "depot": {"x": 0, "y": 0},
+        "uavs": [{"id": 1, "x": 0, "y": 0, "fuel": 60}],
+        "targets": [{"id": 1, "x": 5, "y": 7, "start": 12, "end": 20, "need": 1}]}
+
+
+def bad(path, value):
+    d = copy.deepcopy(GOOD)
+    *head, last = path
+    node = d
+    for k in head:
+        node = node[k]
+    if value is KeyError:
+        del node[last]
+    else:
+        node[last] = value
+    return d
+
+
+CASES = [
+    (bad(["uavs", 0, "fuel"], KeyError), "uavs[0].fuel: missing key"),
+    (bad(["uavs", 0, "speed"], 3), "uavs[0].speed: unknown key"),
+    (bad(["depot", "x"], "0"), "depot.x: must be an integer"),
+    (bad(["targets", 0, "need"], True), "targets[0].need: must be an integer"),
+    (bad(["targets", 0, "need"], 0), "targets[0].need: must be >= 1, got 0"),
+    (bad(["targets", 0, "end"], 12), "targets[0].end: must be > start (12), got 12"),
+    (bad(["uavs", 0, "fuel"], -1), "uavs[0].fuel: must be >= 0, got -1"),
+    (bad(["targets", 0, "x"], 32768), "targets[0].x: must be <= SVA_COORD_MAX (32767)"),
+    (bad(["depot", "y"], -32769), "depot.y: must be >= SVA_COORD_MIN (-32768)"),
+    (bad(["ticks_per_cell"], 0), "ticks_per_cell: must be >= 1"),
+    (bad(["overlap_percent"], 101), "overlap_percent: must be <= 100"),
+    (bad(["uavs"], [{"id": i + 1, "x": 0, "y": 0, "fuel": 1} for i in range(65)]),
+     "uavs: 65 entries exceed SVA_MAX_UAVS (64)"),
+    (bad(["uavs"], [{"id": 1, "x": 0, "y": 0, "fuel": 1}, {"id": 1, "x": 0, "y": 0, "fuel": 1}]),
+     "uavs[1].id: duplicate id 1"),
+    (bad(["targets"], {"id": 1}), "targets: must be a JSON array"),
+    (bad(["name"], KeyError), "name: missing key"),
+]
+
+
+@pytest.mark.parametrize("doc,message", CASES, ids=[c[1].split(":")[0] for c in CASES])
+def test_bad_mission(tmp_path, doc, message):
+    mp = write(tmp_path, "m.json", doc)
+    r = sva_tools("ref", "--bound", mp)
+    assert r.returncode == 2
+    assert message in r.stderr, r.stderr
+    assert r.stdout == ""  # never a plan for a rejected mission
+    assert len(r.stderr.strip().splitlines()) == 1
+
+
+def test_not_json_and_duplicate_keys(tmp_path):
+    p = tmp_path / "m.json"
+    p.write_text("{\"name\": \"m\",")
+    r = sva_tools("ih", str(p))
+    assert r.returncode == 2 and "not valid JSON" in r.stderr
+    p.write_text('{"name": "m", "name": "n"}')
+    r = sva_tools("ih", str(p))
+    assert r.returncode == 2 and "name: duplicate key" in r.stderr
+    r = sva_tools("ih", str(tmp_path / "absent.json"))
+    assert r.returncode == 2 and "cannot read file" in r.stderr
+
+
+@pytest.mark.parametrize("cmd", [["check", "M", "M"], ["ref", "M"], ["ref", "--bound", "M"],
+                                 ["ih", "M"], ["peer", "M"], ["plot", "M", "M"]])
+def test_every_subcommand_rejects(tmp_path, cmd):
+    mp = write(tmp_path, "m.json", bad(["targets", 0, "need"], 0))
+    r = sva_tools(*[mp if a == "M" else a for a in cmd])
+    assert r.returncode == 2 and "targets[0].need" in r.stderr and r.stdout == ""
+
+
+PLAN = {"mission": "m", "algorithm": "sva", "status": "complete", "covered": 1,
+        "uncovered": [], "cost": 24, "routes": [{"uav": 1, "targets": [1], "distance": 24,
+                                                  "fuel_used": 24}]}
+
+
+@pytest.mark.parametrize("key,value,message", [
+    ("status", "done", "status: must be \"complete\" or \"partial\""),
+    ("extra", 1, "extra: unknown key"),
+    ("routes", [{"uav": 1, "targets": [1], "distance": 24}], "routes[0].fuel_used: missing key"),
+    ("cost", -1, "cost: must be >= 0"),
+    ("stranded", "1", "stranded: must be a JSON array"),
+])
+def test_bad_plan(tmp_path, key, value, message):
+    mp = write(tmp_path, "m.json", GOOD)
+    doc = dict(PLAN)
+    doc[key] = value
+    r = sva_tools("check", mp, write(tmp_path, "p.json", doc))
+    assert r.returncode == 2 and message in r.stderr, r.stderr
+
+
+def test_good_files_accepted(tmp_path):
+    r = sva_tools("check", write(tmp_path, "m.json", GOOD), write(tmp_path, "p.json", PLAN))
+    assert r.returncode == 0, r.stdout + r.stderr

@@ -1,0 +1,307 @@
+"""`sva-tools bench`: the paper's evaluation (section 5) against the C planners.
+
+Protocol: random missions from `gen` (20x20 grid, depot (0, 0), every UAV at the
+depot, need 2, fuel 150, windows 20..40 ticks), sizes 3 and 5 targets with 3 UAVs and
+7, 10, 25 targets with 5 UAVs (intersection ratio any), plus 10 targets / 5 UAVs in
+each intersection category low, mid, high; --missions per set (paper: 100).
+Algorithms: the C planners through `sva plan --algo` (sva, ga, hga, bfa, and any other
+name the C CLI accepts, given in --algos), and ih, ref, peer from this package.
+Every plan is checked with `check`; the optimum of a mission is ref's plan when ref
+proved it optimal, else bfa's. Figures per set and algorithm: completion ratio, mean
+covered, mean cost, mean gap to the optimum (over missions where the plan covers as
+many targets as the optimum), how often it covers fewer, median and p95 solve time
+(stats.solve_us: the C planners time sva_plan() alone; Python planners their solve).
+--scaling adds 50/10, 100/20, 200/40 targets/UAVs with the fuel-free lower bound
+(`ref --bound`) in place of the optimum. Writes DIR/README.md and PNG figures.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import statistics
+import sys
+import tempfile
+import time
+from collections import defaultdict
+from typing import Dict, List, Optional
+
+from . import cbin, check, gen, ih, io, peer, ref
+from . import model as M
+
+PY_ALGOS = ("ih", "ref", "peer")
+DEFAULT_ALGOS = "sva,ga,hga,bfa,ih,ref,peer"
+SIZE_SETS = [(3, 3), (5, 3), (7, 5), (10, 5), (25, 5)]
+RATIO_SETS = ["low", "mid", "high"]
+SCALING_SETS = [(50, 10), (100, 20), (200, 40)]
+GEN = dict(width=(20, 40), max_coord=20, need=(2, 2), fuel=150, hover=0)
+
+
+def _run_algo(algo: str, m: M.Mission, path: str, opts) -> dict:
+    """One planner on one mission: {'plan': Plan|None, 'us': int|None, 'error': str|None}."""
+    try:
+        if algo == "ih":
+            p = ih.plan_ih(m)
+        elif algo == "ref":
+            p = ref.solve_ref(m, opts.ref_time_limit)
+        elif algo == "peer":
+            p = peer.solve_peer(m, opts.peer_solution_limit, opts.peer_time_limit)
+        else:
+            r = cbin.plan(path, algo)
+            if r.status != 0:
+                msg = r.stderr.strip().splitlines()
+                return {"plan": None, "us": None, "error": f"exit {r.status}: {msg[-1] if msg else ''}"}
+            p = r.plan
+    except io.InputError as e:
+        return {"plan": None, "us": None, "error": f"bad plan: {e}"}
+    us = (p.stats or {}).get("solve_us")
+    return {"plan": p, "us": us, "error": None}
+
+
+def _pct(xs: List[float], q: float) -> Optional[float]:
+    if not xs:
+        return None
+    xs = sorted(xs)
+    k = max(0, min(len(xs) - 1, int(round(q * (len(xs) - 1)))))
+    return xs[k]
+
+
+def run_set(label: str, missions: List[M.Mission], algos: List[str], opts, bar) -> dict:
+    """Runs every algorithm on every mission of one set; returns the raw records."""
+    recs: Dict[str, List[dict]] = defaultdict(list)
+    optima: List[Optional[M.Plan]] = []
+    bounds: List[Optional[dict]] = []
+    disagree = []
+    with tempfile.TemporaryDirectory(prefix="sva-bench-") as d:
+        for i, m in enumerate(missions):
+            path = os.path.join(d, f"{m.name}.json")
+            io.write_json(m.to_json(), path)
+            if opts.keep_missions:
+                os.makedirs(opts.keep_missions, exist_ok=True)
+                io.write_json(m.to_json(), os.path.join(opts.keep_missions, f"{m.name}.json"))
+            res = {}
+            for a in algos:
+                r = _run_algo(a, m, path, opts)
+                if r["plan"] is not None:
+                    r["violations"] = check.check_plan(m, r["plan"])
+                res[a] = r
+                recs[a].append(r)
+            opt = None
+            if "ref" in res and res["ref"]["plan"] is not None and res["ref"]["plan"].stats.get("optimal"):
+                opt = res["ref"]["plan"]
+            if "bfa" in res and res["bfa"]["plan"] is not None:
+                b = res["bfa"]["plan"]
+                if opt is not None and (b.covered, b.cost) != (opt.covered, opt.cost):
+                    disagree.append(f"{m.name}: bfa ({b.covered}, {b.cost}) != ref ({opt.covered}, {opt.cost})")
+                opt = opt or b
+            optima.append(opt)
+            bounds.append(ref.fuel_free_bound(m) if opts.bounds else None)
+            bar.update(1)
+    return {"label": label, "missions": missions, "recs": recs, "optima": optima,
+            "bounds": bounds, "disagree": disagree}
+
+
+def summarise(s: dict, algo: str) -> dict:
+    rs = s["recs"][algo]
+    n = len(rs)
+    ok = [r for r in rs if r["plan"] is not None]
+    out = {"n": n, "planned": len(ok),
+           "errors": sorted({r["error"] for r in rs if r["error"]}),
+           "violations": sum(1 for r in ok if r["violations"])}
+    if not ok:
+        return out
+    out["completion"] = 100.0 * sum(1 for r in ok if r["plan"].status == "complete") / len(ok)
+    out["covered"] = statistics.mean(r["plan"].covered for r in ok)
+    out["cost"] = statistics.mean(r["plan"].cost for r in ok)
+    gaps, fewer, known = [], 0, 0
+    bgaps = []
+    for r, opt, bnd in zip(rs, s["optima"], s["bounds"]):
+        p = r["plan"]
+        if p is None:
+            continue
+        if opt is not None:
+            known += 1
+            if p.covered < opt.covered:
+                fewer += 1
+            elif p.covered == opt.covered and opt.cost > 0:
+                gaps.append(100.0 * (p.cost - opt.cost) / opt.cost)
+        if bnd and bnd["complete_possible"] and p.status == "complete" and bnd["lower_bound"]:
+            bgaps.append(100.0 * (p.cost - bnd["lower_bound"]) / bnd["lower_bound"])
+    out["opt_known"] = known
+    out["fewer"] = fewer
+    out["gap"] = statistics.mean(gaps) if gaps else None
+    out["gap_n"] = len(gaps)
+    out["bound_gap"] = statistics.mean(bgaps) if bgaps else None
+    out["bound_gap_n"] = len(bgaps)
+    us = [r["us"] for r in ok if r["us"] is not None]
+    out["median_us"] = statistics.median(us) if us else None
+    out["p95_us"] = _pct(us, 0.95)
+    return out
+
+
+def _fmt(v, spec="{:.1f}"):
+    return "–" if v is None else spec.format(v)
+
+
+def _fmt_us(v):
+    if v is None:
+        return "–"
+    if v >= 1e6:
+        return f"{v / 1e6:.2f} s"
+    if v >= 1e3:
+        return f"{v / 1e3:.1f} ms"
+    return f"{v:.0f} µs"
+
+
+def table(sets: List[dict], algos: List[str], bound_mode: bool = False) -> str:
+    gap_h = "mean gap to bound % (n)" if bound_mode else "mean gap to optimum % (n)"
+    lines = [f"| set | algorithm | planned | complete % | mean covered | mean cost | {gap_h} | fewer covered than optimum | median time | p95 time | check failures |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for s in sets:
+        for a in algos:
+            x = summarise(s, a)
+            if x["planned"] == 0:
+                lines.append(f"| {s['label']} | {a} | 0/{x['n']} ({'; '.join(x['errors'])[:80]}) | | | | | | | | |")
+                continue
+            if bound_mode:
+                gap = f"{_fmt(x['bound_gap'])} ({x['bound_gap_n']})"
+                fewer = "–"
+            else:
+                gap = f"{_fmt(x['gap'])} ({x['gap_n']})"
+                fewer = f"{x['fewer']}/{x['opt_known']}"
+            lines.append(f"| {s['label']} | {a} | {x['planned']}/{x['n']} | {_fmt(x['completion'])} | "
+                         f"{_fmt(x['covered'], '{:.2f}')} | {_fmt(x['cost'])} | {gap} | {fewer} | "
+                         f"{_fmt_us(x['median_us'])} | {_fmt_us(x['p95_us'])} | {x['violations']} |")
+    return "\n".join(lines)
+
+
+def figure(sets: List[dict], algos: List[str], xlabel: str, path: str, title: str) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))
+    xs = list(range(len(sets)))
+    labels = [s["label"] for s in sets]
+    for a in algos:
+        summ = [summarise(s, a) for s in sets]
+        t = [(x.get("median_us") or float("nan")) / 1000.0 if x["planned"] else float("nan") for x in summ]
+        c = [x.get("cost", float("nan")) if x["planned"] else float("nan") for x in summ]
+        r = [x.get("completion", float("nan")) if x["planned"] else float("nan") for x in summ]
+        axes[0].plot(xs, t, marker="o", label=a)
+        axes[1].plot(xs, c, marker="o", label=a)
+        axes[2].plot(xs, r, marker="o", label=a)
+    axes[0].set_yscale("log")
+    axes[0].set_ylabel("median solve time (ms, log)")
+    axes[1].set_ylabel("mean cost (fuel: cells flown)")
+    axes[2].set_ylabel("complete plans (%)")
+    for ax in axes:
+        ax.set_xticks(xs)
+        ax.set_xticklabels(labels, rotation=20)
+        ax.set_xlabel(xlabel)
+        ax.grid(True, alpha=0.3)
+    axes[2].legend(fontsize=8)
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def add_parser(sub) -> None:
+    ap = sub.add_parser("bench", help="reproduce the paper's evaluation (markdown + PNG)",
+                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--missions", type=int, default=100, help="missions per set (paper: 100)")
+    ap.add_argument("--algos", default=DEFAULT_ALGOS,
+                    help=f"comma-separated algorithms (default {DEFAULT_ALGOS}); names other "
+                         f"than ih, ref, peer go to `sva plan --algo`")
+    ap.add_argument("--seed", type=int, default=2024)
+    ap.add_argument("--out", default="docs/bench", help="report directory (default docs/bench)")
+    ap.add_argument("--no-paper", action="store_true", help="skip the paper sets")
+    ap.add_argument("--scaling", action="store_true", help="also run 50/10, 100/20, 200/40")
+    ap.add_argument("--scaling-missions", type=int, default=5)
+    ap.add_argument("--scaling-algos", default="sva,ga,hga,ih,peer")
+    ap.add_argument("--ref-time-limit", type=float, default=20.0)
+    ap.add_argument("--peer-solution-limit", type=int, default=100)
+    ap.add_argument("--peer-time-limit", type=float, default=10.0)
+    ap.add_argument("--keep-missions", metavar="DIR", help="also write the missions there")
+    ap.set_defaults(func=run)
+
+
+def run(args) -> int:
+    algos = [a for a in args.algos.split(",") if a]
+    salgos = [a for a in args.scaling_algos.split(",") if a]
+    if any(a not in PY_ALGOS for a in algos + (salgos if args.scaling else [])):
+        try:
+            cbin.sva_bin()
+        except cbin.CliMissing as e:
+            print(f"sva-tools: error: {e}", file=sys.stderr)
+            return 2
+    from tqdm import tqdm
+
+    os.makedirs(args.out, exist_ok=True)
+    t_start = time.time()
+    size_sets, ratio_sets, scale_sets = [], [], []
+    plan_sets = []
+    if not args.no_paper:
+        for n, u in SIZE_SETS:
+            plan_sets.append(("size", f"{n}t/{u}u", n, u, "any"))
+        for r in RATIO_SETS:
+            plan_sets.append(("ratio", f"10t/5u {r}", 10, 5, r))
+    if args.scaling:
+        for n, u in SCALING_SETS:
+            plan_sets.append(("scale", f"{n}t/{u}u", n, u, "any"))
+    total = sum(args.scaling_missions if k == "scale" else args.missions for k, *_ in plan_sets)
+    bar = tqdm(total=total, unit="mission", desc="bench", file=sys.stderr)
+    for kind, label, n, u, ratio in plan_sets:
+        count = args.scaling_missions if kind == "scale" else args.missions
+        missions = [gen.generate(n, u, ratio=ratio, seed=args.seed, index=i,
+                                 name=f"bench_{n}t{u}u_{ratio}_{i:03d}", **GEN) for i in range(count)]
+        args.bounds = kind == "scale"
+        bar.set_description(f"bench {label}")
+        s = run_set(label, missions, salgos if kind == "scale" else algos, args, bar)
+        s["ratio_mean"] = statistics.mean(M.intersection_ratio(m) for m in missions)
+        {"size": size_sets, "ratio": ratio_sets, "scale": scale_sets}[kind].append(s)
+    bar.close()
+    elapsed = time.time() - t_start
+    cmd = "tools/sva-tools " + " ".join(sys.argv[2:] if len(sys.argv) > 1 and sys.argv[1] == "bench" else sys.argv[1:])
+    md = ["# sva benchmark: the paper's evaluation, reproduced", "",
+          f"Command: `{cmd}`", "",
+          f"Machine: {platform.machine()}, {os.cpu_count()} CPUs, Python {platform.python_version()}; "
+          f"wall time {elapsed / 60:.1f} min. Seed {args.seed}.", "",
+          f"Missions (`sva-tools gen`): {GEN}, depot (0, 0), every UAV at the depot. Protocol, "
+          "definitions and how to reproduce: docs/tools.md.", ""]
+    if size_sets or ratio_sets:
+        md += ["## Paper sizes and intersection categories", "",
+               f"{args.missions} missions per set. Optimum: ref (CP-SAT, {args.ref_time_limit:g} s limit) when "
+               "proven optimal, else bfa. Gap: mean of (cost - optimum cost) / optimum cost over "
+               "missions where the plan covers as many targets as the optimum; 'fewer covered' "
+               "counts the others. Time: stats.solve_us (C: sva_plan() alone).", "",
+               table(size_sets + ratio_sets, algos), ""]
+        for s in size_sets + ratio_sets:
+            if s["disagree"]:
+                md += [f"- {s['label']}: bfa and ref disagree: " + "; ".join(s["disagree"][:5])]
+        md += ["Mean measured intersection ratio per set: " +
+               ", ".join(f"{s['label']}: {s['ratio_mean']:.2f}" for s in size_sets + ratio_sets), ""]
+        if size_sets:
+            figure(size_sets, algos, "targets / UAVs", os.path.join(args.out, "bench_size.png"),
+                   "Against problem size (random missions)")
+            md += ["![time, cost and completion against size](bench_size.png)", ""]
+        if ratio_sets:
+            figure(ratio_sets, algos, "intersection category (10 targets, 5 UAVs)",
+                   os.path.join(args.out, "bench_ratio.png"), "Against window intersection ratio")
+            md += ["![time, cost and completion against intersection ratio](bench_ratio.png)", ""]
+    if scale_sets:
+        md += ["## Scaling", "",
+               f"{args.scaling_missions} missions per set. No optimum: the gap is to the fuel-free "
+               "min-cost-flow lower bound (`ref --bound`), over complete plans of missions where "
+               "that bound says a complete plan may exist.", "",
+               table(scale_sets, salgos, bound_mode=True), ""]
+        figure(scale_sets, salgos, "targets / UAVs", os.path.join(args.out, "bench_scaling.png"),
+               "Scaling")
+        md += ["![scaling](bench_scaling.png)", ""]
+    viol = sum(summarise(s, a)["violations"] for s in size_sets + ratio_sets for a in algos) + \
+        sum(summarise(s, a)["violations"] for s in scale_sets for a in salgos)
+    md += [f"Plans failing `sva-tools check`: {viol}.", ""]
+    with open(os.path.join(args.out, "README.md"), "w", encoding="utf-8") as f:
+        f.write("\n".join(md))
+    print("\n".join(md))
+    return 1 if viol else 0

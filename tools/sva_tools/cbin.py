@@ -1,0 +1,73 @@
+"""Running the C planner CLI (`sva plan`), found through $SVA_BIN or <repo>/build/bin/sva."""
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+from typing import List, Optional
+
+from . import io
+from . import model as M
+
+C_ALGORITHMS = ("sva", "ga", "hga", "bfa")
+REPO = Path(__file__).resolve().parents[2]
+
+
+class CliMissing(RuntimeError):
+    pass
+
+
+def sva_bin() -> Path:
+    env = os.environ.get("SVA_BIN")
+    p = Path(env) if env else REPO / "build" / "bin" / "sva"
+    if not (p.is_file() and os.access(p, os.X_OK)):
+        raise CliMissing(f"the C CLI is missing: {p} is not an executable file "
+                         f"(build it with scripts/build.sh, or point SVA_BIN at it)")
+    return p
+
+
+@dataclass
+class CResult:
+    status: int               # exit status of `sva plan`
+    plan: Optional[M.Plan]    # when status is 0
+    raw: Optional[dict]
+    stderr: str
+    trace: Optional[List[dict]] = None
+
+
+def plan(mission_path: str, algo: str, trace: bool = False, timeout: float = 600) -> CResult:
+    """`sva plan --algo ALGO MISSION` (with --trace FILE when trace is set)."""
+    cmd = [str(sva_bin()), "plan", "--algo", algo]
+    tdir = None
+    tfile = None
+    if trace:
+        tdir = tempfile.TemporaryDirectory(prefix="sva-trace-")
+        tfile = os.path.join(tdir.name, "trace.jsonl")
+        cmd += ["--trace", tfile]
+    cmd.append(str(mission_path))
+    try:
+        r = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+        if r.returncode != 0:
+            return CResult(r.returncode, None, None, r.stderr)
+        raw = json.loads(r.stdout)
+        p = io.plan_from_json(raw)
+        recs = None
+        if tfile is not None:
+            recs = []
+            if os.path.exists(tfile):
+                with open(tfile, encoding="utf-8") as f:
+                    recs = [json.loads(line) for line in f if line.strip()]
+        return CResult(0, p, raw, r.stderr, recs)
+    finally:
+        if tdir is not None:
+            tdir.cleanup()
+
+
+def plan_mission(m: M.Mission, algo: str, trace: bool = False, timeout: float = 600) -> CResult:
+    with tempfile.TemporaryDirectory(prefix="sva-m-") as d:
+        path = os.path.join(d, "mission.json")
+        io.write_json(m.to_json(), path)
+        return plan(path, algo, trace=trace, timeout=timeout)

@@ -1,0 +1,44 @@
+"""`sva-tools SUBCOMMAND ...`: one entry point for every host tool (docs/tools.md)."""
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+from typing import List, Optional
+
+SUBCOMMANDS = ("gen", "check", "ref", "ih", "peer", "bench", "plot")
+
+
+def _lcm(argv: List[str]) -> int:
+    # `lcm` belongs to the LCM port's helper package sva_tools.lcm (issue 4); it is
+    # dispatched when present and reported clearly when not.
+    try:
+        mod = importlib.import_module("sva_tools.lcm.cli")
+    except ImportError as e:
+        print(f"sva-tools: error: the lcm subcommand is not available ({e}); it needs the "
+              f"sva_tools.lcm package (LCM port) and the lcm Python module", file=sys.stderr)
+        return 2
+    return int(mod.main(argv))
+
+
+def main(argv: Optional[List[str]] = None) -> int:
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if argv and argv[0] == "lcm":
+        return _lcm(argv[1:])
+    ap = argparse.ArgumentParser(prog="sva-tools", description=__doc__)
+    sub = ap.add_subparsers(dest="command", metavar="COMMAND")
+    sub.required = True
+    for name in SUBCOMMANDS:
+        importlib.import_module(f"sva_tools.{name}").add_parser(sub)
+    sub.add_parser("lcm", help="LCM port tools (sva_tools.lcm, when installed)")
+    args = ap.parse_args(argv)
+    try:
+        return int(args.func(args))
+    except KeyboardInterrupt:
+        return 130
+    except BrokenPipeError:
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

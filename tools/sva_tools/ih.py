@@ -1,0 +1,293 @@
+"""`sva-tools ih`: the paper's intlinprog heuristic (IH, section 4.5).
+
+The `sva` pipeline of SPEC 2 run in Python (clustering, ready UAVs, source groups,
+commit and advance), with every transportation problem solved by an integer LP
+(HiGHS): first as many of the cluster's targets covered in full as possible, then
+least cost. Source groups are UAVs at one position that can serve the same set of
+sinks (the C core's grouping: UAVs at one position may differ in fuel and ready time).
+
+  ih MISSION [-o PLAN]             plan a mission ("algorithm": "ih")
+  ih --verify-trace FILE...        re-solve every problem `sva plan --trace` wrote
+  ih --compare MISSION|DIR...      run `sva plan --algo sva --trace` and this IH on
+                                   each mission: traced optima, drop rule, whole plans
+Exit 0 when every check passes, 1 when one fails, 2 on bad input.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+from dataclasses import dataclass, field
+from typing import Dict, List, Optional, Tuple
+
+from . import io
+from . import model as M
+from . import solvers
+
+
+@dataclass
+class TpRecord:
+    """One transportation problem, in the shape of a `--trace` line."""
+    source_uavs: List[int]
+    supply: List[int]
+    sink_targets: List[int]
+    demand: List[int]
+    cost: List[List[Optional[int]]]
+    flow: List[List[int]] = field(default_factory=list)
+    kept: List[bool] = field(default_factory=list)
+    cost_total: int = 0
+    covered: int = 0
+
+
+def _groups(m: M.Mission, sinks: List[M.Target], ready: List[int], pos, free_at, fuel_left):
+    """Source groups for one problem: ready UAVs keyed by (position, reachable sinks),
+    ordered by their lowest UAV id, members in id order (as the core does).
+    Returns [(key, [uav indices])]."""
+    groups: Dict[tuple, List[int]] = {}
+    for ui in sorted(ready, key=lambda i: m.uavs[i].id):
+        reach = []
+        for j, t in enumerate(sinks):
+            d = M.dist_pt(pos[ui], t)
+            if (free_at[ui] + d * m.ticks_per_cell <= t.start
+                    and fuel_left[ui] >= d + m.hover_fuel + M.dist_pt(t, m.depot)):
+                reach.append(j)
+        if reach:
+            groups.setdefault((pos[ui], tuple(reach)), []).append(ui)
+    first_id = lambda kv: m.uavs[kv[1][0]].id  # noqa: E731
+    out = sorted(groups.items(), key=first_id)
+    if len(out) > M.SVA_MAX_TP_SOURCES:
+        # Mirrors the core's bound: keep the groups with the nearest reachable sink
+        # (ties: lower UAV id), numbered in id order (DESIGN.md section 3).
+        def near(kv):
+            (p, reach), members = kv
+            return (min(M.dist_pt(p, sinks[j]) for j in reach), m.uavs[members[0]].id)
+        out = sorted(sorted(out, key=near)[:M.SVA_MAX_TP_SOURCES], key=first_id)
+    return out
+
+
+def plan_ih(m: M.Mission, records: Optional[List[TpRecord]] = None) -> M.Plan:
+    t0 = time.perf_counter()
+    n = len(m.uavs)
+    pos = [(u.x, u.y) for u in m.uavs]
+    free_at = [u.ready_at for u in m.uavs]
+    fuel_left = [u.fuel for u in m.uavs]
+    routes: List[List[int]] = [[] for _ in range(n)]
+    active = [i for i, u in enumerate(m.uavs) if not M.is_stranded(m, u)]
+    nproblems = 0
+    ncl = 0
+    for cl in M.clusters(m):
+        ncl += 1
+        for c0 in range(0, len(cl), M.SVA_MAX_TP_SINKS):
+            sinks = cl[c0:c0 + M.SVA_MAX_TP_SINKS]
+            groups = _groups(m, sinks, active, pos, free_at, fuel_left)
+            if not groups:
+                continue
+            supply = [len(g) for _, g in groups]
+            demand = [t.need for t in sinks]
+            cost = [[M.dist_pt(p, t) if j in reach else None for j, t in enumerate(sinks)]
+                    for (p, reach), _ in groups]
+            sol = solvers.solve_max_cover(supply, demand, cost)
+            nproblems += 1
+            if records is not None:
+                records.append(TpRecord([m.uavs[g[0]].id for _, g in groups], supply,
+                                        [t.id for t in sinks], demand, cost, sol.flow,
+                                        sol.kept, sol.cost, sol.covered))
+            # Commit: sinks in cluster order, each taking its group's UAVs in id order.
+            for gi, (_, members) in enumerate(groups):
+                it = iter(members)
+                for j, t in enumerate(sinks):
+                    for _ in range(sol.flow[gi][j]):
+                        ui = next(it)
+                        d = M.dist_pt(pos[ui], t)
+                        routes[ui].append(t.id)
+                        fuel_left[ui] -= d + m.hover_fuel
+                        pos[ui] = (t.x, t.y)
+                        free_at[ui] = t.end
+    us = (time.perf_counter() - t0) * 1e6
+    return M.make_plan(m, "ih", {m.uavs[i].id: routes[i] for i in range(n)},
+                       {"solve_us": int(us), "clusters": ncl, "transport_problems": nproblems})
+
+
+# --- checking the C tableau against the integer LP ----------------------------------
+
+@dataclass
+class TraceVerdict:
+    problems: int = 0
+    mismatches: List[str] = field(default_factory=list)   # ILP optimum != cost_total
+    drop_worse: int = 0        # max-cover ILP covers more sinks than the tableau kept
+    drop_worse_sinks: int = 0  # how many more, summed
+    with_drops: int = 0        # problems where the tableau dropped a sink
+
+
+def verify_record(rec: dict, verdict: TraceVerdict, where: str = "") -> None:
+    """Checks one `--trace` line: the integer LP optimum of the problem without the
+    dropped sinks (equality demands, supply as upper bounds, given arcs only) equals
+    cost_total; and counts whether cover-as-many-as-possible would keep more sinks."""
+    verdict.problems += 1
+    supply, demand = rec["supply"], rec["demand"]
+    cost = rec["cost"]
+    dropped = rec.get("dropped") or [False] * len(demand)
+    keep = [j for j in range(len(demand)) if not dropped[j]]
+    sub_cost = [[row[j] for j in keep] for row in cost]
+    sub_dem = [demand[j] for j in keep]
+    sol = solvers.solve_exact(supply, sub_dem, sub_cost)
+    tag = f"{where}problem {verdict.problems} (sinks {rec.get('sink_targets')})"
+    if sol is None:
+        verdict.mismatches.append(f"{tag}: the kept sinks cannot be covered at all, "
+                                  f"yet the tableau reports cost {rec['cost_total']}")
+    elif sol.cost != rec["cost_total"]:
+        verdict.mismatches.append(f"{tag}: integer LP optimum {sol.cost} != tableau "
+                                  f"cost_total {rec['cost_total']}")
+    flow = rec.get("flow")
+    if flow is not None:
+        # null where there is no arc, like cost
+        bad_arc = any(f and c is None for crow, frow in zip(cost, flow) for c, f in zip(crow, frow))
+        flow = [[f or 0 for f in frow] for frow in flow]
+        total = sum(c * f for crow, frow in zip(cost, flow) for c, f in zip(crow, frow)
+                    if c is not None)
+        col = [sum(frow[j] for frow in flow) for j in range(len(demand))]
+        rowsum = [sum(frow) for frow in flow]
+        if (bad_arc or total != rec["cost_total"]
+                or any(col[j] != (0 if dropped[j] else demand[j]) for j in range(len(demand)))
+                or any(r > s for r, s in zip(rowsum, supply))):
+            verdict.mismatches.append(f"{tag}: the traced flow is not a feasible flow of "
+                                      f"cost {rec['cost_total']}")
+    if any(dropped):
+        verdict.with_drops += 1
+    mc = solvers.solve_max_cover(supply, demand, cost)
+    kept = len(keep)
+    if mc.covered > kept:
+        verdict.drop_worse += 1
+        verdict.drop_worse_sinks += mc.covered - kept
+    elif mc.covered < kept and sol is not None:
+        verdict.mismatches.append(f"{tag}: max-cover LP covers {mc.covered} < {kept} kept sinks")
+
+
+def read_trace(path: str) -> List[dict]:
+    out = []
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            if line.strip():
+                out.append(json.loads(line))
+    return out
+
+
+@dataclass
+class CompareVerdict:
+    missions: int = 0
+    same: int = 0          # identical routes
+    tie: int = 0           # routes differ, same covered and cost
+    differ: List[str] = field(default_factory=list)  # covered or cost differ
+    trace: TraceVerdict = field(default_factory=TraceVerdict)
+
+
+def compare_mission(m: M.Mission, verdict: CompareVerdict) -> None:
+    from . import cbin
+    r = cbin.plan_mission(m, "sva", trace=True)
+    if r.status != 0:
+        verdict.differ.append(f"{m.name}: sva plan exited {r.status}: {r.stderr.strip()}")
+        return
+    verdict.missions += 1
+    for rec in r.trace or []:
+        verify_record(rec, verdict.trace, f"{m.name}: ")
+    p = plan_ih(m)
+    a = [(x.uav, x.targets) for x in r.plan.routes]
+    b = [(x.uav, x.targets) for x in p.routes]
+    if a == b:
+        verdict.same += 1
+    elif (r.plan.covered, r.plan.cost) == (p.covered, p.cost):
+        verdict.tie += 1
+    else:
+        verdict.differ.append(f"{m.name}: sva covered {r.plan.covered} cost {r.plan.cost}, "
+                              f"ih covered {p.covered} cost {p.cost}")
+
+
+def _mission_paths(items: List[str]) -> List[str]:
+    out = []
+    for it in items:
+        if os.path.isdir(it):
+            out += sorted(os.path.join(it, f) for f in os.listdir(it) if f.endswith(".json"))
+        else:
+            out.append(it)
+    return out
+
+
+def add_parser(sub) -> None:
+    ap = sub.add_parser("ih", help="intlinprog heuristic: SVA pipeline with an integer LP",
+                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("inputs", nargs="+", metavar="MISSION|TRACE")
+    mode = ap.add_mutually_exclusive_group()
+    mode.add_argument("--verify-trace", action="store_true",
+                      help="inputs are --trace files of `sva plan`")
+    mode.add_argument("--compare", action="store_true",
+                      help="inputs are missions or directories: compare with the C sva")
+    ap.add_argument("-o", "--out", default="-", help="plan output (default stdout)")
+    ap.add_argument("--trace", help="also write IH's problems as JSON Lines")
+    ap.set_defaults(func=run)
+
+
+def _print_trace_verdict(v: TraceVerdict) -> None:
+    for msg in v.mismatches:
+        print(f"MISMATCH {msg}")
+    print(f"problems checked: {v.problems}; integer LP optimum == tableau cost_total: "
+          f"{v.problems - len(v.mismatches)}/{v.problems}")
+    print(f"problems with dropped sinks: {v.with_drops}; where cover-as-many-as-possible "
+          f"keeps more sinks than the tableau's drop rule: {v.drop_worse} "
+          f"({v.drop_worse_sinks} sinks in all)")
+
+
+def run(args) -> int:
+    if args.verify_trace:
+        v = TraceVerdict()
+        for path in args.inputs:
+            try:
+                recs = read_trace(path)
+            except (OSError, json.JSONDecodeError, UnicodeDecodeError) as e:
+                return io.fail(path, io.InputError(f"not a JSON Lines trace: {e}"))
+            for rec in recs:
+                try:
+                    verify_record(rec, v, f"{path}: ")
+                except (KeyError, TypeError, IndexError) as e:
+                    return io.fail(path, io.InputError(f"trace record lacks a field: {e}"))
+        _print_trace_verdict(v)
+        return 1 if v.mismatches else 0
+    if args.compare:
+        from . import cbin
+        cv = CompareVerdict()
+        for path in _mission_paths(args.inputs):
+            try:
+                m = io.load_mission(path)
+            except io.InputError as e:
+                return io.fail(path, e)
+            try:
+                compare_mission(m, cv)
+            except cbin.CliMissing as e:
+                print(f"sva-tools: error: {e}", file=sys.stderr)
+                return 2
+        _print_trace_verdict(cv.trace)
+        print(f"missions: {cv.missions}; identical plans: {cv.same}; differ only by ties "
+              f"(same covered and cost): {cv.tie}; differ in covered or cost: {len(cv.differ)}")
+        for msg in cv.differ:
+            print(f"DIFFER {msg}")
+        return 1 if cv.trace.mismatches else 0
+    if len(args.inputs) != 1:
+        print("sva-tools: error: ih plans one mission at a time", file=sys.stderr)
+        return 2
+    try:
+        m = io.load_mission(args.inputs[0])
+    except io.InputError as e:
+        return io.fail(args.inputs[0], e)
+    recs: List[TpRecord] = []
+    p = plan_ih(m, recs)
+    if args.trace:
+        with open(args.trace, "w", encoding="utf-8") as f:
+            for r in recs:
+                f.write(json.dumps({"algorithm": "ih", "source_uavs": r.source_uavs,
+                                    "supply": r.supply, "sink_targets": r.sink_targets,
+                                    "demand": r.demand, "dropped": [not k for k in r.kept],
+                                    "cost": r.cost, "flow": r.flow, "cost_total": r.cost_total,
+                                    "covered": r.covered, "pivots": 0}) + "\n")
+    io.write_json(p.to_json(), args.out)
+    return 0
