@@ -1,0 +1,302 @@
+// Test helper for the cantools cross-check (test_cantools.py) and the VM test.
+//
+//   can_frames_tool codec      reads lines from stdin, answers one line each:
+//       encode NAME sig=value ...   -> "ID#HEX" (16 hex digits) or "error STATUS"
+//       decode ID#HEX               -> "NAME sig=value ... crc=N" or "error STATUS"
+//     NAME and signal names are those of port/can/sva.dbc.
+//   can_frames_tool plan MISSION ALGORITHM PLAN_ID
+//       plans the mission with the core and prints the wire plan as JSON, with
+//       its CRC-32 and the transfer frames (as sent on the first attempt, counter from 0).
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mission_json.h"
+#include "sva/sva.h"
+#include "sva/sva_can.h"
+
+typedef struct {
+    char key[32];
+    long long value;
+} kv_t;
+
+static kv_t kvs[32];
+static int nkv;
+static int missing;
+
+static long long get(const char* key)
+{
+    int i;
+    for (i = 0; i < nkv; ++i) {
+        if (strcmp(kvs[i].key, key) == 0) {
+            return kvs[i].value;
+        }
+    }
+    fprintf(stderr, "missing signal %s\n", key);
+    missing = 1;
+    return 0;
+}
+
+static const char* const names[SVA_CAN_MSG_COUNT_] = {
+    "", "SVA_HEARTBEAT", "SVA_PLAN_BEGIN", "SVA_PLAN_ITEM", "SVA_PLAN_ITEM_TIME", "SVA_PLAN_COMMIT",
+    "SVA_PLAN_ABORT", "SVA_PLAN_ACK", "SVA_VEHICLE_STATUS", "SVA_VEHICLE_FUEL"};
+
+static void do_encode(char* rest)
+{
+    sva_can_msg_t m;
+    sva_can_frame_t f;
+    char* tok = strtok(rest, " \t\n");
+    int k;
+    sva_can_status_t st;
+    memset(&m, 0, sizeof m);
+    m.kind = SVA_CAN_MSG_NONE;
+    for (k = 1; (tok != NULL) && (k < SVA_CAN_MSG_COUNT_); ++k) {
+        if (strcmp(tok, names[k]) == 0) {
+            m.kind = (sva_can_msg_kind_t)k;
+        }
+    }
+    nkv = 0;
+    missing = 0;
+    while ((tok = strtok(NULL, " \t\n")) != NULL && nkv < 32) {
+        char* eq = strchr(tok, '=');
+        if (eq == NULL) {
+            continue;
+        }
+        *eq = '\0';
+        snprintf(kvs[nkv].key, sizeof kvs[nkv].key, "%s", tok);
+        kvs[nkv].value = strtoll(eq + 1, NULL, 10);
+        ++nkv;
+    }
+    m.counter = (uint8_t)get("counter");
+    switch (m.kind) {
+    case SVA_CAN_MSG_HEARTBEAT:
+        m.u.heartbeat.state = (uint8_t)get("state");
+        m.u.heartbeat.active_plan_id = (uint16_t)get("active_plan_id");
+        m.u.heartbeat.uav_count = (uint8_t)get("uav_count");
+        m.u.heartbeat.target_count = (uint8_t)get("target_count");
+        m.u.heartbeat.covered_count = (uint8_t)get("covered_count");
+        m.u.heartbeat.faults = (uint8_t)(get("fault_mission_invalid") | (get("fault_plan_failed") << 1) |
+                                         (get("fault_transfer_failed") << 2) | (get("fault_rx_errors") << 3) |
+                                         (get("fault_tx_errors") << 4));
+        break;
+    case SVA_CAN_MSG_PLAN_BEGIN:
+        m.u.begin.version = (uint8_t)get("version");
+        m.u.begin.plan_id = (uint16_t)get("plan_id");
+        m.u.begin.item_count = (uint16_t)get("item_count");
+        m.u.begin.algorithm = (uint8_t)get("algorithm");
+        m.u.begin.plan_status = (uint8_t)get("plan_status");
+        m.u.begin.route_count = (uint8_t)get("route_count");
+        break;
+    case SVA_CAN_MSG_PLAN_ITEM:
+        m.u.item.uav_id = (uint8_t)get("uav_id");
+        m.u.item.target_id = (uint16_t)get("target_id");
+        m.u.item.x = (int16_t)get("x");
+        m.u.item.y = (int16_t)get("y");
+        break;
+    case SVA_CAN_MSG_PLAN_ITEM_TIME:
+        m.u.item_time.item_seq = (uint8_t)get("item_seq");
+        m.u.item_time.arrive_by_ticks = (uint32_t)get("arrive_by");
+        m.u.item_time.hold_until_ticks = (uint32_t)get("hold_until");
+        break;
+    case SVA_CAN_MSG_PLAN_COMMIT:
+        m.u.commit.plan_id = (uint16_t)get("plan_id");
+        m.u.commit.plan_crc = (uint32_t)get("plan_crc");
+        break;
+    case SVA_CAN_MSG_PLAN_ABORT:
+        m.u.abort_.reason = (uint8_t)get("reason");
+        m.u.abort_.plan_id = (uint16_t)get("plan_id");
+        break;
+    case SVA_CAN_MSG_PLAN_ACK:
+        m.u.ack.result = (uint8_t)get("result");
+        m.u.ack.plan_id = (uint16_t)get("plan_id");
+        m.u.ack.items_received = (uint16_t)get("items_received");
+        break;
+    case SVA_CAN_MSG_VEHICLE_STATUS:
+        m.u.vehicle.state = (uint8_t)get("state");
+        m.u.vehicle.uav_id = (uint8_t)get("uav_id");
+        m.u.vehicle.x = (int16_t)get("x");
+        m.u.vehicle.y = (int16_t)get("y");
+        break;
+    case SVA_CAN_MSG_VEHICLE_FUEL:
+        m.u.fuel.uav_id = (uint8_t)get("uav_id");
+        m.u.fuel.fuel = (uint32_t)get("fuel");
+        break;
+    case SVA_CAN_MSG_NONE:
+    case SVA_CAN_MSG_COUNT_:
+    default:
+        printf("error unknown_message\n");
+        return;
+    }
+    if (missing) {
+        printf("error missing_signal\n");
+        return;
+    }
+    st = sva_can_encode(&m, &f);
+    if (st != SVA_CAN_OK) {
+        printf("error %s\n", sva_can_status_name(st));
+        return;
+    }
+    printf("%03lX#", (unsigned long)f.id);
+    for (k = 0; k < 8; ++k) {
+        printf("%02X", f.data[k]);
+    }
+    printf("\n");
+}
+
+static void do_decode(const char* text)
+{
+    sva_can_frame_t f;
+    sva_can_msg_t m;
+    unsigned long id;
+    const char* hash = strchr(text, '#');
+    size_t n;
+    size_t i;
+    sva_can_status_t st;
+    if (hash == NULL) {
+        printf("error syntax\n");
+        return;
+    }
+    id = strtoul(text, NULL, 16);
+    memset(&f, 0, sizeof f);
+    f.id = (uint32_t)id;
+    n = strspn(hash + 1, "0123456789abcdefABCDEF") / 2u;
+    for (i = 0; i < n && i < 8u; ++i) {
+        char b[3] = {hash[1 + 2 * i], hash[2 + 2 * i], '\0'};
+        f.data[i] = (uint8_t)strtoul(b, NULL, 16);
+    }
+    f.dlc = (uint8_t)n;
+    st = sva_can_decode(&f, &m);
+    if (st != SVA_CAN_OK) {
+        printf("error %s\n", sva_can_status_name(st));
+        return;
+    }
+    printf("%s counter=%u", names[m.kind], m.counter);
+    switch (m.kind) {
+    case SVA_CAN_MSG_HEARTBEAT:
+        printf(" state=%u active_plan_id=%u uav_count=%u target_count=%u covered_count=%u fault_mission_invalid=%u "
+               "fault_plan_failed=%u fault_transfer_failed=%u fault_rx_errors=%u fault_tx_errors=%u",
+               m.u.heartbeat.state, m.u.heartbeat.active_plan_id, m.u.heartbeat.uav_count, m.u.heartbeat.target_count,
+               m.u.heartbeat.covered_count, m.u.heartbeat.faults & 1u, (m.u.heartbeat.faults >> 1) & 1u,
+               (m.u.heartbeat.faults >> 2) & 1u, (m.u.heartbeat.faults >> 3) & 1u, (m.u.heartbeat.faults >> 4) & 1u);
+        break;
+    case SVA_CAN_MSG_PLAN_BEGIN:
+        printf(" version=%u plan_id=%u item_count=%u algorithm=%u plan_status=%u route_count=%u", m.u.begin.version,
+               m.u.begin.plan_id, m.u.begin.item_count, m.u.begin.algorithm, m.u.begin.plan_status,
+               m.u.begin.route_count);
+        break;
+    case SVA_CAN_MSG_PLAN_ITEM:
+        printf(" uav_id=%u target_id=%u x=%d y=%d", m.u.item.uav_id, m.u.item.target_id, m.u.item.x, m.u.item.y);
+        break;
+    case SVA_CAN_MSG_PLAN_ITEM_TIME:
+        printf(" item_seq=%u arrive_by=%lu hold_until=%lu", m.u.item_time.item_seq,
+               (unsigned long)m.u.item_time.arrive_by_ticks, (unsigned long)m.u.item_time.hold_until_ticks);
+        break;
+    case SVA_CAN_MSG_PLAN_COMMIT:
+        printf(" plan_id=%u plan_crc=%lu", m.u.commit.plan_id, (unsigned long)m.u.commit.plan_crc);
+        break;
+    case SVA_CAN_MSG_PLAN_ABORT:
+        printf(" reason=%u plan_id=%u", m.u.abort_.reason, m.u.abort_.plan_id);
+        break;
+    case SVA_CAN_MSG_PLAN_ACK:
+        printf(" result=%u plan_id=%u items_received=%u", m.u.ack.result, m.u.ack.plan_id, m.u.ack.items_received);
+        break;
+    case SVA_CAN_MSG_VEHICLE_STATUS:
+        printf(" state=%u uav_id=%u x=%d y=%d", m.u.vehicle.state, m.u.vehicle.uav_id, m.u.vehicle.x, m.u.vehicle.y);
+        break;
+    case SVA_CAN_MSG_VEHICLE_FUEL:
+        printf(" uav_id=%u fuel=%lu", m.u.fuel.uav_id, (unsigned long)m.u.fuel.fuel);
+        break;
+    case SVA_CAN_MSG_NONE:
+    case SVA_CAN_MSG_COUNT_:
+    default:
+        break;
+    }
+    printf(" crc=%u\n", f.data[7]);
+}
+
+static sva_mission_t mission;
+static sva_planner_t planner;
+static sva_plan_t plan;
+static sva_can_plan_t wire;
+static sva_can_loopback_t bus;
+static sva_can_sender_t sender;
+
+static int do_plan(const char* path, const char* algo_name, const char* id_text)
+{
+    char err[256];
+    sva_algorithm_t algo;
+    sva_diag_t diag;
+    sva_can_transport_t tp;
+    sva_can_frame_t f;
+    uint16_t i;
+    int first = 1;
+    const long plan_id = strtol(id_text, NULL, 10);
+    if ((plan_id < 1) || (plan_id > 65535)) {
+        fprintf(stderr, "plan_id: must be in [1, 65535]\n");
+        return 2;
+    }
+    if (sva_can_mission_load(path, &mission, NULL, 0, err, sizeof err) != 0) {
+        fprintf(stderr, "%s: %s\n", path, err);
+        return 1;
+    }
+    if (sva_algorithm_from_name(algo_name, &algo) != SVA_OK) {
+        fprintf(stderr, "unknown algorithm %s\n", algo_name);
+        return 2;
+    }
+    if ((sva_planner_init(&planner) != SVA_OK) || (sva_plan(&planner, &mission, algo, &plan, &diag) != SVA_OK) ||
+        (sva_can_plan_from_core(&wire, &mission, &plan, (uint16_t)plan_id) != SVA_CAN_OK)) {
+        fprintf(stderr, "planning failed\n");
+        return 1;
+    }
+    sva_can_loopback_init(&bus);
+    if ((sva_can_loopback_transport(&bus, 0, &tp) != SVA_CAN_OK) || (sva_can_sender_init(&sender, &tp, NULL) != SVA_CAN_OK) ||
+        (sva_can_sender_start(&sender, &wire, 0) != SVA_CAN_OK)) {
+        fprintf(stderr, "sending failed\n");
+        return 1;
+    }
+    printf("{\"plan_id\": %u, \"algorithm\": %u, \"plan_status\": %u, \"route_count\": %u, \"covered\": %u, "
+           "\"cost\": %lld, \"plan_crc\": %lu, \"items\": [",
+           wire.plan_id, wire.algorithm, wire.plan_status, wire.route_count, plan.covered, (long long)plan.cost,
+           (unsigned long)sva_can_plan_crc(&wire));
+    for (i = 0; i < wire.item_count; ++i) {
+        const sva_can_item_t* it = &wire.items[i];
+        printf("%s{\"uav\": %u, \"target\": %u, \"x\": %d, \"y\": %d, \"arrive_by\": %lu, \"hold_until\": %lu}",
+               (i == 0) ? "" : ", ", it->uav_id, it->target_id, it->x, it->y, (unsigned long)it->arrive_by_ticks,
+               (unsigned long)it->hold_until_ticks);
+    }
+    printf("], \"frames\": [");
+    while (sva_can_loopback_take(&bus, 1, &f) == SVA_CAN_OK) {
+        int k;
+        printf("%s\"%03lX#", first ? "" : ", ", (unsigned long)f.id);
+        for (k = 0; k < 8; ++k) {
+            printf("%02X", f.data[k]);
+        }
+        printf("\"");
+        first = 0;
+    }
+    printf("]}\n");
+    return 0;
+}
+
+int main(int argc, char** argv)
+{
+    char line[1024];
+    if ((argc == 5) && (strcmp(argv[1], "plan") == 0)) {
+        return do_plan(argv[2], argv[3], argv[4]);
+    }
+    if ((argc != 2) || (strcmp(argv[1], "codec") != 0)) {
+        fprintf(stderr, "usage: can_frames_tool codec | plan MISSION ALGORITHM PLAN_ID\n");
+        return 2;
+    }
+    while (fgets(line, sizeof line, stdin) != NULL) {
+        if (strncmp(line, "encode ", 7) == 0) {
+            do_encode(line + 7);
+        } else if (strncmp(line, "decode ", 7) == 0) {
+            do_decode(line + 7);
+        } else {
+            printf("error syntax\n");
+        }
+        fflush(stdout);
+    }
+    return 0;
+}

@@ -1,0 +1,384 @@
+// Codec tests: CRC check values, exact byte packing, round trips of every frame type
+// at their boundaries, and every decode rejection.
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "sva/sva_can.h"
+
+static sva_can_frame_t enc(const sva_can_msg_t* m)
+{
+    sva_can_frame_t f;
+    memset(&f, 0xEE, sizeof f);
+    assert_int_equal(sva_can_encode(m, &f), SVA_CAN_OK);
+    assert_int_equal(f.dlc, 8);
+    assert_int_equal(f.flags, 0);
+    return f;
+}
+
+static sva_can_msg_t dec(const sva_can_frame_t* f)
+{
+    sva_can_msg_t m;
+    memset(&m, 0, sizeof m);
+    assert_int_equal(sva_can_decode(f, &m), SVA_CAN_OK);
+    return m;
+}
+
+static void fix_crc(sva_can_frame_t* f)
+{
+    f->data[7] = sva_can_frame_crc8(f->id, f->data);
+}
+
+static void test_crc_check_values(void** state)
+{
+    const uint8_t check[] = "123456789";
+    (void)state;
+    assert_int_equal(sva_can_crc8(check, 9), 0x4B);  // CRC-8/SAE-J1850 catalogue value
+    assert_int_equal(sva_can_crc32(0u, check, 9), 0xCBF43926u);  // CRC-32/ISO-HDLC
+    assert_int_equal(sva_can_crc32(sva_can_crc32(0u, check, 4), check + 4, 5), 0xCBF43926u);
+    assert_int_equal(sva_can_crc8(NULL, 3), 0);
+}
+
+// Expected bytes worked out by hand from sva.dbc's start bits (little-endian signals).
+static void test_item_packing_by_bytes(void** state)
+{
+    sva_can_msg_t m;
+    sva_can_frame_t f;
+    const uint8_t want[7] = {0xB5, 0x3A, 0x12, 0xFE, 0xFF, 0x34, 0x12};
+    (void)state;
+    m.kind = SVA_CAN_MSG_PLAN_ITEM;
+    m.counter = 5;
+    m.u.item.uav_id = 0xAB;
+    m.u.item.target_id = 0x123;
+    m.u.item.x = -2;
+    m.u.item.y = 0x1234;
+    f = enc(&m);
+    assert_int_equal(f.id, 0x102);
+    assert_memory_equal(f.data, want, 7);
+    {
+        const uint8_t crcin[9] = {0x02, 0x01, 0xB5, 0x3A, 0x12, 0xFE, 0xFF, 0x34, 0x12};
+        assert_int_equal(f.data[7], sva_can_crc8(crcin, 9));  // id low byte, id high byte, data 0..6
+    }
+}
+
+static void test_commit_and_time_packing_by_bytes(void** state)
+{
+    sva_can_msg_t m;
+    sva_can_frame_t f;
+    (void)state;
+    m.kind = SVA_CAN_MSG_PLAN_COMMIT;
+    m.counter = 15;
+    m.u.commit.plan_id = 0xBEEF;
+    m.u.commit.plan_crc = 0x11223344u;
+    f = enc(&m);
+    {
+        const uint8_t want[7] = {0x0F, 0xEF, 0xBE, 0x44, 0x33, 0x22, 0x11};
+        assert_memory_equal(f.data, want, 7);
+    }
+    m.kind = SVA_CAN_MSG_PLAN_ITEM_TIME;
+    m.counter = 1;
+    m.u.item_time.item_seq = 0xC;
+    m.u.item_time.arrive_by_ticks = 0x0A0B0Cu;
+    m.u.item_time.hold_until_ticks = 0xFFFFFFu;
+    f = enc(&m);
+    {
+        const uint8_t want[7] = {0xC1, 0x0C, 0x0B, 0x0A, 0xFF, 0xFF, 0xFF};
+        assert_memory_equal(f.data, want, 7);
+    }
+    m.kind = SVA_CAN_MSG_VEHICLE_FUEL;
+    m.counter = 0;
+    m.u.fuel.uav_id = 7;
+    m.u.fuel.fuel = 0xDEADBEEFu;
+    f = enc(&m);
+    {
+        const uint8_t want[7] = {0x00, 0x07, 0xEF, 0xBE, 0xAD, 0xDE, 0x00};
+        assert_memory_equal(f.data, want, 7);
+    }
+}
+
+static void roundtrip(const sva_can_msg_t* m)
+{
+    const sva_can_frame_t f = enc(m);
+    const sva_can_msg_t back = dec(&f);
+    assert_int_equal(back.kind, m->kind);
+    assert_int_equal(back.counter, m->counter);
+    switch (m->kind) {
+    case SVA_CAN_MSG_HEARTBEAT:
+        assert_int_equal(back.u.heartbeat.state, m->u.heartbeat.state);
+        assert_int_equal(back.u.heartbeat.active_plan_id, m->u.heartbeat.active_plan_id);
+        assert_int_equal(back.u.heartbeat.uav_count, m->u.heartbeat.uav_count);
+        assert_int_equal(back.u.heartbeat.target_count, m->u.heartbeat.target_count);
+        assert_int_equal(back.u.heartbeat.covered_count, m->u.heartbeat.covered_count);
+        assert_int_equal(back.u.heartbeat.faults, m->u.heartbeat.faults);
+        break;
+    case SVA_CAN_MSG_PLAN_BEGIN:
+        assert_int_equal(back.u.begin.version, m->u.begin.version);
+        assert_int_equal(back.u.begin.plan_id, m->u.begin.plan_id);
+        assert_int_equal(back.u.begin.item_count, m->u.begin.item_count);
+        assert_int_equal(back.u.begin.algorithm, m->u.begin.algorithm);
+        assert_int_equal(back.u.begin.plan_status, m->u.begin.plan_status);
+        assert_int_equal(back.u.begin.route_count, m->u.begin.route_count);
+        break;
+    case SVA_CAN_MSG_PLAN_ITEM:
+        assert_int_equal(back.u.item.uav_id, m->u.item.uav_id);
+        assert_int_equal(back.u.item.target_id, m->u.item.target_id);
+        assert_int_equal(back.u.item.x, m->u.item.x);
+        assert_int_equal(back.u.item.y, m->u.item.y);
+        break;
+    case SVA_CAN_MSG_PLAN_ITEM_TIME:
+        assert_int_equal(back.u.item_time.item_seq, m->u.item_time.item_seq);
+        assert_int_equal(back.u.item_time.arrive_by_ticks, m->u.item_time.arrive_by_ticks);
+        assert_int_equal(back.u.item_time.hold_until_ticks, m->u.item_time.hold_until_ticks);
+        break;
+    case SVA_CAN_MSG_PLAN_COMMIT:
+        assert_int_equal(back.u.commit.plan_id, m->u.commit.plan_id);
+        assert_int_equal(back.u.commit.plan_crc, m->u.commit.plan_crc);
+        break;
+    case SVA_CAN_MSG_PLAN_ABORT:
+        assert_int_equal(back.u.abort_.reason, m->u.abort_.reason);
+        assert_int_equal(back.u.abort_.plan_id, m->u.abort_.plan_id);
+        break;
+    case SVA_CAN_MSG_PLAN_ACK:
+        assert_int_equal(back.u.ack.result, m->u.ack.result);
+        assert_int_equal(back.u.ack.plan_id, m->u.ack.plan_id);
+        assert_int_equal(back.u.ack.items_received, m->u.ack.items_received);
+        break;
+    case SVA_CAN_MSG_VEHICLE_STATUS:
+        assert_int_equal(back.u.vehicle.state, m->u.vehicle.state);
+        assert_int_equal(back.u.vehicle.uav_id, m->u.vehicle.uav_id);
+        assert_int_equal(back.u.vehicle.x, m->u.vehicle.x);
+        assert_int_equal(back.u.vehicle.y, m->u.vehicle.y);
+        break;
+    case SVA_CAN_MSG_VEHICLE_FUEL:
+        assert_int_equal(back.u.fuel.uav_id, m->u.fuel.uav_id);
+        assert_int_equal(back.u.fuel.fuel, m->u.fuel.fuel);
+        break;
+    case SVA_CAN_MSG_NONE:
+    case SVA_CAN_MSG_COUNT_:
+    default:
+        fail();
+    }
+}
+
+static void test_roundtrip_every_kind_at_bounds(void** state)
+{
+    sva_can_msg_t m;
+    int lo;
+    (void)state;
+    for (lo = 0; lo < 2; ++lo) {
+        memset(&m, 0, sizeof m);
+        m.counter = lo ? 0 : 15;
+        m.kind = SVA_CAN_MSG_HEARTBEAT;
+        m.u.heartbeat.state = lo ? 0 : SVA_CAN_NODE_STATE_MAX;
+        m.u.heartbeat.active_plan_id = lo ? 0 : 65535;
+        m.u.heartbeat.uav_count = lo ? 0 : 255;
+        m.u.heartbeat.target_count = lo ? 0 : 255;
+        m.u.heartbeat.covered_count = lo ? 0 : 255;
+        m.u.heartbeat.faults = lo ? 0 : SVA_CAN_FAULT_MASK;
+        roundtrip(&m);
+        memset(&m, 0, sizeof m);
+        m.counter = lo ? 0 : 15;
+        m.kind = SVA_CAN_MSG_PLAN_BEGIN;
+        m.u.begin.version = SVA_CAN_PROTOCOL_VERSION;
+        m.u.begin.plan_id = lo ? 1 : 65535;
+        m.u.begin.item_count = lo ? 0 : 65535;
+        m.u.begin.algorithm = lo ? 0 : 3;
+        m.u.begin.plan_status = lo ? SVA_CAN_PLAN_COMPLETE : SVA_CAN_PLAN_PARTIAL;
+        m.u.begin.route_count = lo ? 0 : 255;
+        roundtrip(&m);
+        memset(&m, 0, sizeof m);
+        m.kind = SVA_CAN_MSG_PLAN_ITEM;
+        m.u.item.uav_id = lo ? 1 : 255;
+        m.u.item.target_id = lo ? 1 : 4095;
+        m.u.item.x = lo ? -32768 : 32767;
+        m.u.item.y = lo ? 32767 : -32768;
+        roundtrip(&m);
+        memset(&m, 0, sizeof m);
+        m.kind = SVA_CAN_MSG_PLAN_ITEM_TIME;
+        m.u.item_time.item_seq = lo ? 0 : 15;
+        m.u.item_time.arrive_by_ticks = lo ? 0 : SVA_CAN_MAX_TICK - 1;
+        m.u.item_time.hold_until_ticks = lo ? 1 : SVA_CAN_MAX_TICK;
+        roundtrip(&m);
+        memset(&m, 0, sizeof m);
+        m.kind = SVA_CAN_MSG_PLAN_COMMIT;
+        m.u.commit.plan_id = lo ? 1 : 65535;
+        m.u.commit.plan_crc = lo ? 0u : 0xFFFFFFFFu;
+        roundtrip(&m);
+        memset(&m, 0, sizeof m);
+        m.kind = SVA_CAN_MSG_PLAN_ABORT;
+        m.u.abort_.reason = lo ? 1 : SVA_CAN_ABORT_REASON_MAX;
+        m.u.abort_.plan_id = lo ? 0 : 65535;
+        roundtrip(&m);
+        memset(&m, 0, sizeof m);
+        m.kind = SVA_CAN_MSG_PLAN_ACK;
+        m.u.ack.result = lo ? 0 : SVA_CAN_ACK_RESULT_MAX;
+        m.u.ack.plan_id = lo ? 0 : 65535;
+        m.u.ack.items_received = lo ? 0 : 65535;
+        roundtrip(&m);
+        memset(&m, 0, sizeof m);
+        m.kind = SVA_CAN_MSG_VEHICLE_STATUS;
+        m.u.vehicle.state = lo ? 0 : SVA_CAN_VEHICLE_STATE_MAX;
+        m.u.vehicle.uav_id = lo ? 1 : 255;
+        m.u.vehicle.x = lo ? -32768 : 32767;
+        m.u.vehicle.y = lo ? -1 : 1;
+        roundtrip(&m);
+        memset(&m, 0, sizeof m);
+        m.kind = SVA_CAN_MSG_VEHICLE_FUEL;
+        m.u.fuel.uav_id = lo ? 1 : 255;
+        m.u.fuel.fuel = lo ? 0u : 0xFFFFFFFFu;
+        roundtrip(&m);
+    }
+}
+
+static void test_encode_refuses_wide_values(void** state)
+{
+    sva_can_msg_t m;
+    sva_can_frame_t f;
+    (void)state;
+    memset(&m, 0, sizeof m);
+    memset(&f, 0x5A, sizeof f);
+    m.kind = SVA_CAN_MSG_PLAN_ITEM;
+    m.u.item.uav_id = 1;
+    m.u.item.target_id = 4096;  // SVA_CAN_MAX_TARGET_ID + 1
+    assert_int_equal(sva_can_encode(&m, &f), SVA_CAN_ERR_ARGUMENT);
+    assert_int_equal(f.data[0], 0x5A);  // untouched
+    m.u.item.target_id = 4095;
+    m.counter = 16;
+    assert_int_equal(sva_can_encode(&m, &f), SVA_CAN_ERR_ARGUMENT);
+    memset(&m, 0, sizeof m);
+    m.kind = SVA_CAN_MSG_PLAN_ITEM_TIME;
+    m.u.item_time.hold_until_ticks = SVA_CAN_MAX_TICK + 1;
+    assert_int_equal(sva_can_encode(&m, &f), SVA_CAN_ERR_ARGUMENT);
+    m.kind = SVA_CAN_MSG_NONE;
+    assert_int_equal(sva_can_encode(&m, &f), SVA_CAN_ERR_ARGUMENT);
+    assert_int_equal(sva_can_encode(NULL, &f), SVA_CAN_ERR_ARGUMENT);
+}
+
+static sva_can_frame_t sample_item(void)
+{
+    sva_can_msg_t m;
+    memset(&m, 0, sizeof m);
+    m.kind = SVA_CAN_MSG_PLAN_ITEM;
+    m.counter = 3;
+    m.u.item.uav_id = 9;
+    m.u.item.target_id = 77;
+    m.u.item.x = -100;
+    m.u.item.y = 250;
+    return enc(&m);
+}
+
+static void test_decode_rejects_dlc_fd_crc(void** state)
+{
+    sva_can_msg_t out;
+    sva_can_frame_t f;
+    unsigned dlc;
+    unsigned byte;
+    unsigned bit;
+    (void)state;
+    for (dlc = 0; dlc <= 15; ++dlc) {
+        if (dlc == 8) {
+            continue;
+        }
+        f = sample_item();
+        f.dlc = (uint8_t)dlc;
+        assert_int_equal(sva_can_decode(&f, &out), SVA_CAN_ERR_DLC);
+    }
+    f = sample_item();
+    f.flags = SVA_CAN_FLAG_FD;
+    assert_int_equal(sva_can_decode(&f, &out), SVA_CAN_ERR_DLC);
+    // Every single-bit error in any byte is caught by the CRC-8.
+    for (byte = 0; byte < 8; ++byte) {
+        for (bit = 0; bit < 8; ++bit) {
+            f = sample_item();
+            f.data[byte] = (uint8_t)(f.data[byte] ^ (1u << bit));
+            assert_int_equal(sva_can_decode(&f, &out), SVA_CAN_ERR_CRC);
+        }
+    }
+    // The CRC covers the id: the same bytes under another id fail.
+    f = sample_item();
+    f.id = SVA_CAN_ID_VEHICLE_STATUS;
+    assert_int_equal(sva_can_decode(&f, &out), SVA_CAN_ERR_CRC);
+}
+
+static void test_decode_ignores_foreign_frames(void** state)
+{
+    sva_can_msg_t out;
+    sva_can_frame_t f = sample_item();
+    (void)state;
+    f.flags = SVA_CAN_FLAG_EXTENDED;  // DroneCAN-style 29-bit frame with the same low bits
+    assert_int_equal(sva_can_decode(&f, &out), SVA_CAN_IGNORED);
+    f.flags = SVA_CAN_FLAG_RTR;
+    assert_int_equal(sva_can_decode(&f, &out), SVA_CAN_IGNORED);
+    f = sample_item();
+    f.id = 0x7FF;
+    assert_int_equal(sva_can_decode(&f, &out), SVA_CAN_IGNORED);
+    f.id = 0x105;
+    assert_int_equal(sva_can_decode(&f, &out), SVA_CAN_IGNORED);
+}
+
+static void test_decode_rejects_values(void** state)
+{
+    sva_can_msg_t out;
+    sva_can_frame_t f;
+    (void)state;
+    f = sample_item();  // uav_id 0
+    f.data[0] = (uint8_t)(f.data[0] & 0x0F);
+    f.data[1] = (uint8_t)(f.data[1] & 0xF0);
+    fix_crc(&f);
+    assert_int_equal(sva_can_decode(&f, &out), SVA_CAN_ERR_VALUE);
+    f = sample_item();  // target_id 0
+    f.data[1] = (uint8_t)(f.data[1] & 0x0F);
+    f.data[2] = 0;
+    fix_crc(&f);
+    assert_int_equal(sva_can_decode(&f, &out), SVA_CAN_ERR_VALUE);
+    {
+        sva_can_msg_t m;
+        memset(&m, 0, sizeof m);
+        m.kind = SVA_CAN_MSG_PLAN_ITEM_TIME;  // arrive_by == hold_until breaks start < end
+        m.u.item_time.arrive_by_ticks = 10;
+        m.u.item_time.hold_until_ticks = 10;
+        assert_int_equal(sva_can_encode(&m, &f), SVA_CAN_OK);
+        assert_int_equal(sva_can_decode(&f, &out), SVA_CAN_ERR_VALUE);
+        memset(&m, 0, sizeof m);
+        m.kind = SVA_CAN_MSG_VEHICLE_STATUS;
+        m.u.vehicle.uav_id = 1;
+        m.u.vehicle.state = SVA_CAN_VEHICLE_STATE_MAX + 1;
+        assert_int_equal(sva_can_encode(&m, &f), SVA_CAN_OK);
+        assert_int_equal(sva_can_decode(&f, &out), SVA_CAN_ERR_VALUE);
+        memset(&m, 0, sizeof m);
+        m.kind = SVA_CAN_MSG_PLAN_BEGIN;
+        m.u.begin.version = 1;
+        m.u.begin.plan_id = 0;  // 0 means no plan
+        m.u.begin.plan_status = SVA_CAN_PLAN_COMPLETE;
+        assert_int_equal(sva_can_encode(&m, &f), SVA_CAN_OK);
+        assert_int_equal(sva_can_decode(&f, &out), SVA_CAN_ERR_VALUE);
+        m.u.begin.plan_id = 1;
+        m.u.begin.plan_status = 3;
+        assert_int_equal(sva_can_encode(&m, &f), SVA_CAN_OK);
+        assert_int_equal(sva_can_decode(&f, &out), SVA_CAN_ERR_VALUE);
+        memset(&m, 0, sizeof m);
+        m.kind = SVA_CAN_MSG_PLAN_ACK;
+        m.u.ack.result = SVA_CAN_ACK_RESULT_MAX + 1;
+        assert_int_equal(sva_can_encode(&m, &f), SVA_CAN_OK);
+        assert_int_equal(sva_can_decode(&f, &out), SVA_CAN_ERR_VALUE);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_crc_check_values),
+        cmocka_unit_test(test_item_packing_by_bytes),
+        cmocka_unit_test(test_commit_and_time_packing_by_bytes),
+        cmocka_unit_test(test_roundtrip_every_kind_at_bounds),
+        cmocka_unit_test(test_encode_refuses_wide_values),
+        cmocka_unit_test(test_decode_rejects_dlc_fd_crc),
+        cmocka_unit_test(test_decode_ignores_foreign_frames),
+        cmocka_unit_test(test_decode_rejects_values),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
