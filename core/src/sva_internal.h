@@ -39,10 +39,6 @@ static inline int32_t sva_distance(int32_t ax, int32_t ay, int32_t bx, int32_t b
     return dx + dy;
 }
 
-// diag.c
-void sva_diag_set(sva_diag_t* diag, sva_field_t field, sva_rule_t rule, int32_t index,
-                  int64_t value, int64_t limit, const char* limit_name);
-
 // cluster.c: targets by (start, end, id) into priv->target_order, then clusters.
 void sva_sort_targets(sva_planner_priv_t* priv, const sva_mission_t* mission);
 void sva_sort_uavs(sva_planner_priv_t* priv, const sva_mission_t* mission);

@@ -186,13 +186,7 @@ static bool get_list(const json_t* root, const char* key, sva_field_t field, siz
     size_t count = json_array_size(value);
     if (count > bound) {
         sva_diag_t diag;
-        sva_diag_clear(&diag);
-        diag.field = field;
-        diag.rule = SVA_RULE_COUNT;
-        diag.index = -1;
-        diag.value = (int64_t)count;
-        diag.limit = (int64_t)bound;
-        diag.limit_name = bound_name;
+        sva_diag_set(&diag, field, SVA_RULE_COUNT, -1, (int64_t)count, (int64_t)bound, bound_name);
         (void)sva_diag_format(&diag, err->text, err->size);
         return false;
     }

@@ -140,6 +140,12 @@ typedef struct {
 /// Fills *self with "no error". Allocates nothing; O(1).
 void sva_diag_clear(sva_diag_t* self);
 
+/// Fills *self (when not NULL) with one diagnostic. For ports and tools that check
+/// limits of their own (wire formats, JSON lists) and report them in the core's terms,
+/// so sva_diag_format() words every message the same way. Allocates nothing; O(1).
+void sva_diag_set(sva_diag_t* self, sva_field_t field, sva_rule_t rule, int32_t index,
+                  int64_t value, int64_t limit, const char* limit_name);
+
 /// Writes a one-line message, e.g. "targets[3].need: must be >= 1, got 0" or
 /// "uavs: 65 entries exceed SVA_MAX_UAVS (64)", into buf (always NUL-terminated when
 /// size > 0, truncated to fit). Returns the length the whole message needs, without

@@ -75,14 +75,7 @@ uint32_t sva_can_plan_crc(const sva_can_plan_t* plan)
 static sva_can_status_t fail(sva_diag_t* diag, sva_field_t field, int32_t index, int64_t value,
                              sva_rule_t rule, int64_t limit, const char* limit_name)
 {
-    if (diag != NULL) {
-        diag->field = field;
-        diag->rule = rule;
-        diag->index = index;
-        diag->value = value;
-        diag->limit = limit;
-        diag->limit_name = limit_name;
-    }
+    sva_diag_set(diag, field, rule, index, value, limit, limit_name);
     return SVA_CAN_ERR_LIMIT;
 }
 

@@ -195,27 +195,16 @@ static sva_lcm_verdict_t reject_diag(sva_lcm_node_t* self, sva_lcm_reject_t reas
     return reject(self, reason, what);
 }
 
-static void set_diag(sva_diag_t* d, sva_field_t field, sva_rule_t rule, int32_t index,
-                     int64_t value, int64_t limit, const char* limit_name)
-{
-    d->field = field;
-    d->rule = rule;
-    d->index = index;
-    d->value = value;
-    d->limit = limit;
-    d->limit_name = limit_name;
-}
-
 // Range check of one field: fills *d and returns false when value is outside [lo, hi].
 static bool in_range(sva_diag_t* d, sva_field_t field, int32_t index, int64_t value, int64_t lo,
                      int64_t hi, const char* hi_name)
 {
     if (value < lo) {
-        set_diag(d, field, SVA_RULE_MIN, index, value, lo, NULL);
+        sva_diag_set(d, field, SVA_RULE_MIN, index, value, lo, NULL);
         return false;
     }
     if (value > hi) {
-        set_diag(d, field, SVA_RULE_MAX, index, value, hi, hi_name);
+        sva_diag_set(d, field, SVA_RULE_MAX, index, value, hi, hi_name);
         return false;
     }
     return true;
@@ -379,7 +368,7 @@ static bool check_fleet(sva_lcm_node_t* self, sva_lcm_reject_t* reason, int32_t*
     const sva_lcm_fleet_state_t* f = &self->priv.fleet_rx;
     sva_diag_t* d = &self->last_diag;
     if ((f->uav_count < 0) || (f->uav_count > SVA_LCM_FLEET_STATE_T_MAX_UAVS)) {
-        set_diag(d, SVA_FIELD_UAVS, SVA_RULE_COUNT, -1, f->uav_count, SVA_MAX_UAVS,
+        sva_diag_set(d, SVA_FIELD_UAVS, SVA_RULE_COUNT, -1, f->uav_count, SVA_MAX_UAVS,
                  "SVA_MAX_UAVS");
         *reason = SVA_LCM_REJECT_COUNT;
         return false;
@@ -411,7 +400,7 @@ static bool check_mission(sva_lcm_node_t* self, sva_lcm_reject_t* reason)
     const sva_lcm_mission_t* m = &self->priv.mission_rx;
     sva_diag_t* d = &self->last_diag;
     if ((m->target_count < 0) || (m->target_count > SVA_LCM_MISSION_T_MAX_TARGETS)) {
-        set_diag(d, SVA_FIELD_TARGETS, SVA_RULE_COUNT, -1, m->target_count, SVA_MAX_TARGETS,
+        sva_diag_set(d, SVA_FIELD_TARGETS, SVA_RULE_COUNT, -1, m->target_count, SVA_MAX_TARGETS,
                  "SVA_MAX_TARGETS");
         *reason = SVA_LCM_REJECT_COUNT;
         return false;
