@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mission_json.h"
+#include "mission_file.h"
 #include "sva/sva.h"
 #include "sva/sva_can.h"
 

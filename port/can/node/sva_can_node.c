@@ -17,7 +17,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "mission_json.h"
+#include "mission_file.h"
 #include "sva/sva.h"
 #include "sva/sva_can.h"
 

@@ -1,6 +1,7 @@
-// Reads a SPEC section 3 mission file into an sva_mission_t (host side, jansson).
-#ifndef SVA_CAN_MISSION_JSON_H
-#define SVA_CAN_MISSION_JSON_H
+// Reads a SPEC section 3 mission file for the CAN node: the CLI's JSON layer
+// (tools/cli, sva_json_load_mission) plus the CAN wire limits (sva_can_mission_check).
+#ifndef SVA_CAN_MISSION_FILE_H
+#define SVA_CAN_MISSION_FILE_H
 
 #include <stddef.h>
 
