@@ -427,7 +427,8 @@ typedef struct {
     int64_t value;                                ///< relaxation: cost - rewards
     uint64_t work;
     // Scratch of the graph builder and of the rounding heuristic (flow_repair.c).
-    int64_t target_lead[SVA_MAX_TARGETS];
+    int64_t target_lead[SVA_MAX_TARGETS];         ///< fuel labels (flow_graph.c)
+    int64_t target_tail[SVA_MAX_TARGETS];
     uint16_t target_taken[SVA_MAX_TARGETS];
     int64_t route_cells[SVA_MAX_UAVS];
     int64_t insert_delta[SVA_MAX_UAVS];
@@ -469,6 +470,11 @@ typedef struct {
     /// Must not call back into this planner.
     sva_tp_observer_t on_transport;
     void* on_transport_user;
+    /// flow's work budget in arc scans (deterministic; about 10 ns each on a desktop
+    /// core): the search stops there and returns its best plan, not proven optimal.
+    /// sva_planner_init sets SVA_FLOW_MAX_WORK; any value in [1000, SVA_FLOW_MAX_WORK]
+    /// may be set between runs (others are clamped into that range).
+    uint32_t flow_max_work;
     sva_planner_priv_t priv;  ///< read-only to users
 } sva_planner_t;
 
