@@ -22,9 +22,9 @@
 enum { BRANCH_TARGET = 1U, BRANCH_ROUTE = 2U };
 enum {
     INCOMPLETE_NONE = 0U,
-    INCOMPLETE_WORK = 1U,
-    INCOMPLETE_DEPTH = 2U,
-    INCOMPLETE_REWARD = 3U,
+    INCOMPLETE_WORK = SVA_FLOW_INCOMPLETE_WORK,
+    INCOMPLETE_DEPTH = SVA_FLOW_INCOMPLETE_DEPTH,
+    INCOMPLETE_REWARD = SVA_FLOW_INCOMPLETE_REWARD,
 };
 
 static uint32_t find_arc(const sva_flow_work_t* w, uint16_t tail, uint16_t head)
@@ -225,15 +225,45 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
     return open;
 }
 
-sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan,
-                          sva_diag_t* diag)
+// Past its graph bounds flow has no relaxation: it returns the better of the ga and
+// sva plans with the trivial bound 0, never claiming optimality.
+static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan, uint8_t why)
+{
+    sva_planner_priv_t* priv = &self->priv;
+    const sva_stats_t kept = plan->stats;
+    sva_run_ga(priv, m, plan);
+    sva_plan_finish(priv, m, plan);
+    const uint16_t ga_covered = plan->covered;
+    const int64_t ga_cost = plan->cost;
+    sva_state_reset(priv, m, plan);
+    const sva_tp_observer_t observer = self->on_transport;
+    self->on_transport = NULL;
+    bool use_ga = sva_run_pipeline(self, m, SVA_ALGO_SVA, plan) != SVA_OK;
+    self->on_transport = observer;
+    if (!use_ga) {
+        sva_plan_finish(priv, m, plan);
+        use_ga = (ga_covered > plan->covered) || ((ga_covered == plan->covered) && (ga_cost < plan->cost));
+    }
+    if (use_ga) {
+        sva_state_reset(priv, m, plan);
+        sva_run_ga(priv, m, plan);
+    }
+    plan->stats = kept;
+    plan->stats.has_bound = true;
+    plan->stats.lower_bound = 0;
+    plan->stats.optimal = false;
+    plan->stats.flow_incomplete = why;
+}
+
+sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan)
 {
     sva_planner_priv_t* priv = &self->priv;
     sva_flow_work_t* w = &priv->flow;
     sva_stats_t* stats = &plan->stats;
-    const sva_status_t st = sva_flow_build(priv, m, plan, stats, diag);
-    if (st != SVA_OK) {
-        return st;
+    const uint8_t over = sva_flow_build(priv, m, plan, stats);
+    if (over != 0U) {
+        fall_back(self, m, plan, over);
+        return SVA_OK;
     }
     w->has_inc = false;
     w->work = 0U;

@@ -222,8 +222,8 @@ static void index_heads(sva_flow_work_t* w, uint32_t nodes)
     w->in_start[0] = 0U;
 }
 
-sva_status_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m,
-                            const sva_plan_t* plan, sva_stats_t* stats, sva_diag_t* diag)
+uint8_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan,
+                       sva_stats_t* stats)
 {
     sva_flow_work_t* w = &priv->flow;
     int64_t slots = 0;
@@ -231,9 +231,7 @@ sva_status_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m,
         slots += m->targets[t].need;
     }
     if (slots > SVA_FLOW_MAX_COPIES) {
-        sva_diag_set(diag, SVA_FIELD_TARGETS, SVA_RULE_ALGO_LIMIT, -1, slots,
-                     SVA_FLOW_MAX_COPIES, "SVA_FLOW_MAX_COPIES");
-        return SVA_ERR_LIMIT;
+        return SVA_FLOW_OVER_COPIES;
     }
     w->uavs = m->uav_count;
     w->copies = (uint16_t)slots;
@@ -287,16 +285,14 @@ sva_status_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m,
     w->out_start[nodes] = w->arcs;
     stats->flow_graph_arcs = w->arcs;
     if (w->arcs > (uint32_t)SVA_FLOW_MAX_ARCS) {
-        sva_diag_set(diag, SVA_FIELD_NONE, SVA_RULE_ALGO_LIMIT, -1, (int64_t)w->arcs,
-                     SVA_FLOW_MAX_ARCS, "SVA_FLOW_MAX_ARCS");
-        return SVA_ERR_LIMIT;
+        return SVA_FLOW_OVER_ARCS;
     }
     for (uint32_t e = 0U; e < w->arcs; e++) {
         w->arc_flow[e] = 0U;
         w->arc_ban[e] = 0U;
     }
     index_heads(w, nodes);
-    return SVA_OK;
+    return 0U;
 }
 
 int32_t sva_flow_arc_cost(const sva_flow_work_t* w, uint32_t arc)

@@ -55,7 +55,7 @@ sva_status_t sva_plan(sva_planner_t* self, const sva_mission_t* mission,
         st = sva_run_bfa(priv, mission, plan, diag);
         break;
     case SVA_ALGO_FLOW:
-        st = sva_run_flow(self, mission, plan, diag);
+        st = sva_run_flow(self, mission, plan);
         break;
     case SVA_ALGO_COUNT_:
     default:

@@ -7,7 +7,8 @@
 // - at the paper's sizes it covers at least as many targets as sva, ga and hga, and
 //   costs no more than the best of sva and ga at equal coverage (their plans seed it);
 // - a small work budget still gives a checked plan, honestly not proven optimal;
-// - its limits are reported with the limit's name; the observer stays silent.
+// - past its graph bounds it falls back to the better of ga and sva, bound 0, not
+//   optimal; the caller's observer stays silent.
 // Seeds are printed and replayable (SVA_TEST_SEED=...).
 #include <setjmp.h>
 #include <stdarg.h>
@@ -199,31 +200,51 @@ static void test_small_budget_gives_a_checked_unproven_plan(void** state)
     assert_true(unproven > 0);
 }
 
-static void test_copies_over_the_bound_are_a_named_limit(void** state)
+static void test_past_its_graph_bounds_flow_falls_back_honestly(void** state)
 {
     (void)state;
     sva_mission_init(&mission);
     mission.uav_count = 1;
     mission.uavs[0] = (sva_uav_t){1, 0, 0, 100, 0};
-    const int32_t need = SVA_MAX_UAVS;
-    const int32_t targets = (int32_t)(SVA_FLOW_MAX_COPIES / need) + 1;
+    const int32_t need = 1;
+    const int32_t targets = (int32_t)SVA_FLOW_MAX_COPIES + 1;
     if (targets > SVA_MAX_TARGETS) {
-        skip();  // this profile cannot express too many copies
+        skip();  // this profile cannot express too many copies with need 1
     }
     mission.target_count = (uint16_t)targets;
-    for (int32_t t = 0; t < targets; t++) {
+    for (int32_t t = 0; (t < targets) && (t < SVA_MAX_TARGETS); t++) {
         mission.targets[t] = (sva_target_t){t + 1, 1, 1, 10 * t + 5, 10 * t + 8, need};
     }
-    sva_diag_t diag;
-    assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_FLOW, &plan, &diag), SVA_ERR_LIMIT);
-    assert_int_equal(plan.status, SVA_PLAN_NONE);
-    char text[160];
-    sva_diag_format(&diag, text, sizeof(text));
-    char expected[160];
-    snprintf(expected, sizeof(expected),
-             "targets: %ld UAV slots (needs summed) exceed SVA_FLOW_MAX_COPIES (%ld)",
-             (long)targets * need, (long)SVA_FLOW_MAX_COPIES);
-    assert_string_equal(text, expected);
+    must_plan(SVA_ALGO_FLOW, &plan, 0U, 0);
+    assert_int_equal(plan.stats.flow_incomplete, 4);
+    assert_false(plan.stats.optimal);
+    assert_int_equal(plan.stats.lower_bound, 0);
+    must_plan(SVA_ALGO_SVA, &other, 0U, 0);
+    assert_false(spec_better(other.covered, other.cost, plan.covered, plan.cost));
+}
+
+static void test_dense_graph_past_the_arc_bound_falls_back(void** state)
+{
+    (void)state;
+    // Every window chains into every later one: about U*T + T*T/2 arcs.
+    sva_mission_init(&mission);
+    mission.uav_count = SVA_MAX_UAVS;
+    for (int32_t u = 0; u < SVA_MAX_UAVS; u++) {
+        mission.uavs[u] = (sva_uav_t){u + 1, 0, 0, 1000000, 0};
+    }
+    mission.target_count = SVA_MAX_TARGETS;
+    for (int32_t t = 0; t < SVA_MAX_TARGETS; t++) {
+        mission.targets[t] = (sva_target_t){t + 1, t % 7, t % 5, 100 + 20 * t, 105 + 20 * t, 1};
+    }
+    const long arcs = (long)SVA_MAX_UAVS * SVA_MAX_TARGETS + ((long)SVA_MAX_TARGETS * (SVA_MAX_TARGETS - 1)) / 2;
+    if (arcs <= (long)SVA_FLOW_MAX_ARCS) {
+        skip();  // this profile's arc bound holds the dense graph
+    }
+    must_plan(SVA_ALGO_FLOW, &plan, 0U, 0);
+    assert_int_equal(plan.stats.flow_incomplete, 5);
+    assert_true(plan.stats.flow_graph_arcs > (uint32_t)SVA_FLOW_MAX_ARCS);
+    assert_false(plan.stats.optimal);
+    assert_int_equal(plan.covered, SVA_MAX_TARGETS);
 }
 
 static int calls;
@@ -262,7 +283,8 @@ int main(void)
         cmocka_unit_test(test_without_fuel_limit_root_is_optimal),
         cmocka_unit_test(test_paper_sizes_never_worse_than_the_paper),
         cmocka_unit_test(test_small_budget_gives_a_checked_unproven_plan),
-        cmocka_unit_test(test_copies_over_the_bound_are_a_named_limit),
+        cmocka_unit_test(test_past_its_graph_bounds_flow_falls_back_honestly),
+        cmocka_unit_test(test_dense_graph_past_the_arc_bound_falls_back),
         cmocka_unit_test(test_observer_silent_and_stats_only_for_flow),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
