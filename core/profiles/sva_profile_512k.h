@@ -2,6 +2,7 @@
 // tests/footprint on Cortex-M4F: planner + plan + 4 KiB stack, the mission in flash).
 // The default mission bounds (64 UAVs, 256 targets, 24x48 tableau); only flow's graph
 // is capped lower, at 28,672 arcs (200 targets x 40 UAVs with need 1 need ~28,500).
+// A mission whose graph is larger gets flow's fallback (the better of ga and sva).
 #ifndef SVA_PROFILE_512K_H
 #define SVA_PROFILE_512K_H
 #define SVA_FLOW_MAX_ARCS 28672L
