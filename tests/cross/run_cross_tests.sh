@@ -4,9 +4,9 @@
 # this script first checks that qemu can start a program of that architecture at all.
 # Exit 77 (ctest: skipped) only when it cannot: that is a limit of the kernel or of
 # the sandbox, not of the project. Anything else that goes wrong is a failure.
-# Usage: run_cross_tests.sh QEMU SYSROOT SUBBUILD CTEST_ARGS...
+# Usage: run_cross_tests.sh CTEST QEMU SYSROOT SUBBUILD CTEST_ARGS...
 set -uo pipefail
-qemu=${1:?QEMU}; sysroot=${2:?SYSROOT}; subbuild=${3:?SUBBUILD}; shift 3
+ctest=${1:?CTEST}; qemu=${2:?QEMU}; sysroot=${3:?SYSROOT}; subbuild=${4:?SUBBUILD}; shift 4
 
 if [ ! -f "$subbuild/CTestTestfile.cmake" ]; then
     echo "cross: $subbuild is not built (the cross_* targets of the main build make it)" >&2
@@ -24,4 +24,4 @@ if ! probe=$("$qemu" -L "$sysroot" "$loader" --version 2>&1); then
     exit 77
 fi
 echo "cross: $(basename "$qemu") runs $(basename "$loader") ($(printf '%s' "$probe" | head -n 1))"
-cd "$subbuild" && exec ctest --output-on-failure --no-tests=error "$@"
+cd "$subbuild" && exec "$ctest" --output-on-failure --no-tests=error "$@"
