@@ -54,9 +54,8 @@ static void put_char(sva_writer_t* w, char c)
 
 static void put_str(sva_writer_t* w, const char* s)
 {
-    while (*s != '\0') {
-        put_char(w, *s);
-        s++;
+    for (const char* c = s; *c != '\0'; c++) {
+        put_char(w, *c);
     }
 }
 

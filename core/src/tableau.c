@@ -39,12 +39,14 @@ static int8_t* cell(sva_tableau_t* tab, shape_t sh, uint16_t row, uint16_t col)
 
 static int64_t gcd(int64_t a, int64_t b)
 {
-    while (b != 0) {
-        const int64_t r = a % b;
-        a = b;
-        b = r;
+    int64_t x = a;
+    int64_t y = b;
+    while (y != 0) {
+        const int64_t r = x % y;
+        x = y;
+        y = r;
     }
-    return a;
+    return x;
 }
 
 // L: the lcm of the kept sinks' needs, or 1 when L * M could overflow the reduced
