@@ -53,6 +53,9 @@ sva_status_t sva_plan(sva_planner_t* self, const sva_mission_t* mission,
     case SVA_ALGO_BFA:
         st = sva_run_bfa(priv, mission, plan, diag);
         break;
+    case SVA_ALGO_FLOW:
+        st = sva_run_flow(self, mission, plan, diag);
+        break;
     case SVA_ALGO_COUNT_:
     default:
         st = SVA_ERR_ARGUMENT;
