@@ -105,33 +105,6 @@ static void put_path(sva_writer_t* w, sva_field_t field, int32_t index)
     }
 }
 
-// What an algorithm limit counts, by the limit's name (default: list entries).
-static const char* algo_limit_noun(const char* limit_name)
-{
-    static const struct {
-        const char* limit;
-        const char* noun;
-    } nouns[] = {
-        {"SVA_BFA_MAX_NODES", " search nodes exceed "},
-        {"SVA_FLOW_MAX_COPIES", " UAV slots (needs summed) exceed "},
-        {"SVA_FLOW_MAX_ARCS", " time-feasible arcs exceed "},
-    };
-    if (limit_name != NULL) {
-        for (size_t i = 0U; i < (sizeof(nouns) / sizeof(nouns[0])); i++) {
-            const char* a = limit_name;
-            const char* b = nouns[i].limit;
-            while ((*a != '\0') && (*a == *b)) {
-                a++;
-                b++;
-            }
-            if (*a == *b) {
-                return nouns[i].noun;
-            }
-        }
-    }
-    return " entries exceed ";
-}
-
 size_t sva_diag_format(const sva_diag_t* self, char* buf, size_t size)
 {
     sva_writer_t w = {buf, size, 0U};
@@ -187,7 +160,7 @@ size_t sva_diag_format(const sva_diag_t* self, char* buf, size_t size)
         break;
     case SVA_RULE_ALGO_LIMIT:
         put_int(&w, self->value);
-        put_str(&w, algo_limit_noun(self->limit_name));
+        put_str(&w, (self->field == SVA_FIELD_NONE) ? " search nodes exceed " : " entries exceed ");
         put_str(&w, (self->limit_name != NULL) ? self->limit_name : "the algorithm limit");
         put_str(&w, " (");
         put_int(&w, self->limit);

@@ -7,9 +7,10 @@
 // Two rules can fail in a relaxation, and each has its branching:
 //   a target half covered      -> child 1: all its copies forced; child 2: banned;
 //   a route over fuel/length   -> partition over where the UAV first leaves it: child
-//       i keeps the route's first i arcs for this UAV and bans arc i+1. Every copy
-//       carries one unit, so the kept arcs are this UAV's, and a banned arc out of a
-//       kept copy concerns no one else. Children whose kept prefix already breaks the
+//       i keeps the route's first i arcs for this UAV and bans its step i+1 (to any
+//       copy of that target: copies are interchangeable). Every copy carries one
+//       unit, so the kept arcs are this UAV's, and a banned arc out of a kept copy
+//       concerns no one else. Children whose kept prefix already breaks the
 //       fuel rule are skipped, as is the one keeping the whole route: adding targets
 //       never shortens a route (triangle inequality).
 // Every node's relaxation is rounded into a plan (flow_repair.c); the plans of `ga`
@@ -21,9 +22,9 @@
 enum { BRANCH_TARGET = 1U, BRANCH_ROUTE = 2U };
 enum {
     INCOMPLETE_NONE = 0U,
-    INCOMPLETE_WORK = 1U,
-    INCOMPLETE_DEPTH = 2U,
-    INCOMPLETE_REWARD = 3U,
+    INCOMPLETE_WORK = SVA_FLOW_INCOMPLETE_WORK,
+    INCOMPLETE_DEPTH = SVA_FLOW_INCOMPLETE_DEPTH,
+    INCOMPLETE_REWARD = SVA_FLOW_INCOMPLETE_REWARD,
 };
 
 static uint32_t find_arc(const sva_flow_work_t* w, uint16_t tail, uint16_t head)
@@ -58,7 +59,15 @@ static void apply_child(sva_flow_work_t* w, const sva_flow_frame_t* f, int16_t i
         const uint16_t head = (uint16_t)(w->uavs + f->path[j]);
         const uint32_t kept = find_arc(w, tail, head);
         if (j == i) {
-            ban(w, kept, delta);
+            // Copies of one target are interchangeable: ban the step to all of them.
+            const uint16_t target = w->copy_target[f->path[j]];
+            for (uint32_t e = w->out_start[tail]; e < w->out_start[tail + 1U]; e++) {
+                const uint16_t h = w->arc_head[e];
+                if ((h >= w->uavs) && (h < (uint16_t)(w->uavs + w->copies)) &&
+                    (w->copy_target[h - w->uavs] == target)) {
+                    ban(w, e, delta);
+                }
+            }
             break;
         }
         for (uint32_t e = w->out_start[tail]; e < w->out_start[tail + 1U]; e++) {
@@ -144,7 +153,7 @@ static int64_t min64(int64_t a, int64_t b)
 // Depth-first search from the root relaxation; returns the least bound left open
 // (INT64_MAX when the search finished) and sets *incomplete.
 static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
-                      uint8_t* incomplete)
+                      uint64_t budget, uint8_t* incomplete)
 {
     sva_flow_work_t* w = &priv->flow;
     sva_stats_t* stats = &plan->stats;
@@ -177,7 +186,7 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
             w->depth--;
             continue;
         }
-        if (w->work > (uint64_t)SVA_FLOW_MAX_WORK) {
+        if (w->work > budget) {
             for (uint16_t d = 0U; d < w->depth; d++) {
                 if (w->stack[d].next_child < (int16_t)w->stack[d].child_count) {
                     open = min64(open, w->stack[d].bound);
@@ -186,7 +195,11 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
             *incomplete = (uint8_t)INCOMPLETE_WORK;
             break;
         }
-        const int16_t child = f->next_child;
+        // Route frames try the longest kept prefix first: the plan that drops the
+        // fewest of the route's targets is the likeliest good one.
+        const int16_t child = (f->kind == (uint8_t)BRANCH_ROUTE)
+                                  ? (int16_t)((int16_t)f->child_count - 1 - f->next_child)
+                                  : f->next_child;
         f->next_child++;
         apply_child(w, f, child, 1);
         f->active_child = child;
@@ -212,21 +225,54 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
     return open;
 }
 
-sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan,
-                          sva_diag_t* diag)
+// Past its graph bounds flow has no relaxation: it returns the better of the ga and
+// sva plans with the trivial bound 0, never claiming optimality.
+static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan, uint8_t why)
+{
+    sva_planner_priv_t* priv = &self->priv;
+    const sva_stats_t kept = plan->stats;
+    sva_run_ga(priv, m, plan);
+    sva_plan_finish(priv, m, plan);
+    const uint16_t ga_covered = plan->covered;
+    const int64_t ga_cost = plan->cost;
+    sva_state_reset(priv, m, plan);
+    const sva_tp_observer_t observer = self->on_transport;
+    self->on_transport = NULL;
+    bool use_ga = sva_run_pipeline(self, m, SVA_ALGO_SVA, plan) != SVA_OK;
+    self->on_transport = observer;
+    if (!use_ga) {
+        sva_plan_finish(priv, m, plan);
+        use_ga = (ga_covered > plan->covered) || ((ga_covered == plan->covered) && (ga_cost < plan->cost));
+    }
+    if (use_ga) {
+        sva_state_reset(priv, m, plan);
+        sva_run_ga(priv, m, plan);
+    }
+    plan->stats = kept;
+    plan->stats.has_bound = true;
+    plan->stats.lower_bound = 0;
+    plan->stats.optimal = false;
+    plan->stats.flow_incomplete = why;
+}
+
+sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan)
 {
     sva_planner_priv_t* priv = &self->priv;
     sva_flow_work_t* w = &priv->flow;
     sva_stats_t* stats = &plan->stats;
-    const sva_status_t st = sva_flow_build(priv, m, plan, stats, diag);
-    if (st != SVA_OK) {
-        return st;
+    const uint8_t over = sva_flow_build(priv, m, plan, stats);
+    if (over != 0U) {
+        fall_back(self, m, plan, over);
+        return SVA_OK;
     }
     w->has_inc = false;
     w->work = 0U;
     seed(self, m, plan);
     uint8_t incomplete = w->reward_exact ? (uint8_t)INCOMPLETE_NONE : (uint8_t)INCOMPLETE_REWARD;
-    const int64_t open = search(priv, m, plan, &incomplete);
+    uint64_t budget = self->flow_max_work;
+    budget = (budget < 1000U) ? 1000U : budget;
+    budget = (budget > (uint64_t)SVA_FLOW_MAX_WORK) ? (uint64_t)SVA_FLOW_MAX_WORK : budget;
+    const int64_t open = search(priv, m, plan, budget, &incomplete);
     sva_flow_write_incumbent(priv, m, plan);
 
     // Any plan p: cost(p) - reward(p) >= min(best, open). A plan covering c targets

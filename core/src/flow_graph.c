@@ -10,10 +10,10 @@
 // Copies follow the targets' (start, end, id) order. A UAV serves b after a only if
 // a.end + travel <= b.start, so a.start < b.start: copy ids are a topological order.
 // Explicit arcs (CSR by tail, arc costs = Manhattan distance):
-//   u -> c_in    u can be at the target by its start, with fuel for u -> t -> depot;
+//   u -> c_in    u can be at the target by its start, with fuel for some route on;
 //   u -> z       flying home serving nothing;
-//   c_out -> d_in  the windows chain in time, and some UAV could fly
-//                ... -> t -> t' -> depot on its fuel (a necessary condition);
+//   c_out -> d_in  the windows chain in time, and some UAV could fly a route
+//                through t -> t' on its fuel (fuel_labels: a necessary condition);
 //   c_out -> z.
 #include "sva_internal.h"
 
@@ -114,28 +114,89 @@ static void add_arc(sva_flow_work_t* w, uint16_t tail, uint16_t head)
     w->arcs++;
 }
 
-static bool uav_reaches(const sva_mission_t* m, const sva_flow_work_t* w, uint16_t u, uint16_t c)
+static bool uav_in_time(const sva_mission_t* m, uint16_t u, uint16_t t)
 {
     const sva_uav_t* uav = &m->uavs[u];
-    const sva_target_t* t = &m->targets[w->copy_target[c]];
-    const int64_t leg = sva_distance(uav->x, uav->y, t->x, t->y);
-    const int64_t home = sva_distance(t->x, t->y, m->depot_x, m->depot_y);
-    return ((uav->ready_at_ticks + (leg * m->ticks_per_cell)) <= t->start_ticks) &&
-           ((leg + m->hover_fuel + home) <= uav->fuel);
+    const sva_target_t* tg = &m->targets[t];
+    const int64_t leg = sva_distance(uav->x, uav->y, tg->x, tg->y);
+    return (uav->ready_at_ticks + (leg * m->ticks_per_cell)) <= tg->start_ticks;
 }
 
-// lead[t] = min over UAVs of (distance to t - fuel): a route serving t then t' needs
-// lead[t] + 2 * hover + |t t'| + |t' depot| <= 0.
-static bool copies_chain(const sva_mission_t* m, const sva_flow_work_t* w, const int64_t* lead,
-                         uint16_t c, uint16_t d)
+static bool targets_chain(const sva_mission_t* m, uint16_t a, uint16_t b)
 {
-    const uint16_t ta = w->copy_target[c];
-    const sva_target_t* a = &m->targets[ta];
-    const sva_target_t* b = &m->targets[w->copy_target[d]];
-    const int64_t leg = sva_distance(a->x, a->y, b->x, b->y);
-    const int64_t home = sva_distance(b->x, b->y, m->depot_x, m->depot_y);
-    return ((a->end_ticks + (leg * m->ticks_per_cell)) <= b->start_ticks) &&
-           ((lead[ta] + (2L * m->hover_fuel) + leg + home) <= 0);
+    const sva_target_t* ta = &m->targets[a];
+    const sva_target_t* tb = &m->targets[b];
+    const int64_t leg = sva_distance(ta->x, ta->y, tb->x, tb->y);
+    return (ta->end_ticks + (leg * m->ticks_per_cell)) <= tb->start_ticks;
+}
+
+static int64_t target_distance(const sva_mission_t* m, uint16_t a, uint16_t b)
+{
+    return sva_distance(m->targets[a].x, m->targets[a].y, m->targets[b].x, m->targets[b].y);
+}
+
+// Fuel labels over the time DAG of targets (necessary conditions, exact when the
+// UAVs' fuel is equal):
+//   lead[t] = least (fuel flown + hover, up to and including t) - that UAV's fuel,
+//             over every UAV and time-feasible way of reaching t;
+//   tail[t] = least fuel from t (its hover included) back to the depot.
+// A route through arc a -> b needs lead[a] + |a b| + tail[b] <= 0; through u -> t,
+// |u t| + tail[t] <= fuel(u). Rejected arcs lie on no fuel-feasible route.
+static void fuel_labels(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan)
+{
+    sva_flow_work_t* w = &priv->flow;
+    int64_t* lead = w->target_lead;
+    int64_t* tail = w->target_tail;
+    const uint16_t n = m->target_count;
+    for (uint16_t i = 0U; i < n; i++) {
+        const uint16_t t = priv->target_order[i];
+        const sva_target_t* tg = &m->targets[t];
+        lead[t] = INT64_MAX / 4;
+        for (uint16_t u = 0U; u < m->uav_count; u++) {
+            const sva_uav_t* uav = &m->uavs[u];
+            const int64_t v =
+                (int64_t)sva_distance(uav->x, uav->y, tg->x, tg->y) + m->hover_fuel - uav->fuel;
+            if (!plan->routes[u].stranded && uav_in_time(m, u, t) && (v < lead[t])) {
+                lead[t] = v;
+            }
+        }
+        for (uint16_t j = 0U; j < i; j++) {
+            const uint16_t a = priv->target_order[j];
+            const int64_t v = lead[a] + target_distance(m, a, t) + m->hover_fuel;
+            if ((lead[a] < (INT64_MAX / 4)) && targets_chain(m, a, t) && (v < lead[t])) {
+                lead[t] = v;
+            }
+        }
+    }
+    for (uint16_t i = n; i > 0U; i--) {
+        const uint16_t t = priv->target_order[i - 1U];
+        const sva_target_t* tg = &m->targets[t];
+        tail[t] = (int64_t)m->hover_fuel + sva_distance(tg->x, tg->y, m->depot_x, m->depot_y);
+        for (uint16_t j = i; j < n; j++) {
+            const uint16_t b = priv->target_order[j];
+            const int64_t v = (int64_t)m->hover_fuel + target_distance(m, t, b) + tail[b];
+            if (targets_chain(m, t, b) && (v < tail[t])) {
+                tail[t] = v;
+            }
+        }
+    }
+}
+
+static bool uav_reaches(const sva_mission_t* m, const sva_flow_work_t* w, uint16_t u, uint16_t c)
+{
+    const uint16_t t = w->copy_target[c];
+    const sva_uav_t* uav = &m->uavs[u];
+    const sva_target_t* tg = &m->targets[t];
+    return uav_in_time(m, u, t) &&
+           (((int64_t)sva_distance(uav->x, uav->y, tg->x, tg->y) + w->target_tail[t]) <= uav->fuel);
+}
+
+static bool copies_chain(const sva_mission_t* m, const sva_flow_work_t* w, uint16_t c, uint16_t d)
+{
+    const uint16_t a = w->copy_target[c];
+    const uint16_t b = w->copy_target[d];
+    return targets_chain(m, a, b) &&
+           ((w->target_lead[a] + target_distance(m, a, b) + w->target_tail[b]) <= 0);
 }
 
 static void index_heads(sva_flow_work_t* w, uint32_t nodes)
@@ -161,8 +222,8 @@ static void index_heads(sva_flow_work_t* w, uint32_t nodes)
     w->in_start[0] = 0U;
 }
 
-sva_status_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m,
-                            const sva_plan_t* plan, sva_stats_t* stats, sva_diag_t* diag)
+uint8_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan,
+                       sva_stats_t* stats)
 {
     sva_flow_work_t* w = &priv->flow;
     int64_t slots = 0;
@@ -170,9 +231,7 @@ sva_status_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m,
         slots += m->targets[t].need;
     }
     if (slots > SVA_FLOW_MAX_COPIES) {
-        sva_diag_set(diag, SVA_FIELD_TARGETS, SVA_RULE_ALGO_LIMIT, -1, slots,
-                     SVA_FLOW_MAX_COPIES, "SVA_FLOW_MAX_COPIES");
-        return SVA_ERR_LIMIT;
+        return SVA_FLOW_OVER_COPIES;
     }
     w->uavs = m->uav_count;
     w->copies = (uint16_t)slots;
@@ -191,18 +250,7 @@ sva_status_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m,
     place_nodes(w, m);
     set_rewards(w, m, widest_leg(w));
 
-    int64_t* lead = w->target_lead;
-    for (uint16_t t = 0U; t < m->target_count; t++) {
-        lead[t] = INT64_MAX / 4;
-        for (uint16_t u = 0U; u < m->uav_count; u++) {
-            const sva_uav_t* uav = &m->uavs[u];
-            const sva_target_t* tg = &m->targets[t];
-            const int64_t v = (int64_t)sva_distance(uav->x, uav->y, tg->x, tg->y) - uav->fuel;
-            if (!plan->routes[u].stranded && (v < lead[t])) {
-                lead[t] = v;
-            }
-        }
-    }
+    fuel_labels(priv, m, plan);
     const uint16_t u_count = w->uavs;
     const uint16_t c_count = w->copies;
     const uint16_t depot = (uint16_t)(u_count + (2U * c_count));
@@ -226,7 +274,7 @@ sva_status_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m,
     for (uint16_t a = 0U; a < c_count; a++) {
         w->out_start[u_count + c_count + a] = w->arcs;
         for (uint16_t d = (uint16_t)(a + 1U); d < c_count; d++) {
-            if (copies_chain(m, w, lead, a, d)) {
+            if (copies_chain(m, w, a, d)) {
                 add_arc(w, (uint16_t)(u_count + c_count + a), (uint16_t)(u_count + d));
             }
         }
@@ -237,16 +285,14 @@ sva_status_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m,
     w->out_start[nodes] = w->arcs;
     stats->flow_graph_arcs = w->arcs;
     if (w->arcs > (uint32_t)SVA_FLOW_MAX_ARCS) {
-        sva_diag_set(diag, SVA_FIELD_NONE, SVA_RULE_ALGO_LIMIT, -1, (int64_t)w->arcs,
-                     SVA_FLOW_MAX_ARCS, "SVA_FLOW_MAX_ARCS");
-        return SVA_ERR_LIMIT;
+        return SVA_FLOW_OVER_ARCS;
     }
     for (uint32_t e = 0U; e < w->arcs; e++) {
         w->arc_flow[e] = 0U;
         w->arc_ban[e] = 0U;
     }
     index_heads(w, nodes);
-    return SVA_OK;
+    return 0U;
 }
 
 int32_t sva_flow_arc_cost(const sva_flow_work_t* w, uint32_t arc)

@@ -221,6 +221,8 @@ static bool best_place(sva_flow_work_t* w, const sva_mission_t* m, const sva_pla
     return found;
 }
 
+static void insert_at(sva_flow_work_t* w, sva_route_t* r, uint16_t u, uint16_t t);
+
 static void try_insert(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                        uint16_t t)
 {
@@ -247,15 +249,81 @@ static void try_insert(sva_planner_priv_t* priv, const sva_mission_t* m, sva_pla
         }
         SVA_ASSERT(pick >= 0);
         w->uav_pick[pick] = 0U;
-        sva_route_t* r = &plan->routes[pick];
-        for (uint16_t k = r->target_count; k > w->insert_pos[pick]; k--) {
-            r->targets[k] = r->targets[k - 1U];
-        }
-        r->targets[w->insert_pos[pick]] = t;
-        r->target_count++;
-        w->route_cells[pick] += w->insert_delta[pick];
+        insert_at(w, &plan->routes[pick], (uint16_t)pick, t);
     }
     priv->target_served[t] = (uint16_t)need;
+}
+
+static void insert_at(sva_flow_work_t* w, sva_route_t* r, uint16_t u, uint16_t t)
+{
+    for (uint16_t k = r->target_count; k > w->insert_pos[u]; k--) {
+        r->targets[k] = r->targets[k - 1U];
+    }
+    r->targets[w->insert_pos[u]] = t;
+    r->target_count++;
+    w->route_cells[u] += w->insert_delta[u];
+}
+
+static void remove_at(const sva_mission_t* m, sva_flow_work_t* w, sva_route_t* r, uint16_t u,
+                      uint16_t k)
+{
+    for (uint16_t j = k; (j + 1U) < r->target_count; j++) {
+        r->targets[j] = r->targets[j + 1U];
+    }
+    r->target_count--;
+    w->route_cells[u] = route_cells(m, u, r);
+}
+
+// Cheapest UAV other than `skip` that can take single-UAV target t; -1 if none.
+static int32_t cheapest_taker(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
+                              uint16_t t, int32_t skip)
+{
+    int32_t pick = -1;
+    for (uint16_t v = 0U; v < m->uav_count; v++) {
+        if (((int32_t)v != skip) && !plan->routes[v].stranded && best_place(w, m, plan, v, t) &&
+            ((pick < 0) || (w->insert_delta[v] < w->insert_delta[pick]))) {
+            pick = (int32_t)v;
+        }
+    }
+    return pick;
+}
+
+// Ejection: an uncovered single-UAV target t takes the place of a single-UAV target s
+// in some route, and s moves to another UAV. Covers one more target or changes nothing.
+static bool eject_for(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, uint16_t t)
+{
+    sva_flow_work_t* w = &priv->flow;
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        sva_route_t* r = &plan->routes[u];
+        for (uint16_t k = 0U; k < r->target_count; k++) {
+            const uint16_t s = r->targets[k];
+            if (m->targets[s].need != 1) {
+                continue;
+            }
+            remove_at(m, w, r, u, k);
+            if (best_place(w, m, plan, u, t)) {
+                insert_at(w, r, u, t);
+                const int32_t v = cheapest_taker(w, m, plan, s, (int32_t)u);
+                if (v >= 0) {
+                    insert_at(w, &plan->routes[v], (uint16_t)v, s);
+                    priv->target_served[t] = 1U;
+                    return true;
+                }
+                // Undo: t out again.
+                for (uint16_t j = 0U; j < r->target_count; j++) {
+                    if (r->targets[j] == t) {
+                        remove_at(m, w, r, u, j);
+                        break;
+                    }
+                }
+            }
+            w->insert_pos[u] = k;
+            w->insert_delta[u] = 0;
+            insert_at(w, r, u, s);
+            w->route_cells[u] = route_cells(m, u, r);
+        }
+    }
+    return false;
 }
 
 void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
@@ -294,6 +362,12 @@ void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t
         const uint16_t t = priv->target_order[i];
         if (priv->target_served[t] == 0U) {
             try_insert(priv, m, plan, t);
+        }
+    }
+    for (uint16_t i = 0U; i < m->target_count; i++) {
+        const uint16_t t = priv->target_order[i];
+        if ((priv->target_served[t] == 0U) && (m->targets[t].need == 1)) {
+            (void)eject_for(priv, m, plan, t);
         }
     }
     (void)sva_flow_offer_plan(priv, m, plan);

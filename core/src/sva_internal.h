@@ -77,8 +77,17 @@ sva_status_t sva_tableau_solve(sva_tableau_t* tab, sva_tp_t* tp, int32_t* unmet,
 void sva_hga_solve(sva_hga_work_t* work, sva_tp_t* tp, sva_stats_t* stats);
 
 // flow_graph.c, flow_ssp.c, flow_repair.c: flow's graph, relaxation and plans.
-sva_status_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m,
-                            const sva_plan_t* plan, sva_stats_t* stats, sva_diag_t* diag);
+/// flow's reasons to stop short (sva_stats_t.flow_incomplete).
+enum {
+    SVA_FLOW_INCOMPLETE_WORK = 1,    ///< past the work budget
+    SVA_FLOW_INCOMPLETE_DEPTH = 2,   ///< a node deeper than SVA_FLOW_MAX_DEPTH
+    SVA_FLOW_INCOMPLETE_REWARD = 3,  ///< needs' lcm too large for exact cost ties
+    SVA_FLOW_OVER_COPIES = 4,        ///< needs summed above SVA_FLOW_MAX_COPIES
+    SVA_FLOW_OVER_ARCS = 5,          ///< graph above SVA_FLOW_MAX_ARCS
+};
+/// Builds the graph; 0, or SVA_FLOW_OVER_COPIES / SVA_FLOW_OVER_ARCS.
+uint8_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan,
+                       sva_stats_t* stats);
 int32_t sva_flow_arc_cost(const sva_flow_work_t* w, uint32_t arc);
 /// Min-cost flow under the current branching rules; false if no flow meets them.
 bool sva_flow_solve(sva_flow_work_t* w, sva_stats_t* stats);
@@ -99,7 +108,6 @@ sva_status_t sva_run_pipeline(sva_planner_t* self, const sva_mission_t* mission,
 void sva_run_ga(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan);
 sva_status_t sva_run_bfa(sva_planner_priv_t* priv, const sva_mission_t* mission,
                          sva_plan_t* plan, sva_diag_t* diag);
-sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* mission, sva_plan_t* plan,
-                          sva_diag_t* diag);
+sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* mission, sva_plan_t* plan);
 
 #endif  // SVA_INTERNAL_H

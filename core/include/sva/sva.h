@@ -263,8 +263,10 @@ typedef struct {
     uint64_t flow_work;             ///< arc scans, against SVA_FLOW_MAX_WORK
     uint32_t flow_graph_arcs;       ///< arcs of the time-feasibility graph
     uint32_t flow_max_depth;        ///< deepest branch-and-bound node
-    /// Why the search stopped before proving optimality: 0 it did not, 1 work budget,
-    /// 2 depth bound, 3 reward range (needs whose lcm is too large for exact ties).
+    /// Why flow did not prove optimality: 0 it did (or the search finished), 1 work
+    /// budget, 2 SVA_FLOW_MAX_DEPTH, 3 needs whose lcm is too large for exact ties;
+    /// 4 needs summed above SVA_FLOW_MAX_COPIES, 5 graph above SVA_FLOW_MAX_ARCS (4 and
+    /// 5: no relaxation; the plan is the better of ga's and sva's, lower_bound 0).
     uint8_t flow_incomplete;
 } sva_stats_t;
 
@@ -427,7 +429,8 @@ typedef struct {
     int64_t value;                                ///< relaxation: cost - rewards
     uint64_t work;
     // Scratch of the graph builder and of the rounding heuristic (flow_repair.c).
-    int64_t target_lead[SVA_MAX_TARGETS];
+    int64_t target_lead[SVA_MAX_TARGETS];         ///< fuel labels (flow_graph.c)
+    int64_t target_tail[SVA_MAX_TARGETS];
     uint16_t target_taken[SVA_MAX_TARGETS];
     int64_t route_cells[SVA_MAX_UAVS];
     int64_t insert_delta[SVA_MAX_UAVS];
@@ -469,6 +472,11 @@ typedef struct {
     /// Must not call back into this planner.
     sva_tp_observer_t on_transport;
     void* on_transport_user;
+    /// flow's work budget in arc scans (deterministic; about 10 ns each on a desktop
+    /// core): the search stops there and returns its best plan, not proven optimal.
+    /// sva_planner_init sets SVA_FLOW_MAX_WORK; any value in [1000, SVA_FLOW_MAX_WORK]
+    /// may be set between runs (others are clamped into that range).
+    uint32_t flow_max_work;
     sva_planner_priv_t priv;  ///< read-only to users
 } sva_planner_t;
 
@@ -481,9 +489,7 @@ SVA_NODISCARD sva_status_t sva_planner_init(sva_planner_t* self);
 ///   SVA_OK            plan->status is SVA_PLAN_COMPLETE or SVA_PLAN_PARTIAL;
 ///   SVA_ERR_ARGUMENT  a NULL pointer or an algorithm out of range;
 ///   SVA_ERR_INVALID   the mission breaks a rule (diag filled, see sva_mission_validate);
-///   SVA_ERR_LIMIT     flow: the needs sum above SVA_FLOW_MAX_COPIES or the graph
-///                     has more than SVA_FLOW_MAX_ARCS arcs (diag names it);
-///                     bfa: the mission exceeds SVA_BFA_MAX_TARGETS,
+///   SVA_ERR_LIMIT     bfa only: the mission exceeds SVA_BFA_MAX_TARGETS,
 ///                     SVA_BFA_MAX_UAVS or SVA_BFA_MAX_NODES (diag names it);
 ///   SVA_ERR_SOLVER    the simplex exceeded SVA_MAX_PIVOTS or met a non-unit pivot.
 /// All-or-nothing: it fails iff it returns non-zero, and then plan->status is

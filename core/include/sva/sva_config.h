@@ -166,7 +166,7 @@
 /// Work budget of one flow run, in arc scans (deterministic, not a clock). When it
 /// runs out the best plan found is returned with stats.optimal false.
 #ifndef SVA_FLOW_MAX_WORK
-#define SVA_FLOW_MAX_WORK 30000000L
+#define SVA_FLOW_MAX_WORK 2000000L
 #endif
 #if (SVA_FLOW_MAX_WORK < 1000L) || (SVA_FLOW_MAX_WORK > 2000000000L)
 #error "SVA_FLOW_MAX_WORK must be in [1000, 2000000000]"
