@@ -1,12 +1,14 @@
 // Fuzz target: mission JSON (tools/cli's sva_json reader) -> sva_mission_validate ->
 // sva_plan with every algorithm. Properties checked on every input:
 //   - the reader either accepts or writes a one-line message naming what is wrong;
-//   - an accepted and valid mission gets a plan from every algorithm (bfa may refuse
-//     with SVA_ERR_LIMIT naming the limit), and every plan passes the independent
-//     SPEC section 1 checker (tests/support/spec_checker.c);
+//   - an accepted and valid mission gets a plan from every algorithm (bfa and flow may
+//     refuse with SVA_ERR_LIMIT naming the limit), and every plan passes the
+//     independent SPEC section 1 checker (tests/support/spec_checker.c);
+//   - flow's certified lower bound holds against its own cost and bfa's optimum;
 //   - a mission the core rejects gets SVA_ERR_INVALID from sva_plan too, an empty
 //     plan, and a formatted message.
 // Any violation aborts (a finding). Sanitizers: ASan + UBSan in the fuzz build.
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -49,6 +51,9 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     sva_diag_t diag;
     char msg[256];
     const sva_status_t valid = sva_mission_validate(&mission, &diag);
+    bool bfa_ok = false;
+    int bfa_covered = 0;
+    long long bfa_cost = 0;
     if (sva_planner_init(&planner) != SVA_OK) {
         fail("planner init", "");
     }
@@ -64,9 +69,9 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
             }
             continue;
         }
-        if (st == SVA_ERR_LIMIT && algo == SVA_ALGO_BFA) {
+        if (st == SVA_ERR_LIMIT && (algo == SVA_ALGO_BFA || algo == SVA_ALGO_FLOW)) {
             if (pd.limit_name == NULL || plan.status != SVA_PLAN_NONE) {
-                fail("bfa limit without a named limit or with a plan", sva_algorithm_name(algo));
+                fail("algorithm limit without a named limit or with a plan", sva_algorithm_name(algo));
             }
             continue;
         }
@@ -78,6 +83,26 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
         if (spec_check_plan(&mission, &plan, msg, sizeof msg) != 0) {
             fprintf(stderr, "fuzz_mission: algorithm %s\n", sva_algorithm_name(algo));
             fail("plan breaks SPEC section 1", msg);
+        }
+        if (algo == SVA_ALGO_BFA) {
+            bfa_ok = true;
+            bfa_covered = plan.covered;
+            bfa_cost = plan.cost;
+        }
+        // flow's certificate (sva.h): no plan covering as many targets costs less than
+        // lower_bound, and an "optimal" plan is not beaten by bfa's optimum.
+        if (algo == SVA_ALGO_FLOW && plan.stats.has_bound) {
+            if (plan.stats.lower_bound > plan.cost ||
+                (plan.stats.optimal && plan.stats.lower_bound != plan.cost)) {
+                fail("flow's lower bound is above its cost, or optimal without equality", "");
+            }
+            if (bfa_ok && bfa_covered == plan.covered && bfa_cost < plan.stats.lower_bound) {
+                fail("bfa found a plan cheaper than flow's certified lower bound", "");
+            }
+            if (bfa_ok && plan.stats.optimal &&
+                spec_better(bfa_covered, bfa_cost, plan.covered, plan.cost)) {
+                fail("flow claims optimality but bfa's plan is better", "");
+            }
         }
     }
     return 0;
