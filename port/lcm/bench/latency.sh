@@ -2,12 +2,12 @@
 # End-to-end latency of the LCM link: mission published (ground) -> plan received
 # (ground), over real udpm multicast in a private network namespace (root needed).
 #   port/lcm/bench/latency.sh [ROUNDS] [MISSION.json] [ALGORITHM]
-# Defaults: 500 rounds, tests/lcm/data/bench_25x5.json (25 targets, 5 UAVs), sva.
+# Defaults: 500 rounds, fixtures/missions/rand_25_1.json (25 targets, 5 UAVs), sva.
 # Prints median, p90, p99 and max in microseconds, and the node's solve time.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)
 rounds=${1:-500}
-mission=${2:-$root/tests/lcm/data/bench_25x5.json}
+mission=${2:-$root/fixtures/missions/rand_25_1.json}
 algo=${3:-sva}
 node="$root/build/bin/sva_node"
 [ -x "$node" ] || { echo "latency.sh: build first (scripts/build.sh): no $node" >&2; exit 2; }
