@@ -5,6 +5,7 @@ fixtures/missions; plans are judged by the project's independent checker
 (`sva-tools check`, sva_tools.check) and compared with fixtures/golden."""
 import json
 import os
+import shutil
 import signal
 import struct
 import subprocess
@@ -274,26 +275,48 @@ def test_malformed_traffic_and_flood(node):
 def test_record_and_replay(tmp_path):
     prefix = f"R{uuid.uuid4().hex[:6]}_"
     log = tmp_path / "session.lcmlog"
+    plan_json = tmp_path / "plan.json"
     n = Node(prefix)
-    rec = subprocess.Popen([sys.executable, "-m", "sva_tools.lcm", "record", "-o", str(log),
+    rec = subprocess.Popen([str(SVA_TOOLS), "lcm", "record", "-o", str(log),
                             "--url", URL, "--channels", prefix + ".*"])
     try:
         time.sleep(0.5)
-        r = send(prefix, SMALL, "--revision", "77")
+        r = send(prefix, SMALL, "--revision", "77", "-o", str(plan_json))
         assert r.returncode == 0, r.stderr
         time.sleep(0.5)
     finally:
-        rec.send_signal(signal.SIGINT)
-        rec.wait(timeout=5)
+        rec.send_signal(signal.SIGINT)  # to the tool alone, not its process group
+        rec_rc = rec.wait(timeout=5)
         rc, err = n.stop()
     assert rc == 0, err
+    assert rec_rc == 0
+    # the tool passed the signal on: no lcm-logger is left writing this log
+    assert not [c for c in Path("/proc").glob("[0-9]*/cmdline")
+                if str(log).encode() in (c.read_bytes() if c.exists() else b"")]
     channels = [e.channel for e in lcm.EventLog(str(log), "r")]
-    assert {prefix + "FLEET", prefix + "MISSION", prefix + "PLAN"} <= set(channels)
+    assert {prefix + "FLEET", prefix + "MISSION", prefix + "PLAN", prefix + "STATUS"} <= set(channels)
+
+    # The Java types (the jar lcm-spy uses) decode what the C node and the ground tool
+    # sent, and agree with the plan the Python tool decoded.
+    java_events = java_dump(log, prefix)
+    plan = json.loads(plan_json.read_text())
+    doc = mission_doc()
+    jplan = [e for e in java_events if e["channel"] == "PLAN"]
+    assert len(jplan) == 1 and jplan[0]["plan_id"] == plan["stats"]["plan_id"]
+    assert (jplan[0]["fleet_revision"], jplan[0]["mission_revision"]) == (77, 77)
+    assert (jplan[0]["covered"], jplan[0]["cost"], jplan[0]["uncovered"]) == (
+        plan["covered"], plan["cost"], plan["uncovered"])
+    assert [{k: v for k, v in r.items() if k != "stranded"} for r in jplan[0]["routes"]] == plan["routes"]
+    assert [r["uav"] for r in jplan[0]["routes"] if r["stranded"]] == plan["stranded"]
+    assert [e["uavs"] for e in java_events if e["channel"] == "FLEET"] == [[u["id"] for u in doc["uavs"]]]
+    assert [e["targets"] for e in java_events if e["channel"] == "MISSION"] == [
+        [t["id"] for t in doc["targets"]]]
+    assert max(e["plans_published"] for e in java_events if e["channel"] == "STATUS") == 1
 
     # a fresh node answers the replayed inputs with a plan for the recorded revisions
     n2 = Node(prefix)
     try:
-        r = subprocess.run([sys.executable, "-m", "sva_tools.lcm", "replay", str(log), "--url",
+        r = subprocess.run([str(SVA_TOOLS), "lcm", "replay", str(log), "--url",
                             URL, "--speed", "10", "--channels", prefix + "(FLEET|MISSION)"],
                            capture_output=True, text=True, timeout=30)
         assert r.returncode == 0, r.stderr
@@ -302,6 +325,85 @@ def test_record_and_replay(tmp_path):
     finally:
         rc, err = n2.stop()
     assert rc == 0, err
+
+
+# --- Java types and lcm-spy -------------------------------------------------------------
+
+JAVA_CP = os.environ.get("SVA_LCM_JAVA_CP", "")
+JAVA_JAR = os.environ.get("SVA_LCM_JAVA_JAR", "")
+LCM_SPY = os.environ.get("SVA_LCM_SPY", "")
+
+
+def java_dump(log, prefix):
+    """tests/lcm/java/SvaLcmDump over an LCM log: one dict per event of PREFIX*."""
+    assert JAVA_CP, ("no Java types: the build needs javac and jar (Debian "
+                     "openjdk-17-jdk-headless, scripts/deps/apt.txt)")
+    r = subprocess.run(["java", "-cp", JAVA_CP, "SvaLcmDump", str(log), prefix],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stdout + r.stderr
+    return [json.loads(line) for line in r.stdout.splitlines()]
+
+
+def test_lcm_spy_decodes_node_traffic_headless(tmp_path):
+    """The docs' lcm-spy recipe: lcm-spy with build/port/lcm/java/sva_lcm.jar on its
+    CLASSPATH, on a virtual X display (Xvfb), watching a node that publishes statuses
+    and a plan. It must find our 7 types, run without exceptions, and have decoded
+    every channel: its JVM then holds the last decoded message of each (jcmd's class
+    histogram counts live sva_lcm.* objects; type discovery creates none)."""
+    assert JAVA_JAR and Path(JAVA_JAR).exists(), "no build/port/lcm/java/sva_lcm.jar (needs a JDK)"
+    assert Path(LCM_SPY).exists(), LCM_SPY
+    xvfb = shutil.which("Xvfb")
+    assert xvfb, "no Xvfb (Debian xvfb, scripts/deps/apt.txt)"
+    rfd, wfd = os.pipe()
+    x = subprocess.Popen([xvfb, "-displayfd", str(wfd), "-nolisten", "tcp", "-screen", "0",
+                          "1024x768x24"], pass_fds=(wfd,), stdout=subprocess.DEVNULL,
+                         stderr=subprocess.DEVNULL)
+    os.close(wfd)
+    spy = None
+    n = None
+    try:
+        with os.fdopen(rfd) as f:
+            display = f.readline().strip()
+        assert display.isdigit(), "Xvfb did not start"
+        n = Node(f"S{uuid.uuid4().hex[:6]}_")
+        out = tmp_path / "spy.out"
+        env = dict(os.environ, DISPLAY=f":{display}", CLASSPATH=JAVA_JAR)
+        with open(out, "w") as o:
+            # the wheel's shell script execs java: spy.pid is the JVM's pid
+            spy = subprocess.Popen([LCM_SPY, "--lcm-url", URL], env=env, stdout=o,
+                                   stderr=subprocess.STDOUT)
+        time.sleep(2.5)
+        r = send(n.prefix, SMALL)
+        assert r.returncode == 0, r.stderr
+        time.sleep(1.0)
+        assert spy.poll() is None, out.read_text()
+        h = subprocess.run(["jcmd", str(spy.pid), "GC.class_histogram"], capture_output=True,
+                           text=True, timeout=60)
+        assert h.returncode == 0, h.stdout + h.stderr
+        live = {}
+        for line in h.stdout.splitlines():
+            f = line.split()
+            if len(f) >= 4 and f[3].startswith("sva_lcm."):
+                live[f[3]] = int(f[1])
+        for t in ("fleet_state_t", "mission_t", "plan_t", "node_status_t"):
+            assert live.get("sva_lcm." + t, 0) >= 1, (t, live)
+    finally:
+        if spy is not None:
+            spy.terminate()
+            spy.wait(timeout=10)
+        node_rc = n.stop() if n is not None else (0, "")
+        x.terminate()
+        x.wait(timeout=10)
+    assert node_rc[0] == 0, node_rc[1]
+    text = out.read_text()
+    assert "Found 7 LCM types" in text, text
+    # lcm-spy's class scan reports classes of the wheel's own jars it cannot load
+    # ("ClassDiscoverer: ..." and two indented lines): noise, not ours. Nothing else
+    # may mention an exception or error (decode failures print "Spy.messageReceived ex").
+    rest = [ln for ln in text.splitlines()
+            if not ln.startswith("ClassDiscoverer:") and not ln.startswith("                 ")]
+    assert not [ln for ln in rest if "xception" in ln or "Error" in ln], rest
+    print("lcm-spy:", *rest, f"live objects: {live}", sep="\n  ")
 
 
 # --- zero heap allocations per message in the node process itself -----------------------
