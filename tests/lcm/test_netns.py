@@ -174,6 +174,32 @@ def test_node_rejects_bad_options():
     assert r.returncode == 2 and "--algorithm" in r.stderr
     r = subprocess.run([NODE, "--prefix", "P" * 60], capture_output=True, text=True)
     assert r.returncode == 2 and "--prefix" in r.stderr
+    for bad in ("0", "100", "x"):
+        r = subprocess.run([NODE, "--rt-priority", bad], capture_output=True, text=True)
+        assert r.returncode == 2 and "--rt-priority: must be an integer in [1, 99]" in r.stderr
+
+
+def test_realtime_options(tmp_path):
+    """--rt-priority puts every thread of the node (LCM's udpm receive thread included)
+    under SCHED_FIFO; --mlock locks its memory; it still plans."""
+    n = Node(f"P{uuid.uuid4().hex[:6]}_", "--rt-priority", "5", "--mlock")
+    try:
+        tasks = list(Path(f"/proc/{n.proc.pid}/task").iterdir())
+        assert len(tasks) >= 2  # main thread + udpm receive thread
+        for t in tasks:
+            f = (t / "stat").read_text().rsplit(")", 1)[1].split()
+            # fields 40 and 41 of proc(5): rt_priority, policy (1 = SCHED_FIFO)
+            assert (int(f[37]), int(f[38])) == (5, 1), (t.name, f[37], f[38])
+        status = Path(f"/proc/{n.proc.pid}/status").read_text()
+        locked = int(next(ln.split()[1] for ln in status.splitlines() if ln.startswith("VmLck:")))
+        assert locked > 1000, status  # KiB: the static planner alone is 143 KiB
+        r = send(n.prefix, SMALL)
+        assert r.returncode == 0, r.stderr
+        assert violations(SMALL, json.loads(r.stdout)) == []
+    finally:
+        rc, err = n.stop()
+    assert rc == 0, err
+    assert "SCHED_FIFO; memory locked" in err
 
 
 def test_core_rejection_reaches_the_ground(node, tmp_path):
