@@ -1,7 +1,7 @@
 // algorithm.c -- algorithm names used on every interface (SPEC section 2).
 #include "sva_internal.h"
 
-static const char* const algorithm_names[SVA_ALGO_COUNT_] = {"sva", "ga", "hga", "bfa"};
+static const char* const algorithm_names[SVA_ALGO_COUNT_] = {"sva", "ga", "hga", "bfa", "flow"};
 
 const char* sva_algorithm_name(sva_algorithm_t algorithm)
 {

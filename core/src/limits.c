@@ -14,6 +14,10 @@ sva_limits_t sva_limits(void)
     limits.bfa_max_uavs = (uint32_t)SVA_BFA_MAX_UAVS;
     limits.bfa_max_nodes = (uint32_t)SVA_BFA_MAX_NODES;
     limits.hga_max_nodes = (uint32_t)SVA_HGA_MAX_NODES;
+    limits.flow_max_copies = (uint32_t)SVA_FLOW_MAX_COPIES;
+    limits.flow_max_arcs = (uint32_t)SVA_FLOW_MAX_ARCS;
+    limits.flow_max_depth = (uint32_t)SVA_FLOW_MAX_DEPTH;
+    limits.flow_max_work = (uint32_t)SVA_FLOW_MAX_WORK;
     limits.mission_bytes = (uint32_t)sizeof(sva_mission_t);
     limits.plan_bytes = (uint32_t)sizeof(sva_plan_t);
     limits.planner_bytes = (uint32_t)sizeof(sva_planner_t);

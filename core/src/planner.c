@@ -11,6 +11,7 @@ sva_status_t sva_planner_init(sva_planner_t* self)
     }
     self->on_transport = NULL;
     self->on_transport_user = NULL;
+    self->flow_max_work = (uint32_t)SVA_FLOW_MAX_WORK;
     return SVA_OK;
 }
 
@@ -52,6 +53,9 @@ sva_status_t sva_plan(sva_planner_t* self, const sva_mission_t* mission,
         break;
     case SVA_ALGO_BFA:
         st = sva_run_bfa(priv, mission, plan, diag);
+        break;
+    case SVA_ALGO_FLOW:
+        st = sva_run_flow(self, mission, plan);
         break;
     case SVA_ALGO_COUNT_:
     default:

@@ -30,6 +30,11 @@ SVA_STATIC_ASSERT(SVA_MAX_LEG_CELLS * SVA_MAX_TICKS_PER_CELL + SVA_MAX_TICK <= 2
 SVA_STATIC_ASSERT(SVA_TABLEAU_COLS <= 32767L, tableau_cols_fit_int16);
 SVA_STATIC_ASSERT(SVA_MAX_TARGETS <= 65535L && SVA_MAX_UAVS <= 65535L, indices_fit_uint16);
 SVA_STATIC_ASSERT(SVA_MAX_UAVS <= 2147483647L / SVA_MAX_TP_SINKS, reach_index_fits);
+// flow: node ids and heap positions are uint16 (0xFFFF is "none"); pred codes int32.
+SVA_STATIC_ASSERT(SVA_FLOW_NODES < 65535L, flow_nodes_fit_uint16);
+SVA_STATIC_ASSERT(SVA_FLOW_MAX_ARCS <= (2147483647L / 2L) - SVA_FLOW_MAX_COPIES, flow_pred_fits);
+// arc_ban counts levels: at most 3 bans of one arc per level.
+SVA_STATIC_ASSERT(3L * SVA_FLOW_MAX_DEPTH <= 255L, flow_ban_levels_fit_uint8);
 
 /// Manhattan distance in cells (SPEC section 1); at most SVA_MAX_LEG_CELLS.
 static inline int32_t sva_distance(int32_t ax, int32_t ay, int32_t bx, int32_t by)
@@ -71,11 +76,38 @@ sva_status_t sva_tableau_solve(sva_tableau_t* tab, sva_tp_t* tp, int32_t* unmet,
 // hga.c: exact enumeration of tp (max covered sinks, then min cost), node-bounded.
 void sva_hga_solve(sva_hga_work_t* work, sva_tp_t* tp, sva_stats_t* stats);
 
-// pipeline.c, ga.c, bfa.c: the algorithms.
+// flow_graph.c, flow_ssp.c, flow_repair.c: flow's graph, relaxation and plans.
+/// flow's reasons to stop short (sva_stats_t.flow_incomplete).
+enum {
+    SVA_FLOW_INCOMPLETE_WORK = 1,    ///< past the work budget
+    SVA_FLOW_INCOMPLETE_DEPTH = 2,   ///< a node deeper than SVA_FLOW_MAX_DEPTH
+    SVA_FLOW_INCOMPLETE_REWARD = 3,  ///< needs' lcm too large for exact cost ties
+    SVA_FLOW_OVER_COPIES = 4,        ///< needs summed above SVA_FLOW_MAX_COPIES
+    SVA_FLOW_OVER_ARCS = 5,          ///< graph above SVA_FLOW_MAX_ARCS
+};
+/// Builds the graph; 0, or SVA_FLOW_OVER_COPIES / SVA_FLOW_OVER_ARCS.
+uint8_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan,
+                       sva_stats_t* stats);
+int32_t sva_flow_arc_cost(const sva_flow_work_t* w, uint32_t arc);
+/// Min-cost flow under the current branching rules; false if no flow meets them.
+bool sva_flow_solve(sva_flow_work_t* w, sva_stats_t* stats);
+bool sva_flow_covered(const sva_flow_work_t* w, uint16_t copy);
+/// The copies UAV u visits in the current flow, in order; returns how many (<= cap).
+uint16_t sva_flow_route(const sva_flow_work_t* w, uint16_t u, uint16_t* out, uint16_t cap);
+bool sva_flow_route_fits(const sva_mission_t* m, uint16_t u, const uint16_t* copies,
+                         uint16_t n, const sva_flow_work_t* w);
+/// Keeps the plan in *plan (routes + priv->target_served) if it beats the incumbent.
+bool sva_flow_offer_plan(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan);
+void sva_flow_write_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
+/// Rounds the current relaxation into a plan (scratch: *plan) and offers it.
+void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
+
+// pipeline.c, ga.c, bfa.c, flow.c: the algorithms.
 sva_status_t sva_run_pipeline(sva_planner_t* self, const sva_mission_t* mission,
                               sva_algorithm_t algorithm, sva_plan_t* plan);
 void sva_run_ga(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan);
 sva_status_t sva_run_bfa(sva_planner_priv_t* priv, const sva_mission_t* mission,
                          sva_plan_t* plan, sva_diag_t* diag);
+sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* mission, sva_plan_t* plan);
 
 #endif  // SVA_INTERNAL_H

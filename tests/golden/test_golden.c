@@ -147,9 +147,9 @@ int main(void) {
     for (size_t m = 0; m < mission_count; ++m) {
         for (int a = 0; a < (int)SVA_ALGO_COUNT_; ++a) {
             golden_case_t* c = &cases[n - 1];
-            snprintf(c->mission, sizeof c->mission, "%s", missions[m]);
+            snprintf(c->mission, sizeof c->mission, "%.127s", missions[m]);
             c->algorithm = (sva_algorithm_t)a;
-            snprintf(names[n - 1], sizeof names[0], "%s/%s", sva_algorithm_name(c->algorithm), missions[m]);
+            snprintf(names[n - 1], sizeof names[0], "%.8s/%.127s", sva_algorithm_name(c->algorithm), missions[m]);
             tests[n] = (struct CMUnitTest){names[n - 1], test_golden_plan, NULL, NULL, c};
             ++n;
         }

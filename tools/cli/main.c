@@ -59,18 +59,19 @@ static void print_usage(FILE* out) {
     char algos[128];
     list_algorithms(algos, sizeof algos);
     fprintf(out,
-            "usage: sva plan [--algo NAME] [--schedule] [--trace FILE] MISSION.json|-\n"
+            "usage: sva plan [--algo NAME] [--flow-work N] [--schedule] [--trace FILE] MISSION.json|-\n"
             "       sva validate MISSION.json|-\n"
             "       sva --help | --version\n"
             "\n"
             "plan       plan the mission and print the plan JSON (SPEC section 3)\n"
             "  --algo NAME    algorithm: %s (default sva)\n"
+            "  --flow-work N  flow's search budget in arc scans, 1000..%lu (default: the most)\n"
             "  --schedule     print a readable schedule instead of JSON\n"
             "  --trace FILE   write each transportation problem to FILE as JSON Lines\n"
             "validate   check the mission only; prints \"ok: NAME: N UAVs, M targets\"\n"
             "\n"
             "exit status: 0 planned or valid, 2 bad input (mission or usage), 1 other errors\n",
-            algos);
+            algos, (unsigned long)SVA_FLOW_MAX_WORK);
 }
 
 static void print_version(void) {
@@ -86,6 +87,7 @@ typedef struct {
     const char* mission;
     const char* algo;
     const char* trace;
+    long flow_work;  // 0: the planner's default
     bool schedule;
     bool help;
 } options_t;
@@ -132,6 +134,16 @@ static int parse_options(const char* command, bool full, int argc, char** argv, 
                 return error_exit(EXIT_BAD_INPUT, "%s: --algo needs a value", command);
             }
             opt->algo = value;
+        } else if (!only_files && full &&
+                   ((value = option_value("--flow-work", argc, argv, &i, &missing)) != NULL || missing)) {
+            char* end = NULL;
+            errno = 0;
+            const long n = missing ? 0 : strtol(value, &end, 10);
+            if (missing || errno != 0 || end == value || *end != '\0' || n < 1000 || n > (long)SVA_FLOW_MAX_WORK) {
+                return error_exit(EXIT_BAD_INPUT, "%s: --flow-work: must be an integer in [1000, %ld] (SVA_FLOW_MAX_WORK)",
+                                  command, (long)SVA_FLOW_MAX_WORK);
+            }
+            opt->flow_work = n;
         } else if (!only_files && full &&
                    ((value = option_value("--trace", argc, argv, &i, &missing)) != NULL || missing)) {
             if (missing || value[0] == '\0') {
@@ -245,6 +257,9 @@ static int cmd_plan(int argc, char** argv) {
     }
     if (sva_planner_init(&g_planner) != SVA_OK) {
         return error_exit(EXIT_FAILED, "planner initialisation failed");
+    }
+    if (opt.flow_work > 0) {
+        g_planner.flow_max_work = (uint32_t)opt.flow_work;
     }
     FILE* trace_file = NULL;
     sva_trace_t trace;

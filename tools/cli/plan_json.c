@@ -56,6 +56,15 @@ static json_t* stranded_json(const sva_plan_t* plan) {
     return list;
 }
 
+// flow's certificate: a lower bound on any plan covering as many targets, and
+// whether this plan is proven optimal; plus its search counters.
+static bool flow_stats(json_t* o, const sva_stats_t* s) {
+    return put_int(o, "lower_bound", s->lower_bound) && put(o, "optimal", json_boolean(s->optimal)) &&
+           put_int(o, "flow_solves", s->flow_solves) && put_int(o, "flow_augmentations", s->flow_augmentations) &&
+           put_int(o, "flow_work", (int64_t)s->flow_work) && put_int(o, "flow_graph_arcs", s->flow_graph_arcs) &&
+           put_int(o, "flow_max_depth", s->flow_max_depth) && put_int(o, "flow_incomplete", s->flow_incomplete);
+}
+
 static json_t* stats_json(const sva_stats_t* s, int64_t solve_us) {
     json_t* o = json_object();
     if (o != NULL && put_int(o, "solve_us", solve_us) && put_int(o, "pivots", s->pivots) &&
@@ -65,7 +74,7 @@ static json_t* stats_json(const sva_stats_t* s, int64_t solve_us) {
         put_int(o, "largest_tableau_cells", s->largest_tableau_cells) && put_int(o, "max_pivots", s->max_pivots) &&
         put_int(o, "dropped_sources", s->dropped_sources) && put_int(o, "chunked_clusters", s->chunked_clusters) &&
         put_int(o, "search_nodes", (int64_t)s->search_nodes) &&
-        put_int(o, "truncated_searches", s->truncated_searches)) {
+        put_int(o, "truncated_searches", s->truncated_searches) && (!s->has_bound || flow_stats(o, s))) {
         return o;
     }
     json_decref(o);

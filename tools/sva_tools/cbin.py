@@ -12,7 +12,7 @@ from typing import List, Optional
 from . import io
 from . import model as M
 
-C_ALGORITHMS = ("sva", "ga", "hga", "bfa")
+C_ALGORITHMS = ("sva", "ga", "hga", "bfa", "flow")
 REPO = Path(__file__).resolve().parents[2]
 
 

@@ -209,10 +209,11 @@ typedef enum {
     SVA_ALGO_GA,       ///< greedy
     SVA_ALGO_HGA,      ///< SVA pipeline, transportation problems by enumeration
     SVA_ALGO_BFA,      ///< exhaustive search: the optimum (small missions)
+    SVA_ALGO_FLOW,     ///< min-cost flow relaxation + branch and bound, certified bound
     SVA_ALGO_COUNT_    ///< number of algorithms (not an algorithm)
 } sva_algorithm_t;
 
-/// The SPEC name ("sva", "ga", "hga", "bfa"), or "" when out of range. Never NULL.
+/// The SPEC name ("sva", "ga", "hga", "bfa", "flow"), or "" when out of range. Never NULL.
 const char* sva_algorithm_name(sva_algorithm_t algorithm);
 
 /// Looks up an algorithm by its SPEC name. Returns SVA_OK, or SVA_ERR_ARGUMENT when
@@ -249,8 +250,24 @@ typedef struct {
     uint32_t max_pivots;            ///< most pivots in one problem (sva)
     uint32_t dropped_sources;       ///< source groups left out by SVA_MAX_TP_SOURCES
     uint32_t chunked_clusters;      ///< clusters split by SVA_MAX_TP_SINKS
-    uint64_t search_nodes;          ///< nodes visited (hga, bfa)
+    uint64_t search_nodes;          ///< nodes visited (hga, bfa, flow)
     uint32_t truncated_searches;    ///< hga problems cut at SVA_HGA_MAX_NODES
+    // flow only (has_bound false for the other algorithms):
+    bool has_bound;                 ///< lower_bound and optimal are set
+    /// No plan covering as many targets as this one costs less than lower_bound.
+    int64_t lower_bound;
+    /// The plan is proven optimal under SPEC section 1 (lower_bound == cost).
+    bool optimal;
+    uint32_t flow_solves;           ///< min-cost flow relaxations solved
+    uint32_t flow_augmentations;    ///< shortest augmenting paths, all solves
+    uint64_t flow_work;             ///< arc scans, against SVA_FLOW_MAX_WORK
+    uint32_t flow_graph_arcs;       ///< arcs of the time-feasibility graph
+    uint32_t flow_max_depth;        ///< deepest branch-and-bound node
+    /// Why flow did not prove optimality: 0 it did (or the search finished), 1 work
+    /// budget, 2 SVA_FLOW_MAX_DEPTH, 3 needs whose lcm is too large for exact ties;
+    /// 4 needs summed above SVA_FLOW_MAX_COPIES, 5 graph above SVA_FLOW_MAX_ARCS (4 and
+    /// 5: no relaxation; the plan is the better of ga's and sva's, lower_bound 0).
+    uint8_t flow_incomplete;
 } sva_stats_t;
 
 typedef struct {
@@ -357,6 +374,79 @@ typedef struct {
     uint8_t best_len[SVA_BFA_MAX_UAVS];
 } sva_bfa_work_t;
 
+/// flow's branch-and-bound frame: a node whose relaxation broke a rule, and the
+/// children that partition its plans (flow.c).
+typedef struct {
+    uint8_t kind;          ///< half-covered target, or a route over fuel or length
+    uint16_t subject;      ///< target index, or UAV index
+    uint16_t path_len;     ///< copies on the infeasible route
+    uint16_t child_count;
+    int16_t next_child;
+    int16_t active_child;  ///< applied to the graph now, or -1
+    int64_t bound;         ///< relaxation value of this node
+    uint16_t path[SVA_FLOW_MAX_COPIES];  ///< the infeasible route's copies, in order
+} sva_flow_frame_t;
+
+#if SVA_FLOW_MAX_ARCS <= 65535L
+typedef uint16_t sva_flow_arc_t;
+#else
+typedef uint32_t sva_flow_arc_t;
+#endif
+/// Nodes: UAVs, copy in/out pairs, the depot, the super sink.
+#define SVA_FLOW_NODES (SVA_MAX_UAVS + (2L * SVA_FLOW_MAX_COPIES) + 2L)
+
+/// flow's graph, relaxation and search state (flow_graph.c, flow_ssp.c, flow.c).
+typedef struct {
+    uint16_t uavs;                         ///< U: node ids 0..U-1 are the UAVs
+    uint16_t copies;                       ///< C: copy c is in-node U+c, out-node U+C+c
+    uint32_t arcs;
+    uint16_t copy_target[SVA_FLOW_MAX_COPIES];
+    uint16_t target_first_copy[SVA_MAX_TARGETS];  ///< copies of t are contiguous
+    int64_t copy_reward[SVA_FLOW_MAX_COPIES];     ///< per covered copy: W / need
+    int64_t reward_whole;                         ///< W: reward of a covered target
+    bool reward_exact;                            ///< need * (W / need) == W for all
+    int32_t node_x[SVA_FLOW_NODES];               ///< arc cost = Manhattan distance
+    int32_t node_y[SVA_FLOW_NODES];
+    uint32_t out_start[SVA_FLOW_NODES + 1];       ///< arcs by tail (CSR)
+    uint32_t in_start[SVA_FLOW_NODES + 1];        ///< arc ids by head
+    uint16_t arc_tail[SVA_FLOW_MAX_ARCS];
+    uint16_t arc_head[SVA_FLOW_MAX_ARCS];
+    sva_flow_arc_t in_arc[SVA_FLOW_MAX_ARCS];
+    uint8_t arc_flow[SVA_FLOW_MAX_ARCS];
+    uint8_t arc_ban[SVA_FLOW_MAX_ARCS];           ///< banning levels (0: allowed)
+    uint8_t copy_cover[SVA_FLOW_MAX_COPIES];      ///< flow on the copy's own arc
+    uint8_t copy_forced[SVA_FLOW_MAX_COPIES];     ///< forcing levels
+    uint8_t copy_banned[SVA_FLOW_MAX_COPIES];     ///< banning levels
+    // Shortest augmenting paths (Dijkstra with potentials, static binary heap).
+    int64_t pot[SVA_FLOW_NODES];
+    int64_t dist[SVA_FLOW_NODES];
+    int32_t pred[SVA_FLOW_NODES];
+    uint16_t heap[SVA_FLOW_NODES];
+    uint16_t heap_pos[SVA_FLOW_NODES];
+    uint8_t node_mark[SVA_FLOW_NODES];            ///< live / sent / settled bits
+    uint16_t heap_size;
+    int32_t sink_left;                            ///< units the depot still takes
+    int64_t value;                                ///< relaxation: cost - rewards
+    uint64_t work;
+    // Scratch of the graph builder and of the rounding heuristic (flow_repair.c).
+    int64_t target_lead[SVA_MAX_TARGETS];         ///< fuel labels (flow_graph.c)
+    int64_t target_tail[SVA_MAX_TARGETS];
+    uint16_t target_taken[SVA_MAX_TARGETS];
+    int64_t route_cells[SVA_MAX_UAVS];
+    int64_t insert_delta[SVA_MAX_UAVS];
+    uint16_t insert_pos[SVA_MAX_UAVS];
+    uint8_t uav_pick[SVA_MAX_UAVS];
+    uint16_t pred_node[SVA_FLOW_NODES];
+    int64_t pot_source;
+    // Best plan found: successor lists over copies (0xFFFF ends a route).
+    uint16_t inc_first[SVA_MAX_UAVS];
+    uint16_t inc_next[SVA_FLOW_MAX_COPIES];
+    int64_t inc_value;
+    bool has_inc;
+    uint16_t depth;
+    sva_flow_frame_t stack[SVA_FLOW_MAX_DEPTH];
+} sva_flow_work_t;
+
 /// All of the planner's working memory.
 typedef struct {
     // Planning state of each UAV (index = mission order) and target.
@@ -373,6 +463,7 @@ typedef struct {
     sva_tableau_t tableau;
     sva_hga_work_t hga;
     sva_bfa_work_t bfa;
+    sva_flow_work_t flow;
 } sva_planner_priv_t;
 
 /// The planner: caller-owned working memory plus an optional observer.
@@ -381,6 +472,11 @@ typedef struct {
     /// Must not call back into this planner.
     sva_tp_observer_t on_transport;
     void* on_transport_user;
+    /// flow's work budget in arc scans (deterministic; about 10 ns each on a desktop
+    /// core): the search stops there and returns its best plan, not proven optimal.
+    /// sva_planner_init sets SVA_FLOW_MAX_WORK; any value in [1000, SVA_FLOW_MAX_WORK]
+    /// may be set between runs (others are clamped into that range).
+    uint32_t flow_max_work;
     sva_planner_priv_t priv;  ///< read-only to users
 } sva_planner_t;
 
@@ -421,6 +517,10 @@ typedef struct {
     uint32_t bfa_max_uavs;
     uint32_t bfa_max_nodes;
     uint32_t hga_max_nodes;
+    uint32_t flow_max_copies;
+    uint32_t flow_max_arcs;
+    uint32_t flow_max_depth;
+    uint32_t flow_max_work;
     uint32_t mission_bytes;  ///< sizeof(sva_mission_t)
     uint32_t plan_bytes;     ///< sizeof(sva_plan_t)
     uint32_t planner_bytes;  ///< sizeof(sva_planner_t)

@@ -122,6 +122,57 @@
 #endif
 
 // ---------------------------------------------------------------------------------
+// flow: min-cost flow relaxation plus branch and bound (flow*.c, DESIGN.md section 7).
+// A target with need n becomes n copies of need 1; every bound below is a clear
+// SVA_ERR_LIMIT (or, for the budgets, a plan not proven optimal), never a crash.
+
+/// Most target copies (the needs summed over the mission). Cost ~ 30 B per copy plus
+/// 2 B per copy per search level (SVA_FLOW_MAX_DEPTH).
+#ifndef SVA_FLOW_MAX_COPIES
+#define SVA_FLOW_MAX_COPIES (2L * SVA_MAX_TARGETS)
+#endif
+#if (SVA_FLOW_MAX_COPIES < 1L) || (SVA_FLOW_MAX_COPIES > 16384L)
+#error "SVA_FLOW_MAX_COPIES must be in [1, 16384]"
+#endif
+
+/// Arcs of the complete time-feasibility graph for the bounds above (UAV -> copy,
+/// copy -> later copy, UAV or copy -> depot); the default arc bound is this, capped.
+#define SVA_FLOW_DENSE_ARCS                                                                 \
+    ((SVA_MAX_UAVS * SVA_FLOW_MAX_COPIES) + ((SVA_FLOW_MAX_COPIES * (SVA_FLOW_MAX_COPIES - 1L)) / 2L) + \
+     SVA_MAX_UAVS + SVA_FLOW_MAX_COPIES)
+
+/// Most arcs of one mission's graph (time- and fuel-feasible pairs only). Cost ~ 8 B
+/// per arc. 200 targets x 40 UAVs with need 1 need at most ~28,500.
+#ifndef SVA_FLOW_MAX_ARCS
+#if SVA_FLOW_DENSE_ARCS < 49152L
+#define SVA_FLOW_MAX_ARCS SVA_FLOW_DENSE_ARCS
+#else
+#define SVA_FLOW_MAX_ARCS 49152L
+#endif
+#endif
+#if (SVA_FLOW_MAX_ARCS < 1L) || (SVA_FLOW_MAX_ARCS > 4000000L)
+#error "SVA_FLOW_MAX_ARCS must be in [1, 4000000]"
+#endif
+
+/// Deepest branch-and-bound path; a deeper node is not explored (the plan is then not
+/// proven optimal). Cost: 2 B * SVA_FLOW_MAX_COPIES + 24 B per level.
+#ifndef SVA_FLOW_MAX_DEPTH
+#define SVA_FLOW_MAX_DEPTH 24
+#endif
+#if (SVA_FLOW_MAX_DEPTH < 1) || (SVA_FLOW_MAX_DEPTH > 200)
+#error "SVA_FLOW_MAX_DEPTH must be in [1, 200]"
+#endif
+
+/// Work budget of one flow run, in arc scans (deterministic, not a clock). When it
+/// runs out the best plan found is returned with stats.optimal false.
+#ifndef SVA_FLOW_MAX_WORK
+#define SVA_FLOW_MAX_WORK 2000000L
+#endif
+#if (SVA_FLOW_MAX_WORK < 1000L) || (SVA_FLOW_MAX_WORK > 2000000000L)
+#error "SVA_FLOW_MAX_WORK must be in [1000, 2000000000]"
+#endif
+
+// ---------------------------------------------------------------------------------
 // Value bounds (SPEC section 1). Coordinates are fixed by the SPEC; the others keep
 // every sum inside int64 with a wide margin and every leg inside int32 (DESIGN.md 5).
 

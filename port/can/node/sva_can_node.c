@@ -59,7 +59,7 @@ static uint32_t elapsed(uint32_t now, uint32_t then)
 static void usage(void)
 {
     fprintf(stderr,
-            "usage: sva_can_node --mission FILE [--iface NAME] [--algorithm sva|ga|hga|bfa]\n"
+            "usage: sva_can_node --mission FILE [--iface NAME] [--algorithm sva|ga|hga|bfa|flow]\n"
             "                    [--settle-ms N] [--exit-after-acks N] [--max-runtime-ms N] [--print-plans]\n");
 }
 
@@ -256,7 +256,7 @@ int main(int argc, char** argv)
         return 2;
     }
     if (sva_algorithm_from_name(algo_name, &algo) != SVA_OK) {
-        fprintf(stderr, "sva_can_node: --algorithm: unknown algorithm \"%s\" (sva, ga, hga, bfa)\n", algo_name);
+        fprintf(stderr, "sva_can_node: --algorithm: unknown algorithm \"%s\" (sva, ga, hga, bfa, flow)\n", algo_name);
         return 2;
     }
     if (sva_can_mission_load(mission_path, &g_mission, name, sizeof name, err, sizeof err) != 0) {

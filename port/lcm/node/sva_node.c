@@ -56,7 +56,7 @@ static void usage(FILE* out)
             "                         a udpm URL without recv_buf_size gets %d\n"
             "  -p, --prefix PREFIX    channel prefix (default " DEFAULT_PREFIX "): channels\n"
             "                         PREFIX{FLEET,MISSION,PLAN,STATUS}, matched exactly\n"
-            "  -a, --algorithm NAME   sva, ga, hga or bfa (default sva)\n"
+            "  -a, --algorithm NAME   sva, ga, hga, bfa or flow (default sva)\n"
             "  -s, --status-ms MS     status period in milliseconds (default 1000)\n"
             "  -e, --exit-on-eof      stop when the provider ends (file:// logs)\n"
             "  -r, --rt-priority N    run under SCHED_FIFO priority N (1..99), LCM's receive\n"
@@ -164,7 +164,7 @@ int main(int argc, char** argv)
 
     sva_algorithm_t algorithm = SVA_ALGO_SVA;
     if (sva_algorithm_from_name(algo_name, &algorithm) != SVA_OK) {
-        fprintf(stderr, "sva_node: --algorithm: unknown name '%s' (sva, ga, hga, bfa)\n", algo_name);
+        fprintf(stderr, "sva_node: --algorithm: unknown name '%s' (sva, ga, hga, bfa, flow)\n", algo_name);
         return 2;
     }
     if (strlen(prefix) > SVA_LCM_PREFIX_MAX) {

@@ -26,7 +26,7 @@ FIELD_NAMES = [
     "uavs.id", "uavs.x", "uavs.y", "uavs.fuel", "uavs.ready_at", "targets", "targets.id",
     "targets.x", "targets.y", "targets.start", "targets.end", "targets.need",
 ]  # sva_field_t order (core/src/diag.c)
-ALGORITHMS = ["sva", "ga", "hga", "bfa"]  # sva_algorithm_t order
+ALGORITHMS = ["sva", "ga", "hga", "bfa", "flow"]  # sva_algorithm_t order
 REJECT_REASONS = ["truncated", "trailing", "fingerprint", "count", "value", "invalid",
                   "planner", "too_large"]  # sva_lcm_reject_t order
 
@@ -179,7 +179,7 @@ def plan_document(plan, mission_name: str) -> dict:
             stranded.append(r.uav_id)
     doc = {
         "mission": mission_name,
-        "algorithm": ALGORITHMS[plan.algorithm] if 0 <= plan.algorithm < 4 else "?",
+        "algorithm": ALGORITHMS[plan.algorithm] if 0 <= plan.algorithm < len(ALGORITHMS) else "?",
         "status": "complete" if plan.status == plan.STATUS_COMPLETE else "partial",
         "covered": plan.covered,
         "uncovered": list(plan.uncovered[:plan.uncovered_count]),

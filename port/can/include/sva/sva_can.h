@@ -229,7 +229,7 @@ typedef struct {
     uint8_t version;     ///< SVA_CAN_PROTOCOL_VERSION
     uint16_t plan_id;    ///< 1..65535, 0 is "no plan"
     uint16_t item_count; ///< ITEM + ITEM_TIME pairs that follow
-    uint8_t algorithm;   ///< sva_algorithm_t (0 sva, 1 ga, 2 hga, 3 bfa)
+    uint8_t algorithm;   ///< sva_algorithm_t (0 sva, 1 ga, 2 hga, 3 bfa, 4 flow)
     uint8_t plan_status; ///< SVA_CAN_PLAN_COMPLETE or SVA_CAN_PLAN_PARTIAL
     uint8_t route_count; ///< UAVs in the plan (routes, empty ones included)
 } sva_can_begin_t;

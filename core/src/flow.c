@@ -1,0 +1,301 @@
+// flow.c -- the `flow` planner: a min-cost flow relaxation inside a depth-first
+// branch and bound, with a certified lower bound (DESIGN.md section 7).
+//
+// Objective: cost - W * covered, with W above any flow's cost (flow_graph.c), which
+// orders plans exactly as SPEC section 1 does. Without fuel the relaxation (flow_ssp.c)
+// is the problem itself once every target is covered by all or none of its copies.
+// Two rules can fail in a relaxation, and each has its branching:
+//   a target half covered      -> child 1: all its copies forced; child 2: banned;
+//   a route over fuel/length   -> partition over where the UAV first leaves it: child
+//       i keeps the route's first i arcs for this UAV and bans its step i+1 (to any
+//       copy of that target: copies are interchangeable). Every copy carries one
+//       unit, so the kept arcs are this UAV's, and a banned arc out of a kept copy
+//       concerns no one else. Children whose kept prefix already breaks the
+//       fuel rule are skipped, as is the one keeping the whole route: adding targets
+//       never shortens a route (triangle inequality).
+// Every node's relaxation is rounded into a plan (flow_repair.c); the plans of `ga`
+// and `sva` are the first incumbents, so flow never plans worse than either. The
+// search stops at SVA_FLOW_MAX_WORK arc scans (deterministic); the bound then comes
+// from the nodes left open. No recursion: the path is an explicit stack of frames.
+#include "sva_internal.h"
+
+enum { BRANCH_TARGET = 1U, BRANCH_ROUTE = 2U };
+enum {
+    INCOMPLETE_NONE = 0U,
+    INCOMPLETE_WORK = SVA_FLOW_INCOMPLETE_WORK,
+    INCOMPLETE_DEPTH = SVA_FLOW_INCOMPLETE_DEPTH,
+    INCOMPLETE_REWARD = SVA_FLOW_INCOMPLETE_REWARD,
+};
+
+static uint32_t find_arc(const sva_flow_work_t* w, uint16_t tail, uint16_t head)
+{
+    for (uint32_t e = w->out_start[tail]; e < w->out_start[tail + 1U]; e++) {
+        if (w->arc_head[e] == head) {
+            return e;
+        }
+    }
+    SVA_ASSERT(false);  // the route was read off these arcs
+    return w->out_start[tail];
+}
+
+static void ban(sva_flow_work_t* w, uint32_t e, int32_t delta)
+{
+    w->arc_ban[e] = (uint8_t)((int32_t)w->arc_ban[e] + delta);
+}
+
+// delta +1 applies child i of frame f, -1 takes it back (same arcs, same order).
+static void apply_child(sva_flow_work_t* w, const sva_flow_frame_t* f, int16_t i, int32_t delta)
+{
+    if (f->kind == (uint8_t)BRANCH_TARGET) {
+        const uint16_t first = w->target_first_copy[f->subject];
+        for (uint16_t c = first; (c < w->copies) && (w->copy_target[c] == f->subject); c++) {
+            uint8_t* level = (i == 0) ? &w->copy_forced[c] : &w->copy_banned[c];
+            *level = (uint8_t)((int32_t)*level + delta);
+        }
+        return;
+    }
+    uint16_t tail = f->subject;
+    for (int16_t j = 0; j <= i; j++) {
+        const uint16_t head = (uint16_t)(w->uavs + f->path[j]);
+        const uint32_t kept = find_arc(w, tail, head);
+        if (j == i) {
+            // Copies of one target are interchangeable: ban the step to all of them.
+            const uint16_t target = w->copy_target[f->path[j]];
+            for (uint32_t e = w->out_start[tail]; e < w->out_start[tail + 1U]; e++) {
+                const uint16_t h = w->arc_head[e];
+                if ((h >= w->uavs) && (h < (uint16_t)(w->uavs + w->copies)) &&
+                    (w->copy_target[h - w->uavs] == target)) {
+                    ban(w, e, delta);
+                }
+            }
+            break;
+        }
+        for (uint32_t e = w->out_start[tail]; e < w->out_start[tail + 1U]; e++) {
+            if (e != kept) {
+                ban(w, e, delta);
+            }
+        }
+        for (uint32_t k = w->in_start[head]; k < w->in_start[head + 1U]; k++) {
+            if (w->in_arc[k] != kept) {
+                ban(w, w->in_arc[k], delta);
+            }
+        }
+        tail = (uint16_t)(w->uavs + w->copies + f->path[j]);
+    }
+}
+
+// Picks the rule the current relaxation breaks and fills frame f; false if none (the
+// relaxation is a plan).
+static bool choose_branch(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan,
+                          sva_flow_frame_t* f)
+{
+    sva_flow_work_t* w = &priv->flow;
+    f->next_child = 0;
+    f->active_child = -1;
+    for (uint16_t i = 0U; i < m->target_count; i++) {
+        const uint16_t t = priv->target_order[i];
+        int32_t covered = 0;
+        for (int32_t k = 0; k < m->targets[t].need; k++) {
+            covered += sva_flow_covered(w, (uint16_t)(w->target_first_copy[t] + k)) ? 1 : 0;
+        }
+        if ((covered > 0) && (covered < m->targets[t].need)) {
+            f->kind = (uint8_t)BRANCH_TARGET;
+            f->subject = t;
+            f->path_len = 0U;
+            f->child_count = 2U;
+            return true;
+        }
+    }
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        if (plan->routes[u].stranded) {
+            continue;
+        }
+        const uint16_t n = sva_flow_route(w, u, f->path, SVA_FLOW_MAX_COPIES);
+        if (sva_flow_route_fits(m, u, f->path, n, w)) {
+            continue;
+        }
+        uint16_t children = 0U;
+        while ((children < n) && sva_flow_route_fits(m, u, f->path, children, w)) {
+            children++;
+        }
+        f->kind = (uint8_t)BRANCH_ROUTE;
+        f->subject = u;
+        f->path_len = n;
+        f->child_count = children;
+        return true;
+    }
+    return false;
+}
+
+// The plans of ga and sva as the first incumbents (observer silenced, stats kept).
+static void seed(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan)
+{
+    sva_planner_priv_t* priv = &self->priv;
+    const sva_stats_t kept = plan->stats;
+    sva_run_ga(priv, m, plan);
+    (void)sva_flow_offer_plan(priv, m, plan);
+    sva_state_reset(priv, m, plan);
+    const sva_tp_observer_t observer = self->on_transport;
+    self->on_transport = NULL;
+    if (sva_run_pipeline(self, m, SVA_ALGO_SVA, plan) == SVA_OK) {
+        (void)sva_flow_offer_plan(priv, m, plan);
+    }
+    self->on_transport = observer;
+    sva_state_reset(priv, m, plan);
+    plan->stats = kept;
+}
+
+static int64_t min64(int64_t a, int64_t b)
+{
+    return (a < b) ? a : b;
+}
+
+// Depth-first search from the root relaxation; returns the least bound left open
+// (INT64_MAX when the search finished) and sets *incomplete.
+static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                      uint64_t budget, uint8_t* incomplete)
+{
+    sva_flow_work_t* w = &priv->flow;
+    sva_stats_t* stats = &plan->stats;
+    int64_t open = INT64_MAX;
+    w->depth = 0U;
+    stats->search_nodes = 1U;
+    if (!sva_flow_solve(w, stats)) {
+        // Cannot happen: every UAV that is not stranded may fly home, and the root
+        // forces nothing. Claim nothing if it does.
+        SVA_ASSERT(false);
+        *incomplete = (uint8_t)INCOMPLETE_DEPTH;
+        return INT64_MIN / 4;
+    }
+    if (w->value >= w->inc_value) {
+        return open;
+    }
+    sva_flow_round(priv, m, plan);
+    if ((w->value < w->inc_value) && choose_branch(priv, m, plan, &w->stack[0])) {
+        w->stack[0].bound = w->value;
+        w->depth = 1U;
+        stats->flow_max_depth = 1U;
+    }
+    while (w->depth > 0U) {
+        sva_flow_frame_t* f = &w->stack[w->depth - 1U];
+        if (f->active_child >= 0) {
+            apply_child(w, f, f->active_child, -1);
+            f->active_child = -1;
+        }
+        if (f->next_child >= (int16_t)f->child_count) {
+            w->depth--;
+            continue;
+        }
+        if (w->work > budget) {
+            for (uint16_t d = 0U; d < w->depth; d++) {
+                if (w->stack[d].next_child < (int16_t)w->stack[d].child_count) {
+                    open = min64(open, w->stack[d].bound);
+                }
+            }
+            *incomplete = (uint8_t)INCOMPLETE_WORK;
+            break;
+        }
+        // Route frames try the longest kept prefix first: the plan that drops the
+        // fewest of the route's targets is the likeliest good one.
+        const int16_t child = (f->kind == (uint8_t)BRANCH_ROUTE)
+                                  ? (int16_t)((int16_t)f->child_count - 1 - f->next_child)
+                                  : f->next_child;
+        f->next_child++;
+        apply_child(w, f, child, 1);
+        f->active_child = child;
+        stats->search_nodes++;
+        if (!sva_flow_solve(w, stats) || (w->value >= w->inc_value)) {
+            continue;  // infeasible, or no better than the best plan
+        }
+        sva_flow_round(priv, m, plan);
+        if (w->value >= w->inc_value) {
+            continue;  // the relaxation was a plan, or rounding reached its bound
+        }
+        if (w->depth >= (uint16_t)SVA_FLOW_MAX_DEPTH) {
+            open = min64(open, w->value);
+            *incomplete = (uint8_t)INCOMPLETE_DEPTH;
+            continue;
+        }
+        if (choose_branch(priv, m, plan, &w->stack[w->depth])) {
+            w->stack[w->depth].bound = w->value;
+            w->depth++;
+            stats->flow_max_depth = (w->depth > stats->flow_max_depth) ? w->depth : stats->flow_max_depth;
+        }
+    }
+    return open;
+}
+
+// Past its graph bounds flow has no relaxation: it returns the better of the ga and
+// sva plans with the trivial bound 0, never claiming optimality.
+static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan, uint8_t why)
+{
+    sva_planner_priv_t* priv = &self->priv;
+    const sva_stats_t kept = plan->stats;
+    sva_run_ga(priv, m, plan);
+    sva_plan_finish(priv, m, plan);
+    const uint16_t ga_covered = plan->covered;
+    const int64_t ga_cost = plan->cost;
+    sva_state_reset(priv, m, plan);
+    const sva_tp_observer_t observer = self->on_transport;
+    self->on_transport = NULL;
+    bool use_ga = sva_run_pipeline(self, m, SVA_ALGO_SVA, plan) != SVA_OK;
+    self->on_transport = observer;
+    if (!use_ga) {
+        sva_plan_finish(priv, m, plan);
+        use_ga = (ga_covered > plan->covered) || ((ga_covered == plan->covered) && (ga_cost < plan->cost));
+    }
+    if (use_ga) {
+        sva_state_reset(priv, m, plan);
+        sva_run_ga(priv, m, plan);
+    }
+    plan->stats = kept;
+    plan->stats.has_bound = true;
+    plan->stats.lower_bound = 0;
+    plan->stats.optimal = false;
+    plan->stats.flow_incomplete = why;
+}
+
+sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan)
+{
+    sva_planner_priv_t* priv = &self->priv;
+    sva_flow_work_t* w = &priv->flow;
+    sva_stats_t* stats = &plan->stats;
+    const uint8_t over = sva_flow_build(priv, m, plan, stats);
+    if (over != 0U) {
+        fall_back(self, m, plan, over);
+        return SVA_OK;
+    }
+    w->has_inc = false;
+    w->work = 0U;
+    seed(self, m, plan);
+    uint8_t incomplete = w->reward_exact ? (uint8_t)INCOMPLETE_NONE : (uint8_t)INCOMPLETE_REWARD;
+    uint64_t budget = self->flow_max_work;
+    budget = (budget < 1000U) ? 1000U : budget;
+    budget = (budget > (uint64_t)SVA_FLOW_MAX_WORK) ? (uint64_t)SVA_FLOW_MAX_WORK : budget;
+    const int64_t open = search(priv, m, plan, budget, &incomplete);
+    sva_flow_write_incumbent(priv, m, plan);
+
+    // Any plan p: cost(p) - reward(p) >= min(best, open). A plan covering c targets
+    // earns c * W (exact rewards) or at least c * (W - need + 1).
+    int32_t need_max = 1;
+    int64_t covered = 0;
+    int64_t reward = 0;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        need_max = (m->targets[t].need > need_max) ? m->targets[t].need : need_max;
+        if ((int32_t)priv->target_served[t] == m->targets[t].need) {
+            covered++;
+            reward += (int64_t)m->targets[t].need * w->copy_reward[w->target_first_copy[t]];
+        }
+    }
+    const int64_t cost = w->inc_value + reward;
+    const int64_t least_reward =
+        w->reward_exact ? (covered * w->reward_whole) : (covered * (w->reward_whole - need_max + 1));
+    int64_t bound = min64(w->inc_value, open) + least_reward;
+    bound = (bound < 0) ? 0 : bound;
+    stats->has_bound = true;
+    stats->lower_bound = (bound > cost) ? cost : bound;
+    stats->optimal = (incomplete == (uint8_t)INCOMPLETE_NONE) && (open == INT64_MAX);
+    stats->flow_incomplete = incomplete;
+    stats->flow_work = w->work;
+    return SVA_OK;
+}

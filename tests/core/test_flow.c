@@ -1,0 +1,291 @@
+// Tests of the flow planner (core/src/flow*.c) against independent references:
+// - on tiny missions its plan equals the plain brute force whenever it says
+//   "optimal", its lower bound never exceeds the optimum, and it never does worse
+//   than any other algorithm in coverage;
+// - without a binding fuel limit it is always proven optimal at once (root relaxation)
+//   and equals bfa;
+// - at the paper's sizes it covers at least as many targets as sva, ga and hga, and
+//   costs no more than the best of sva and ga at equal coverage (their plans seed it);
+// - a small work budget still gives a checked plan, honestly not proven optimal;
+// - past its graph bounds it falls back to the better of ga and sva, bound 0, not
+//   optimal; the caller's observer stays silent.
+// Seeds are printed and replayable (SVA_TEST_SEED=...).
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "brute_force.h"
+#include "mission_gen.h"
+#include "spec_checker.h"
+#include "sva/sva.h"
+
+static sva_planner_t planner;
+static sva_mission_t mission;
+static sva_plan_t plan;
+static sva_plan_t other;
+
+static void must_plan(sva_algorithm_t algorithm, sva_plan_t* out, uint64_t seed, int round)
+{
+    sva_diag_t diag;
+    char why[256] = "";
+    const sva_status_t st = sva_plan(&planner, &mission, algorithm, out, &diag);
+    if (st != SVA_OK) {
+        sva_diag_format(&diag, why, sizeof(why));
+        fail_msg("seed %llu round %d %s: status %d (%s)", (unsigned long long)seed, round,
+                 sva_algorithm_name(algorithm), (int)st, why);
+    }
+    if (spec_check_plan(&mission, out, why, sizeof(why)) != 0) {
+        fail_msg("seed %llu round %d %s: %s", (unsigned long long)seed, round,
+                 sva_algorithm_name(algorithm), why);
+    }
+}
+
+static void check_certificate(const sva_plan_t* p, uint64_t seed, int round)
+{
+    if (!p->stats.has_bound || p->stats.lower_bound < 0 || p->stats.lower_bound > p->cost) {
+        fail_msg("seed %llu round %d: bound %lld outside [0, cost %lld]", (unsigned long long)seed,
+                 round, (long long)p->stats.lower_bound, (long long)p->cost);
+    }
+    if (p->stats.optimal && p->stats.lower_bound != p->cost) {
+        fail_msg("seed %llu round %d: optimal but bound %lld != cost %lld", (unsigned long long)seed,
+                 round, (long long)p->stats.lower_bound, (long long)p->cost);
+    }
+}
+
+static void test_tiny_missions_equal_brute_force(void** state)
+{
+    (void)state;
+    const uint64_t seed = test_seed(0xF10EULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    int proven = 0;
+    int fuel_bound = 0;
+    const int rounds = 500;
+    for (int round = 0; round < rounds; round++) {
+        const test_gen_params_t p = {
+            test_rng_range(&rng, 1, 6), test_rng_range(&rng, 1, 4), test_rng_range(&rng, 4, 20),
+            2, 15, 40, 2, test_rng_range(&rng, 5, 40), 80, test_rng_range(&rng, 0, 3),
+            test_rng_range(&rng, 1, 2), test_rng_range(&rng, 0, 1), 0};
+        test_gen_mission(&rng, &p, &mission);
+        const brute_result_t best = brute_force_optimum(&mission);
+        must_plan(SVA_ALGO_FLOW, &plan, seed, round);
+        check_certificate(&plan, seed, round);
+        if (spec_better(plan.covered, plan.cost, best.covered, best.cost)) {
+            fail_msg("seed %llu round %d: flow (%d, %lld) beats the optimum (%d, %lld)",
+                     (unsigned long long)seed, round, plan.covered, (long long)plan.cost,
+                     best.covered, best.cost);
+        }
+        if (plan.stats.optimal) {
+            proven++;
+            if (plan.covered != best.covered || plan.cost != best.cost) {
+                fail_msg("seed %llu round %d: flow claims optimal (%d, %lld), optimum (%d, %lld)",
+                         (unsigned long long)seed, round, plan.covered, (long long)plan.cost,
+                         best.covered, best.cost);
+            }
+        }
+        if (plan.covered == best.covered && plan.stats.lower_bound > best.cost) {
+            fail_msg("seed %llu round %d: bound %lld above the optimum %lld",
+                     (unsigned long long)seed, round, (long long)plan.stats.lower_bound, best.cost);
+        }
+        fuel_bound += (plan.stats.search_nodes > 1U) ? 1 : 0;
+        for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
+            must_plan((sva_algorithm_t)a, &other, seed, round);
+            if (other.covered > plan.covered) {
+                fail_msg("seed %llu round %d: %s covers %d, flow %d", (unsigned long long)seed, round,
+                         sva_algorithm_name((sva_algorithm_t)a), other.covered, plan.covered);
+            }
+        }
+    }
+    printf("# %d tiny missions: flow proven optimal on %d, branched on %d\n", rounds, proven,
+           fuel_bound);
+    assert_true(proven == rounds);  // tiny searches always finish within the budget
+    assert_true(fuel_bound > 0);    // the generator does reach the branch and bound
+}
+
+static void test_without_fuel_limit_root_is_optimal(void** state)
+{
+    (void)state;
+    const uint64_t seed = test_seed(0xF1A7ULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    for (int round = 0; round < 300; round++) {
+        // Fuel far above any route, need 1: the relaxation is the problem itself.
+        const test_gen_params_t p = {test_rng_range(&rng, 1, SVA_BFA_MAX_TARGETS < 10 ? SVA_BFA_MAX_TARGETS : 10),
+                                     test_rng_range(&rng, 1, SVA_BFA_MAX_UAVS < 5 ? SVA_BFA_MAX_UAVS : 5), 20,
+                                     5, 20, 60, 1, 100000, 100000, test_rng_range(&rng, 0, 3),
+                                     1, test_rng_range(&rng, 0, 1), 0};
+        test_gen_mission(&rng, &p, &mission);
+        must_plan(SVA_ALGO_FLOW, &plan, seed, round);
+        check_certificate(&plan, seed, round);
+        if (!plan.stats.optimal || plan.stats.search_nodes != 1U) {
+            fail_msg("seed %llu round %d: not optimal at the root (nodes %llu)",
+                     (unsigned long long)seed, round, (unsigned long long)plan.stats.search_nodes);
+        }
+        must_plan(SVA_ALGO_BFA, &other, seed, round);
+        if (other.covered != plan.covered || other.cost != plan.cost) {
+            fail_msg("seed %llu round %d: flow (%d, %lld), bfa (%d, %lld)", (unsigned long long)seed,
+                     round, plan.covered, (long long)plan.cost, other.covered, (long long)other.cost);
+        }
+    }
+}
+
+static void test_paper_sizes_never_worse_than_the_paper(void** state)
+{
+    (void)state;
+    const uint64_t seed = test_seed(0xF25ULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    const int sizes[][2] = {{7, 5}, {10, 5}, {25, 5}};
+    int strictly_better = 0;
+    for (size_t size = 0; size < sizeof(sizes) / sizeof(sizes[0]); size++) {
+        if (sizes[size][0] > SVA_MAX_TARGETS || sizes[size][1] > SVA_MAX_UAVS) {
+            continue;
+        }
+        for (int round = 0; round < 40; round++) {
+            const test_gen_params_t p = {sizes[size][0], sizes[size][1], 20, 10, 20,
+                                         4 * sizes[size][0], test_rng_range(&rng, 1, 2),
+                                         test_rng_range(&rng, 40, 120), 160, 2, 1, 0, 0};
+            test_gen_mission(&rng, &p, &mission);
+            must_plan(SVA_ALGO_FLOW, &plan, seed, round);
+            check_certificate(&plan, seed, round);
+            bool better_than_all = true;
+            const sva_algorithm_t rivals[] = {SVA_ALGO_SVA, SVA_ALGO_GA, SVA_ALGO_HGA};
+            for (size_t r = 0; r < sizeof(rivals) / sizeof(rivals[0]); r++) {
+                must_plan(rivals[r], &other, seed, round);
+                if (other.covered > plan.covered) {
+                    fail_msg("seed %llu round %d: %s covers %d, flow %d", (unsigned long long)seed,
+                             round, sva_algorithm_name(rivals[r]), other.covered, plan.covered);
+                }
+                if (rivals[r] != SVA_ALGO_HGA && spec_better(other.covered, other.cost, plan.covered,
+                                                              plan.cost)) {
+                    fail_msg("seed %llu round %d: %s (%d, %lld) beats flow (%d, %lld)",
+                             (unsigned long long)seed, round, sva_algorithm_name(rivals[r]),
+                             other.covered, (long long)other.cost, plan.covered, (long long)plan.cost);
+                }
+                better_than_all = better_than_all &&
+                                  spec_better(plan.covered, plan.cost, other.covered, other.cost);
+            }
+            strictly_better += better_than_all ? 1 : 0;
+        }
+    }
+    printf("# flow strictly better than sva, ga and hga on %d of 120 missions\n", strictly_better);
+    assert_true(strictly_better > 0);
+}
+
+static void test_small_budget_gives_a_checked_unproven_plan(void** state)
+{
+    (void)state;
+    const uint64_t seed = test_seed(0xB0D6E7ULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    int unproven = 0;
+    planner.flow_max_work = 1000U;
+    for (int round = 0; round < 30; round++) {
+        const test_gen_params_t p = {SVA_MAX_TARGETS < 25 ? SVA_MAX_TARGETS : 25,
+                                     SVA_MAX_UAVS < 5 ? SVA_MAX_UAVS : 5, 20, 10, 20, 100, 2, 60,
+                                     100, 2, 1, 0, 0};
+        test_gen_mission(&rng, &p, &mission);
+        must_plan(SVA_ALGO_FLOW, &plan, seed, round);
+        check_certificate(&plan, seed, round);
+        if (!plan.stats.optimal) {
+            unproven++;
+            assert_int_not_equal(plan.stats.flow_incomplete, 0);
+        }
+    }
+    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    assert_true(unproven > 0);
+}
+
+static void test_past_its_graph_bounds_flow_falls_back_honestly(void** state)
+{
+    (void)state;
+    sva_mission_init(&mission);
+    mission.uav_count = 1;
+    mission.uavs[0] = (sva_uav_t){1, 0, 0, 100, 0};
+    const int32_t need = 1;
+    const int32_t targets = (int32_t)SVA_FLOW_MAX_COPIES + 1;
+    if (targets > SVA_MAX_TARGETS) {
+        skip();  // this profile cannot express too many copies with need 1
+    }
+    mission.target_count = (uint16_t)targets;
+    for (int32_t t = 0; (t < targets) && (t < SVA_MAX_TARGETS); t++) {
+        mission.targets[t] = (sva_target_t){t + 1, 1, 1, 10 * t + 5, 10 * t + 8, need};
+    }
+    must_plan(SVA_ALGO_FLOW, &plan, 0U, 0);
+    assert_int_equal(plan.stats.flow_incomplete, 4);
+    assert_false(plan.stats.optimal);
+    assert_int_equal(plan.stats.lower_bound, 0);
+    must_plan(SVA_ALGO_SVA, &other, 0U, 0);
+    assert_false(spec_better(other.covered, other.cost, plan.covered, plan.cost));
+}
+
+static void test_dense_graph_past_the_arc_bound_falls_back(void** state)
+{
+    (void)state;
+    // Every window chains into every later one: about U*T + T*T/2 arcs.
+    sva_mission_init(&mission);
+    mission.uav_count = SVA_MAX_UAVS;
+    for (int32_t u = 0; u < SVA_MAX_UAVS; u++) {
+        mission.uavs[u] = (sva_uav_t){u + 1, 0, 0, 1000000, 0};
+    }
+    mission.target_count = SVA_MAX_TARGETS;
+    for (int32_t t = 0; t < SVA_MAX_TARGETS; t++) {
+        mission.targets[t] = (sva_target_t){t + 1, t % 7, t % 5, 100 + 20 * t, 105 + 20 * t, 1};
+    }
+    const long arcs = (long)SVA_MAX_UAVS * SVA_MAX_TARGETS + ((long)SVA_MAX_TARGETS * (SVA_MAX_TARGETS - 1)) / 2;
+    if (arcs <= (long)SVA_FLOW_MAX_ARCS) {
+        skip();  // this profile's arc bound holds the dense graph
+    }
+    must_plan(SVA_ALGO_FLOW, &plan, 0U, 0);
+    assert_int_equal(plan.stats.flow_incomplete, 5);
+    assert_true(plan.stats.flow_graph_arcs > (uint32_t)SVA_FLOW_MAX_ARCS);
+    assert_false(plan.stats.optimal);
+    assert_int_equal(plan.covered, SVA_MAX_TARGETS);
+}
+
+static int calls;
+static void count_call(void* user, const sva_tp_view_t* problem)
+{
+    (void)user;
+    (void)problem;
+    calls++;
+}
+
+static void test_observer_silent_and_stats_only_for_flow(void** state)
+{
+    (void)state;
+    test_rng_t rng;
+    test_rng_seed(&rng, 11U);
+    const test_gen_params_t p = {10, 3, 20, 10, 20, 40, 1, 60, 100, 1, 1, 0, 0};
+    test_gen_mission(&rng, &p, &mission);
+    planner.on_transport = count_call;
+    calls = 0;
+    must_plan(SVA_ALGO_FLOW, &plan, 11U, 0);
+    assert_int_equal(calls, 0);  // flow's seeding runs sva without the caller's observer
+    assert_ptr_equal(planner.on_transport, count_call);
+    assert_true(plan.stats.has_bound);
+    assert_true(plan.stats.flow_solves >= 1U);
+    must_plan(SVA_ALGO_SVA, &other, 11U, 0);
+    assert_true(calls > 0);
+    assert_false(other.stats.has_bound);
+    planner.on_transport = NULL;
+}
+
+int main(void)
+{
+    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_tiny_missions_equal_brute_force),
+        cmocka_unit_test(test_without_fuel_limit_root_is_optimal),
+        cmocka_unit_test(test_paper_sizes_never_worse_than_the_paper),
+        cmocka_unit_test(test_small_budget_gives_a_checked_unproven_plan),
+        cmocka_unit_test(test_past_its_graph_bounds_flow_falls_back_honestly),
+        cmocka_unit_test(test_dense_graph_past_the_arc_bound_falls_back),
+        cmocka_unit_test(test_observer_silent_and_stats_only_for_flow),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

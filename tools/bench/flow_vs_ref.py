@@ -1,0 +1,76 @@
+#!/usr/bin/env python3
+"""flow against the exact optimum (sva-tools ref) on generated missions.
+
+Usage (from the repository root, after scripts/setup.sh and scripts/build.sh):
+    .venv/bin/python tools/bench/flow_vs_ref.py TARGETS UAVS COUNT [sva-tools gen options]
+    e.g. .venv/bin/python tools/bench/flow_vs_ref.py 25 5 30 --width 10:20 --need 1 --hover 2 --fuel 120
+Environment: FLOW_WORK=N passes --flow-work N to the planner; REF_SECONDS (default 20)
+is ref's time limit. Missions and ref plans are cached under build/flow_vs_ref/.
+Prints: missions where flow's coverage equals, is below or above ref's; the mean and
+largest cost gap at equal coverage; how many flow plans are proven optimal; flow's
+median and p95 solve time; and any bound above a proven optimum (must be none).
+"""
+import concurrent.futures
+import json
+import os
+import statistics
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SVA = os.path.join(ROOT, "build", "bin", "sva")
+TOOLS = os.path.join(ROOT, "tools", "sva-tools")
+
+
+def plan(path, algo):
+    cmd = [SVA, "plan", "--algo", algo]
+    if algo == "flow" and os.environ.get("FLOW_WORK"):
+        cmd += ["--flow-work", os.environ["FLOW_WORK"]]
+    return json.loads(subprocess.run(cmd + [path], capture_output=True, text=True, check=True).stdout)
+
+
+def main(argv):
+    if len(argv) < 3:
+        sys.exit(__doc__)
+    targets, uavs, count, gen_args = int(argv[0]), int(argv[1]), int(argv[2]), argv[3:]
+    tag = "_".join([str(targets), str(uavs)] + [a.strip("-").replace(":", "-") for a in gen_args])
+    folder = os.path.join(ROOT, "build", "flow_vs_ref", tag)
+    os.makedirs(folder, exist_ok=True)
+    subprocess.run([TOOLS, "gen", "--targets", str(targets), "--uavs", str(uavs), "--count", str(count),
+                    "--seed", "7", "-o", folder] + gen_args, check=True, capture_output=True)
+    missions = sorted(f for f in os.listdir(folder) if f.endswith(".json") and not f.endswith(".ref.json"))
+
+    def run(name):
+        path = os.path.join(folder, name)
+        ref_path = path[:-5] + ".ref.json"
+        if not os.path.exists(ref_path):
+            ref = subprocess.run([TOOLS, "ref", "--time-limit", os.environ.get("REF_SECONDS", "20"),
+                                  "--workers", "1", path], capture_output=True, text=True, check=True)
+            with open(ref_path, "w") as f:
+                f.write(ref.stdout)
+        with open(ref_path) as f:
+            return name, plan(path, "flow"), json.load(f)
+
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        results = list(pool.map(run, missions))
+    equal = [r for r in results if r[1]["covered"] == r[2]["covered"]]
+    below = [(n, fl["covered"], ref["covered"]) for n, fl, ref in results if fl["covered"] < ref["covered"]]
+    above = [(n, fl["covered"], ref["covered"]) for n, fl, ref in results if fl["covered"] > ref["covered"]]
+    gaps = [100.0 * (fl["cost"] - ref["cost"]) / ref["cost"] for _, fl, ref in equal if ref["cost"] > 0]
+    proven = sum(1 for _, fl, _ in results if fl["stats"]["optimal"])
+    times = sorted(fl["stats"]["solve_us"] for _, fl, _ in results)
+    bad = [n for n, fl, ref in results if ref["stats"].get("optimal") and fl["covered"] == ref["covered"]
+           and fl["stats"]["lower_bound"] > ref["cost"]]
+    print(f"{targets}x{uavs} {' '.join(gen_args)}: {len(results)} missions, flow-work "
+          f"{os.environ.get('FLOW_WORK', 'default')}")
+    print(f"  coverage equal to ref: {len(equal)}; below: {below}; above (ref not proven): {above}")
+    print(f"  cost gap at equal coverage: mean {statistics.mean(gaps) if gaps else 0.0:.3f} %, "
+          f"largest {max(gaps) if gaps else 0.0:.2f} %")
+    print(f"  flow proven optimal: {proven}/{len(results)}; solve median {times[len(times) // 2]} us, "
+          f"p95 {times[min(len(times) - 1, int(len(times) * 0.95))]} us")
+    print(f"  bounds above a proven optimum: {bad}")
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
