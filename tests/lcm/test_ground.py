@@ -83,3 +83,21 @@ def test_cli_errors_without_network(tmp_path, capsys):
     assert "missing.json" in capsys.readouterr().err
     assert cli.main(["bogus"]) == 2
     assert cli.main(["--help"]) == 0
+
+
+def test_sva_tools_wrapper_dispatches_lcm(tmp_path):
+    """`tools/sva-tools lcm ...` (the repository wrapper and the installed entry point)
+    reaches sva_tools.lcm.cli.main: its own usage, its own errors and exit codes."""
+    import subprocess
+
+    wrapper = REPO / "tools" / "sva-tools"
+    r = subprocess.run([str(wrapper), "lcm", "--help"], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.startswith("usage: sva-tools lcm") and "{send,record,replay}" in r.stdout
+    r = subprocess.run([str(wrapper), "lcm", "send", str(tmp_path / "missing.json")],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2
+    assert r.stderr.startswith("sva-tools lcm send: ") and "missing.json" in r.stderr
+    r = subprocess.run([str(wrapper), "lcm", "send", str(SMALL), "--url", "memq://",
+                        "--timeout", "0.2"], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 3 and "no plan on SVA_PLAN" in r.stderr  # nobody answers on memq

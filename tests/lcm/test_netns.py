@@ -139,7 +139,7 @@ def test_ground_tool_gets_a_plan_that_checks(node, name, tmp_path):
     assert without_stats(plan) == json.loads((GOLDEN / "sva" / f"{name}.json").read_text())
 
 
-@pytest.mark.parametrize("algo", ["sva", "ga", "hga", "bfa"])
+@pytest.mark.parametrize("algo", ["sva", "ga", "hga", "bfa", "flow"])
 def test_every_fixture_over_lcm(algo, tmp_path, capsys):
     """Every bundled mission through a node running ALGO: the plan that comes back over
     udpm passes the independent checker and equals the CLI's golden plan; bfa's size
