@@ -9,16 +9,16 @@ void sva_diag_clear(sva_diag_t* self)
     }
 }
 
-void sva_diag_set(sva_diag_t* diag, sva_field_t field, sva_rule_t rule, int32_t index,
+void sva_diag_set(sva_diag_t* self, sva_field_t field, sva_rule_t rule, int32_t index,
                   int64_t value, int64_t limit, const char* limit_name)
 {
-    if (diag != NULL) {
-        diag->field = field;
-        diag->rule = rule;
-        diag->index = index;
-        diag->value = value;
-        diag->limit = limit;
-        diag->limit_name = limit_name;
+    if (self != NULL) {
+        self->field = field;
+        self->rule = rule;
+        self->index = index;
+        self->value = value;
+        self->limit = limit;
+        self->limit_name = limit_name;
     }
 }
 
@@ -54,9 +54,8 @@ static void put_char(sva_writer_t* w, char c)
 
 static void put_str(sva_writer_t* w, const char* s)
 {
-    while (*s != '\0') {
-        put_char(w, *s);
-        s++;
+    for (const char* c = s; *c != '\0'; c++) {
+        put_char(w, *c);
     }
 }
 

@@ -15,7 +15,7 @@ static int32_t cap(const sva_hga_work_t* w, const sva_tp_t* tp, uint16_t s, uint
 
 static int32_t* pick(sva_hga_work_t* w, uint16_t k)
 {
-    return &w->pick[(uint32_t)k * SVA_MAX_TP_SOURCES];
+    return &w->pick[(size_t)k * (size_t)SVA_MAX_TP_SOURCES];
 }
 
 // The first fill of sink k: as many units as possible from the lowest sources.

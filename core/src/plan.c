@@ -96,7 +96,7 @@ void sva_plan_finish(sva_planner_priv_t* priv, const sva_mission_t* mission, sva
         }
         cells += sva_distance(x, y, mission->depot_x, mission->depot_y);
         route->distance_cells = cells;
-        route->fuel_used = cells + ((int64_t)mission->hover_fuel * route->target_count);
+        route->fuel_used = cells + ((int64_t)mission->hover_fuel * (int64_t)route->target_count);
         plan->cost += cells;
     }
     plan->covered = 0U;

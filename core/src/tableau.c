@@ -39,12 +39,14 @@ static int8_t* cell(sva_tableau_t* tab, shape_t sh, uint16_t row, uint16_t col)
 
 static int64_t gcd(int64_t a, int64_t b)
 {
-    while (b != 0) {
-        const int64_t r = a % b;
-        a = b;
-        b = r;
+    int64_t x = a;
+    int64_t y = b;
+    while (y != 0) {
+        const int64_t r = x % y;
+        x = y;
+        y = r;
     }
-    return a;
+    return x;
 }
 
 // L: the lcm of the kept sinks' needs, or 1 when L * M could overflow the reduced
@@ -115,7 +117,11 @@ static shape_t build(sva_tableau_t* tab, const sva_tp_t* tp)
         if (tab->sink_row[k] >= 0) {
             const uint16_t row = (uint16_t)tab->sink_row[k];
             *cell(tab, sh, row, j) = 1;
-            tab->col_cost[j] = big_m * (lcm / tp->demand[k]);
+            // Per-target pricing: L / need per unit. When needs_lcm fell back to L = 1,
+            // L / need is 0 for every need above 1 (an unmet unit would cost nothing):
+            // price every unit at big_m instead (maximise the units delivered).
+            const int64_t per_unit = lcm / tp->demand[k];
+            tab->col_cost[j] = big_m * ((per_unit > 0) ? per_unit : 1);
             tab->col_source[j] = -1;
             tab->col_sink[j] = (int16_t)k;
             tab->basis[row] = (int16_t)j;

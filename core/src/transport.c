@@ -100,6 +100,8 @@ static void select_sources(sva_planner_priv_t* priv, const sva_mission_t* missio
                         at_next = 1U;
                     } else if (tp->rep_cost[u] == next) {
                         at_next++;
+                    } else {
+                        // farther than the nearest so far: not at this cost level
                     }
                 }
             }

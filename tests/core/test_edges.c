@@ -1,0 +1,127 @@
+// Reachable edges of the core that the other unit tests do not reach (found by
+// scripts/coverage.sh): diagnostics of "no error" and out-of-range enums, algorithm
+// names out of range, a cluster larger than SVA_MAX_TP_SINKS (solved in chunks), and
+// (max profile) needs whose least common multiple is too large for the tableau's
+// per-unit cost scaling, which then falls back to unscaled costs.
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "spec_checker.h"
+#include "sva/sva.h"
+
+static sva_planner_t planner;
+static sva_mission_t mission;
+static sva_plan_t plan;
+
+static void test_cleared_diag_formats_as_ok(void** state)
+{
+    (void)state;
+    sva_diag_t d;
+    memset(&d, 0x5a, sizeof d);
+    sva_diag_clear(&d);
+    assert_int_equal(d.field, SVA_FIELD_NONE);
+    assert_int_equal(d.rule, SVA_RULE_NONE);
+    assert_int_equal(d.index, -1);
+    assert_null(d.limit_name);
+    char buf[64];
+    const size_t n = sva_diag_format(&d, buf, sizeof buf);
+    assert_string_equal(buf, "mission: ok");
+    assert_int_equal(n, strlen("mission: ok"));
+}
+
+static void test_out_of_range_enums(void** state)
+{
+    (void)state;
+    assert_string_equal(sva_field_name(SVA_FIELD_COUNT_), "");
+    assert_string_equal(sva_field_name((sva_field_t)-1), "");
+    assert_string_equal(sva_algorithm_name(SVA_ALGO_COUNT_), "");
+    sva_diag_t d;
+    sva_diag_set(&d, SVA_FIELD_TARGET_NEED, SVA_RULE_COUNT_, 2, 0, 0, NULL);
+    char buf[64];
+    (void)sva_diag_format(&d, buf, sizeof buf);
+    assert_string_equal(buf, "targets[2].need: unknown rule");
+    sva_algorithm_t algo = SVA_ALGO_GA;
+    assert_int_equal(sva_algorithm_from_name("nope", &algo), SVA_ERR_ARGUMENT);
+    assert_int_equal(algo, SVA_ALGO_GA);  // untouched on error
+}
+
+// SVA_MAX_TP_SINKS + 1 targets in one window form one cluster, solved as two chunks.
+static void test_cluster_larger_than_the_tableau_is_chunked(void** state)
+{
+    (void)state;
+#if SVA_MAX_TP_SINKS + 1 > SVA_MAX_TARGETS || SVA_MAX_TP_SINKS + 1 > SVA_MAX_UAVS
+    skip();  // the profile cannot hold such a mission
+#else
+    const int n = SVA_MAX_TP_SINKS + 1;
+    sva_mission_init(&mission);
+    for (int i = 0; i < n; i++) {
+        mission.uavs[i] = (sva_uav_t){.id = i + 1, .x = 0, .y = 0, .fuel = 1000, .ready_at_ticks = 0};
+        mission.targets[i] = (sva_target_t){
+            .id = i + 1, .x = i % 7, .y = i / 7, .start_ticks = 50, .end_ticks = 60, .need = 1};
+    }
+    mission.uav_count = (uint16_t)n;
+    mission.target_count = (uint16_t)n;
+    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    for (int a = 0; a < 2; a++) {
+        const sva_algorithm_t algo = (a == 0) ? SVA_ALGO_SVA : SVA_ALGO_HGA;
+        sva_diag_t d;
+        assert_int_equal(sva_plan(&planner, &mission, algo, &plan, &d), SVA_OK);
+        assert_int_equal(plan.stats.clusters, 1);
+        assert_int_equal(plan.stats.largest_cluster, n);
+        assert_int_equal(plan.stats.chunked_clusters, 1);
+        assert_int_equal(plan.stats.transport_problems, 2);
+        assert_int_equal(plan.covered, n);
+        char msg[256];
+        assert_int_equal(spec_check_plan(&mission, &plan, msg, sizeof msg), 0);
+    }
+#endif
+}
+
+// Nine targets with prime needs 11..41 (221 UAVs, lcm 1.45e12) about 2000 cells from
+// the fleet: the lcm times the big M would overflow the reduced costs' headroom, so
+// the tableau uses L = 1. The plan must still be complete and pass the checker.
+// Regression: with L = 1 the unmet-demand cost big_m * (L / need) was 0 for every
+// need above 1, so the simplex left such targets unserved (8 of 9 covered here).
+static void test_needs_lcm_overflow_falls_back(void** state)
+{
+    (void)state;
+#if SVA_MAX_UAVS < 221 || SVA_MAX_TP_SINKS < 9
+    skip();  // only the max profile holds such a mission
+#else
+    static const int32_t needs[9] = {11, 13, 17, 19, 23, 29, 31, 37, 41};
+    const int uavs = 221;
+    sva_mission_init(&mission);
+    for (int i = 0; i < uavs; i++) {
+        mission.uavs[i] = (sva_uav_t){.id = i + 1, .x = (i % 2) * 5, .y = 0, .fuel = 10000,
+                                      .ready_at_ticks = 0};
+    }
+    for (int k = 0; k < 9; k++) {
+        mission.targets[k] = (sva_target_t){.id = k + 1, .x = 1000 + k, .y = 1000, .start_ticks = 3000,
+                                            .end_ticks = 3010, .need = needs[k]};
+    }
+    mission.uav_count = (uint16_t)uavs;
+    mission.target_count = 9;
+    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    sva_diag_t d;
+    assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_SVA, &plan, &d), SVA_OK);
+    assert_int_equal(plan.status, SVA_PLAN_COMPLETE);
+    assert_int_equal(plan.covered, 9);
+    char msg[256];
+    assert_int_equal(spec_check_plan(&mission, &plan, msg, sizeof msg), 0);
+#endif
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_cleared_diag_formats_as_ok),
+        cmocka_unit_test(test_out_of_range_enums),
+        cmocka_unit_test(test_cluster_larger_than_the_tableau_is_chunked),
+        cmocka_unit_test(test_needs_lcm_overflow_falls_back),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

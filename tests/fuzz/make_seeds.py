@@ -1,0 +1,106 @@
+#!/usr/bin/env python3
+"""Writes the checked-in seed corpora of the fuzz targets (tests/fuzz/corpus/).
+
+Run from the repository root with the venv's Python after a build (the LCM seeds use
+the build's generated Python types):
+    SVA_LCM_PYTHON_TYPES=build/port/lcm/python PYTHONPATH=tools \\
+        .venv/bin/python tests/fuzz/make_seeds.py
+mission/  a few fixtures (valid and invalid) and hand-made edge missions;
+lcm/      fleet + mission messages in fuzz_lcm.c's record format;
+can/      frame records (fuzz_can.c's format) of whole plan transfers, built with the
+          DBC (cantools) and left to the harness's counter and CRC fix-up bits.
+"""
+import json
+import shutil
+import struct
+from pathlib import Path
+
+import cantools
+
+ROOT = Path(__file__).resolve().parents[2]
+OUT = ROOT / "tests" / "fuzz" / "corpus"
+
+
+def missions():
+    d = OUT / "mission"
+    d.mkdir(parents=True, exist_ok=True)
+    for name in ["hand_3_1", "hand_5_3", "rand_7_1", "rand_10_1", "rand_25_1"]:
+        shutil.copy(ROOT / "fixtures" / "missions" / f"{name}.json", d / f"{name}.json")
+    for name in ["duplicate_uav_id", "duplicate_key", "beyond_int32", "blank"]:
+        src = ROOT / "fixtures" / "invalid" / f"{name}.json"
+        if src.exists():
+            shutil.copy(src, d / f"invalid_{name}.json")
+    # Hand-made: a stranded UAV, late ready_at, hover fuel, slow cells, every default
+    # left out, and a UAV that starts away from the depot.
+    edge = {"name": "edge", "depot": {"x": -3, "y": 2}, "ticks_per_cell": 2, "hover_fuel": 3,
+            "overlap_percent": 0,
+            "uavs": [{"id": 4, "x": 40, "y": 40, "fuel": 10},
+                     {"id": 2, "x": -3, "y": 2, "fuel": 200, "ready_at": 5},
+                     {"id": 9, "x": 1, "y": 1, "fuel": 90}],
+            "targets": [{"id": 1, "x": 0, "y": 5, "start": 30, "end": 40, "need": 2},
+                        {"id": 7, "x": 2, "y": -4, "start": 35, "end": 60, "need": 1},
+                        {"id": 3, "x": -9, "y": 9, "start": 100, "end": 101, "need": 3}]}
+    (d / "edge.json").write_text(json.dumps(edge) + "\n")
+    (d / "defaults.json").write_text(json.dumps(
+        {"name": "d", "depot": {"x": 0, "y": 0}, "uavs": [], "targets": []}) + "\n")
+
+
+def lcm():
+    from sva_tools.lcm import wire
+    d = OUT / "lcm"
+    d.mkdir(parents=True, exist_ok=True)
+    for src in [ROOT / "tests" / "lcm" / "data" / "small_5x8.json",
+                ROOT / "fixtures" / "missions" / "hand_3_1.json"]:
+        _, fleet, mission = wire.mission_messages(json.loads(src.read_text()), 1, 1)
+        f, m = fleet.encode(), mission.encode()
+        # exact-size fleet, then exact-size mission with algorithm bits 0 (sva) / 3 (bfa)
+        (d / f"{src.stem}.bin").write_bytes(bytes([0x02]) + f + bytes([0x03]) + m)
+        (d / f"{src.stem}_bfa.bin").write_bytes(bytes([0x0E]) + f + bytes([0x0F]) + m)
+        # a raw (length-prefixed) mission cut short, then the fleet twice (unchanged)
+        (d / f"{src.stem}_raw.bin").write_bytes(
+            bytes([0x01]) + struct.pack("<H", 100) + m[:100] + bytes([0x02]) + f + bytes([0x02]) + f)
+
+
+def can():
+    db = cantools.database.load_file(str(ROOT / "port" / "can" / "sva.dbc"))
+    d = OUT / "can"
+    d.mkdir(parents=True, exist_ok=True)
+    sel = {"SVA_PLAN_ABORT": 0, "SVA_PLAN_BEGIN": 1, "SVA_PLAN_ITEM": 2, "SVA_PLAN_ITEM_TIME": 3,
+           "SVA_PLAN_COMMIT": 4, "SVA_PLAN_ACK": 5, "SVA_HEARTBEAT": 6}
+
+    def rec(msg, fields, fix=0x70, dt=1):
+        fields = dict(fields)
+        for sig in db.get_message_by_name(msg).signals:
+            fields.setdefault(sig.name, 0)
+        data = db.get_message_by_name(msg).encode(fields, strict=False)
+        return bytes([sel[msg] | fix, 0x08, dt]) + bytes(data)
+
+    def transfer(plan_id, items):
+        out = rec("SVA_PLAN_BEGIN", {"version": 1, "plan_id": plan_id, "item_count": len(items),
+                                     "algorithm": 0, "plan_status": 1, "route_count": 2})
+        for i, (uav, target, x, y, a, h) in enumerate(items):
+            out += rec("SVA_PLAN_ITEM", {"uav_id": uav, "target_id": target, "x": x, "y": y})
+            out += rec("SVA_PLAN_ITEM_TIME", {"item_seq": i % 16, "arrive_by": a, "hold_until": h})
+        out += rec("SVA_PLAN_COMMIT", {"plan_id": plan_id, "plan_crc": 0})
+        return out
+
+    items = [(1, 3, 5, 7, 12, 20), (2, 3, 5, 7, 12, 20), (1, 9, -4, 0, 30, 45)]
+    (d / "transfer.bin").write_bytes(transfer(5, items))
+    (d / "two_transfers.bin").write_bytes(transfer(5, items) + transfer(6, items[:1]))
+    # a transfer interrupted by an ABORT, a heartbeat and an ACK for the harness's sender
+    (d / "abort_ack.bin").write_bytes(
+        transfer(5, items)[:33] + rec("SVA_PLAN_ABORT", {"reason": 3, "plan_id": 5})
+        + rec("SVA_HEARTBEAT", {"state": 4, "active_plan_id": 5, "uav_count": 2,
+                                "target_count": 2, "covered_count": 2})
+        + rec("SVA_PLAN_ACK", {"result": 0, "plan_id": 7, "items_received": 1}, fix=0x20))
+    # a transfer that times out (255 * 16 ms between frames)
+    (d / "timeout.bin").write_bytes(transfer(8, items[:1]).replace(b"\x72\x08\x01", b"\x72\x08\xff", 1))
+
+
+if __name__ == "__main__":
+    missions()
+    lcm()
+    can()
+    for p in sorted(OUT.rglob("*")):
+        if p.is_file():
+            print(p.relative_to(ROOT), p.stat().st_size)
