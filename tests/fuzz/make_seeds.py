@@ -49,7 +49,7 @@ def lcm():
     from sva_tools.lcm import wire
     d = OUT / "lcm"
     d.mkdir(parents=True, exist_ok=True)
-    for src in [ROOT / "tests" / "lcm" / "data" / "small_5x8.json",
+    for src in [ROOT / "fixtures" / "missions" / "rand_7_2.json",
                 ROOT / "fixtures" / "missions" / "hand_3_1.json"]:
         _, fleet, mission = wire.mission_messages(json.loads(src.read_text()), 1, 1)
         f, m = fleet.encode(), mission.encode()

@@ -3,7 +3,9 @@ the wire types change; the log is committed as the golden input):
 
     PYTHONPATH=tools .venv/bin/python tests/lcm/make_golden_log.py
 
-Events on channel prefix GOLD_, in order: fleet (rev 1), truncated fleet, mission
+The mission is the bundled fixtures/missions/rand_7_2.json (a mid-mission fleet
+state: UAVs away from the depot, ready times, one stranded UAV). Events on channel
+prefix GOLD_, in order: fleet (rev 1), truncated fleet, mission
 (rev 1) -> plan 1; mission with a wrong fingerprint; mission with target_count 257;
 fleet with a UAV at x = 40000; the same mission again (unchanged); a fleet of rev 2
 with UAV 3 unavailable -> plan 2.
@@ -17,7 +19,7 @@ import lcm
 from sva_tools.lcm import wire
 
 here = Path(__file__).resolve().parent
-doc = json.loads((here / "data" / "small_5x8.json").read_text())
+doc = json.loads((here.parents[1] / "fixtures" / "missions" / "rand_7_2.json").read_text())
 _, fleet, mission = wire.mission_messages(doc, 1, 1)
 fb, mb = fleet.encode(), mission.encode()
 bad_fp = bytes([mb[0] ^ 0x80]) + mb[1:]

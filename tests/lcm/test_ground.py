@@ -6,11 +6,13 @@ import pytest
 
 from sva_tools.lcm import cli, wire
 
-DATA = Path(__file__).resolve().parent / "data"
+REPO = Path(__file__).resolve().parents[2]
+# A bundled mission with a mid-mission fleet state (UAVs away from the depot, ready times).
+SMALL = REPO / "fixtures" / "missions" / "rand_7_2.json"
 
 
 def small():
-    return json.loads((DATA / "small_5x8.json").read_text())
+    return json.loads(SMALL.read_text())
 
 
 def test_mission_round_trip_through_the_codec():
@@ -18,11 +20,14 @@ def test_mission_round_trip_through_the_codec():
     name, fleet, mission = wire.mission_messages(small(), 5, 6)
     f2 = t.fleet_state_t.decode(fleet.encode())
     m2 = t.mission_t.decode(mission.encode())
-    assert name == "lcm_small_5x8"
+    assert name == "rand_7_2"
     assert (f2.revision, m2.revision) == (5, 6)
     assert f2.uav_count == 5 and [u.id for u in f2.uavs[:5]] == [1, 2, 3, 4, 5]
-    assert m2.target_count == 8 and m2.targets[7].need == 6
-    assert m2.hover_fuel == 1 and m2.overlap_percent == 70
+    assert [(u.x, u.y, u.fuel, u.ready_at_ticks) for u in f2.uavs[:2]] == [(19, 1, 66, 10),
+                                                                          (19, 14, 67, 8)]
+    assert m2.target_count == 7 and (m2.targets[6].id, m2.targets[6].need) == (7, 2)
+    assert (m2.targets[6].start_ticks, m2.targets[6].end_ticks) == (44, 61)
+    assert m2.hover_fuel == 2 and m2.overlap_percent == 70
     assert len(fleet.encode()) == 1362 and len(mission.encode()) == 6182
 
 
@@ -42,7 +47,7 @@ def test_defaults_apply():
     (lambda d: d["depot"].update(x=2**31), "depot.x: must fit int32"),
     (lambda d: d.update(uavs=[{"id": i, "x": 0, "y": 0, "fuel": 1} for i in range(65)]),
      "uavs: 65 entries exceed SVA_MAX_UAVS (64)"),
-    (lambda d: d.update(targets=d["targets"] * 33), "exceed SVA_MAX_TARGETS (256)"),
+    (lambda d: d.update(targets=d["targets"] * 37), "exceed SVA_MAX_TARGETS (256)"),
 ])
 def test_bad_mission_files(edit, message):
     doc = small()
@@ -78,3 +83,21 @@ def test_cli_errors_without_network(tmp_path, capsys):
     assert "missing.json" in capsys.readouterr().err
     assert cli.main(["bogus"]) == 2
     assert cli.main(["--help"]) == 0
+
+
+def test_sva_tools_wrapper_dispatches_lcm(tmp_path):
+    """`tools/sva-tools lcm ...` (the repository wrapper and the installed entry point)
+    reaches sva_tools.lcm.cli.main: its own usage, its own errors and exit codes."""
+    import subprocess
+
+    wrapper = REPO / "tools" / "sva-tools"
+    r = subprocess.run([str(wrapper), "lcm", "--help"], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.startswith("usage: sva-tools lcm") and "{send,record,replay}" in r.stdout
+    r = subprocess.run([str(wrapper), "lcm", "send", str(tmp_path / "missing.json")],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2
+    assert r.stderr.startswith("sva-tools lcm send: ") and "missing.json" in r.stderr
+    r = subprocess.run([str(wrapper), "lcm", "send", str(SMALL), "--url", "memq://",
+                        "--timeout", "0.2"], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 3 and "no plan on SVA_PLAN" in r.stderr  # nobody answers on memq

@@ -1,7 +1,7 @@
 // Golden log replay over file://: the node reads tests/lcm/data/golden.lcmlog (made by
-// make_golden_log.py from small_5x8.json) and must answer with exactly the plans the
-// core makes from the same JSON (loaded here with jansson, independently of the
-// Python encoder), and count exactly the malformed events the log contains.
+// make_golden_log.py from fixtures/missions/rand_7_2.json) and must answer with exactly
+// the plans the core makes from the same JSON (loaded here with jansson, independently
+// of the Python encoder), and count exactly the malformed events the log contains.
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

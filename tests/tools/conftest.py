@@ -27,8 +27,8 @@ def write(tmp_path, name, doc):
 
 
 def sva_tools(*args, **kw):
-    """Runs `python -m sva_tools ARGS`; returns CompletedProcess (text)."""
-    env = dict(os.environ)
+    """Runs `python -m sva_tools ARGS` (env=... replaces os.environ); returns CompletedProcess (text)."""
+    env = dict(kw.pop("env", os.environ))
     env["PYTHONPATH"] = str(REPO / "tools") + os.pathsep + env.get("PYTHONPATH", "")
     return subprocess.run([sys.executable, "-m", "sva_tools", *map(str, args)],
                           capture_output=True, text=True, env=env, **kw)

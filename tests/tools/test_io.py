@@ -97,3 +97,24 @@ def test_bad_plan(tmp_path, key, value, message):
 def test_good_files_accepted(tmp_path):
     r = sva_tools("check", write(tmp_path, "m.json", GOOD), write(tmp_path, "p.json", PLAN))
     assert r.returncode == 0, r.stdout + r.stderr
+
+
+def test_highspy_is_neither_pinned_nor_imported():
+    """IH uses the HiGHS inside ortools; the highspy wheel ships a clashing
+    libhighs.so.1 (docs/tools.md), so it must not come back."""
+    import importlib
+    import pkgutil
+    import sys
+    from pathlib import Path
+
+    import sva_tools
+
+    repo = Path(__file__).resolve().parents[2]
+    assert "highspy" not in (repo / "requirements.txt").read_text()
+    assert "highspy" not in (repo / "tools" / "pyproject.toml").read_text()
+    names = [m.name for m in pkgutil.walk_packages(sva_tools.__path__, "sva_tools.")
+             if not m.name.endswith("__main__")]
+    assert "sva_tools.solvers" in names and "sva_tools.ih" in names
+    for name in names:
+        importlib.import_module(name)
+    assert "highspy" not in sys.modules

@@ -66,6 +66,26 @@ def plan(mission_path: str, algo: str, trace: bool = False, timeout: float = 600
             tdir.cleanup()
 
 
+_PROBE_MISSION = {"name": "probe", "depot": {"x": 0, "y": 0},
+                  "uavs": [{"id": 1, "x": 0, "y": 0, "fuel": 10}],
+                  "targets": [{"id": 1, "x": 1, "y": 1, "start": 5, "end": 6, "need": 1}]}
+_known: dict = {}
+
+
+def algorithm_available(algo: str) -> Optional[str]:
+    """None when `sva plan --algo ALGO` plans (a one-target probe mission), else the
+    CLI's answer (e.g. an algorithm this build of the C CLI does not know yet)."""
+    if algo not in _known:
+        with tempfile.TemporaryDirectory(prefix="sva-probe-") as d:
+            path = os.path.join(d, "probe.json")
+            io.write_json(_PROBE_MISSION, path)
+            r = plan(path, algo, timeout=60)
+        lines = r.stderr.strip().splitlines()
+        _known[algo] = None if r.status == 0 else (
+            f"`sva plan --algo {algo}` exit {r.status}: {lines[-1] if lines else ''}")
+    return _known[algo]
+
+
 def plan_mission(m: M.Mission, algo: str, trace: bool = False, timeout: float = 600) -> CResult:
     with tempfile.TemporaryDirectory(prefix="sva-m-") as d:
         path = os.path.join(d, "mission.json")

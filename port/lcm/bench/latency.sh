@@ -2,15 +2,21 @@
 # End-to-end latency of the LCM link: mission published (ground) -> plan received
 # (ground), over real udpm multicast in a private network namespace (root needed).
 #   port/lcm/bench/latency.sh [ROUNDS] [MISSION.json] [ALGORITHM]
-# Defaults: 500 rounds, tests/lcm/data/bench_25x5.json (25 targets, 5 UAVs), sva.
-# Prints median, p90, p99 and max in microseconds, and the node's solve time.
+# Defaults: 500 rounds, fixtures/missions/rand_25_1.json (25 targets, 5 UAVs), sva.
+# Environment:
+#   NODE_OPTS="--rt-priority 20 --mlock"   extra sva_node options (docs/lcm.md, Latency)
+#   GROUND_RT=20                           run the ground process under SCHED_FIFO 20
+# Prints median, p90, p99 and max in microseconds, split at the node's plan timestamp,
+# and the node's solve time.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)
 rounds=${1:-500}
-mission=${2:-$root/tests/lcm/data/bench_25x5.json}
+mission=${2:-$root/fixtures/missions/rand_25_1.json}
 algo=${3:-sva}
 node="$root/build/bin/sva_node"
 [ -x "$node" ] || { echo "latency.sh: build first (scripts/build.sh): no $node" >&2; exit 2; }
+ground=()
+if [ -n "${GROUND_RT:-}" ]; then ground=(chrt -f "$GROUND_RT"); fi
 ns="sva-lcm-bench-$$"
 cleanup() {
     [ -n "${pid:-}" ] && kill -TERM "$pid" 2>/dev/null && wait "$pid" 2>/dev/null || true
@@ -20,8 +26,11 @@ trap cleanup EXIT INT TERM
 ip netns add "$ns"
 ip -n "$ns" link set lo up multicast on
 ip -n "$ns" route add 224.0.0.0/4 dev lo
-ip netns exec "$ns" "$node" --prefix BENCH_ --algorithm "$algo" 2>/dev/null &
+# shellcheck disable=SC2086  # NODE_OPTS is a list of options
+ip netns exec "$ns" "$node" --prefix BENCH_ --algorithm "$algo" ${NODE_OPTS:-} 2>/dev/null &
 pid=$!
 sleep 0.3
-ip netns exec "$ns" env PYTHONPATH="$root/tools" SVA_LCM_PYTHON_TYPES="$root/build/port/lcm/python" \
+kill -0 "$pid" 2>/dev/null || { echo "latency.sh: sva_node did not start (options: ${NODE_OPTS:-none})" >&2; exit 1; }
+echo "node options: ${NODE_OPTS:-none}; ground: ${GROUND_RT:+SCHED_FIFO }${GROUND_RT:-normal}; load: $(cut -d' ' -f1-3 /proc/loadavg)"
+ip netns exec "$ns" "${ground[@]}" env PYTHONPATH="$root/tools" SVA_LCM_PYTHON_TYPES="$root/build/port/lcm/python" \
     "$root/.venv/bin/python" "$root/port/lcm/bench/latency.py" "$mission" "$rounds"

@@ -2,10 +2,12 @@
 // plans and a 1 Hz status out. One thread calls lcm_handle_timeout in a loop (LCM
 // requires a single handling thread); SIGINT/SIGTERM end the loop cleanly.
 #include <errno.h>
+#include <sched.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <time.h>
 
 #include "sva/sva_lcm.h"
@@ -57,6 +59,9 @@ static void usage(FILE* out)
             "  -a, --algorithm NAME   sva, ga, hga, bfa or flow (default sva)\n"
             "  -s, --status-ms MS     status period in milliseconds (default 1000)\n"
             "  -e, --exit-on-eof      stop when the provider ends (file:// logs)\n"
+            "  -r, --rt-priority N    run under SCHED_FIFO priority N (1..99), LCM's receive\n"
+            "                         thread included (needs CAP_SYS_NICE or RLIMIT_RTPRIO)\n"
+            "  -m, --mlock            lock every page in RAM (mlockall current and future)\n"
             "  -h, --help             this text\n",
             RECV_BUF_BYTES);
 }
@@ -76,6 +81,27 @@ static int build_url(const char* in, char* out, size_t size)
 
 static sva_lcm_node_t node;
 
+// Real-time setup, before lcm_create: threads created later (LCM's udpm receive thread)
+// inherit the calling thread's policy. Returns 0, or 1 after printing why it failed.
+static int realtime_setup(long rt_priority, int lock_memory)
+{
+    if (rt_priority > 0) {
+        struct sched_param sp;
+        memset(&sp, 0, sizeof sp);
+        sp.sched_priority = (int)rt_priority;
+        if (sched_setscheduler(0, SCHED_FIFO, &sp) != 0) {
+            fprintf(stderr, "sva_node: --rt-priority: sched_setscheduler(SCHED_FIFO, %ld): %s\n",
+                    rt_priority, strerror(errno));
+            return 1;
+        }
+    }
+    if (lock_memory && (mlockall(MCL_CURRENT | MCL_FUTURE) != 0)) {
+        fprintf(stderr, "sva_node: --mlock: mlockall: %s\n", strerror(errno));
+        return 1;
+    }
+    return 0;
+}
+
 static void send_status(void)
 {
     if (sva_lcm_publish_status(&node, realtime_us()) != SVA_OK) {
@@ -90,6 +116,8 @@ int main(int argc, char** argv)
     const char* prefix = DEFAULT_PREFIX;
     const char* algo_name = "sva";
     long status_ms = 1000;
+    long rt_priority = 0;
+    int lock_memory = 0;
     int exit_on_eof = 0;
     for (int i = 1; i < argc; ++i) {
         const char* a = argv[i];
@@ -113,6 +141,18 @@ int main(int argc, char** argv)
                         argv[i]);
                 return 2;
             }
+        } else if (((strcmp(a, "-r") == 0) || (strcmp(a, "--rt-priority") == 0)) && has_value) {
+            char* end = NULL;
+            errno = 0;
+            rt_priority = strtol(argv[++i], &end, 10);
+            if ((errno != 0) || (end == argv[i]) || (*end != '\0') || (rt_priority < 1) ||
+                (rt_priority > 99)) {
+                fprintf(stderr, "sva_node: --rt-priority: must be an integer in [1, 99], got '%s'\n",
+                        argv[i]);
+                return 2;
+            }
+        } else if ((strcmp(a, "-m") == 0) || (strcmp(a, "--mlock") == 0)) {
+            lock_memory = 1;
         } else if ((strcmp(a, "-e") == 0) || (strcmp(a, "--exit-on-eof") == 0)) {
             exit_on_eof = 1;
         } else {
@@ -138,6 +178,9 @@ int main(int argc, char** argv)
         return 2;
     }
 
+    if (realtime_setup(rt_priority, lock_memory) != 0) {
+        return 1;
+    }
     lcm_t* lcm = lcm_create(url);
     if (lcm == NULL) {
         fprintf(stderr, "sva_node: lcm_create(\"%s\") failed (for udpm: is there a multicast route?)\n",
@@ -160,9 +203,10 @@ int main(int argc, char** argv)
     (void)sigaction(SIGINT, &sa, NULL);
     (void)sigaction(SIGTERM, &sa, NULL);
 
-    fprintf(stderr, "sva_node: in %s %s, out %s %s; algorithm %s; %s\n", node.channel_fleet,
+    fprintf(stderr, "sva_node: in %s %s, out %s %s; algorithm %s; %s%s%s\n", node.channel_fleet,
             node.channel_mission, node.channel_plan, node.channel_status,
-            sva_algorithm_name(algorithm), url);
+            sva_algorithm_name(algorithm), url, (rt_priority > 0) ? "; SCHED_FIFO" : "",
+            lock_memory ? "; memory locked" : "");
     send_status();
     int64_t next_status = monotonic_ms() + status_ms;
     int rc = 0;

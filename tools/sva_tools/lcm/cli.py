@@ -100,15 +100,32 @@ def _send(args) -> int:
 
 
 def _run(argv: list[str]) -> int:
+    """Runs an LCM program in the foreground. SIGINT and SIGTERM sent to this process
+    are passed on to it (a signal sent to this process alone, not to its process group,
+    must not leave lcm-logger running); it then ends as after a Ctrl-C: status 0."""
+    import signal
     import subprocess
 
     try:
-        return subprocess.run(argv).returncode and 4
-    except (OSError, FileNotFoundError) as e:
+        proc = subprocess.Popen(argv)
+    except OSError as e:
         print(f"sva-tools lcm: {argv[0]}: {e}", file=sys.stderr)
         return 4
-    except KeyboardInterrupt:
+    stopped = []
+
+    def forward(signum, frame):
+        stopped.append(signum)
+        proc.send_signal(signum)
+
+    old = {s: signal.signal(s, forward) for s in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        rc = proc.wait()
+    finally:
+        for s, h in old.items():
+            signal.signal(s, h)
+    if stopped:
         return 0
+    return 4 if rc != 0 else 0
 
 
 def main(argv: list[str]) -> int:

@@ -186,8 +186,7 @@ def plan_document(plan, mission_name: str) -> dict:
         "cost": plan.cost,
         "routes": routes,
     }
-    if stranded:
-        doc["stranded"] = stranded
+    doc["stranded"] = stranded  # always, as the CLI writes it (SPEC section 3)
     doc["stats"] = {"plan_id": plan.plan_id, "solve_us": plan.solve_us,
                     "fleet_revision": plan.fleet_revision,
                     "mission_revision": plan.mission_revision}
