@@ -20,12 +20,6 @@
 #include "sva_internal.h"
 
 enum { BRANCH_TARGET = 1U, BRANCH_ROUTE = 2U };
-enum {
-    INCOMPLETE_NONE = 0U,
-    INCOMPLETE_WORK = SVA_FLOW_INCOMPLETE_WORK,
-    INCOMPLETE_DEPTH = SVA_FLOW_INCOMPLETE_DEPTH,
-    INCOMPLETE_REWARD = SVA_FLOW_INCOMPLETE_REWARD,
-};
 
 static uint32_t find_arc(const sva_flow_work_t* w, uint16_t tail, uint16_t head)
 {
@@ -127,7 +121,18 @@ static bool choose_branch(sva_planner_priv_t* priv, const sva_mission_t* m, cons
     return false;
 }
 
-// The plans of ga and sva as the first incumbents (observer silenced, stats kept).
+// sva's plan into *plan (from a reset state) without the caller's observer: it is
+// flow's working material, not a plan the caller asked for.
+static bool run_sva_quietly(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan)
+{
+    const sva_tp_observer_t observer = self->on_transport;
+    self->on_transport = NULL;
+    const bool ok = sva_run_pipeline(self, m, SVA_ALGO_SVA, plan) == SVA_OK;
+    self->on_transport = observer;
+    return ok;
+}
+
+// The plans of ga and sva as the first incumbents (stats kept).
 static void seed(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan)
 {
     sva_planner_priv_t* priv = &self->priv;
@@ -135,12 +140,9 @@ static void seed(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan)
     sva_run_ga(priv, m, plan);
     (void)sva_flow_offer_plan(priv, m, plan);
     sva_state_reset(priv, m, plan);
-    const sva_tp_observer_t observer = self->on_transport;
-    self->on_transport = NULL;
-    if (sva_run_pipeline(self, m, SVA_ALGO_SVA, plan) == SVA_OK) {
+    if (run_sva_quietly(self, m, plan)) {
         (void)sva_flow_offer_plan(priv, m, plan);
     }
-    self->on_transport = observer;
     sva_state_reset(priv, m, plan);
     plan->stats = kept;
 }
@@ -164,7 +166,7 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
         // Cannot happen: every UAV that is not stranded may fly home, and the root
         // forces nothing. Claim nothing if it does.
         SVA_ASSERT(false);
-        *incomplete = (uint8_t)INCOMPLETE_DEPTH;
+        *incomplete = (uint8_t)SVA_FLOW_INCOMPLETE_DEPTH;
         return INT64_MIN / 4;
     }
     if (w->value >= w->inc_value) {
@@ -192,7 +194,7 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
                     open = min64(open, w->stack[d].bound);
                 }
             }
-            *incomplete = (uint8_t)INCOMPLETE_WORK;
+            *incomplete = (uint8_t)SVA_FLOW_INCOMPLETE_WORK;
             break;
         }
         // Route frames try the longest kept prefix first: the plan that drops the
@@ -213,7 +215,7 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
         }
         if (w->depth >= (uint16_t)SVA_FLOW_MAX_DEPTH) {
             open = min64(open, w->value);
-            *incomplete = (uint8_t)INCOMPLETE_DEPTH;
+            *incomplete = (uint8_t)SVA_FLOW_INCOMPLETE_DEPTH;
             continue;
         }
         if (choose_branch(priv, m, plan, &w->stack[w->depth])) {
@@ -236,10 +238,7 @@ static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* p
     const uint16_t ga_covered = plan->covered;
     const int64_t ga_cost = plan->cost;
     sva_state_reset(priv, m, plan);
-    const sva_tp_observer_t observer = self->on_transport;
-    self->on_transport = NULL;
-    bool use_ga = sva_run_pipeline(self, m, SVA_ALGO_SVA, plan) != SVA_OK;
-    self->on_transport = observer;
+    bool use_ga = !run_sva_quietly(self, m, plan);
     if (!use_ga) {
         sva_plan_finish(priv, m, plan);
         use_ga = (ga_covered > plan->covered) || ((ga_covered == plan->covered) && (ga_cost < plan->cost));
@@ -268,7 +267,7 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     w->has_inc = false;
     w->work = 0U;
     seed(self, m, plan);
-    uint8_t incomplete = w->reward_exact ? (uint8_t)INCOMPLETE_NONE : (uint8_t)INCOMPLETE_REWARD;
+    uint8_t incomplete = w->reward_exact ? (uint8_t)SVA_FLOW_COMPLETE : (uint8_t)SVA_FLOW_INCOMPLETE_REWARD;
     uint64_t budget = self->flow_max_work;
     budget = (budget < 1000U) ? 1000U : budget;
     budget = (budget > (uint64_t)SVA_FLOW_MAX_WORK) ? (uint64_t)SVA_FLOW_MAX_WORK : budget;
@@ -294,7 +293,7 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     bound = (bound < 0) ? 0 : bound;
     stats->has_bound = true;
     stats->lower_bound = (bound > cost) ? cost : bound;
-    stats->optimal = (incomplete == (uint8_t)INCOMPLETE_NONE) && (open == INT64_MAX);
+    stats->optimal = (incomplete == (uint8_t)SVA_FLOW_COMPLETE) && (open == INT64_MAX);
     stats->flow_incomplete = incomplete;
     stats->flow_work = w->work;
     return SVA_OK;

@@ -28,20 +28,6 @@ static void leg_ends(const sva_mission_t* m, uint16_t u, const sva_route_t* r, u
     }
 }
 
-static int64_t route_cells(const sva_mission_t* m, uint16_t u, const sva_route_t* r)
-{
-    int32_t x = m->uavs[u].x;
-    int32_t y = m->uavs[u].y;
-    int64_t cells = 0;
-    for (uint16_t k = 0U; k < r->target_count; k++) {
-        const sva_target_t* t = &m->targets[r->targets[k]];
-        cells += sva_distance(x, y, t->x, t->y);
-        x = t->x;
-        y = t->y;
-    }
-    return cells + sva_distance(x, y, m->depot_x, m->depot_y);
-}
-
 static bool route_fits(const sva_mission_t* m, uint16_t u, int64_t cells, uint32_t targets)
 {
     return (targets <= (uint32_t)SVA_MAX_ROUTE_TARGETS) &&
@@ -74,7 +60,7 @@ static int64_t plan_value(const sva_planner_priv_t* priv, const sva_mission_t* m
     int64_t value = 0;
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         if (!plan->routes[u].stranded) {
-            value += route_cells(m, u, &plan->routes[u]);
+            value += sva_route_cells(m, u, &plan->routes[u]);
         }
     }
     for (uint16_t t = 0U; t < m->target_count; t++) {
@@ -148,7 +134,7 @@ static void remove_target(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
         }
         if (kept != r->target_count) {
             r->target_count = kept;
-            priv->flow.route_cells[u] = route_cells(m, u, r);
+            priv->flow.route_cells[u] = sva_route_cells(m, u, r);
         }
     }
     priv->target_served[t] = 0U;
@@ -271,7 +257,7 @@ static void remove_at(const sva_mission_t* m, sva_flow_work_t* w, sva_route_t* r
         r->targets[j] = r->targets[j + 1U];
     }
     r->target_count--;
-    w->route_cells[u] = route_cells(m, u, r);
+    w->route_cells[u] = sva_route_cells(m, u, r);
 }
 
 // Cheapest UAV other than `skip` that can take single-UAV target t; -1 if none.
@@ -320,7 +306,7 @@ static bool eject_for(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
             w->insert_pos[u] = k;
             w->insert_delta[u] = 0;
             insert_at(w, r, u, s);
-            w->route_cells[u] = route_cells(m, u, r);
+            w->route_cells[u] = sva_route_cells(m, u, r);
         }
     }
     return false;
@@ -345,7 +331,7 @@ void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t
             r->targets[k] = w->copy_target[r->targets[k]];
             priv->target_served[r->targets[k]]++;
         }
-        w->route_cells[u] = route_cells(m, u, r);
+        w->route_cells[u] = sva_route_cells(m, u, r);
     }
     for (uint16_t t = 0U; t < m->target_count; t++) {
         if ((priv->target_served[t] > 0U) && ((int32_t)priv->target_served[t] < m->targets[t].need)) {

@@ -75,6 +75,20 @@ void sva_commit(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan
     priv->target_served[target]++;
 }
 
+int64_t sva_route_cells(const sva_mission_t* mission, uint16_t uav, const sva_route_t* route)
+{
+    int32_t x = mission->uavs[uav].x;
+    int32_t y = mission->uavs[uav].y;
+    int64_t cells = 0;
+    for (uint16_t k = 0U; k < route->target_count; k++) {
+        const sva_target_t* t = &mission->targets[route->targets[k]];
+        cells += sva_distance(x, y, t->x, t->y);
+        x = t->x;
+        y = t->y;
+    }
+    return cells + sva_distance(x, y, mission->depot_x, mission->depot_y);
+}
+
 // Routes get their legs summed from the mission's start positions (not the state),
 // so the figures are recomputed from the route itself.
 void sva_plan_finish(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan)
@@ -85,16 +99,7 @@ void sva_plan_finish(sva_planner_priv_t* priv, const sva_mission_t* mission, sva
         if (route->stranded) {
             continue;
         }
-        int32_t x = mission->uavs[u].x;
-        int32_t y = mission->uavs[u].y;
-        int64_t cells = 0;
-        for (uint16_t k = 0U; k < route->target_count; k++) {
-            const sva_target_t* t = &mission->targets[route->targets[k]];
-            cells += sva_distance(x, y, t->x, t->y);
-            x = t->x;
-            y = t->y;
-        }
-        cells += sva_distance(x, y, mission->depot_x, mission->depot_y);
+        const int64_t cells = sva_route_cells(mission, u, route);
         route->distance_cells = cells;
         route->fuel_used = cells + ((int64_t)mission->hover_fuel * (int64_t)route->target_count);
         plan->cost += cells;

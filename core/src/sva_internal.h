@@ -59,6 +59,8 @@ int64_t sva_insertion_cells(const sva_planner_priv_t* priv, const sva_mission_t*
                             uint16_t uav, uint16_t target);
 void sva_commit(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan,
                 uint16_t uav, uint16_t target);
+/// Cells flown by `route` from the UAV's mission position, return leg included.
+int64_t sva_route_cells(const sva_mission_t* mission, uint16_t uav, const sva_route_t* route);
 void sva_plan_finish(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan);
 
 // transport.c: build one problem from a chunk of a cluster, commit its flow.
@@ -79,6 +81,7 @@ void sva_hga_solve(sva_hga_work_t* work, sva_tp_t* tp, sva_stats_t* stats);
 // flow_graph.c, flow_ssp.c, flow_repair.c: flow's graph, relaxation and plans.
 /// flow's reasons to stop short (sva_stats_t.flow_incomplete).
 enum {
+    SVA_FLOW_COMPLETE = 0,           ///< the search finished
     SVA_FLOW_INCOMPLETE_WORK = 1,    ///< past the work budget
     SVA_FLOW_INCOMPLETE_DEPTH = 2,   ///< a node deeper than SVA_FLOW_MAX_DEPTH
     SVA_FLOW_INCOMPLETE_REWARD = 3,  ///< needs' lcm too large for exact cost ties
