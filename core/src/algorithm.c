@@ -5,7 +5,7 @@ static const char* const algorithm_names[SVA_ALGO_COUNT_] = {"sva", "ga", "hga",
 
 const char* sva_algorithm_name(sva_algorithm_t algorithm)
 {
-    if (((int)algorithm < 0) || ((int)algorithm >= (int)SVA_ALGO_COUNT_)) {
+    if ((unsigned)algorithm >= (unsigned)SVA_ALGO_COUNT_) {
         return "";
     }
     return algorithm_names[algorithm];

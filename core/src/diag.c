@@ -31,7 +31,7 @@ const char* sva_field_name(sva_field_t field)
         "targets",          "targets.id",     "targets.x",      "targets.y",
         "targets.start",    "targets.end",    "targets.need",
     };
-    if (((int)field < 0) || ((int)field >= (int)SVA_FIELD_COUNT_)) {
+    if ((unsigned)field >= (unsigned)SVA_FIELD_COUNT_) {
         return "";
     }
     return names[field];

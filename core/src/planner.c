@@ -31,9 +31,10 @@ sva_status_t sva_plan(sva_planner_t* self, const sva_mission_t* mission,
                       sva_algorithm_t algorithm, sva_plan_t* plan, sva_diag_t* diag)
 {
     SVA_ASSERT((self != NULL) && (mission != NULL) && (plan != NULL));
-    SVA_ASSERT(((int)algorithm >= 0) && ((int)algorithm < (int)SVA_ALGO_COUNT_));
-    if ((self == NULL) || (mission == NULL) || (plan == NULL) || ((int)algorithm < 0) ||
-        ((int)algorithm >= (int)SVA_ALGO_COUNT_)) {
+    SVA_ASSERT((unsigned)algorithm < (unsigned)SVA_ALGO_COUNT_);
+    // Unsigned: enums may be unsigned (short enums on AAPCS), and a negative value wraps high.
+    if ((self == NULL) || (mission == NULL) || (plan == NULL) ||
+        ((unsigned)algorithm >= (unsigned)SVA_ALGO_COUNT_)) {
         return SVA_ERR_ARGUMENT;
     }
     plan_clear(plan, algorithm);

@@ -32,7 +32,7 @@ static const char* const reject_names[SVA_LCM_REJECT_COUNT_] = {
 
 const char* sva_lcm_reject_name(sva_lcm_reject_t reason)
 {
-    if (((int)reason < 0) || ((int)reason >= (int)SVA_LCM_REJECT_COUNT_)) {
+    if ((unsigned)reason >= (unsigned)SVA_LCM_REJECT_COUNT_) {
         return "";
     }
     return reject_names[reason];
@@ -59,7 +59,7 @@ sva_status_t sva_lcm_node_init(sva_lcm_node_t* self, lcm_t* lcm, const char* pre
                                sva_algorithm_t algorithm)
 {
     if ((self == NULL) || (prefix == NULL) || (strlen(prefix) > SVA_LCM_PREFIX_MAX) ||
-        ((int)algorithm < 0) || ((int)algorithm >= (int)SVA_ALGO_COUNT_)) {
+        ((unsigned)algorithm >= (unsigned)SVA_ALGO_COUNT_)) {
         return SVA_ERR_ARGUMENT;
     }
     memset(self, 0, sizeof(*self));
