@@ -6,6 +6,8 @@ import importlib
 import sys
 from typing import List, Optional
 
+from . import io
+
 SUBCOMMANDS = ("gen", "check", "ref", "ih", "peer", "bench", "plot")
 
 
@@ -34,6 +36,8 @@ def main(argv: Optional[List[str]] = None) -> int:
     args = ap.parse_args(argv)
     try:
         return int(args.func(args))
+    except io.InputError as e:  # a bad mission or plan file (SPEC 4): one line, exit 2
+        return io.fail(e.path or args.command, e)
     except KeyboardInterrupt:
         return 130
     except BrokenPipeError:

@@ -282,10 +282,7 @@ def run(args) -> int:
         from . import cbin
         cv = CompareVerdict()
         for path in _mission_paths(args.inputs):
-            try:
-                m = io.load_mission(path)
-            except io.InputError as e:
-                return io.fail(path, e)
+            m = io.load_mission(path)
             try:
                 compare_mission(m, cv)
             except cbin.CliMissing as e:
@@ -302,10 +299,7 @@ def run(args) -> int:
     if len(args.inputs) != 1:
         print("sva-tools: error: ih plans one mission at a time", file=sys.stderr)
         return 2
-    try:
-        m = io.load_mission(args.inputs[0])
-    except io.InputError as e:
-        return io.fail(args.inputs[0], e)
+    m = io.load_mission(args.inputs[0])
     recs: List[TpRecord] = []
     p = plan_ih(m, recs)
     if args.trace:

@@ -16,7 +16,12 @@ from . import model as M
 
 
 class InputError(Exception):
-    """A mission or plan file breaks SPEC section 3/4. str() is the one-line message."""
+    """A mission or plan file breaks SPEC section 3/4. str() is the one-line message;
+    `path` names the file when it came from load_mission/load_plan."""
+
+    def __init__(self, message: str, path: Optional[str] = None):
+        super().__init__(message)
+        self.path = path
 
 
 def _no_duplicates(pairs):
@@ -162,12 +167,22 @@ def plan_from_json(doc: Any) -> M.Plan:
                   stats, stranded)
 
 
+def _load(path: str, parse):
+    try:
+        return parse(read_json(path))
+    except InputError as e:
+        e.path = path
+        raise
+
+
 def load_mission(path: str) -> M.Mission:
-    return mission_from_json(read_json(path))
+    """The mission in `path`; InputError (with .path) on any SPEC 3/4 breach. The
+    `sva-tools` entry point turns an uncaught one into the SPEC 4 message, exit 2."""
+    return _load(path, mission_from_json)
 
 
 def load_plan(path: str) -> M.Plan:
-    return plan_from_json(read_json(path))
+    return _load(path, plan_from_json)
 
 
 def write_json(doc: Any, path: Optional[str]) -> None:

@@ -160,10 +160,7 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    try:
-        m = io.load_mission(args.mission)
-    except io.InputError as e:
-        return io.fail(args.mission, e)
+    m = io.load_mission(args.mission)
     p = solve_peer(m, args.solution_limit, args.time_limit, args.hard_all_or_none)
     io.write_json(p.to_json(), args.out)
     return 0

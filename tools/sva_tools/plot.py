@@ -119,14 +119,8 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    try:
-        m = io.load_mission(args.mission)
-    except io.InputError as e:
-        return io.fail(args.mission, e)
-    try:
-        p = io.load_plan(args.plan)
-    except io.InputError as e:
-        return io.fail(args.plan, e)
+    m = io.load_mission(args.mission)
+    p = io.load_plan(args.plan)
     out = args.out or (args.plan[:-5] if args.plan.endswith(".json") else args.plan) + ".png"
     render(m, p, out)
     print(out)

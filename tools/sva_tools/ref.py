@@ -186,10 +186,7 @@ def add_parser(sub) -> None:
 
 
 def run(args) -> int:
-    try:
-        m = io.load_mission(args.mission)
-    except io.InputError as e:
-        return io.fail(args.mission, e)
+    m = io.load_mission(args.mission)
     if args.bound:
         io.write_json(fuel_free_bound(m), args.out)
         return 0
