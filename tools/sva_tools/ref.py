@@ -7,9 +7,15 @@ boolean per feasible first target, per feasible pair, per last target and one fo
 "serves nothing"; flow conservation per UAV and target; fuel (legs + hover per target)
 within the UAV's fuel; z_t <=> exactly need UAVs serve t, otherwise none (SPEC 1).
 Two solves: maximise sum(z), then fix it and minimise the sum of route distances.
+Limits are repeatable: one CP-SAT worker and a deterministic time limit (--det-limit,
+CP-SAT's max_deterministic_time, a count of work, not seconds) shared by both solves,
+so the result does not depend on machine load; --time-limit is a wall-clock safety net
+that a normal run does not reach.
 stats: "optimal" (both solves proven optimal), "feasible" (a plan was found),
 "lower_bound" (proven lower bound on the cost at the covered count found; equals the
-cost when optimal), "covered_upper_bound" (proven bound on coverage).
+cost when optimal), "covered_upper_bound" (proven bound on coverage),
+"deterministic_time" (used) and "det_limit", "stopped_by": proven, det_limit or
+time_limit (the safety net: that result is not repeatable).
 
 `ref --bound MISSION`: the fuel-free lower bound. A min-cost flow (OR-tools
 SimpleMinCostFlow) over the time-feasibility graph: each UAV sends one unit from its
@@ -28,6 +34,11 @@ from typing import Dict, List, Optional, Tuple
 from . import io
 from . import model as M
 
+# CP-SAT deterministic time for both solves (docs/tools.md: how it was chosen) and the
+# wall-clock safety net, which a normal run never reaches.
+DET_LIMIT = 10.0
+SAFETY_TIME_LIMIT = 600.0
+
 
 def _dag(m: M.Mission):
     ts = m.targets
@@ -36,7 +47,11 @@ def _dag(m: M.Mission):
     return follow
 
 
-def solve_ref(m: M.Mission, time_limit: float = 30.0, workers: int = 1) -> M.Plan:
+def solve_ref(m: M.Mission, time_limit: float = SAFETY_TIME_LIMIT, workers: int = 1,
+              det_limit: float = DET_LIMIT) -> M.Plan:
+    """Both solves share det_limit (CP-SAT deterministic time, a work count: with one
+    worker the result does not depend on machine load); time_limit (seconds, wall
+    clock) is a safety net only, and stats.stopped_by says when it was hit."""
     from ortools.sat.python import cp_model  # imported here: keeps start-up fast
 
     t0 = time.perf_counter()
@@ -89,11 +104,17 @@ def solve_ref(m: M.Mission, time_limit: float = 30.0, workers: int = 1) -> M.Pla
         uav_vars.append((first, pair, x))
     for k, t in enumerate(ts):
         model.Add(sum(serve[k]) == t.need * z[k])
-    solver = cp_model.CpSolver()
-    solver.parameters.num_workers = workers
-    solver.parameters.max_time_in_seconds = time_limit
+    def make_solver(det: float, wall: float):
+        sol = cp_model.CpSolver()
+        sol.parameters.num_workers = workers
+        sol.parameters.max_deterministic_time = det
+        sol.parameters.max_time_in_seconds = wall
+        return sol
+
+    solver = make_solver(det_limit, time_limit)
     model.Maximize(sum(z))
     st1 = solver.Solve(model)
+    det_used = solver.deterministic_time
     feasible = st1 in (cp_model.OPTIMAL, cp_model.FEASIBLE)
     optimal1 = st1 == cp_model.OPTIMAL
     cov_ub = int(round(solver.BestObjectiveBound())) if feasible else nt
@@ -106,11 +127,13 @@ def solve_ref(m: M.Mission, time_limit: float = 30.0, workers: int = 1) -> M.Pla
             model.AddHint(z[k], solver.Value(z[k]))
         model.Add(sum(z) == best)
         model.Minimize(sum(c * v for c, v in cost_terms))
-        left = max(1.0, time_limit - (time.perf_counter() - t0))
-        solver2 = cp_model.CpSolver()
-        solver2.parameters.num_workers = workers
-        solver2.parameters.max_time_in_seconds = left
+        # The second solve gets what the first left of det_limit, and at least a
+        # tenth of it (deterministic either way).
+        left = max(0.1 * det_limit, det_limit - det_used)
+        wall_left = max(1.0, time_limit - (time.perf_counter() - t0))
+        solver2 = make_solver(left, wall_left)
         st2 = solver2.Solve(model)
+        det_used += solver2.deterministic_time
         if st2 in (cp_model.OPTIMAL, cp_model.FEASIBLE):
             solver = solver2
             optimal = optimal1 and st2 == cp_model.OPTIMAL
@@ -128,11 +151,20 @@ def solve_ref(m: M.Mission, time_limit: float = 30.0, workers: int = 1) -> M.Pla
                 seq.append(ts[cur].id)
                 cur = next((b for (a, b), v in pair.items() if a == cur and solver.Value(v)), None)
             assignment[u.id] = seq
-    us = int((time.perf_counter() - t0) * 1e6)
+    elapsed = time.perf_counter() - t0
+    us = int(elapsed * 1e6)
     p = M.make_plan(m, "ref", assignment, None)
+    if optimal:
+        stopped = "proven"
+    elif elapsed >= 0.98 * time_limit:
+        stopped = "time_limit"  # the wall-clock safety net: this result is not repeatable
+    else:
+        stopped = "det_limit"
     stats = {"optimal": bool(optimal), "feasible": bool(feasible),
              "lower_bound": lower if lower is not None else 0,
-             "covered_upper_bound": cov_ub, "solve_us": us}
+             "covered_upper_bound": cov_ub, "solve_us": us,
+             "det_limit": det_limit, "deterministic_time": round(det_used, 3),
+             "stopped_by": stopped}
     p.stats = stats
     return p
 
@@ -179,7 +211,12 @@ def add_parser(sub) -> None:
                         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("mission")
     ap.add_argument("--bound", action="store_true", help="print the fuel-free min-cost-flow bound")
-    ap.add_argument("--time-limit", type=float, default=30.0, help="seconds for both solves (default 30)")
+    ap.add_argument("--det-limit", type=float, default=DET_LIMIT,
+                    help=f"CP-SAT deterministic time for both solves (default {DET_LIMIT:g}; "
+                         f"repeatable, unlike a wall-clock limit)")
+    ap.add_argument("--time-limit", type=float, default=SAFETY_TIME_LIMIT,
+                    help=f"wall-clock safety net in seconds (default {SAFETY_TIME_LIMIT:g}); "
+                         f"stats.stopped_by is time_limit when it ended the search")
     ap.add_argument("--workers", type=int, default=1, help="CP-SAT workers (default 1: deterministic)")
     ap.add_argument("-o", "--out", default="-")
     ap.set_defaults(func=run)
@@ -190,6 +227,6 @@ def run(args) -> int:
     if args.bound:
         io.write_json(fuel_free_bound(m), args.out)
         return 0
-    p = solve_ref(m, args.time_limit, args.workers)
+    p = solve_ref(m, args.time_limit, args.workers, args.det_limit)
     io.write_json(p.to_json(), args.out)
     return 0
