@@ -18,10 +18,15 @@ find any first solution on most missions of 25 targets (measured: docs/tools.md)
 Search limits are fixed so runs repeat: first solution PATH_CHEAPEST_ARC (starting
 from the all-dropped solution when that heuristic finds nothing), then greedy descent
 (local search until no neighbour improves: a local optimum) capped at --solution-limit
-solutions (default 100). Guided local search was tried and dropped: it never stops
-on its own, so only a wall-clock limit ends it, and that is not repeatable.
---time-limit (default 10 s) is a safety net only; stats.stopped_by says which limit
-(or the local optimum) ended the search.
+solutions (default 100). Neither depends on the clock or on machine load. The
+routing library has no iteration or branch limit in its search parameters, only
+solution_limit and two wall-clock limits: time_limit and lns_time_limit, which bounds
+the completion search of the CP-based LNS operators (path, full path, TSP, inactive
+LNS); those operators are switched off here (they are off by default too), so
+lns_time_limit plays no part. Guided local search was tried and dropped: it never
+stops on its own, so only a wall-clock limit ends it, and that is not repeatable.
+--time-limit (default 300 s) is a safety net only; stats.stopped_by says what ended
+the search: local_optimum, solution_limit, time_limit (not repeatable) or no_solution.
 """
 from __future__ import annotations
 
@@ -32,10 +37,15 @@ from typing import Dict, List
 from . import io
 from . import model as M
 
+SOLUTION_LIMIT = 100
+SAFETY_TIME_LIMIT = 300.0
 
-def solve_peer(m: M.Mission, solution_limit: int = 100, time_limit: float = 10.0,
+
+def solve_peer(m: M.Mission, solution_limit: int = SOLUTION_LIMIT,
+               time_limit: float = SAFETY_TIME_LIMIT,
                hard_all_or_none: bool = False) -> M.Plan:
     from ortools.constraint_solver import pywrapcp, routing_enums_pb2
+    from ortools.util import optional_boolean_pb2
 
     t0 = time.perf_counter()
     vehicles = [u for u in m.uavs if not M.is_stranded(m, u)]
@@ -51,7 +61,7 @@ def solve_peer(m: M.Mission, solution_limit: int = 100, time_limit: float = 10.0
     nn = len(locs)
     if nv == 0 or not copy_target:
         return M.make_plan(m, "peer", {}, {"solve_us": int((time.perf_counter() - t0) * 1e6),
-                                           "solutions_limit": solution_limit, "stopped_by": "trivial"})
+                                           "solution_limit": solution_limit, "stopped_by": "trivial"})
     starts = list(range(1, nv + 1))
     ends = [0] * nv
     mgr = pywrapcp.RoutingIndexManager(nn, nv, starts, ends)
@@ -106,6 +116,10 @@ def solve_peer(m: M.Mission, solution_limit: int = 100, time_limit: float = 10.0
     params.first_solution_strategy = routing_enums_pb2.FirstSolutionStrategy.PATH_CHEAPEST_ARC
     params.local_search_metaheuristic = (
         routing_enums_pb2.LocalSearchMetaheuristic.GREEDY_DESCENT)
+    ops = params.local_search_operators
+    for name in ("use_path_lns", "use_full_path_lns", "use_tsp_lns", "use_inactive_lns"):
+        # CP-completion LNS: each neighbour is bounded by lns_time_limit (wall clock).
+        setattr(ops, name, optional_boolean_pb2.BOOL_FALSE)
     params.solution_limit = solution_limit
     params.time_limit.FromMilliseconds(int(time_limit * 1000))
     sol = routing.SolveWithParameters(params)
@@ -136,11 +150,19 @@ def solve_peer(m: M.Mission, solution_limit: int = 100, time_limit: float = 10.0
     partial = {t.id for t in m.targets if 0 < count.get(t.id, 0) < t.need}
     for uid in assignment:
         assignment[uid] = [tid for tid in assignment[uid] if tid not in partial]
+    status = routing.status()
+    if status in (routing_enums_pb2.RoutingSearchStatus.ROUTING_SUCCESS,
+                  routing_enums_pb2.RoutingSearchStatus.ROUTING_OPTIMAL):
+        stopped = "local_optimum"
+    elif status == routing_enums_pb2.RoutingSearchStatus.ROUTING_FAIL_TIMEOUT or \
+            elapsed >= 0.98 * time_limit:
+        stopped = "time_limit"
+    elif status == routing_enums_pb2.RoutingSearchStatus.ROUTING_PARTIAL_SUCCESS_LOCAL_OPTIMUM_NOT_REACHED:
+        stopped = "solution_limit"
+    else:
+        stopped = "no_solution"
     stats = {"solve_us": int(elapsed * 1e6), "solution_limit": solution_limit,
-             "start": start_from,
-             "stopped_by": ("time_limit" if elapsed >= time_limit * 0.98 else
-                           "solution_limit" if routing.status() == 2 and False else
-                           "local_optimum_or_solution_limit"),
+             "start": start_from, "stopped_by": stopped,
              "found": sol is not None, "repaired_targets": len(partial)}
     return M.make_plan(m, "peer", assignment, stats)
 
@@ -149,10 +171,11 @@ def add_parser(sub) -> None:
     ap = sub.add_parser("peer", help="OR-tools routing solver with synchronised copies",
                         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("mission")
-    ap.add_argument("--solution-limit", type=int, default=100,
-                    help="stop guided local search after this many solutions (default 100)")
-    ap.add_argument("--time-limit", type=float, default=10.0,
-                    help="safety net in seconds (default 10)")
+    ap.add_argument("--solution-limit", type=int, default=SOLUTION_LIMIT,
+                    help=f"stop the greedy descent after this many solutions (default {SOLUTION_LIMIT})")
+    ap.add_argument("--time-limit", type=float, default=SAFETY_TIME_LIMIT,
+                    help=f"wall-clock safety net in seconds (default {SAFETY_TIME_LIMIT:g}); "
+                         f"stats.stopped_by is time_limit when it ended the search")
     ap.add_argument("--hard-all-or-none", action="store_true",
                     help="constrain each target's copies to be all active or all inactive")
     ap.add_argument("-o", "--out", default="-")
