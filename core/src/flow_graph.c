@@ -55,6 +55,7 @@ static void set_rewards(sva_flow_work_t* w, const sva_mission_t* m, int64_t wide
             lcm *= step;
         }
     }
+    w->max_cost = max_cost;
     w->reward_exact = exact;
     w->reward_whole = base * (exact ? lcm : 1);
     for (uint16_t c = 0U; c < w->copies; c++) {
