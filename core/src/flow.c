@@ -19,7 +19,8 @@
 // from the nodes left open. No recursion: the path is an explicit stack of frames.
 #include "sva_internal.h"
 
-enum { BRANCH_TARGET = 1U, BRANCH_ROUTE = 2U };
+#define BRANCH_TARGET 1U
+#define BRANCH_ROUTE 2U
 
 static uint32_t find_arc(const sva_flow_work_t* w, uint16_t tail, uint16_t head)
 {
@@ -34,7 +35,8 @@ static uint32_t find_arc(const sva_flow_work_t* w, uint16_t tail, uint16_t head)
 
 static void ban(sva_flow_work_t* w, uint32_t e, int32_t delta)
 {
-    w->arc_ban[e] = (uint8_t)((int32_t)w->arc_ban[e] + delta);
+    const int32_t level = (int32_t)w->arc_ban[e] + delta;
+    w->arc_ban[e] = (uint8_t)level;
 }
 
 // delta +1 applies child i of frame f, -1 takes it back (same arcs, same order).
@@ -44,7 +46,8 @@ static void apply_child(sva_flow_work_t* w, const sva_flow_frame_t* f, int16_t i
         const uint16_t first = w->target_first_copy[f->subject];
         for (uint16_t c = first; (c < w->copies) && (w->copy_target[c] == f->subject); c++) {
             uint8_t* level = (i == 0) ? &w->copy_forced[c] : &w->copy_banned[c];
-            *level = (uint8_t)((int32_t)*level + delta);
+            const int32_t updated = (int32_t)*level + delta;
+            *level = (uint8_t)updated;
         }
         return;
     }
@@ -90,7 +93,8 @@ static bool choose_branch(sva_planner_priv_t* priv, const sva_mission_t* m, cons
         const uint16_t t = priv->target_order[i];
         int32_t covered = 0;
         for (int32_t k = 0; k < m->targets[t].need; k++) {
-            covered += sva_flow_covered(w, (uint16_t)(w->target_first_copy[t] + k)) ? 1 : 0;
+            const int32_t copy = (int32_t)w->target_first_copy[t] + k;
+            covered += sva_flow_covered(w, (uint16_t)copy) ? 1 : 0;
         }
         if ((covered > 0) && (covered < m->targets[t].need)) {
             f->kind = (uint8_t)BRANCH_TARGET;
@@ -199,9 +203,10 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
         }
         // Route frames try the longest kept prefix first: the plan that drops the
         // fewest of the route's targets is the likeliest good one.
-        const int16_t child = (f->kind == (uint8_t)BRANCH_ROUTE)
-                                  ? (int16_t)((int16_t)f->child_count - 1 - f->next_child)
-                                  : f->next_child;
+        int16_t child = f->next_child;
+        if (f->kind == (uint8_t)BRANCH_ROUTE) {
+            child = (int16_t)((int32_t)f->child_count - 1 - (int32_t)f->next_child);
+        }
         f->next_child++;
         apply_child(w, f, child, 1);
         f->active_child = child;
