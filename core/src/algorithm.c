@@ -13,11 +13,13 @@ const char* sva_algorithm_name(sva_algorithm_t algorithm)
 
 static bool names_equal(const char* a, const char* b)
 {
-    while ((*a != '\0') && (*a == *b)) {
-        a++;
-        b++;
+    const char* x = a;
+    const char* y = b;
+    while ((*x != '\0') && (*x == *y)) {
+        x++;
+        y++;
     }
-    return *a == *b;
+    return *x == *y;
 }
 
 sva_status_t sva_algorithm_from_name(const char* name, sva_algorithm_t* out)

@@ -19,7 +19,8 @@
 // from the nodes left open. No recursion: the path is an explicit stack of frames.
 #include "sva_internal.h"
 
-enum { BRANCH_TARGET = 1U, BRANCH_ROUTE = 2U };
+#define BRANCH_TARGET 1U
+#define BRANCH_ROUTE 2U
 
 static uint32_t find_arc(const sva_flow_work_t* w, uint16_t tail, uint16_t head)
 {
@@ -34,7 +35,8 @@ static uint32_t find_arc(const sva_flow_work_t* w, uint16_t tail, uint16_t head)
 
 static void ban(sva_flow_work_t* w, uint32_t e, int32_t delta)
 {
-    w->arc_ban[e] = (uint8_t)((int32_t)w->arc_ban[e] + delta);
+    const int32_t level = (int32_t)w->arc_ban[e] + delta;
+    w->arc_ban[e] = (uint8_t)level;
 }
 
 // delta +1 applies child i of frame f, -1 takes it back (same arcs, same order).
@@ -44,7 +46,8 @@ static void apply_child(sva_flow_work_t* w, const sva_flow_frame_t* f, int16_t i
         const uint16_t first = w->target_first_copy[f->subject];
         for (uint16_t c = first; (c < w->copies) && (w->copy_target[c] == f->subject); c++) {
             uint8_t* level = (i == 0) ? &w->copy_forced[c] : &w->copy_banned[c];
-            *level = (uint8_t)((int32_t)*level + delta);
+            const int32_t updated = (int32_t)*level + delta;
+            *level = (uint8_t)updated;
         }
         return;
     }
@@ -90,7 +93,8 @@ static bool choose_branch(sva_planner_priv_t* priv, const sva_mission_t* m, cons
         const uint16_t t = priv->target_order[i];
         int32_t covered = 0;
         for (int32_t k = 0; k < m->targets[t].need; k++) {
-            covered += sva_flow_covered(w, (uint16_t)(w->target_first_copy[t] + k)) ? 1 : 0;
+            const int32_t copy = (int32_t)w->target_first_copy[t] + k;
+            covered += sva_flow_covered(w, (uint16_t)copy) ? 1 : 0;
         }
         if ((covered > 0) && (covered < m->targets[t].need)) {
             f->kind = (uint8_t)BRANCH_TARGET;
@@ -161,7 +165,7 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
     sva_stats_t* stats = &plan->stats;
     int64_t open = INT64_MAX;
     w->depth = 0U;
-    stats->search_nodes = 1U;
+    stats->search_nodes++;
     if (!sva_flow_solve(w, stats)) {
         // Cannot happen: every UAV that is not stranded may fly home, and the root
         // forces nothing. Claim nothing if it does.
@@ -199,9 +203,10 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
         }
         // Route frames try the longest kept prefix first: the plan that drops the
         // fewest of the route's targets is the likeliest good one.
-        const int16_t child = (f->kind == (uint8_t)BRANCH_ROUTE)
-                                  ? (int16_t)((int16_t)f->child_count - 1 - f->next_child)
-                                  : f->next_child;
+        int16_t child = f->next_child;
+        if (f->kind == (uint8_t)BRANCH_ROUTE) {
+            child = (int16_t)((int32_t)f->child_count - 1 - (int32_t)f->next_child);
+        }
         f->next_child++;
         apply_child(w, f, child, 1);
         f->active_child = child;
@@ -223,6 +228,15 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
             w->depth++;
             stats->flow_max_depth = (w->depth > stats->flow_max_depth) ? w->depth : stats->flow_max_depth;
         }
+    }
+    // Stopped on the budget: take back the branching rules still applied, so the
+    // graph is the root's again (the next search starts from it).
+    while (w->depth > 0U) {
+        const sva_flow_frame_t* f = &w->stack[w->depth - 1U];
+        if (f->active_child >= 0) {
+            apply_child(w, f, f->active_child, -1);
+        }
+        w->depth--;
     }
     return open;
 }
@@ -267,15 +281,33 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     w->has_inc = false;
     w->work = 0U;
     seed(self, m, plan);
-    uint8_t incomplete = w->reward_exact ? (uint8_t)SVA_FLOW_COMPLETE : (uint8_t)SVA_FLOW_INCOMPLETE_REWARD;
+    const uint8_t finished = w->reward_exact ? (uint8_t)SVA_FLOW_COMPLETE : (uint8_t)SVA_FLOW_INCOMPLETE_REWARD;
+    uint8_t incomplete = finished;
     uint64_t budget = self->flow_max_work;
     budget = (budget < 1000U) ? 1000U : budget;
     budget = (budget > (uint64_t)SVA_FLOW_MAX_WORK) ? (uint64_t)SVA_FLOW_MAX_WORK : budget;
-    const int64_t open = search(priv, m, plan, budget, &incomplete);
+    stats->search_nodes = 0U;
+    w->local_work = budget / 8U;
+    // A quarter of the budget to the search; if it does not finish, the Lagrangian phase
+    // (fuel-aware bound, new plans), then the search again with the better incumbent.
+    int64_t open = search(priv, m, plan, budget / 4U, &incomplete);
+    int64_t lagrange_bound = 0;
+    bool coverage_proven = false;
+    if (open != INT64_MAX) {
+        lagrange_bound = sva_flow_lagrange(priv, m, plan, budget - (budget / 4U), &coverage_proven,
+                                           &stats->flow_lagrange_iters);
+        if (w->work < budget) {
+            uint8_t again = finished;
+            const int64_t open_again = search(priv, m, plan, budget, &again);
+            open = (open_again > open) ? open_again : open;
+            incomplete = (open_again == INT64_MAX) ? again : incomplete;
+        }
+    }
     sva_flow_write_incumbent(priv, m, plan);
 
     // Any plan p: cost(p) - reward(p) >= min(best, open). A plan covering c targets
-    // earns c * W (exact rewards) or at least c * (W - need + 1).
+    // earns c * W (exact rewards) or at least c * (W - need + 1), and costs at most
+    // w->max_cost < W.
     int32_t need_max = 1;
     int64_t covered = 0;
     int64_t reward = 0;
@@ -287,14 +319,20 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
         }
     }
     const int64_t cost = w->inc_value + reward;
-    const int64_t least_reward =
-        w->reward_exact ? (covered * w->reward_whole) : (covered * (w->reward_whole - need_max + 1));
-    int64_t bound = min64(w->inc_value, open) + least_reward;
+    const int64_t least_whole = w->reward_exact ? w->reward_whole : (w->reward_whole - need_max + 1);
+    const int64_t floor_value = min64(w->inc_value, open);
+    int64_t bound = floor_value + (covered * least_whole);
+    bound = (bound < lagrange_bound) ? lagrange_bound : bound;
     bound = (bound < 0) ? 0 : bound;
+    // No open node holds a plan covering one target more: such a plan's value is at
+    // most max_cost - (covered + 1) * least_whole.
+    coverage_proven = coverage_proven || (floor_value > (w->max_cost - ((covered + 1) * least_whole)));
     stats->has_bound = true;
     stats->lower_bound = (bound > cost) ? cost : bound;
-    stats->optimal = (incomplete == (uint8_t)SVA_FLOW_COMPLETE) && (open == INT64_MAX);
-    stats->flow_incomplete = incomplete;
+    stats->optimal = w->reward_exact &&
+                     (((incomplete == (uint8_t)SVA_FLOW_COMPLETE) && (open == INT64_MAX)) ||
+                      (coverage_proven && (bound >= cost)));
+    stats->flow_incomplete = stats->optimal ? (uint8_t)SVA_FLOW_COMPLETE : incomplete;
     stats->flow_work = w->work;
     return SVA_OK;
 }

@@ -21,12 +21,14 @@
 
 static int64_t gcd64(int64_t a, int64_t b)
 {
-    while (b != 0) {
-        const int64_t r = a % b;
-        a = b;
-        b = r;
+    int64_t x = a;
+    int64_t y = b;
+    while (y != 0) {
+        const int64_t r = x % y;
+        x = y;
+        y = r;
     }
-    return a;
+    return x;
 }
 
 // Rewards: a covered target earns W, each copy W / need. W exceeds any flow cost
@@ -49,12 +51,15 @@ static void set_rewards(sva_flow_work_t* w, const sva_mission_t* m, int64_t wide
     for (uint16_t t = 0U; (t < m->target_count) && exact; t++) {
         const int64_t need = m->targets[t].need;
         const int64_t step = need / gcd64(lcm, need);
-        if (lcm > (room / step)) {
+        // step >= 1 as validation keeps need >= 1; the guard keeps the division safe
+        // on its own.
+        if ((step < 1) || (lcm > (room / step))) {
             exact = false;
         } else {
             lcm *= step;
         }
     }
+    w->max_cost = max_cost;
     w->reward_exact = exact;
     w->reward_whole = base * (exact ? lcm : 1);
     for (uint16_t c = 0U; c < w->copies; c++) {

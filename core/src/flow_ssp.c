@@ -13,12 +13,11 @@
 
 #define FLOW_INF (INT64_MAX / 2)
 
-enum {
-    MARK_LIVE = 1U,     // reachable from a supply: may ever carry flow
-    MARK_SUPPLY = 2U,   // a supply node whose unit has not left yet
-    MARK_DONE = 4U,     // settled in the current Dijkstra run
-    MARK_DEFICIT = 8U,  // a forced copy's in-node still waiting for its unit
-};
+// node_mark[] bits (unsigned constants: they are masked into a uint8_t).
+#define MARK_LIVE 1U     // reachable from a supply: may ever carry flow
+#define MARK_SUPPLY 2U   // a supply node whose unit has not left yet
+#define MARK_DONE 4U     // settled in the current Dijkstra run
+#define MARK_DEFICIT 8U  // a forced copy's in-node still waiting for its unit
 
 // pred[] codes: arc e forward, arc e backward, a copy's own arc forward or backward,
 // a deficit draining into the super sink, the start of a path.
@@ -30,11 +29,11 @@ typedef struct {
     uint32_t a;      // arcs
     uint16_t depot;
     uint16_t sink;
-} shape_t;
+} flow_shape_t;
 
-static shape_t shape_of(const sva_flow_work_t* w)
+static flow_shape_t shape_of(const sva_flow_work_t* w)
 {
-    const shape_t s = {w->uavs, w->copies, w->arcs, (uint16_t)(w->uavs + (2U * w->copies)),
+    const flow_shape_t s = {w->uavs, w->copies, w->arcs, (uint16_t)(w->uavs + (2U * w->copies)),
                        (uint16_t)(w->uavs + (2U * w->copies) + 1U)};
     return s;
 }
@@ -45,7 +44,7 @@ static bool copy_usable(const sva_flow_work_t* w, uint16_t c)
 }
 
 // Explicit arc allowed under the current branching rules (banned copies included).
-static bool arc_usable(const sva_flow_work_t* w, const shape_t* s, uint32_t e)
+static bool arc_usable(const sva_flow_work_t* w, const flow_shape_t* s, uint32_t e)
 {
     if (w->arc_ban[e] != 0U) {
         return false;
@@ -79,14 +78,21 @@ static bool heap_less(const sva_flow_work_t* w, uint16_t i, uint16_t j)
 {
     const uint16_t a = w->heap[i];
     const uint16_t b = w->heap[j];
-    return (w->dist[a] < w->dist[b]) || ((w->dist[a] == w->dist[b]) && (a < b));
+    const int64_t dist_a = w->dist[a];
+    const int64_t dist_b = w->dist[b];
+    return (dist_a < dist_b) || ((dist_a == dist_b) && (a < b));
 }
 
-static void heap_up(sva_flow_work_t* w, uint16_t i)
+static void heap_up(sva_flow_work_t* w, uint16_t start)
 {
-    while ((i > 0U) && heap_less(w, i, (uint16_t)((i - 1U) / 2U))) {
-        heap_swap(w, i, (uint16_t)((i - 1U) / 2U));
-        i = (uint16_t)((i - 1U) / 2U);
+    uint16_t i = start;
+    while (i > 0U) {
+        const uint16_t parent = (uint16_t)((i - 1U) / 2U);
+        if (!heap_less(w, i, parent)) {
+            break;
+        }
+        heap_swap(w, i, parent);
+        i = parent;
     }
 }
 
@@ -113,11 +119,13 @@ static uint16_t heap_pop(sva_flow_work_t* w)
         const uint32_t l = (2U * (uint32_t)i) + 1U;
         const uint32_t r = l + 1U;
         uint16_t m = i;
-        if ((l < w->heap_size) && heap_less(w, (uint16_t)l, m)) {
-            m = (uint16_t)l;
+        if (l < w->heap_size) {
+            const uint16_t left = (uint16_t)l;
+            m = heap_less(w, left, m) ? left : m;
         }
-        if ((r < w->heap_size) && heap_less(w, (uint16_t)r, m)) {
-            m = (uint16_t)r;
+        if (r < w->heap_size) {
+            const uint16_t right = (uint16_t)r;
+            m = heap_less(w, right, m) ? right : m;
         }
         if (m == i) {
             break;
@@ -135,7 +143,7 @@ static int64_t own_cost(const sva_flow_work_t* w, uint16_t c)
     return -w->copy_reward[c];
 }
 
-static bool is_deficit(const sva_flow_work_t* w, const shape_t* s, uint16_t v)
+static bool is_deficit(const sva_flow_work_t* w, const flow_shape_t* s, uint16_t v)
 {
     return ((v == s->depot) && (w->sink_left > 0)) || ((w->node_mark[v] & MARK_DEFICIT) != 0U);
 }
@@ -158,7 +166,7 @@ static void offer(sva_flow_work_t* w, uint16_t v, uint16_t h, int64_t cost, int3
 }
 
 // Every residual arc leaving v (DESIGN.md section 7 lists them).
-static void scan(sva_flow_work_t* w, const shape_t* s, uint16_t v)
+static void scan(sva_flow_work_t* w, const flow_shape_t* s, uint16_t v)
 {
     const int32_t a = (int32_t)s->a;
     for (uint32_t e = w->out_start[v]; e < w->out_start[v + 1U]; e++) {
@@ -195,7 +203,7 @@ static void scan(sva_flow_work_t* w, const shape_t* s, uint16_t v)
 
 // Potentials: shortest distances from the supplies over the residual graph of the
 // empty flow, which is acyclic in node-id order. Marks the live nodes.
-static bool init_potentials(sva_flow_work_t* w, const shape_t* s)
+static bool init_potentials(sva_flow_work_t* w, const flow_shape_t* s)
 {
     const uint32_t nodes = (uint32_t)s->sink + 1U;
     for (uint32_t v = 0U; v < nodes; v++) {
@@ -268,7 +276,7 @@ static bool init_potentials(sva_flow_work_t* w, const shape_t* s)
 }
 
 // One shortest augmenting path from any waiting supply to the sink; false if none.
-static bool augment(sva_flow_work_t* w, const shape_t* s)
+static bool augment(sva_flow_work_t* w, const flow_shape_t* s)
 {
     const uint32_t nodes = (uint32_t)s->sink + 1U;
     w->heap_size = 0U;
@@ -327,7 +335,7 @@ static bool augment(sva_flow_work_t* w, const shape_t* s)
     return true;
 }
 
-static int64_t relaxation_value(const sva_flow_work_t* w, const shape_t* s)
+static int64_t relaxation_value(const sva_flow_work_t* w, const flow_shape_t* s)
 {
     int64_t value = 0;
     for (uint32_t e = 0U; e < s->a; e++) {
@@ -345,7 +353,7 @@ static int64_t relaxation_value(const sva_flow_work_t* w, const shape_t* s)
 
 bool sva_flow_solve(sva_flow_work_t* w, sva_stats_t* stats)
 {
-    const shape_t s = shape_of(w);
+    const flow_shape_t s = shape_of(w);
     stats->flow_solves++;
     if (!init_potentials(w, &s)) {
         return false;
@@ -371,7 +379,7 @@ bool sva_flow_covered(const sva_flow_work_t* w, uint16_t c)
 
 uint16_t sva_flow_route(const sva_flow_work_t* w, uint16_t u, uint16_t* out, uint16_t cap)
 {
-    const shape_t s = shape_of(w);
+    const flow_shape_t s = shape_of(w);
     uint16_t n = 0U;
     uint16_t v = u;
     for (;;) {
@@ -386,8 +394,9 @@ uint16_t sva_flow_route(const sva_flow_work_t* w, uint16_t u, uint16_t* out, uin
             return n;
         }
         const uint16_t c = (uint16_t)(next - s.u);
-        SVA_ASSERT(n < cap);
         if (n >= cap) {
+            // Not an error: a relaxation's route may be longer than the rounding's cap
+            // SVA_MAX_ROUTE_TARGETS (flow_repair.c cuts it; branching splits it).
             return n;
         }
         out[n] = c;

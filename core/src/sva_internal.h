@@ -104,6 +104,21 @@ bool sva_flow_offer_plan(sva_planner_priv_t* priv, const sva_mission_t* m, const
 void sva_flow_write_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
 /// Rounds the current relaxation into a plan (scratch: *plan) and offers it.
 void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
+/// Makes the routes in *plan (with priv->target_served) a plan: drops half-covered
+/// targets and routes' excess, inserts what fits, improves it by local search if it
+/// beats the incumbent (or, with `polish`, comes within 1/16), and offers it.
+void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                     bool polish);
+
+// flow_lagrange.c: flow's Lagrangian bound and heuristic.
+/// Scale of the target prices (1/SVA_FLOW_PRICE_SCALE cells).
+#define SVA_FLOW_PRICE_SCALE 256
+/// Subgradient phases until the work reaches `budget`: improves the incumbent, and
+/// returns a lower bound on the cost of every plan covering at least as many targets
+/// as the incumbent (0 when it has none); *coverage_proven: no plan covers more.
+/// *iters gets the subgradient steps taken.
+int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                          uint64_t budget, bool* coverage_proven, uint32_t* iters);
 
 // pipeline.c, ga.c, bfa.c, flow.c: the algorithms.
 sva_status_t sva_run_pipeline(sva_planner_t* self, const sva_mission_t* mission,

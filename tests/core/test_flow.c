@@ -200,6 +200,56 @@ static void test_small_budget_gives_a_checked_unproven_plan(void** state)
     assert_true(unproven > 0);
 }
 
+// A budget the search cannot finish in hands over to the Lagrangian phase: its bound
+// must stay at or below the optimum, its "optimal" must be true, and its plans checked.
+static void test_lagrangian_phase_bound_and_claims_hold(void** state)
+{
+    (void)state;
+    const uint64_t seed = test_seed(0x1A6EULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    int lagrange_runs = 0;
+    int proven_by_it = 0;
+    int tight = 0;
+    const int rounds = 400;
+    planner.flow_max_work = 1000U;
+    for (int round = 0; round < rounds; round++) {
+        const test_gen_params_t p = {
+            test_rng_range(&rng, 4, 6), test_rng_range(&rng, 2, 4),
+            20, 4, 15, 60, test_rng_range(&rng, 1, 2), test_rng_range(&rng, 30, 60), 70, 2, 1,
+            test_rng_range(&rng, 0, 1), 0};
+        test_gen_mission(&rng, &p, &mission);
+        const brute_result_t best = brute_force_optimum(&mission);
+        must_plan(SVA_ALGO_FLOW, &plan, seed, round);
+        check_certificate(&plan, seed, round);
+        if (spec_better(plan.covered, plan.cost, best.covered, best.cost)) {
+            fail_msg("seed %llu round %d: flow (%d, %lld) beats the optimum (%d, %lld)",
+                     (unsigned long long)seed, round, plan.covered, (long long)plan.cost, best.covered,
+                     best.cost);
+        }
+        if (plan.stats.optimal && (plan.covered != best.covered || plan.cost != best.cost)) {
+            fail_msg("seed %llu round %d: flow claims optimal (%d, %lld), optimum (%d, %lld)",
+                     (unsigned long long)seed, round, plan.covered, (long long)plan.cost, best.covered,
+                     best.cost);
+        }
+        if (plan.covered <= best.covered && plan.stats.lower_bound > best.cost) {
+            fail_msg("seed %llu round %d: bound %lld above the optimum %lld (covering %d >= %d)",
+                     (unsigned long long)seed, round, (long long)plan.stats.lower_bound, best.cost,
+                     best.covered, plan.covered);
+        }
+        if (plan.stats.flow_lagrange_iters > 0U) {
+            lagrange_runs++;
+            proven_by_it += plan.stats.optimal ? 1 : 0;
+            tight += (plan.covered == best.covered && plan.stats.lower_bound == best.cost) ? 1 : 0;
+        }
+    }
+    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    printf("# %d missions: Lagrangian phase ran on %d, proved %d, bound equal to the optimum on %d\n",
+           rounds, lagrange_runs, proven_by_it, tight);
+    assert_true(lagrange_runs >= rounds / 10);
+    assert_true(tight > 0);
+}
+
 static void test_past_its_graph_bounds_flow_falls_back_honestly(void** state)
 {
     (void)state;
@@ -283,6 +333,7 @@ int main(void)
         cmocka_unit_test(test_without_fuel_limit_root_is_optimal),
         cmocka_unit_test(test_paper_sizes_never_worse_than_the_paper),
         cmocka_unit_test(test_small_budget_gives_a_checked_unproven_plan),
+        cmocka_unit_test(test_lagrangian_phase_bound_and_claims_hold),
         cmocka_unit_test(test_past_its_graph_bounds_flow_falls_back_honestly),
         cmocka_unit_test(test_dense_graph_past_the_arc_bound_falls_back),
         cmocka_unit_test(test_observer_silent_and_stats_only_for_flow),

@@ -8,7 +8,8 @@ Environment: FLOW_WORK=N passes --flow-work N to the planner; REF_SECONDS (defau
 is ref's time limit. Missions and ref plans are cached under build/flow_vs_ref/.
 Prints: missions where flow's coverage equals, is below or above ref's; the mean and
 largest cost gap at equal coverage; how many flow plans are proven optimal; flow's
-median and p95 solve time; and any bound above a proven optimum (must be none).
+median and p95 solve time; the gap to the proven optima alone; flow's own certified
+gap; and any bound above a proven optimum (must be none).
 """
 import concurrent.futures
 import json
@@ -57,6 +58,11 @@ def main(argv):
     below = [(n, fl["covered"], ref["covered"]) for n, fl, ref in results if fl["covered"] < ref["covered"]]
     above = [(n, fl["covered"], ref["covered"]) for n, fl, ref in results if fl["covered"] > ref["covered"]]
     gaps = [100.0 * (fl["cost"] - ref["cost"]) / ref["cost"] for _, fl, ref in equal if ref["cost"] > 0]
+    exact = [(fl, ref) for _, fl, ref in results if ref["stats"].get("optimal")]
+    exact_gaps = [100.0 * (fl["cost"] - ref["cost"]) / ref["cost"] for fl, ref in exact
+                  if fl["covered"] == ref["covered"] and ref["cost"] > 0]
+    certified = [100.0 * (fl["cost"] - fl["stats"]["lower_bound"]) / fl["stats"]["lower_bound"]
+                 for _, fl, _ in results if fl["stats"]["lower_bound"] > 0]
     proven = sum(1 for _, fl, _ in results if fl["stats"]["optimal"])
     times = sorted(fl["stats"]["solve_us"] for _, fl, _ in results)
     bad = [n for n, fl, ref in results if ref["stats"].get("optimal") and fl["covered"] == ref["covered"]
@@ -66,6 +72,13 @@ def main(argv):
     print(f"  coverage equal to ref: {len(equal)}; below: {below}; above (ref not proven): {above}")
     print(f"  cost gap at equal coverage: mean {statistics.mean(gaps) if gaps else 0.0:.3f} %, "
           f"largest {max(gaps) if gaps else 0.0:.2f} %")
+    print(f"  against the {len(exact)} proven optima: coverage equal on "
+          f"{sum(1 for fl, ref in exact if fl['covered'] == ref['covered'])}, cost gap mean "
+          f"{statistics.mean(exact_gaps) if exact_gaps else 0.0:.3f} %, largest "
+          f"{max(exact_gaps) if exact_gaps else 0.0:.2f} %, zero on {sum(1 for g in exact_gaps if g == 0)}")
+    print(f"  flow's own certificate (cost - lower_bound) / lower_bound: mean "
+          f"{statistics.mean(certified) if certified else 0.0:.2f} %, largest "
+          f"{max(certified) if certified else 0.0:.2f} % ({len(certified)} plans with a bound)")
     print(f"  flow proven optimal: {proven}/{len(results)}; solve median {times[len(times) // 2]} us, "
           f"p95 {times[min(len(times) - 1, int(len(times) * 0.95))]} us")
     print(f"  bounds above a proven optimum: {bad}")

@@ -263,6 +263,7 @@ typedef struct {
     uint64_t flow_work;             ///< arc scans, against SVA_FLOW_MAX_WORK
     uint32_t flow_graph_arcs;       ///< arcs of the time-feasibility graph
     uint32_t flow_max_depth;        ///< deepest branch-and-bound node
+    uint32_t flow_lagrange_iters;   ///< subgradient iterations (0: the search sufficed)
     /// Why flow did not prove optimality: 0 it did (or the search finished), 1 work
     /// budget, 2 SVA_FLOW_MAX_DEPTH, 3 needs whose lcm is too large for exact ties;
     /// 4 needs summed above SVA_FLOW_MAX_COPIES, 5 graph above SVA_FLOW_MAX_ARCS (4 and
@@ -395,6 +396,23 @@ typedef uint32_t sva_flow_arc_t;
 /// Nodes: UAVs, copy in/out pairs, the depot, the super sink.
 #define SVA_FLOW_NODES (SVA_MAX_UAVS + (2L * SVA_FLOW_MAX_COPIES) + 2L)
 
+/// flow's Lagrangian phase (flow_lagrange.c): target prices, and the labels of one
+/// resource-constrained shortest path (a UAV's best route under the prices).
+typedef struct {
+    int64_t price[SVA_MAX_TARGETS];       ///< pi_t, in 1/SVA_FLOW_PRICE_SCALE cells
+    int64_t path_price[SVA_MAX_TARGETS];  ///< the prices one shortest path sees
+    int64_t grad[SVA_MAX_TARGETS];        ///< subgradient: need * y - visits
+    uint16_t visits[SVA_MAX_TARGETS];     ///< UAVs whose best route serves t
+    uint8_t closed[SVA_MAX_TARGETS];      ///< no route may serve t (the heuristic)
+    int64_t label_cost[SVA_MAX_TARGETS * SVA_FLOW_LABELS];  ///< reduced cost so far
+    int32_t label_fuel[SVA_MAX_TARGETS * SVA_FLOW_LABELS];  ///< fuel used so far
+    uint32_t label_pred[SVA_MAX_TARGETS * SVA_FLOW_LABELS]; ///< previous label or none
+    uint8_t label_count[SVA_MAX_TARGETS];
+    uint16_t group[SVA_MAX_UAVS];         ///< first UAV in the same state
+    uint16_t path[SVA_MAX_TARGETS];       ///< the last shortest path's targets
+    uint16_t path_len;
+} sva_flow_lagrange_t;
+
 /// flow's graph, relaxation and search state (flow_graph.c, flow_ssp.c, flow.c).
 typedef struct {
     uint16_t uavs;                         ///< U: node ids 0..U-1 are the UAVs
@@ -428,6 +446,7 @@ typedef struct {
     int32_t sink_left;                            ///< units the depot still takes
     int64_t value;                                ///< relaxation: cost - rewards
     uint64_t work;
+    uint64_t local_work;                          ///< work one local search may start
     // Scratch of the graph builder and of the rounding heuristic (flow_repair.c).
     int64_t target_lead[SVA_MAX_TARGETS];         ///< fuel labels (flow_graph.c)
     int64_t target_tail[SVA_MAX_TARGETS];
@@ -436,6 +455,9 @@ typedef struct {
     int64_t insert_delta[SVA_MAX_UAVS];
     uint16_t insert_pos[SVA_MAX_UAVS];
     uint8_t uav_pick[SVA_MAX_UAVS];
+    uint16_t spare_route[SVA_MAX_ROUTE_TARGETS];  ///< a route's tail in an exchange
+    int32_t piece_pre[2][SVA_MAX_ROUTE_TARGETS + 1];   ///< two routes' cells up to a stop
+    int32_t piece_post[2][SVA_MAX_ROUTE_TARGETS + 1];  ///< and from a stop on
     uint16_t pred_node[SVA_FLOW_NODES];
     int64_t pot_source;
     // Best plan found: successor lists over copies (0xFFFF ends a route).
@@ -444,7 +466,9 @@ typedef struct {
     int64_t inc_value;
     bool has_inc;
     uint16_t depth;
+    int64_t max_cost;                     ///< no flow or plan costs more (rewards)
     sva_flow_frame_t stack[SVA_FLOW_MAX_DEPTH];
+    sva_flow_lagrange_t lagrange;
 } sva_flow_work_t;
 
 /// All of the planner's working memory.

@@ -172,6 +172,27 @@
 #error "SVA_FLOW_MAX_WORK must be in [1000, 2000000000]"
 #endif
 
+/// Labels kept per target by the resource-constrained shortest path of flow's
+/// Lagrangian bound (flow_lagrange.c): Pareto-best (reduced cost, fuel) pairs. Past it
+/// two labels merge into one that dominates both, which keeps the bound valid but
+/// weaker. Cost: 16 B * SVA_MAX_TARGETS per label.
+#ifndef SVA_FLOW_LABELS
+#define SVA_FLOW_LABELS 8
+#endif
+#if (SVA_FLOW_LABELS < 1) || (SVA_FLOW_LABELS > 64)
+#error "SVA_FLOW_LABELS must be in [1, 64]"
+#endif
+
+/// Subgradient iterations of one Lagrangian phase (each one resource-constrained
+/// shortest path per distinct UAV state; their label work counts against
+/// SVA_FLOW_MAX_WORK).
+#ifndef SVA_FLOW_LAGRANGE_ITERS
+#define SVA_FLOW_LAGRANGE_ITERS 300
+#endif
+#if (SVA_FLOW_LAGRANGE_ITERS < 1) || (SVA_FLOW_LAGRANGE_ITERS > 100000)
+#error "SVA_FLOW_LAGRANGE_ITERS must be in [1, 100000]"
+#endif
+
 // ---------------------------------------------------------------------------------
 // Value bounds (SPEC section 1). Coordinates are fixed by the SPEC; the others keep
 // every sum inside int64 with a wide margin and every leg inside int32 (DESIGN.md 5).

@@ -1,0 +1,423 @@
+// flow_lagrange.c -- flow's Lagrangian phase: a lower bound that knows the fuel rule,
+// and plans built from it (DESIGN.md section 8).
+//
+// Relax "target t is served by need_t routes or by none" with a price pi_t per target.
+// What is left splits: every UAV flies its own best route under the prices, and every
+// target is taken (y_t = 1) when need_t pi_t < mu. A UAV's best route is a
+// resource-constrained shortest path over the time-feasibility DAG of targets (the
+// first copies of flow_graph.c's graph), fuel being the resource: labels (reduced
+// cost, fuel used), Pareto-best, at most SVA_FLOW_LABELS per target; past that two
+// merge into one that dominates both, which can only weaken the bound. With S =
+// SVA_FLOW_PRICE_SCALE, for every plan p covering at least c targets, every pi and
+// every mu >= 0:
+//   cost phase:      S cost(p) >= sum_u min_r (S cost(r) - sum_{t in r} pi_t)
+//                                 + sum_t min(0, need_t pi_t - mu) + mu c;
+//   coverage phase:  -S covered(p) >= sum_u min_r (- sum_{t in r} pi_t)
+//                                 + sum_t min(0, need_t pi_t - S),
+// the second proving that no plan covers more targets than the incumbent. Prices move
+// by subgradient steps (Polyak's rule in integers: deterministic). Every few steps
+// the heuristic flies the UAVs one after another on their best routes under the
+// prices, a target's price growing with the UAVs already committed to it and a fully
+// served target closed, then repairs the result (flow_repair.c) and offers it.
+#include "sva_internal.h"
+
+#define LABEL_NONE 0xFFFFFFFFU
+#define THETA_ONE 1024
+#define THETA_START (2 * THETA_ONE)
+#define THETA_MIN 4
+#define STALL_STEPS 20
+#define HEURISTIC_EVERY 4
+#define GAP_CAP (((int64_t)1) << 36)  // keeps theta * gap * grad within int64
+
+typedef struct {
+    int64_t alpha;     // S in the cost phase, 0 in the coverage phase
+    int64_t mu;        // reward of a taken target (prices' units)
+    int64_t covered;   // c: the incumbent's coverage
+    int64_t best;      // best bound found (prices' units)
+    int64_t target;    // Polyak's target value
+    int32_t theta;     // step factor, THETA_ONE = 1
+    int32_t stall;     // steps since the bound last improved
+    uint32_t iters;
+} phase_t;
+
+static int64_t floor_div(int64_t a, int64_t b)
+{
+    const int64_t q = a / b;
+    return ((a % b) != 0) && ((a < 0) != (b < 0)) ? (q - 1) : q;
+}
+
+static int64_t ceil_div(int64_t a, int64_t b)
+{
+    return -floor_div(-a, b);
+}
+
+static int64_t clamp64(int64_t v, int64_t lo, int64_t hi)
+{
+    return (v < lo) ? lo : ((v > hi) ? hi : v);
+}
+
+// Copy d is the first copy of its target (the DAG of targets uses only those).
+static bool first_copy(const sva_flow_work_t* w, uint16_t d)
+{
+    return w->target_first_copy[w->copy_target[d]] == d;
+}
+
+// Adds label (cost, fuel, pred) to target t's Pareto set unless one there dominates it.
+static void add_label(sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t fuel, uint32_t pred)
+{
+    const uint32_t base = (uint32_t)t * (uint32_t)SVA_FLOW_LABELS;
+    uint32_t n = lg->label_count[t];
+    for (uint32_t j = base; j < (base + n); j++) {
+        if ((lg->label_fuel[j] <= fuel) && (lg->label_cost[j] <= cost)) {
+            return;
+        }
+    }
+    if (n == (uint32_t)SVA_FLOW_LABELS) {
+        // Full: merge into the label nearest in fuel (min of both: dominates both).
+        uint32_t near = base;
+        for (uint32_t j = base + 1U; j < (base + n); j++) {
+            const int64_t dj = (int64_t)lg->label_fuel[j] - fuel;
+            const int64_t dn = (int64_t)lg->label_fuel[near] - fuel;
+            near = (((dj < 0) ? -dj : dj) < ((dn < 0) ? -dn : dn)) ? j : near;
+        }
+        if (cost < lg->label_cost[near]) {
+            lg->label_cost[near] = cost;
+            lg->label_pred[near] = pred;
+        }
+        lg->label_fuel[near] = (fuel < lg->label_fuel[near]) ? fuel : lg->label_fuel[near];
+        cost = lg->label_cost[near];
+        fuel = lg->label_fuel[near];
+        pred = lg->label_pred[near];
+        lg->label_cost[near] = lg->label_cost[base + n - 1U];
+        lg->label_fuel[near] = lg->label_fuel[base + n - 1U];
+        lg->label_pred[near] = lg->label_pred[base + n - 1U];
+        n--;
+    }
+    uint32_t kept = base;
+    for (uint32_t j = base; j < (base + n); j++) {
+        if ((fuel > lg->label_fuel[j]) || (cost > lg->label_cost[j])) {
+            lg->label_cost[kept] = lg->label_cost[j];
+            lg->label_fuel[kept] = lg->label_fuel[j];
+            lg->label_pred[kept] = lg->label_pred[j];
+            kept++;
+        }
+    }
+    lg->label_cost[kept] = cost;
+    lg->label_fuel[kept] = fuel;
+    lg->label_pred[kept] = pred;
+    lg->label_count[t] = (uint8_t)((kept - base) + 1U);
+}
+
+// UAV u's best route under lg->path_price (targets with lg->closed skipped):
+// min over routes of alpha * cells - sum of prices, flying home at once included.
+// The route goes to lg->path. Label extensions count as work.
+static int64_t best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t u, int64_t alpha)
+{
+    sva_flow_lagrange_t* lg = &w->lagrange;
+    const sva_uav_t* uav = &m->uavs[u];
+    const int64_t hover = m->hover_fuel;
+    const uint16_t out_base = (uint16_t)(w->uavs + w->copies);
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        lg->label_count[t] = 0U;
+    }
+    for (uint32_t e = w->out_start[u]; e < w->out_start[u + 1U]; e++) {
+        const uint16_t h = w->arc_head[e];
+        if ((h >= w->uavs) && (h < out_base) && first_copy(w, (uint16_t)(h - w->uavs))) {
+            const uint16_t t = w->copy_target[h - w->uavs];
+            if (lg->closed[t] == 0U) {
+                const int64_t leg = sva_distance(uav->x, uav->y, m->targets[t].x, m->targets[t].y);
+                add_label(lg, t, (alpha * leg) - lg->path_price[t], (int32_t)(leg + hover), LABEL_NONE);
+                w->work++;
+            }
+        }
+    }
+    int64_t best = alpha * sva_distance(uav->x, uav->y, m->depot_x, m->depot_y);
+    uint32_t best_label = LABEL_NONE;
+    for (uint16_t c = 0U; c < w->copies; c++) {
+        const uint16_t t = w->copy_target[c];
+        if (!first_copy(w, c) || (lg->label_count[t] == 0U)) {
+            continue;
+        }
+        const sva_target_t* tg = &m->targets[t];
+        const uint32_t base = (uint32_t)t * (uint32_t)SVA_FLOW_LABELS;
+        const uint16_t tail = (uint16_t)(out_base + c);
+        // Labels of t are final here: every arc into t comes from an earlier copy.
+        for (uint32_t l = base; l < (base + lg->label_count[t]); l++) {
+            const int64_t home = sva_distance(tg->x, tg->y, m->depot_x, m->depot_y);
+            if ((((int64_t)lg->label_fuel[l] + home) <= uav->fuel) &&
+                ((lg->label_cost[l] + (alpha * home)) < best)) {
+                best = lg->label_cost[l] + (alpha * home);
+                best_label = l;
+            }
+            for (uint32_t e = w->out_start[tail]; e < w->out_start[tail + 1U]; e++) {
+                const uint16_t h = w->arc_head[e];
+                if ((h >= out_base) || !first_copy(w, (uint16_t)(h - w->uavs))) {
+                    continue;  // the depot, or a copy other than its target's first
+                }
+                const uint16_t b = w->copy_target[h - w->uavs];
+                const int64_t leg = sva_distance(tg->x, tg->y, m->targets[b].x, m->targets[b].y);
+                w->work++;
+                if ((lg->closed[b] == 0U) &&
+                    (((int64_t)lg->label_fuel[l] + leg + w->target_tail[b]) <= uav->fuel)) {
+                    add_label(lg, b, lg->label_cost[l] + (alpha * leg) - lg->path_price[b],
+                              (int32_t)((int64_t)lg->label_fuel[l] + leg + hover), l);
+                }
+            }
+        }
+    }
+    lg->path_len = 0U;
+    for (uint32_t l = best_label; l != LABEL_NONE; l = lg->label_pred[l]) {
+        lg->path[lg->path_len] = (uint16_t)(l / (uint32_t)SVA_FLOW_LABELS);
+        lg->path_len++;
+    }
+    for (uint16_t i = 0U; i < (lg->path_len / 2U); i++) {
+        const uint16_t k = lg->path[i];
+        lg->path[i] = lg->path[lg->path_len - 1U - i];
+        lg->path[lg->path_len - 1U - i] = k;
+    }
+    return best;
+}
+
+static void group_uavs(sva_flow_lagrange_t* lg, const sva_mission_t* m)
+{
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        const sva_uav_t* a = &m->uavs[u];
+        lg->group[u] = u;
+        for (uint16_t v = 0U; v < u; v++) {
+            const sva_uav_t* b = &m->uavs[v];
+            if ((a->x == b->x) && (a->y == b->y) && (a->ready_at_ticks == b->ready_at_ticks) &&
+                (a->fuel == b->fuel)) {
+                lg->group[u] = v;
+                break;
+            }
+        }
+    }
+}
+
+// One evaluation of the Lagrangian at the current prices (prices' units); fills
+// lg->grad, and the visits of every target.
+static int64_t evaluate(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
+                        const phase_t* ph, int64_t* grad_mu)
+{
+    sva_flow_lagrange_t* lg = &w->lagrange;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        lg->visits[t] = 0U;
+        lg->closed[t] = 0U;
+        lg->path_price[t] = lg->price[t];
+    }
+    int64_t value = 0;
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        if (plan->routes[u].stranded || (lg->group[u] != u)) {
+            continue;
+        }
+        const int64_t v = best_route(w, m, u, ph->alpha);
+        uint16_t members = 0U;
+        for (uint16_t k = u; k < m->uav_count; k++) {
+            members = (uint16_t)(members + ((lg->group[k] == u) ? 1U : 0U));
+        }
+        value += v * members;
+        for (uint16_t i = 0U; i < lg->path_len; i++) {
+            lg->visits[lg->path[i]] = (uint16_t)(lg->visits[lg->path[i]] + members);
+        }
+    }
+    int64_t taken = 0;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        const int64_t need = m->targets[t].need;
+        const bool y = (need * lg->price[t]) < ph->mu;
+        value += y ? ((need * lg->price[t]) - ph->mu) : 0;
+        taken += y ? 1 : 0;
+        lg->grad[t] = (y ? need : 0) - (int64_t)lg->visits[t];
+    }
+    *grad_mu = ph->covered - taken;
+    return value + (ph->mu * ph->covered);
+}
+
+// Heuristic: the UAVs fly one after another on their best routes under the prices.
+static void fly_on_prices(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                          uint16_t first)
+{
+    sva_flow_work_t* w = &priv->flow;
+    sva_flow_lagrange_t* lg = &w->lagrange;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        priv->target_served[t] = 0U;
+        lg->closed[t] = 0U;
+    }
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        plan->routes[u].target_count = 0U;
+    }
+    for (uint16_t k = 0U; k < m->uav_count; k++) {
+        const uint16_t u = (uint16_t)((first + k) % m->uav_count);
+        sva_route_t* r = &plan->routes[u];
+        if (r->stranded) {
+            continue;
+        }
+        for (uint16_t t = 0U; t < m->target_count; t++) {
+            const int64_t served = priv->target_served[t];
+            lg->path_price[t] = lg->price[t] * (1 + served);
+            lg->closed[t] = (served >= m->targets[t].need) ? 1U : 0U;
+        }
+        (void)best_route(w, m, u, SVA_FLOW_PRICE_SCALE);
+        const uint16_t n = (lg->path_len < (uint16_t)SVA_MAX_ROUTE_TARGETS) ? lg->path_len
+                                                                          : (uint16_t)SVA_MAX_ROUTE_TARGETS;
+        for (uint16_t i = 0U; i < n; i++) {
+            r->targets[i] = lg->path[i];
+            priv->target_served[lg->path[i]]++;
+        }
+        r->target_count = n;
+    }
+    sva_flow_repair(priv, m, plan, true);
+}
+
+// The incumbent's cost and coverage (the incumbent is written into *plan).
+static void incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                      int64_t* cost, int64_t* covered)
+{
+    sva_flow_write_incumbent(priv, m, plan);
+    *cost = 0;
+    *covered = 0;
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        if (!plan->routes[u].stranded) {
+            *cost += sva_route_cells(m, u, &plan->routes[u]);
+        }
+    }
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        *covered += ((int32_t)priv->target_served[t] == m->targets[t].need) ? 1 : 0;
+    }
+}
+
+// Prices' clamp: far above any useful price, far below int64 overflow.
+static int64_t price_limit(const sva_flow_work_t* w)
+{
+    return (int64_t)SVA_FLOW_PRICE_SCALE * (w->max_cost + 1) * 4;
+}
+
+// One Polyak step; false when the step is zero (the prices cannot move).
+static bool step(sva_flow_work_t* w, const sva_mission_t* m, phase_t* ph, int64_t value,
+                 int64_t grad_mu, bool move_mu)
+{
+    sva_flow_lagrange_t* lg = &w->lagrange;
+    int64_t norm = move_mu ? (grad_mu * grad_mu) : 0;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        norm += lg->grad[t] * lg->grad[t];
+    }
+    if (norm == 0) {
+        return false;
+    }
+    const int64_t gap = clamp64(ph->target - value, 1, GAP_CAP);
+    const int64_t q = ((int64_t)ph->theta * gap) / norm;  // step * THETA_ONE
+    const int64_t limit = price_limit(w);
+    bool moved = false;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        const int64_t d = (q * lg->grad[t]) / THETA_ONE;
+        moved = moved || (d != 0);
+        lg->price[t] = clamp64(lg->price[t] + d, -limit, limit);
+    }
+    if (move_mu) {
+        const int64_t d = (q * grad_mu) / THETA_ONE;
+        moved = moved || (d != 0);
+        ph->mu = clamp64(ph->mu + d, 0, limit);
+    }
+    return moved;
+}
+
+// Tracks the best value; halves theta after STALL_STEPS steps without progress.
+static void progress(phase_t* ph, int64_t value)
+{
+    ph->iters++;
+    if (value > ph->best) {
+        ph->best = value;
+        ph->stall = 0;
+    } else {
+        ph->stall++;
+        if (ph->stall >= STALL_STEPS) {
+            ph->theta /= 2;
+            ph->stall = 0;
+        }
+    }
+}
+
+static void start_prices(sva_flow_work_t* w, const sva_mission_t* m)
+{
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        const sva_target_t* tg = &m->targets[t];
+        const int64_t trip = 2 * (int64_t)sva_distance(m->depot_x, m->depot_y, tg->x, tg->y);
+        w->lagrange.price[t] = ((int64_t)SVA_FLOW_PRICE_SCALE * trip) / tg->need;
+    }
+}
+
+// Coverage phase: true if no plan covers more than `covered` targets.
+static bool prove_coverage(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
+                           int64_t covered, uint64_t budget, uint32_t* iters)
+{
+    sva_flow_lagrange_t* lg = &w->lagrange;
+    const int64_t s = SVA_FLOW_PRICE_SCALE;
+    phase_t ph = {0, s, 0, INT64_MIN, -s * covered, THETA_START, 0, 0U};
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        lg->price[t] = s / m->targets[t].need;
+    }
+    while ((ph.iters < (uint32_t)SVA_FLOW_LAGRANGE_ITERS) && (w->work < budget) &&
+           (ph.theta >= THETA_MIN)) {
+        int64_t grad_mu = 0;
+        const int64_t value = evaluate(w, m, plan, &ph, &grad_mu);
+        progress(&ph, value);
+        if (value > (-s * (covered + 1))) {
+            *iters += ph.iters;
+            return true;
+        }
+        if (!step(w, m, &ph, value, 0, false)) {
+            break;
+        }
+    }
+    *iters += ph.iters;
+    return false;
+}
+
+int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                          uint64_t budget, bool* coverage_proven, uint32_t* iters)
+{
+    sva_flow_work_t* w = &priv->flow;
+    const int64_t s = SVA_FLOW_PRICE_SCALE;
+    group_uavs(&w->lagrange, m);
+    int64_t cost = 0;
+    int64_t covered = 0;
+    incumbent(priv, m, plan, &cost, &covered);
+    start_prices(w, m);
+    int64_t most = 0;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        const int64_t v = m->targets[t].need * w->lagrange.price[t];
+        most = (v > most) ? v : most;
+    }
+    phase_t ph = {s, most + s, covered, INT64_MIN, s * cost, THETA_START, 0, 0U};
+    uint16_t rotate = 0U;
+    const uint64_t left = (budget > w->work) ? (budget - w->work) : 0U;
+    const uint64_t cost_budget = w->work + ((left / 4U) * 3U);  // the rest: coverage
+    while ((ph.iters < (uint32_t)SVA_FLOW_LAGRANGE_ITERS) && (w->work < cost_budget) &&
+           (ph.theta >= THETA_MIN) && (ph.best < ph.target)) {
+        int64_t grad_mu = 0;
+        const int64_t value = evaluate(w, m, plan, &ph, &grad_mu);
+        progress(&ph, value);
+        if ((ph.iters % (uint32_t)HEURISTIC_EVERY) == 1U) {
+            fly_on_prices(priv, m, plan, rotate);
+            rotate = (uint16_t)((rotate + 1U) % m->uav_count);
+            int64_t new_cost = 0;
+            int64_t new_covered = 0;
+            incumbent(priv, m, plan, &new_cost, &new_covered);
+            if (new_covered != covered) {
+                ph.best = INT64_MIN;  // bounds so far hold for the old coverage only
+                covered = new_covered;
+                ph.covered = covered;
+            }
+            cost = new_cost;
+            ph.target = s * cost;
+        }
+        if (!step(w, m, &ph, value, grad_mu, true)) {
+            break;
+        }
+    }
+    *iters = ph.iters;
+    const int64_t bound = (ph.best == INT64_MIN) ? 0 : ceil_div(ph.best, s);
+    // Optimality needs both; the coverage phase runs once the cost is proven.
+    *coverage_proven = (covered == (int64_t)m->target_count) ||
+                       ((bound >= cost) && prove_coverage(w, m, plan, covered, budget, iters));
+    return (bound < 0) ? 0 : bound;
+}

@@ -1,0 +1,103 @@
+// Regression test: a core built with SVA_MAX_ROUTE_TARGETS below SVA_MAX_TARGETS
+// (here 2; sva_config.h allows [1, SVA_MAX_TARGETS]) and asserts on. flow's rounding
+// reads each relaxation route with a cap of SVA_MAX_ROUTE_TARGETS, and a relaxation
+// route may be longer: sva_flow_route() asserted `n < cap` there, so a valid mission
+// aborted the program (untrusted input reaching an assert). Now the route is cut, as
+// flow_repair.c intends, and branching splits it.
+// Every algorithm must plan such missions with routes of at most 2 targets, each plan
+// checked by the independent SPEC checker. Seeds are printed (SVA_TEST_SEED=...).
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "mission_gen.h"
+#include "spec_checker.h"
+#include "sva/sva.h"
+
+static sva_planner_t planner;
+static sva_mission_t mission;
+static sva_plan_t plan;
+
+static const sva_algorithm_t algorithms[] = {SVA_ALGO_SVA, SVA_ALGO_GA, SVA_ALGO_HGA, SVA_ALGO_BFA,
+                                             SVA_ALGO_FLOW};
+
+static void must_plan(sva_algorithm_t algorithm, uint64_t seed, int round)
+{
+    sva_diag_t diag;
+    char why[256] = "";
+    const sva_status_t st = sva_plan(&planner, &mission, algorithm, &plan, &diag);
+    if (st != SVA_OK) {
+        sva_diag_format(&diag, why, sizeof(why));
+        fail_msg("seed %llu round %d %s: status %d (%s)", (unsigned long long)seed, round,
+                 sva_algorithm_name(algorithm), (int)st, why);
+    }
+    if (spec_check_plan(&mission, &plan, why, sizeof(why)) != 0) {
+        fail_msg("seed %llu round %d %s: %s", (unsigned long long)seed, round,
+                 sva_algorithm_name(algorithm), why);
+    }
+    for (uint16_t u = 0U; u < plan.route_count; u++) {
+        if (plan.routes[u].target_count > 2U) {
+            fail_msg("seed %llu round %d %s: route of UAV %d has %u targets", (unsigned long long)seed,
+                     round, sva_algorithm_name(algorithm), (int)plan.routes[u].uav_id,
+                     (unsigned)plan.routes[u].target_count);
+        }
+    }
+}
+
+static void test_bound_is_two(void** state)
+{
+    (void)state;
+    assert_int_equal(SVA_MAX_ROUTE_TARGETS, 2);
+    assert_int_equal(sva_limits().max_route_targets, 2);
+}
+
+static void test_one_uav_three_chained_targets(void** state)
+{
+    (void)state;
+    // One UAV could serve A, B and C in turn (flow's relaxation route has 3 targets);
+    // with routes of at most 2 the best plan serves A and B (40 cells).
+    sva_mission_init(&mission);
+    mission.uav_count = 1;
+    mission.uavs[0] = (sva_uav_t){1, 0, 0, 1000, 0};
+    mission.target_count = 3;
+    mission.targets[0] = (sva_target_t){1, 10, 0, 20, 25, 1};
+    mission.targets[1] = (sva_target_t){2, 20, 0, 40, 45, 1};
+    mission.targets[2] = (sva_target_t){3, 30, 0, 60, 65, 1};
+    for (size_t a = 0; a < sizeof(algorithms) / sizeof(algorithms[0]); a++) {
+        must_plan(algorithms[a], 0U, 0);
+        assert_int_equal(plan.covered, 2);
+        assert_int_equal(plan.cost, 40);
+    }
+    assert_true(plan.stats.optimal);  // flow, last: proven under the route bound
+}
+
+static void test_random_missions_keep_routes_short(void** state)
+{
+    (void)state;
+    const uint64_t seed = test_seed(0x5407A11ULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    for (int round = 0; round < 40; round++) {
+        // Few UAVs, many chaining windows: long routes are what the planners want.
+        const test_gen_params_t p = {10, 2, 20, 5, 10, 200, 1, 150, 400, 1, 1, 0, 0};
+        test_gen_mission(&rng, &p, &mission);
+        for (size_t a = 0; a < sizeof(algorithms) / sizeof(algorithms[0]); a++) {
+            must_plan(algorithms[a], seed, round);
+        }
+    }
+}
+
+int main(void)
+{
+    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_bound_is_two),
+        cmocka_unit_test(test_one_uav_three_chained_targets),
+        cmocka_unit_test(test_random_missions_keep_routes_short),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
