@@ -157,7 +157,8 @@ static int64_t min64(int64_t a, int64_t b)
 }
 
 // Depth-first search from the root relaxation; returns the least bound left open
-// (INT64_MAX when the search finished) and sets *incomplete.
+// (INT64_MAX when the search finished, -INT64_MAX when the budget was already spent)
+// and sets *incomplete.
 static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                       uint64_t budget, uint8_t* incomplete)
 {
@@ -165,6 +166,10 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
     sva_stats_t* stats = &plan->stats;
     int64_t open = INT64_MAX;
     w->depth = 0U;
+    if (w->work >= budget) {
+        *incomplete = (uint8_t)SVA_FLOW_INCOMPLETE_WORK;
+        return -INT64_MAX;  // nothing searched: no bound
+    }
     stats->search_nodes++;
     if (!sva_flow_solve(w, stats)) {
         // Cannot happen: every UAV that is not stranded may fly home, and the root
@@ -296,12 +301,10 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     if (open != INT64_MAX) {
         lagrange_bound = sva_flow_lagrange(priv, m, plan, budget - (budget / 4U), &coverage_proven,
                                            &stats->flow_lagrange_iters);
-        if (w->work < budget) {
-            uint8_t again = finished;
-            const int64_t open_again = search(priv, m, plan, budget, &again);
-            open = (open_again > open) ? open_again : open;
-            incomplete = (open_again == INT64_MAX) ? again : incomplete;
-        }
+        uint8_t again = finished;
+        const int64_t open_again = search(priv, m, plan, budget, &again);
+        open = (open_again > open) ? open_again : open;
+        incomplete = (open_again == INT64_MAX) ? again : incomplete;
     }
     sva_flow_write_incumbent(priv, m, plan);
 

@@ -447,7 +447,7 @@ static bool trade(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* 
         if ((priv->target_served[t] != 0U) || (m->targets[t].need != 1)) {
             continue;
         }
-        w->work += 2U * (uint32_t)ra->target_count;
+        w->work += (uint64_t)ra->target_count * 2U;
         remove_at(m, w, ra, a, k);
         if (best_place(w, m, plan, a, t) && (w->insert_delta[a] < saving)) {
             insert_at(w, ra, a, t);
