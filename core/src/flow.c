@@ -187,7 +187,7 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
     if (w->value >= w->inc_value) {
         return open;
     }
-    sva_flow_round(priv, m, plan);
+    sva_flow_round(priv, m, plan, true);  // the root's plan is worth polishing
     if ((w->value < w->inc_value) && choose_branch(priv, m, plan, &w->stack[0])) {
         w->stack[0].bound = w->value;
         w->depth = 1U;
@@ -225,7 +225,7 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
         if (!sva_flow_solve(w, stats) || (w->value >= w->inc_value)) {
             continue;  // infeasible, or no better than the best plan
         }
-        sva_flow_round(priv, m, plan);
+        sva_flow_round(priv, m, plan, false);
         if (w->value >= w->inc_value) {
             continue;  // the relaxation was a plan, or rounding reached its bound
         }
@@ -301,14 +301,17 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     uint8_t incomplete = finished;
     // A quarter of the budget to the search; if it does not finish, the Lagrangian phase
     // (fuel-aware bound, new plans), then the search again with the better incumbent.
-    int64_t open = search(priv, m, plan, budget / 4U, &incomplete);
+    // The phases' budgets count from here: seeding (two local searches at most, each
+    // within w->local_work) does not eat into the search.
+    const uint64_t start = w->work;
+    int64_t open = search(priv, m, plan, start + (budget / 4U), &incomplete);
     int64_t lagrange_bound = 0;
     bool coverage_proven = false;
     if (open != INT64_MAX) {
-        lagrange_bound = sva_flow_lagrange(priv, m, plan, budget - (budget / 4U), &coverage_proven,
-                                           &stats->flow_lagrange_iters);
+        lagrange_bound = sva_flow_lagrange(priv, m, plan, start + (budget - (budget / 4U)),
+                                           &coverage_proven, &stats->flow_lagrange_iters);
         uint8_t again = finished;
-        const int64_t open_again = search(priv, m, plan, budget, &again);
+        const int64_t open_again = search(priv, m, plan, start + budget, &again);
         open = (open_again > open) ? open_again : open;
         incomplete = (open_again == INT64_MAX) ? again : incomplete;
     }

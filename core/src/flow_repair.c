@@ -661,7 +661,7 @@ void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_
     (void)sva_flow_offer_plan(priv, m, plan);
 }
 
-void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, bool polish)
 {
     sva_flow_work_t* w = &priv->flow;
     for (uint16_t t = 0U; t < m->target_count; t++) {
@@ -681,5 +681,5 @@ void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t
             priv->target_served[r->targets[k]]++;
         }
     }
-    sva_flow_repair(priv, m, plan, false);
+    sva_flow_repair(priv, m, plan, polish);
 }
