@@ -3,7 +3,11 @@
 // The default mission bounds (64 UAVs, 256 targets, 24x48 tableau); only flow's graph
 // is capped lower, at 28,672 arcs (200 targets x 40 UAVs with need 1 need ~28,500).
 // A mission whose graph is larger gets flow's fallback (the better of ga and sva).
+// flow also keeps 4 labels per target (not 8) in its Lagrangian phase, and searches
+// 16 levels deep (not 24).
 #ifndef SVA_PROFILE_512K_H
 #define SVA_PROFILE_512K_H
 #define SVA_FLOW_MAX_ARCS 28672L
+#define SVA_FLOW_LABELS 4
+#define SVA_FLOW_MAX_DEPTH 16
 #endif

@@ -15,8 +15,11 @@
 //       never shortens a route (triangle inequality).
 // Every node's relaxation is rounded into a plan (flow_repair.c); the plans of `ga`
 // and `sva` are the first incumbents, so flow never plans worse than either. The
-// search stops at SVA_FLOW_MAX_WORK arc scans (deterministic); the bound then comes
-// from the nodes left open. No recursion: the path is an explicit stack of frames.
+// search gets a quarter of the work budget (SVA_FLOW_MAX_WORK units, deterministic);
+// if it does not finish, the Lagrangian phase (flow_lagrange.c) improves the bound
+// and the plan, and the search runs again on what is left. The bound comes from the
+// nodes left open and from the Lagrangian phase. No recursion: the path is an
+// explicit stack of frames.
 #include "sva_internal.h"
 
 #define BRANCH_TARGET 1U
@@ -136,16 +139,19 @@ static bool run_sva_quietly(sva_planner_t* self, const sva_mission_t* m, sva_pla
     return ok;
 }
 
-// The plans of ga and sva as the first incumbents (stats kept).
+// The plans of ga and sva as the first incumbents, then each repaired and improved
+// by the local search (stats kept).
 static void seed(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan)
 {
     sva_planner_priv_t* priv = &self->priv;
     const sva_stats_t kept = plan->stats;
     sva_run_ga(priv, m, plan);
     (void)sva_flow_offer_plan(priv, m, plan);
+    sva_flow_repair(priv, m, plan, true);
     sva_state_reset(priv, m, plan);
     if (run_sva_quietly(self, m, plan)) {
         (void)sva_flow_offer_plan(priv, m, plan);
+        sva_flow_repair(priv, m, plan, true);
     }
     sva_state_reset(priv, m, plan);
     plan->stats = kept;
@@ -157,7 +163,8 @@ static int64_t min64(int64_t a, int64_t b)
 }
 
 // Depth-first search from the root relaxation; returns the least bound left open
-// (INT64_MAX when the search finished) and sets *incomplete.
+// (INT64_MAX when the search finished, -INT64_MAX when the budget was already spent)
+// and sets *incomplete.
 static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                       uint64_t budget, uint8_t* incomplete)
 {
@@ -165,6 +172,10 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
     sva_stats_t* stats = &plan->stats;
     int64_t open = INT64_MAX;
     w->depth = 0U;
+    if (w->work >= budget) {
+        *incomplete = (uint8_t)SVA_FLOW_INCOMPLETE_WORK;
+        return -INT64_MAX;  // nothing searched: no bound
+    }
     stats->search_nodes++;
     if (!sva_flow_solve(w, stats)) {
         // Cannot happen: every UAV that is not stranded may fly home, and the root
@@ -176,7 +187,7 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
     if (w->value >= w->inc_value) {
         return open;
     }
-    sva_flow_round(priv, m, plan);
+    sva_flow_round(priv, m, plan, true);  // the root's plan is worth polishing
     if ((w->value < w->inc_value) && choose_branch(priv, m, plan, &w->stack[0])) {
         w->stack[0].bound = w->value;
         w->depth = 1U;
@@ -214,7 +225,7 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
         if (!sva_flow_solve(w, stats) || (w->value >= w->inc_value)) {
             continue;  // infeasible, or no better than the best plan
         }
-        sva_flow_round(priv, m, plan);
+        sva_flow_round(priv, m, plan, false);
         if (w->value >= w->inc_value) {
             continue;  // the relaxation was a plan, or rounding reached its bound
         }
@@ -278,30 +289,31 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
         fall_back(self, m, plan, over);
         return SVA_OK;
     }
-    w->has_inc = false;
-    w->work = 0U;
-    seed(self, m, plan);
-    const uint8_t finished = w->reward_exact ? (uint8_t)SVA_FLOW_COMPLETE : (uint8_t)SVA_FLOW_INCOMPLETE_REWARD;
-    uint8_t incomplete = finished;
     uint64_t budget = self->flow_max_work;
     budget = (budget < 1000U) ? 1000U : budget;
     budget = (budget > (uint64_t)SVA_FLOW_MAX_WORK) ? (uint64_t)SVA_FLOW_MAX_WORK : budget;
+    w->has_inc = false;
+    w->work = 0U;
+    w->local_work = budget / 2U;
     stats->search_nodes = 0U;
-    w->local_work = budget / 8U;
+    seed(self, m, plan);
+    const uint8_t finished = w->reward_exact ? (uint8_t)SVA_FLOW_COMPLETE : (uint8_t)SVA_FLOW_INCOMPLETE_REWARD;
+    uint8_t incomplete = finished;
     // A quarter of the budget to the search; if it does not finish, the Lagrangian phase
     // (fuel-aware bound, new plans), then the search again with the better incumbent.
-    int64_t open = search(priv, m, plan, budget / 4U, &incomplete);
+    // The phases' budgets count from here: seeding (two local searches at most, each
+    // within w->local_work) does not eat into the search.
+    const uint64_t start = w->work;
+    int64_t open = search(priv, m, plan, start + (budget / 4U), &incomplete);
     int64_t lagrange_bound = 0;
     bool coverage_proven = false;
     if (open != INT64_MAX) {
-        lagrange_bound = sva_flow_lagrange(priv, m, plan, budget - (budget / 4U), &coverage_proven,
-                                           &stats->flow_lagrange_iters);
-        if (w->work < budget) {
-            uint8_t again = finished;
-            const int64_t open_again = search(priv, m, plan, budget, &again);
-            open = (open_again > open) ? open_again : open;
-            incomplete = (open_again == INT64_MAX) ? again : incomplete;
-        }
+        lagrange_bound = sva_flow_lagrange(priv, m, plan, start + (budget - (budget / 4U)),
+                                           &coverage_proven, &stats->flow_lagrange_iters);
+        uint8_t again = finished;
+        const int64_t open_again = search(priv, m, plan, start + budget, &again);
+        open = (open_again > open) ? open_again : open;
+        incomplete = (open_again == INT64_MAX) ? again : incomplete;
     }
     sva_flow_write_incumbent(priv, m, plan);
 

@@ -27,7 +27,8 @@
 #define THETA_MIN 4
 #define STALL_STEPS 20
 #define HEURISTIC_EVERY 4
-#define GAP_CAP (((int64_t)1) << 36)  // keeps theta * gap * grad within int64
+#define GAP_CAP INT64_C(68719476736)  // 2^36: keeps theta * gap * grad within int64
+#define NO_BOUND (-INT64_MAX)
 
 typedef struct {
     int64_t alpha;     // S in the cost phase, 0 in the coverage phase
@@ -42,8 +43,11 @@ typedef struct {
 
 static int64_t floor_div(int64_t a, int64_t b)
 {
-    const int64_t q = a / b;
-    return ((a % b) != 0) && ((a < 0) != (b < 0)) ? (q - 1) : q;
+    int64_t q = a / b;
+    if (((a % b) != 0) && ((a < 0) != (b < 0))) {
+        q--;
+    }
+    return q;
 }
 
 static int64_t ceil_div(int64_t a, int64_t b)
@@ -72,22 +76,23 @@ static void add_label(sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t
             return;
         }
     }
+    int64_t new_cost = cost;
+    int32_t new_fuel = fuel;
+    uint32_t new_pred = pred;
     if (n == (uint32_t)SVA_FLOW_LABELS) {
-        // Full: merge into the label nearest in fuel (min of both: dominates both).
+        // Full: merge into the label nearest in fuel (min of both: dominates both),
+        // which leaves the set to be re-added.
         uint32_t near = base;
         for (uint32_t j = base + 1U; j < (base + n); j++) {
             const int64_t dj = (int64_t)lg->label_fuel[j] - fuel;
             const int64_t dn = (int64_t)lg->label_fuel[near] - fuel;
             near = (((dj < 0) ? -dj : dj) < ((dn < 0) ? -dn : dn)) ? j : near;
         }
-        if (cost < lg->label_cost[near]) {
-            lg->label_cost[near] = cost;
-            lg->label_pred[near] = pred;
+        if (lg->label_cost[near] <= cost) {
+            new_cost = lg->label_cost[near];
+            new_pred = lg->label_pred[near];
         }
-        lg->label_fuel[near] = (fuel < lg->label_fuel[near]) ? fuel : lg->label_fuel[near];
-        cost = lg->label_cost[near];
-        fuel = lg->label_fuel[near];
-        pred = lg->label_pred[near];
+        new_fuel = (lg->label_fuel[near] < fuel) ? lg->label_fuel[near] : fuel;
         lg->label_cost[near] = lg->label_cost[base + n - 1U];
         lg->label_fuel[near] = lg->label_fuel[base + n - 1U];
         lg->label_pred[near] = lg->label_pred[base + n - 1U];
@@ -95,16 +100,16 @@ static void add_label(sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t
     }
     uint32_t kept = base;
     for (uint32_t j = base; j < (base + n); j++) {
-        if ((fuel > lg->label_fuel[j]) || (cost > lg->label_cost[j])) {
+        if ((new_fuel > lg->label_fuel[j]) || (new_cost > lg->label_cost[j])) {
             lg->label_cost[kept] = lg->label_cost[j];
             lg->label_fuel[kept] = lg->label_fuel[j];
             lg->label_pred[kept] = lg->label_pred[j];
             kept++;
         }
     }
-    lg->label_cost[kept] = cost;
-    lg->label_fuel[kept] = fuel;
-    lg->label_pred[kept] = pred;
+    lg->label_cost[kept] = new_cost;
+    lg->label_fuel[kept] = new_fuel;
+    lg->label_pred[kept] = new_pred;
     lg->label_count[t] = (uint8_t)((kept - base) + 1U);
 }
 
@@ -215,7 +220,7 @@ static int64_t evaluate(sva_flow_work_t* w, const sva_mission_t* m, const sva_pl
         for (uint16_t k = u; k < m->uav_count; k++) {
             members = (uint16_t)(members + ((lg->group[k] == u) ? 1U : 0U));
         }
-        value += v * members;
+        value += v * (int64_t)members;
         for (uint16_t i = 0U; i < lg->path_len; i++) {
             lg->visits[lg->path[i]] = (uint16_t)(lg->visits[lg->path[i]] + members);
         }
@@ -257,13 +262,14 @@ static void fly_on_prices(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
             lg->closed[t] = (served >= m->targets[t].need) ? 1U : 0U;
         }
         (void)best_route(w, m, u, SVA_FLOW_PRICE_SCALE);
-        const uint16_t n = (lg->path_len < (uint16_t)SVA_MAX_ROUTE_TARGETS) ? lg->path_len
-                                                                          : (uint16_t)SVA_MAX_ROUTE_TARGETS;
-        for (uint16_t i = 0U; i < n; i++) {
-            r->targets[i] = lg->path[i];
-            priv->target_served[lg->path[i]]++;
+        // A path longer than SVA_MAX_ROUTE_TARGETS keeps its head (still a route).
+        r->target_count = 0U;
+        while ((r->target_count < lg->path_len) && (r->target_count < (uint16_t)SVA_MAX_ROUTE_TARGETS)) {
+            const uint16_t t = lg->path[r->target_count];
+            r->targets[r->target_count] = t;
+            priv->target_served[t]++;
+            r->target_count++;
         }
-        r->target_count = n;
     }
     sva_flow_repair(priv, m, plan, true);
 }
@@ -296,7 +302,10 @@ static bool step(sva_flow_work_t* w, const sva_mission_t* m, phase_t* ph, int64_
                  int64_t grad_mu, bool move_mu)
 {
     sva_flow_lagrange_t* lg = &w->lagrange;
-    int64_t norm = move_mu ? (grad_mu * grad_mu) : 0;
+    int64_t norm = 0;
+    if (move_mu) {
+        norm = grad_mu * grad_mu;
+    }
     for (uint16_t t = 0U; t < m->target_count; t++) {
         norm += lg->grad[t] * lg->grad[t];
     }
@@ -351,7 +360,7 @@ static bool prove_coverage(sva_flow_work_t* w, const sva_mission_t* m, const sva
 {
     sva_flow_lagrange_t* lg = &w->lagrange;
     const int64_t s = SVA_FLOW_PRICE_SCALE;
-    phase_t ph = {0, s, 0, INT64_MIN, -s * covered, THETA_START, 0, 0U};
+    phase_t ph = {0, s, 0, NO_BOUND, -s * covered, THETA_START, 0, 0U};
     for (uint16_t t = 0U; t < m->target_count; t++) {
         lg->price[t] = s / m->targets[t].need;
     }
@@ -387,7 +396,7 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
         const int64_t v = m->targets[t].need * w->lagrange.price[t];
         most = (v > most) ? v : most;
     }
-    phase_t ph = {s, most + s, covered, INT64_MIN, s * cost, THETA_START, 0, 0U};
+    phase_t ph = {s, most + s, covered, NO_BOUND, s * cost, THETA_START, 0, 0U};
     uint16_t rotate = 0U;
     const uint64_t left = (budget > w->work) ? (budget - w->work) : 0U;
     const uint64_t cost_budget = w->work + ((left / 4U) * 3U);  // the rest: coverage
@@ -403,7 +412,7 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
             int64_t new_covered = 0;
             incumbent(priv, m, plan, &new_cost, &new_covered);
             if (new_covered != covered) {
-                ph.best = INT64_MIN;  // bounds so far hold for the old coverage only
+                ph.best = NO_BOUND;  // bounds so far hold for the old coverage only
                 covered = new_covered;
                 ph.covered = covered;
             }
@@ -415,7 +424,7 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
         }
     }
     *iters = ph.iters;
-    const int64_t bound = (ph.best == INT64_MIN) ? 0 : ceil_div(ph.best, s);
+    const int64_t bound = (ph.best == NO_BOUND) ? 0 : ceil_div(ph.best, s);
     // Optimality needs both; the coverage phase runs once the cost is proven.
     *coverage_proven = (covered == (int64_t)m->target_count) ||
                        ((bound >= cost) && prove_coverage(w, m, plan, covered, budget, iters));

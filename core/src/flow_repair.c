@@ -321,10 +321,10 @@ static bool eject_for(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
 
 // ---------------------------------------------------------------------------------
 // Local search: move one UAV's visit to another UAV, swap two UAVs' visits (each in
-// the other's slot), trade a visit for an uncovered target, or swap two routes'
-// tails, whenever the plan gets shorter. First improvement; passes until none helps,
-// at most LOCAL_PASSES, and no new pass once a call has used w->local_work. Coverage
-// never changes; every step keeps a plan.
+// the other's slot), swap two routes' tails, or trade a covered target for an
+// uncovered one of the same need, whenever the plan gets shorter. First improvement;
+// passes until none helps, at most LOCAL_PASSES, and no new pass once a call has used
+// w->local_work. Coverage never changes; every step keeps a plan.
 
 #define LOCAL_PASSES 8U
 
@@ -431,31 +431,48 @@ static bool swap(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, u
     return false;
 }
 
-// Trade: the k-th visit of route a, a single-UAV target, gives way to an uncovered
-// single-UAV target when that saves cells (coverage unchanged).
-static bool trade(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, uint16_t a,
-                  uint16_t k)
+static int64_t plan_cells(const sva_flow_work_t* w, const sva_mission_t* m)
+{
+    int64_t cells = 0;
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        cells += w->route_cells[u];
+    }
+    return cells;
+}
+
+// Trade: covered target s gives way to an uncovered target t of the same need, served
+// by its `need` cheapest UAVs, when that saves cells (coverage unchanged).
+static bool trade(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, uint16_t s)
 {
     sva_flow_work_t* w = &priv->flow;
-    sva_route_t* ra = &plan->routes[a];
-    const uint16_t s = ra->targets[k];
-    if (m->targets[s].need != 1) {
-        return false;
-    }
-    const int64_t saving = stop_saving(m, a, ra, k);
+    const int32_t need = m->targets[s].need;
     for (uint16_t t = 0U; t < m->target_count; t++) {
-        if ((priv->target_served[t] != 0U) || (m->targets[t].need != 1)) {
+        if ((priv->target_served[t] != 0U) || (m->targets[t].need != need)) {
             continue;
         }
-        w->work += 2U * (uint32_t)ra->target_count;
-        remove_at(m, w, ra, a, k);
-        if (best_place(w, m, plan, a, t) && (w->insert_delta[a] < saving)) {
-            insert_at(w, ra, a, t);
-            priv->target_served[s] = 0U;
-            priv->target_served[t] = 1U;
+        w->work += (uint64_t)m->uav_count * 4U;
+        const int64_t before = plan_cells(w, m);
+        for (uint16_t u = 0U; u < m->uav_count; u++) {
+            const sva_route_t* r = &plan->routes[u];
+            w->trade_pos[u] = ROUTE_END;
+            for (uint16_t k = 0U; k < r->target_count; k++) {
+                w->trade_pos[u] = (r->targets[k] == s) ? k : w->trade_pos[u];
+            }
+        }
+        remove_target(priv, m, plan, s);
+        try_insert(priv, m, plan, t);
+        if ((priv->target_served[t] != 0U) && (plan_cells(w, m) < before)) {
             return true;
         }
-        put_back(m, w, ra, a, k, s);
+        if (priv->target_served[t] != 0U) {
+            remove_target(priv, m, plan, t);
+        }
+        for (uint16_t u = 0U; u < m->uav_count; u++) {
+            if (w->trade_pos[u] != ROUTE_END) {
+                put_back(m, w, &plan->routes[u], u, w->trade_pos[u], s);
+            }
+        }
+        priv->target_served[s] = (uint16_t)need;
     }
     return false;
 }
@@ -577,7 +594,7 @@ static void local_search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_p
         better = false;
         for (uint16_t a = 0U; a < m->uav_count; a++) {
             for (uint16_t k = 0U; k < plan->routes[a].target_count; k++) {
-                if (relocate(w, m, plan, a, k) || swap(w, m, plan, a, k) || trade(priv, m, plan, a, k)) {
+                if (relocate(w, m, plan, a, k) || swap(w, m, plan, a, k)) {
                     better = true;
                 }
             }
@@ -585,6 +602,11 @@ static void local_search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_p
                 if (!plan->routes[b].stranded && exchange_tails(w, m, plan, a, b)) {
                     better = true;
                 }
+            }
+        }
+        for (uint16_t s = 0U; s < m->target_count; s++) {
+            if (((int32_t)priv->target_served[s] == m->targets[s].need) && trade(priv, m, plan, s)) {
+                better = true;
             }
         }
     }
@@ -639,7 +661,7 @@ void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_
     (void)sva_flow_offer_plan(priv, m, plan);
 }
 
-void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, bool polish)
 {
     sva_flow_work_t* w = &priv->flow;
     for (uint16_t t = 0U; t < m->target_count; t++) {
@@ -659,5 +681,5 @@ void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t
             priv->target_served[r->targets[k]]++;
         }
     }
-    sva_flow_repair(priv, m, plan, false);
+    sva_flow_repair(priv, m, plan, polish);
 }

@@ -102,8 +102,10 @@ bool sva_flow_route_fits(const sva_mission_t* m, uint16_t u, const uint16_t* cop
 /// Keeps the plan in *plan (routes + priv->target_served) if it beats the incumbent.
 bool sva_flow_offer_plan(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan);
 void sva_flow_write_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
-/// Rounds the current relaxation into a plan (scratch: *plan) and offers it.
-void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
+/// Rounds the current relaxation into a plan (scratch: *plan) and offers it
+/// (sva_flow_repair, with `polish`).
+void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                    bool polish);
 /// Makes the routes in *plan (with priv->target_served) a plan: drops half-covered
 /// targets and routes' excess, inserts what fits, improves it by local search if it
 /// beats the incumbent (or, with `polish`, comes within 1/16), and offers it.

@@ -250,6 +250,42 @@ static void test_lagrangian_phase_bound_and_claims_hold(void** state)
     assert_true(tight > 0);
 }
 
+static sva_mission_t second;
+static sva_plan_t again;
+
+// Same mission, same plan: whatever the planner planned before (no state carried over).
+static void test_plans_do_not_depend_on_the_planners_history(void** state)
+{
+    (void)state;
+    const uint64_t seed = test_seed(0x4157ULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    for (int round = 0; round < 40; round++) {
+        const test_gen_params_t p = {SVA_MAX_TARGETS < 20 ? SVA_MAX_TARGETS : 20,
+                                     SVA_MAX_UAVS < 4 ? SVA_MAX_UAVS : 4, 20, 10, 20, 100,
+                                     test_rng_range(&rng, 1, 2), 60, 100, 2, 1, 0, 0};
+        test_gen_mission(&rng, &p, &mission);
+        test_gen_mission(&rng, &p, &second);
+        assert_int_equal(sva_planner_init(&planner), SVA_OK);
+        must_plan(SVA_ALGO_FLOW, &plan, seed, round);
+        const sva_mission_t kept = mission;
+        mission = second;
+        must_plan(SVA_ALGO_FLOW, &other, seed, round);
+        mission = kept;
+        must_plan(SVA_ALGO_FLOW, &again, seed, round);
+        assert_int_equal(plan.cost, again.cost);
+        assert_int_equal(plan.covered, again.covered);
+        assert_int_equal(plan.stats.lower_bound, again.stats.lower_bound);
+        assert_int_equal(plan.stats.optimal, again.stats.optimal);
+        assert_int_equal(plan.stats.flow_work, again.stats.flow_work);
+        for (uint16_t u = 0U; u < plan.route_count; u++) {
+            assert_int_equal(plan.routes[u].target_count, again.routes[u].target_count);
+            assert_memory_equal(plan.routes[u].targets, again.routes[u].targets,
+                                sizeof(uint16_t) * plan.routes[u].target_count);
+        }
+    }
+}
+
 static void test_past_its_graph_bounds_flow_falls_back_honestly(void** state)
 {
     (void)state;
@@ -334,6 +370,7 @@ int main(void)
         cmocka_unit_test(test_paper_sizes_never_worse_than_the_paper),
         cmocka_unit_test(test_small_budget_gives_a_checked_unproven_plan),
         cmocka_unit_test(test_lagrangian_phase_bound_and_claims_hold),
+        cmocka_unit_test(test_plans_do_not_depend_on_the_planners_history),
         cmocka_unit_test(test_past_its_graph_bounds_flow_falls_back_honestly),
         cmocka_unit_test(test_dense_graph_past_the_arc_bound_falls_back),
         cmocka_unit_test(test_observer_silent_and_stats_only_for_flow),

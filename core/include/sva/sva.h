@@ -456,6 +456,7 @@ typedef struct {
     uint16_t insert_pos[SVA_MAX_UAVS];
     uint8_t uav_pick[SVA_MAX_UAVS];
     uint16_t spare_route[SVA_MAX_ROUTE_TARGETS];  ///< a route's tail in an exchange
+    uint16_t trade_pos[SVA_MAX_UAVS];             ///< where a traded target was
     int32_t piece_pre[2][SVA_MAX_ROUTE_TARGETS + 1];   ///< two routes' cells up to a stop
     int32_t piece_post[2][SVA_MAX_ROUTE_TARGETS + 1];  ///< and from a stop on
     uint16_t pred_node[SVA_FLOW_NODES];
