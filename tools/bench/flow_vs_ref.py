@@ -4,8 +4,9 @@
 Usage (from the repository root, after scripts/setup.sh and scripts/build.sh):
     .venv/bin/python tools/bench/flow_vs_ref.py TARGETS UAVS COUNT [sva-tools gen options]
     e.g. .venv/bin/python tools/bench/flow_vs_ref.py 25 5 30 --width 10:20 --need 1 --hover 2 --fuel 120
-Environment: FLOW_WORK=N passes --flow-work N to the planner; REF_SECONDS (default 20)
-is ref's time limit. Missions and ref plans are cached under build/flow_vs_ref/.
+Environment: FLOW_WORK=N passes --flow-work N to the planner; REF_DET (default 10) is
+ref's deterministic limit (load-independent; docs/tools.md). Missions and ref plans are
+cached under build/flow_vs_ref/ (delete a folder to recompute its ref plans).
 Prints: missions where flow's coverage equals, is below or above ref's; the mean and
 largest cost gap at equal coverage; how many flow plans are proven optimal; flow's
 median and p95 solve time; the gap to the proven optima alone; flow's own certified
@@ -45,7 +46,7 @@ def main(argv):
         path = os.path.join(folder, name)
         ref_path = path[:-5] + ".ref.json"
         if not os.path.exists(ref_path):
-            ref = subprocess.run([TOOLS, "ref", "--time-limit", os.environ.get("REF_SECONDS", "20"),
+            ref = subprocess.run([TOOLS, "ref", "--det-limit", os.environ.get("REF_DET", "10"),
                                   "--workers", "1", path], capture_output=True, text=True, check=True)
             with open(ref_path, "w") as f:
                 f.write(ref.stdout)
