@@ -19,18 +19,6 @@
 
 #define FLOW_INT64_LIMIT (INT64_MAX / 4)
 
-static int64_t gcd64(int64_t a, int64_t b)
-{
-    int64_t x = a;
-    int64_t y = b;
-    while (y != 0) {
-        const int64_t r = x % y;
-        x = y;
-        y = r;
-    }
-    return x;
-}
-
 // Rewards: a covered target earns W, each copy W / need. W exceeds any flow cost
 // (every node sends at most one unit, so a flow costs at most (U + C) * the widest
 // leg), so covering one more target always wins (SPEC section 1 order). W is a
@@ -50,7 +38,7 @@ static void set_rewards(sva_flow_work_t* w, const sva_mission_t* m, int64_t wide
     bool exact = true;
     for (uint16_t t = 0U; (t < m->target_count) && exact; t++) {
         const int64_t need = m->targets[t].need;
-        const int64_t step = need / gcd64(lcm, need);
+        const int64_t step = need / sva_gcd64(lcm, need);
         // step >= 1 as validation keeps need >= 1; the guard keeps the division safe
         // on its own.
         if ((step < 1) || (lcm > (room / step))) {

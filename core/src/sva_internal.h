@@ -44,6 +44,19 @@ static inline int32_t sva_distance(int32_t ax, int32_t ay, int32_t bx, int32_t b
     return dx + dy;
 }
 
+/// Greatest common divisor (gcd(a, 0) = a), for the needs' lcm (tableau.c, flow_graph.c).
+static inline int64_t sva_gcd64(int64_t a, int64_t b)
+{
+    int64_t x = a;
+    int64_t y = b;
+    while (y != 0) {
+        const int64_t r = x % y;
+        x = y;
+        y = r;
+    }
+    return x;
+}
+
 // cluster.c: targets by (start, end, id) into priv->target_order, then clusters.
 void sva_sort_targets(sva_planner_priv_t* priv, const sva_mission_t* mission);
 void sva_sort_uavs(sva_planner_priv_t* priv, const sva_mission_t* mission);

@@ -37,18 +37,6 @@ static int8_t* cell(sva_tableau_t* tab, shape_t sh, uint16_t row, uint16_t col)
     return &tab->cell[((uint32_t)row * sh.cols) + col];
 }
 
-static int64_t gcd(int64_t a, int64_t b)
-{
-    int64_t x = a;
-    int64_t y = b;
-    while (y != 0) {
-        const int64_t r = x % y;
-        x = y;
-        y = r;
-    }
-    return x;
-}
-
 // L: the lcm of the kept sinks' needs, or 1 when L * M could overflow the reduced
 // costs (each is at most (rows + 1) * max column cost in magnitude).
 static int64_t needs_lcm(const sva_tp_t* tp, int64_t big_m, uint16_t rows)
@@ -58,7 +46,7 @@ static int64_t needs_lcm(const sva_tp_t* tp, int64_t big_m, uint16_t rows)
     for (uint16_t k = 0U; k < tp->sink_count; k++) {
         if (!tp->sink_dropped[k]) {
             const int64_t d = tp->demand[k];
-            lcm = (lcm / gcd(lcm, d)) * d;
+            lcm = (lcm / sva_gcd64(lcm, d)) * d;
             if (lcm > limit) {
                 return 1;
             }
