@@ -252,8 +252,9 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
     return open;
 }
 
-// Past its graph bounds flow has no relaxation: it returns the better of the ga and
-// sva plans with the trivial bound 0, never claiming optimality.
+// Past SVA_FLOW_MAX_COPIES flow has no relaxation and no copies: it returns the better
+// of the ga and sva plans with the trivial bound 0, never claiming optimality. (Past
+// SVA_FLOW_MAX_ARCS the seeds are also improved by the local search: sva_run_flow.)
 static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan, uint8_t why)
 {
     sva_planner_priv_t* priv = &self->priv;
@@ -284,11 +285,6 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     sva_planner_priv_t* priv = &self->priv;
     sva_flow_work_t* w = &priv->flow;
     sva_stats_t* stats = &plan->stats;
-    const uint8_t over = sva_flow_build(priv, m, plan, stats);
-    if (over != 0U) {
-        fall_back(self, m, plan, over);
-        return SVA_OK;
-    }
     uint64_t budget = self->flow_max_work;
     budget = (budget < 1000U) ? 1000U : budget;
     budget = (budget > (uint64_t)SVA_FLOW_MAX_WORK) ? (uint64_t)SVA_FLOW_MAX_WORK : budget;
@@ -296,6 +292,23 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     w->work = 0U;
     w->local_work = budget / 2U;
     stats->search_nodes = 0U;
+    const uint8_t over = sva_flow_build(priv, m, plan, stats);
+    if (over == (uint8_t)SVA_FLOW_OVER_ARCS) {
+        // No relaxation, but the copies and rewards are in place: the seeds still go
+        // through the repair and the local search.
+        seed(self, m, plan);
+        sva_flow_write_incumbent(priv, m, plan);
+        stats->has_bound = true;
+        stats->lower_bound = 0;
+        stats->optimal = false;
+        stats->flow_incomplete = over;
+        stats->flow_work = w->work;
+        return SVA_OK;
+    }
+    if (over != 0U) {
+        fall_back(self, m, plan, over);
+        return SVA_OK;
+    }
     seed(self, m, plan);
     const uint8_t finished = w->reward_exact ? (uint8_t)SVA_FLOW_COMPLETE : (uint8_t)SVA_FLOW_INCOMPLETE_REWARD;
     uint8_t incomplete = finished;
