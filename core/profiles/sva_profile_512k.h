@@ -2,7 +2,8 @@
 // tests/footprint on Cortex-M4F: planner + plan + 4 KiB stack, the mission in flash).
 // The default mission bounds (64 UAVs, 256 targets, 24x48 tableau); only flow's graph
 // is capped lower, at 28,672 arcs (200 targets x 40 UAVs with need 1 need ~28,500).
-// A mission whose graph is larger gets flow's fallback (the better of ga and sva).
+// A mission whose graph is larger gets flow's fallback (ga's and sva's plans through
+// the repair and local search, no bound).
 // flow also keeps 4 labels per target (not 8) in its Lagrangian phase, and searches
 // 16 levels deep (not 24).
 #ifndef SVA_PROFILE_512K_H

@@ -267,7 +267,8 @@ typedef struct {
     /// Why flow did not prove optimality: 0 it did (or the search finished), 1 work
     /// budget, 2 SVA_FLOW_MAX_DEPTH, 3 needs whose lcm is too large for exact ties;
     /// 4 needs summed above SVA_FLOW_MAX_COPIES, 5 graph above SVA_FLOW_MAX_ARCS (4 and
-    /// 5: no relaxation; the plan is the better of ga's and sva's, lower_bound 0).
+    /// 5: no relaxation, lower_bound 0; the plan is the better of ga's and sva's, with
+    /// 5 after the repair and local search).
     uint8_t flow_incomplete;
 } sva_stats_t;
 
