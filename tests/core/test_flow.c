@@ -56,6 +56,27 @@ static void check_certificate(const sva_plan_t* p, uint64_t seed, int round)
     }
 }
 
+// A flow plan against the brute-force optimum: checked certificate, never better than
+// the optimum, "optimal" only when it is, and a bound at most the optimum's cost when
+// it covers no more targets than the optimum.
+static void check_against_optimum(const sva_plan_t* p, const brute_result_t* best, uint64_t seed, int round)
+{
+    check_certificate(p, seed, round);
+    if (spec_better(p->covered, p->cost, best->covered, best->cost)) {
+        fail_msg("seed %llu round %d: flow (%d, %lld) beats the optimum (%d, %lld)", (unsigned long long)seed,
+                 round, p->covered, (long long)p->cost, best->covered, best->cost);
+    }
+    if (p->stats.optimal && (p->covered != best->covered || p->cost != best->cost)) {
+        fail_msg("seed %llu round %d: flow claims optimal (%d, %lld), optimum (%d, %lld)",
+                 (unsigned long long)seed, round, p->covered, (long long)p->cost, best->covered, best->cost);
+    }
+    if (p->covered <= best->covered && p->stats.lower_bound > best->cost) {
+        fail_msg("seed %llu round %d: bound %lld above the optimum %lld (covering %d <= %d)",
+                 (unsigned long long)seed, round, (long long)p->stats.lower_bound, best->cost, p->covered,
+                 best->covered);
+    }
+}
+
 static void test_tiny_missions_equal_brute_force(void** state)
 {
     (void)state;
@@ -73,24 +94,8 @@ static void test_tiny_missions_equal_brute_force(void** state)
         test_gen_mission(&rng, &p, &mission);
         const brute_result_t best = brute_force_optimum(&mission);
         must_plan(SVA_ALGO_FLOW, &plan, seed, round);
-        check_certificate(&plan, seed, round);
-        if (spec_better(plan.covered, plan.cost, best.covered, best.cost)) {
-            fail_msg("seed %llu round %d: flow (%d, %lld) beats the optimum (%d, %lld)",
-                     (unsigned long long)seed, round, plan.covered, (long long)plan.cost,
-                     best.covered, best.cost);
-        }
-        if (plan.stats.optimal) {
-            proven++;
-            if (plan.covered != best.covered || plan.cost != best.cost) {
-                fail_msg("seed %llu round %d: flow claims optimal (%d, %lld), optimum (%d, %lld)",
-                         (unsigned long long)seed, round, plan.covered, (long long)plan.cost,
-                         best.covered, best.cost);
-            }
-        }
-        if (plan.covered == best.covered && plan.stats.lower_bound > best.cost) {
-            fail_msg("seed %llu round %d: bound %lld above the optimum %lld",
-                     (unsigned long long)seed, round, (long long)plan.stats.lower_bound, best.cost);
-        }
+        check_against_optimum(&plan, &best, seed, round);
+        proven += plan.stats.optimal ? 1 : 0;
         fuel_bound += (plan.stats.search_nodes > 1U) ? 1 : 0;
         for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
             must_plan((sva_algorithm_t)a, &other, seed, round);
@@ -221,22 +226,7 @@ static void test_lagrangian_phase_bound_and_claims_hold(void** state)
         test_gen_mission(&rng, &p, &mission);
         const brute_result_t best = brute_force_optimum(&mission);
         must_plan(SVA_ALGO_FLOW, &plan, seed, round);
-        check_certificate(&plan, seed, round);
-        if (spec_better(plan.covered, plan.cost, best.covered, best.cost)) {
-            fail_msg("seed %llu round %d: flow (%d, %lld) beats the optimum (%d, %lld)",
-                     (unsigned long long)seed, round, plan.covered, (long long)plan.cost, best.covered,
-                     best.cost);
-        }
-        if (plan.stats.optimal && (plan.covered != best.covered || plan.cost != best.cost)) {
-            fail_msg("seed %llu round %d: flow claims optimal (%d, %lld), optimum (%d, %lld)",
-                     (unsigned long long)seed, round, plan.covered, (long long)plan.cost, best.covered,
-                     best.cost);
-        }
-        if (plan.covered <= best.covered && plan.stats.lower_bound > best.cost) {
-            fail_msg("seed %llu round %d: bound %lld above the optimum %lld (covering %d >= %d)",
-                     (unsigned long long)seed, round, (long long)plan.stats.lower_bound, best.cost,
-                     best.covered, plan.covered);
-        }
+        check_against_optimum(&plan, &best, seed, round);
         if (plan.stats.flow_lagrange_iters > 0U) {
             lagrange_runs++;
             proven_by_it += plan.stats.optimal ? 1 : 0;
