@@ -174,35 +174,52 @@ static uint16_t costliest_stop(const sva_mission_t* m, uint16_t u, const sva_rou
     return best;
 }
 
+// Whether a UAV free at free_at in (x, y) reaches target tg by its start.
+static bool arrives_in_time(const sva_mission_t* m, int64_t free_at, int32_t x, int32_t y,
+                            const sva_target_t* tg)
+{
+    return (free_at + ((int64_t)sva_distance(x, y, tg->x, tg->y) * m->ticks_per_cell)) <= tg->start_ticks;
+}
+
+// Target t flown between where route u is after its first p targets and its stop
+// `next` (the depot when next is its length): whether both windows are still met in
+// time, and in *cells how much longer the route gets than flying that leg directly.
+static bool detour(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t p, uint16_t next,
+                   uint16_t t, int64_t* cells)
+{
+    int32_t px = 0;
+    int32_t py = 0;
+    int64_t free_at = 0;
+    leg_ends(m, u, r, p, &px, &py, &free_at);
+    const sva_target_t* tg = &m->targets[t];
+    if (!arrives_in_time(m, free_at, px, py, tg)) {
+        return false;
+    }
+    int32_t nx = m->depot_x;
+    int32_t ny = m->depot_y;
+    if (next < r->target_count) {
+        const sva_target_t* after = &m->targets[r->targets[next]];
+        if (!arrives_in_time(m, tg->end_ticks, tg->x, tg->y, after)) {
+            return false;
+        }
+        nx = after->x;
+        ny = after->y;
+    }
+    *cells = (int64_t)sva_distance(px, py, tg->x, tg->y) + sva_distance(tg->x, tg->y, nx, ny) -
+             sva_distance(px, py, nx, ny);
+    return true;
+}
+
 // Cheapest feasible place for t in route u: sets insert_delta/insert_pos, or false.
 static bool best_place(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
                        uint16_t u, uint16_t t)
 {
     const sva_route_t* r = &plan->routes[u];
-    const sva_target_t* tg = &m->targets[t];
     bool found = false;
     for (uint16_t p = 0U; p <= r->target_count; p++) {
-        int32_t px = 0;
-        int32_t py = 0;
-        int64_t free_at = 0;
-        leg_ends(m, u, r, p, &px, &py, &free_at);
-        const int64_t in = sva_distance(px, py, tg->x, tg->y);
-        if ((free_at + (in * m->ticks_per_cell)) > tg->start_ticks) {
-            continue;
-        }
-        int32_t nx = m->depot_x;
-        int32_t ny = m->depot_y;
-        if (p < r->target_count) {
-            const sva_target_t* next = &m->targets[r->targets[p]];
-            nx = next->x;
-            ny = next->y;
-            const int64_t out = sva_distance(tg->x, tg->y, nx, ny);
-            if ((tg->end_ticks + (out * m->ticks_per_cell)) > next->start_ticks) {
-                continue;
-            }
-        }
-        const int64_t delta = in + sva_distance(tg->x, tg->y, nx, ny) - sva_distance(px, py, nx, ny);
-        if (!route_fits(m, u, w->route_cells[u] + delta, (uint32_t)r->target_count + 1U)) {
+        int64_t delta = 0;
+        if (!detour(m, u, r, p, p, t, &delta) ||
+            !route_fits(m, u, w->route_cells[u] + delta, (uint32_t)r->target_count + 1U)) {
             continue;
         }
         if (!found || (delta < w->insert_delta[u])) {
@@ -373,29 +390,11 @@ static bool relocate(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* pla
 static bool slot_delta(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t k, uint16_t t,
                        int64_t* delta)
 {
-    int32_t px = 0;
-    int32_t py = 0;
-    int64_t free_at = 0;
-    leg_ends(m, u, r, k, &px, &py, &free_at);
-    const sva_target_t* tg = &m->targets[t];
-    const int64_t in = sva_distance(px, py, tg->x, tg->y);
-    if ((free_at + (in * m->ticks_per_cell)) > tg->start_ticks) {
+    int64_t cells = 0;
+    if (!detour(m, u, r, k, (uint16_t)(k + 1U), t, &cells)) {
         return false;
     }
-    int32_t nx = m->depot_x;
-    int32_t ny = m->depot_y;
-    if ((k + 1U) < r->target_count) {
-        const sva_target_t* next = &m->targets[r->targets[k + 1U]];
-        nx = next->x;
-        ny = next->y;
-        if ((tg->end_ticks + ((int64_t)sva_distance(tg->x, tg->y, nx, ny) * m->ticks_per_cell)) >
-            next->start_ticks) {
-            return false;
-        }
-    }
-    const sva_target_t* old = &m->targets[r->targets[k]];
-    *delta = in + sva_distance(tg->x, tg->y, nx, ny) - sva_distance(px, py, old->x, old->y) -
-             sva_distance(old->x, old->y, nx, ny);
+    *delta = cells - stop_saving(m, u, r, k);
     return true;
 }
 
@@ -515,11 +514,11 @@ static int64_t spliced_cells(const sva_mission_t* m, uint16_t u, const sva_route
     int32_t ny = m->depot_y;
     if (j < rb->target_count) {
         const sva_target_t* next = &m->targets[rb->targets[j]];
-        nx = next->x;
-        ny = next->y;
-        if ((free_at + ((int64_t)sva_distance(x, y, nx, ny) * m->ticks_per_cell)) > next->start_ticks) {
+        if (!arrives_in_time(m, free_at, x, y, next)) {
             return -1;
         }
+        nx = next->x;
+        ny = next->y;
     }
     // pre_a[i] counts from ra's first target; the UAV's first leg is in the joint
     // when i == 0, else it is leg 0 of ra.
