@@ -15,6 +15,7 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "checked_plan.h"
 #include "spec_checker.h"
 #include "sva/sva.h"
 
@@ -25,15 +26,9 @@ static sva_plan_t other;
 
 static void must_plan(sva_algorithm_t algorithm, sva_plan_t* out)
 {
-    sva_diag_t diag;
-    char why[256] = "";
-    const sva_status_t st = sva_plan(&planner, &mission, algorithm, out, &diag);
-    if (st != SVA_OK) {
-        sva_diag_format(&diag, why, sizeof(why));
-        fail_msg("%s: status %d (%s)", sva_algorithm_name(algorithm), (int)st, why);
-    }
-    if (spec_check_plan(&mission, out, why, sizeof(why)) != 0) {
-        fail_msg("%s: %s", sva_algorithm_name(algorithm), why);
+    char why[320] = "";
+    if (checked_plan(&planner, &mission, algorithm, out, why, sizeof(why)) != 0) {
+        fail_msg("%s", why);
     }
 }
 

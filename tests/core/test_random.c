@@ -14,6 +14,7 @@
 
 #include "brute_force.h"
 #include "mission_gen.h"
+#include "checked_plan.h"
 #include "spec_checker.h"
 #include "sva/sva.h"
 
@@ -24,17 +25,9 @@ static sva_plan_t again;
 
 static void plan_ok(sva_algorithm_t algorithm, uint64_t seed, int round)
 {
-    sva_diag_t diag;
-    char why[256] = "";
-    const sva_status_t st = sva_plan(&planner, &mission, algorithm, &plan, &diag);
-    if (st != SVA_OK) {
-        sva_diag_format(&diag, why, sizeof(why));
-        fail_msg("seed %llu round %d %s: status %d (%s)", (unsigned long long)seed, round,
-                 sva_algorithm_name(algorithm), (int)st, why);
-    }
-    if (spec_check_plan(&mission, &plan, why, sizeof(why)) != 0) {
-        fail_msg("seed %llu round %d %s: %s", (unsigned long long)seed, round,
-                 sva_algorithm_name(algorithm), why);
+    char why[320] = "";
+    if (checked_plan(&planner, &mission, algorithm, &plan, why, sizeof(why)) != 0) {
+        fail_msg("seed %llu round %d %s", (unsigned long long)seed, round, why);
     }
 }
 

@@ -15,6 +15,7 @@
 #include <cmocka.h>
 
 #include "mission_gen.h"
+#include "checked_plan.h"
 #include "spec_checker.h"
 #include "sva/sva.h"
 
@@ -27,17 +28,9 @@ static const sva_algorithm_t algorithms[] = {SVA_ALGO_SVA, SVA_ALGO_GA, SVA_ALGO
 
 static void must_plan(sva_algorithm_t algorithm, uint64_t seed, int round)
 {
-    sva_diag_t diag;
-    char why[256] = "";
-    const sva_status_t st = sva_plan(&planner, &mission, algorithm, &plan, &diag);
-    if (st != SVA_OK) {
-        sva_diag_format(&diag, why, sizeof(why));
-        fail_msg("seed %llu round %d %s: status %d (%s)", (unsigned long long)seed, round,
-                 sva_algorithm_name(algorithm), (int)st, why);
-    }
-    if (spec_check_plan(&mission, &plan, why, sizeof(why)) != 0) {
-        fail_msg("seed %llu round %d %s: %s", (unsigned long long)seed, round,
-                 sva_algorithm_name(algorithm), why);
+    char why[320] = "";
+    if (checked_plan(&planner, &mission, algorithm, &plan, why, sizeof(why)) != 0) {
+        fail_msg("seed %llu round %d %s", (unsigned long long)seed, round, why);
     }
     for (uint16_t u = 0U; u < plan.route_count; u++) {
         if (plan.routes[u].target_count > 2U) {
