@@ -53,6 +53,12 @@ static bool fail(const sink_t* err, const char* fmt, ...) {
     va_start(args, fmt);
     if (err->size > 0) {
         vsnprintf(err->text, err->size, fmt, args);
+        // One line whatever the input holds (jansson quotes raw input bytes).
+        for (char* c = err->text; *c != '\0'; ++c) {
+            if ((unsigned char)*c < 0x20 || *c == 0x7f) {
+                *c = '?';
+            }
+        }
     }
     va_end(args);
     return false;
