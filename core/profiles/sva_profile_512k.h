@@ -5,10 +5,13 @@
 // A mission whose graph is larger gets flow's fallback (ga's and sva's plans through
 // the repair and local search, no bound).
 // flow also keeps 4 labels per target (not 8) in its Lagrangian phase, and searches
-// 16 levels deep (not 24).
+// 16 levels deep (not 24). Its route master (the Lagrangian's LP prices) is off: the
+// prices come from subgradient steps alone.
 #ifndef SVA_PROFILE_512K_H
 #define SVA_PROFILE_512K_H
 #define SVA_FLOW_MAX_ARCS 28672L
 #define SVA_FLOW_LABELS 4
 #define SVA_FLOW_MAX_DEPTH 16
+#define SVA_FLOW_LP_ROWS 1
+#define SVA_FLOW_LP_COLS 1
 #endif

@@ -1,4 +1,5 @@
-// Tiny profile for small microcontrollers: 8 UAVs, 16 targets.
+// Tiny profile for small microcontrollers: 8 UAVs, 16 targets; flow's route master
+// (the Lagrangian's LP prices) off.
 #ifndef SVA_PROFILE_TINY_H
 #define SVA_PROFILE_TINY_H
 #define SVA_MAX_UAVS 8
@@ -7,4 +8,6 @@
 #define SVA_MAX_TP_SINKS 16
 #define SVA_BFA_MAX_TARGETS 8
 #define SVA_BFA_MAX_UAVS 4
+#define SVA_FLOW_LP_ROWS 1
+#define SVA_FLOW_LP_COLS 1
 #endif

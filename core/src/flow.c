@@ -15,7 +15,7 @@
 //       never shortens a route (triangle inequality).
 // Every node's relaxation is rounded into a plan (flow_repair.c); the plans of `ga`
 // and `sva` are the first incumbents, so flow never plans worse than either. The
-// search gets a quarter of the work budget (SVA_FLOW_MAX_WORK units, deterministic);
+// search gets a sixteenth of the work budget (SVA_FLOW_MAX_WORK units, deterministic);
 // if it does not finish, the Lagrangian phase (flow_lagrange.c) improves the bound
 // and the plan, and the search runs again on what is left. The bound comes from the
 // nodes left open and from the Lagrangian phase. No recursion: the path is an
@@ -312,12 +312,12 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     seed(self, m, plan);
     const uint8_t finished = w->reward_exact ? (uint8_t)SVA_FLOW_COMPLETE : (uint8_t)SVA_FLOW_INCOMPLETE_REWARD;
     uint8_t incomplete = finished;
-    // A quarter of the budget to the search; if it does not finish, the Lagrangian phase
+    // A sixteenth of the budget to the search; if it does not finish, the Lagrangian phase
     // (fuel-aware bound, new plans), then the search again with the better incumbent.
     // The phases' budgets count from here: seeding (two local searches at most, each
     // within w->local_work) does not eat into the search.
     const uint64_t start = w->work;
-    int64_t open = search(priv, m, plan, start + (budget / 4U), &incomplete);
+    int64_t open = search(priv, m, plan, start + (budget / 16U), &incomplete);
     int64_t lagrange_bound = 0;
     bool coverage_proven = false;
     if (open != INT64_MAX) {

@@ -19,9 +19,10 @@
 // the heuristic flies the UAVs one after another on their best routes under the
 // prices, a target's price growing with the UAVs already committed to it and a fully
 // served target closed, then repairs the result (flow_repair.c) and offers it.
+// Before the steps, the route master's duals (flow_lp.c) are tried as prices, in
+// both phases: they are the LP's best, which the steps approach only slowly.
 #include "sva_internal.h"
 
-#define LABEL_NONE 0xFFFFFFFFU
 #define THETA_ONE 1024
 #define THETA_START (2 * THETA_ONE)
 #define THETA_MIN 4
@@ -116,7 +117,7 @@ static void add_label(sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t
 // UAV u's best route under lg->path_price (targets with lg->closed skipped):
 // min over routes of alpha * cells - sum of prices, flying home at once included.
 // The route goes to lg->path. Label extensions count as work.
-static int64_t best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t u, int64_t alpha)
+int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t u, int64_t alpha)
 {
     sva_flow_lagrange_t* lg = &w->lagrange;
     const sva_uav_t* uav = &m->uavs[u];
@@ -131,13 +132,13 @@ static int64_t best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t u
             const uint16_t t = w->copy_target[h - w->uavs];
             if (lg->closed[t] == 0U) {
                 const int64_t leg = sva_distance(uav->x, uav->y, m->targets[t].x, m->targets[t].y);
-                add_label(lg, t, (alpha * leg) - lg->path_price[t], (int32_t)(leg + hover), LABEL_NONE);
+                add_label(lg, t, (alpha * leg) - lg->path_price[t], (int32_t)(leg + hover), SVA_FLOW_NO_LABEL);
                 w->work++;
             }
         }
     }
     int64_t best = alpha * sva_distance(uav->x, uav->y, m->depot_x, m->depot_y);
-    uint32_t best_label = LABEL_NONE;
+    uint32_t best_label = SVA_FLOW_NO_LABEL;
     for (uint16_t c = 0U; c < w->copies; c++) {
         const uint16_t t = w->copy_target[c];
         if (!first_copy(w, c) || (lg->label_count[t] == 0U)) {
@@ -171,7 +172,7 @@ static int64_t best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t u
         }
     }
     lg->path_len = 0U;
-    for (uint32_t l = best_label; l != LABEL_NONE; l = lg->label_pred[l]) {
+    for (uint32_t l = best_label; l != SVA_FLOW_NO_LABEL; l = lg->label_pred[l]) {
         lg->path[lg->path_len] = (uint16_t)(l / (uint32_t)SVA_FLOW_LABELS);
         lg->path_len++;
     }
@@ -215,7 +216,7 @@ static int64_t evaluate(sva_flow_work_t* w, const sva_mission_t* m, const sva_pl
         if (plan->routes[u].stranded || (lg->group[u] != u)) {
             continue;
         }
-        const int64_t v = best_route(w, m, u, ph->alpha);
+        const int64_t v = sva_flow_best_route(w, m, u, ph->alpha);
         uint16_t members = 0U;
         for (uint16_t k = u; k < m->uav_count; k++) {
             members = (uint16_t)(members + ((lg->group[k] == u) ? 1U : 0U));
@@ -261,7 +262,7 @@ static void fly_on_prices(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
             lg->path_price[t] = lg->price[t] * (1 + served);
             lg->closed[t] = (served >= m->targets[t].need) ? 1U : 0U;
         }
-        (void)best_route(w, m, u, SVA_FLOW_PRICE_SCALE);
+        (void)sva_flow_best_route(w, m, u, SVA_FLOW_PRICE_SCALE);
         // A path longer than SVA_MAX_ROUTE_TARGETS keeps its head (still a route).
         r->target_count = 0U;
         while ((r->target_count < lg->path_len) && (r->target_count < (uint16_t)SVA_MAX_ROUTE_TARGETS)) {
@@ -361,6 +362,13 @@ static bool prove_coverage(sva_flow_work_t* w, const sva_mission_t* m, const sva
     sva_flow_lagrange_t* lg = &w->lagrange;
     const int64_t s = SVA_FLOW_PRICE_SCALE;
     phase_t ph = {0, s, 0, NO_BOUND, -s * covered, THETA_START, 0, 0U};
+    int64_t mu = 0;
+    if (sva_flow_lp_prices(w, m, plan, covered + 1, true, budget, &mu)) {
+        int64_t grad_mu = 0;
+        if (evaluate(w, m, plan, &ph, &grad_mu) > (-s * (covered + 1))) {
+            return true;
+        }
+    }
     for (uint16_t t = 0U; t < m->target_count; t++) {
         lg->price[t] = s / m->targets[t].need;
     }
@@ -390,6 +398,19 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     int64_t cost = 0;
     int64_t covered = 0;
     incumbent(priv, m, plan, &cost, &covered);
+    const uint64_t left = (budget > w->work) ? (budget - w->work) : 0U;
+    // First the route master's duals (flow_lp.c): for the bound alone, as subgradient
+    // steps from them find few new plans. Any bound for coverage c holds for more.
+    int64_t lp_value = NO_BOUND;
+    const int64_t lp_covered = covered;
+    int64_t mu = 0;
+    plan->stats.flow_lp_columns = 0U;
+    if (sva_flow_lp_prices(w, m, plan, covered, false, w->work + (left / 2U), &mu)) {
+        plan->stats.flow_lp_columns = w->lp.cols;
+        const phase_t at = {s, mu, covered, NO_BOUND, 0, 0, 0, 0U};
+        int64_t grad_mu = 0;
+        lp_value = evaluate(w, m, plan, &at, &grad_mu);
+    }
     start_prices(w, m);
     int64_t most = 0;
     for (uint16_t t = 0U; t < m->target_count; t++) {
@@ -398,10 +419,9 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     }
     phase_t ph = {s, most + s, covered, NO_BOUND, s * cost, THETA_START, 0, 0U};
     uint16_t rotate = 0U;
-    const uint64_t left = (budget > w->work) ? (budget - w->work) : 0U;
     const uint64_t cost_budget = w->work + ((left / 4U) * 3U);  // the rest: coverage
     while ((ph.iters < (uint32_t)SVA_FLOW_LAGRANGE_ITERS) && (w->work < cost_budget) &&
-           (ph.theta >= THETA_MIN) && (ph.best < ph.target)) {
+           (ph.theta >= THETA_MIN) && (ph.best < ph.target) && (lp_value < ph.target)) {
         int64_t grad_mu = 0;
         const int64_t value = evaluate(w, m, plan, &ph, &grad_mu);
         progress(&ph, value);
@@ -424,7 +444,13 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
         }
     }
     *iters = ph.iters;
-    const int64_t bound = (ph.best == NO_BOUND) ? 0 : ceil_div(ph.best, s);
+    if ((covered != lp_covered) && sva_flow_lp_prices(w, m, plan, covered, false, budget, &mu)) {
+        const phase_t at = {s, mu, covered, NO_BOUND, 0, 0, 0, 0U};
+        int64_t grad_mu = 0;
+        lp_value = evaluate(w, m, plan, &at, &grad_mu);
+    }
+    const int64_t best = (ph.best > lp_value) ? ph.best : lp_value;
+    const int64_t bound = (best == NO_BOUND) ? 0 : ceil_div(best, s);
     // Optimality needs both; the coverage phase runs once the cost is proven.
     *coverage_proven = (covered == (int64_t)m->target_count) ||
                        ((bound >= cost) && prove_coverage(w, m, plan, covered, budget, iters));

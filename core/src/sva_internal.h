@@ -132,6 +132,24 @@ void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_
 /// returns a lower bound on the cost of every plan covering at least as many targets
 /// as the incumbent (0 when it has none); *coverage_proven: no plan covers more.
 /// *iters gets the subgradient steps taken.
+/// A label's predecessor when it starts the route.
+#define SVA_FLOW_NO_LABEL 0xFFFFFFFFU
+/// UAV u's best route under w->lagrange.path_price (targets marked closed skipped):
+/// min over its routes within fuel of alpha * cells - sum of prices (flying home at
+/// once included); the route goes to w->lagrange.path. Label extensions count as work.
+int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t u, int64_t alpha);
+
+// flow_lp.c: the route master's duals as the Lagrangian's prices.
+/// Column generation on the route master at coverage `covered`, starting from the
+/// routes of *plan (the incumbent), until no route prices out or the work reaches
+/// `budget`. On success fills w->lagrange.price and *mu (1/SVA_FLOW_PRICE_SCALE cells)
+/// and returns true; false, prices untouched, when the master exceeds
+/// SVA_FLOW_LP_ROWS, a need lcm of 64, route costs of 2^24, or a number guard.
+/// cover: the master of "cover `covered` targets" without costs, whose prices (mu = S)
+/// are for the coverage phase.
+bool sva_flow_lp_prices(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
+                        int64_t covered, bool cover, uint64_t budget, int64_t* mu);
+
 int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                           uint64_t budget, bool* coverage_proven, uint32_t* iters);
 

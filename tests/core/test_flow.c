@@ -233,6 +233,45 @@ static void test_lagrangian_phase_bound_and_claims_hold(void** state)
     assert_true(tight > 0);
 }
 
+// The route master's prices (flow_lp.c), at a budget that leaves the master room
+// after a short search: on small missions against brute force, the bound never
+// exceeds the optimum and every claim holds; the master runs, and its bound reaches
+// the optimum on some missions the search alone left unproven.
+static void test_route_master_bound_and_claims_hold(void** state)
+{
+    (void)state;
+    const uint64_t seed = test_seed(0x10C0ULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    int master_runs = 0;
+    int tight = 0;
+    const int rounds = 300;
+    planner.flow_max_work = 6000U;
+    for (int round = 0; round < rounds; round++) {
+        const test_gen_params_t p = {
+            test_rng_range(&rng, 5, 6), test_rng_range(&rng, 2, 4),
+            20, 4, 15, 60, test_rng_range(&rng, 1, 2), test_rng_range(&rng, 30, 60), 70, 2, 1,
+            test_rng_range(&rng, 0, 1), 0};
+        test_gen_mission(&rng, &p, &mission);
+        const brute_result_t best = brute_force_optimum(&mission);
+        must_plan(SVA_ALGO_FLOW, &plan, seed, round);
+        check_against_optimum(&plan, &best, seed, round);
+        if (plan.stats.flow_lp_columns > 0U) {
+            master_runs++;
+            tight += (plan.covered == best.covered && plan.stats.lower_bound == best.cost) ? 1 : 0;
+        }
+    }
+    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    printf("# %d missions: the route master ran on %d, bound equal to the optimum on %d\n", rounds,
+           master_runs, tight);
+#if SVA_FLOW_LP_ROWS >= 2
+    assert_true(master_runs >= rounds / 10);
+    assert_true(tight >= master_runs / 4);
+#else
+    assert_int_equal(master_runs, 0);  // the profile has no master
+#endif
+}
+
 static sva_mission_t second;
 static sva_plan_t again;
 
@@ -359,6 +398,7 @@ int main(void)
         cmocka_unit_test(test_paper_sizes_never_worse_than_the_paper),
         cmocka_unit_test(test_small_budget_gives_a_checked_unproven_plan),
         cmocka_unit_test(test_lagrangian_phase_bound_and_claims_hold),
+        cmocka_unit_test(test_route_master_bound_and_claims_hold),
         cmocka_unit_test(test_plans_do_not_depend_on_the_planners_history),
         cmocka_unit_test(test_past_its_graph_bounds_flow_falls_back_honestly),
         cmocka_unit_test(test_dense_graph_past_the_arc_bound_falls_back),

@@ -264,6 +264,9 @@ typedef struct {
     uint32_t flow_graph_arcs;       ///< arcs of the time-feasibility graph
     uint32_t flow_max_depth;        ///< deepest branch-and-bound node
     uint32_t flow_lagrange_iters;   ///< subgradient iterations (0: the search sufficed)
+    /// Routes in the route master when it gave the Lagrangian its prices (0: it did not
+    /// run, or stopped on a bound or the work budget).
+    uint16_t flow_lp_columns;
     /// Why flow did not prove optimality: 0 it did (or the search finished), 1 work
     /// budget, 2 SVA_FLOW_MAX_DEPTH, 3 needs whose lcm is too large for exact ties;
     /// 4 needs summed above SVA_FLOW_MAX_COPIES, 5 graph above SVA_FLOW_MAX_ARCS (4 and
@@ -414,6 +417,32 @@ typedef struct {
     uint16_t path_len;
 } sva_flow_lagrange_t;
 
+/// Words of a route column's row set (one bit per master row).
+#define SVA_FLOW_LP_WORDS (((uint32_t)SVA_FLOW_LP_ROWS + 31U) / 32U)
+
+/// flow's route master (flow_lp.c): a fraction-free revised simplex. adj is
+/// det(B) * B^-1 of the basis B, row-major; x, dual and alpha are scaled by det(B) too.
+typedef struct {
+    int64_t adj[SVA_FLOW_LP_ROWS * SVA_FLOW_LP_ROWS];
+    int64_t x[SVA_FLOW_LP_ROWS];        ///< basic values
+    int64_t dual[SVA_FLOW_LP_ROWS];     ///< row duals
+    int64_t alpha[SVA_FLOW_LP_ROWS];    ///< the entering column in the basis
+    int64_t rhs[SVA_FLOW_LP_ROWS];
+    int64_t det;                        ///< det(B) up to sign, > 0
+    uint16_t basic[SVA_FLOW_LP_ROWS];   ///< column of each basic position
+    uint32_t col_rows[(uint32_t)SVA_FLOW_LP_COLS * SVA_FLOW_LP_WORDS];  ///< a route's rows
+    int32_t col_cost[SVA_FLOW_LP_COLS]; ///< a route's cells
+    uint8_t in_basis[SVA_FLOW_LP_ROWS + 2 + SVA_FLOW_LP_COLS];
+    uint16_t group_row[SVA_MAX_UAVS];   ///< master row of a UAV's state
+    int64_t lcm;                        ///< L: the lcm of the needs
+    int64_t big_m;                      ///< cost of the coverage row's artificial
+    int64_t cells_weight;               ///< a route's cost per cell: 1, or 0 (cover)
+    uint16_t targets;                   ///< n: rows 0..n-1 are the targets
+    uint16_t groups;                    ///< G: rows n..n+G-1; row n+G is the coverage
+    uint16_t cols;                      ///< route columns so far
+    uint16_t rows;
+} sva_flow_lp_t;
+
 /// flow's graph, relaxation and search state (flow_graph.c, flow_ssp.c, flow.c).
 typedef struct {
     uint16_t uavs;                         ///< U: node ids 0..U-1 are the UAVs
@@ -471,6 +500,7 @@ typedef struct {
     int64_t max_cost;                     ///< no flow or plan costs more (rewards)
     sva_flow_frame_t stack[SVA_FLOW_MAX_DEPTH];
     sva_flow_lagrange_t lagrange;
+    sva_flow_lp_t lp;
 } sva_flow_work_t;
 
 /// All of the planner's working memory.
