@@ -6,6 +6,7 @@ import random
 import subprocess
 from pathlib import Path
 
+import cantools
 import pytest
 
 import can_wire
@@ -127,3 +128,65 @@ def test_core_plan_transfer_decodes_with_cantools(db):
     assert got["items"] == plan["items"]
     assert got["route_count"] == 5
     print(f"25-target 5-UAV plan: {len(plan['items'])} items, {len(frames)} frames, covered {plan['covered']}")
+
+
+def test_every_named_value_is_inside_its_signal_range(db):
+    """A VAL_ entry outside the signal's [min|max] is a DBC that contradicts itself (the
+    BEGIN.algorithm range once stopped at 3 while VAL_ named 4 "flow"). cantools 45's
+    strict encoding lets a named value through whatever the range, so it would not
+    notice; range-checking tools that read the DBC would refuse the value."""
+    for msg in db.messages:
+        for sig in msg.signals:
+            for value, name in (sig.choices or {}).items():
+                assert sig.minimum <= value <= sig.maximum, (msg.name, sig.name, value, str(name))
+
+
+def test_begin_algorithm_range_is_what_the_c_codec_accepts(db, codec):
+    """SVA_PLAN_BEGIN.algorithm: the DBC range is exactly the values the C decoder
+    accepts (the core's algorithms, flow included), each named by its VAL_ entry; every
+    algorithm goes through cantools (strict) and the C codec byte for byte, both ways."""
+    sig = db.get_message_by_name("SVA_PLAN_BEGIN").get_signal_by_name("algorithm")
+    names = ["sva", "ga", "hga", "bfa", "flow"]  # sva_algorithm_t order
+    assert {k: str(v) for k, v in sig.choices.items()} == dict(enumerate(names))
+    base = {"counter": 3, "version": 1, "plan_id": 42, "item_count": 7, "plan_status": 1,
+            "route_count": 5, "crc": 0}
+    accepted = []
+    for number in range(16):  # every value of the 4-bit field
+        data = can_wire.with_crc(0x101, db.encode_message(0x101, dict(base, algorithm=number),
+                                                          strict=False))
+        line = codec(f"decode 101#{data.hex().upper()}")
+        if not line.startswith("error "):
+            accepted.append(number)
+    assert accepted == list(range(int(sig.minimum), int(sig.maximum) + 1)) == list(range(len(names)))
+    for number, name in enumerate(names):
+        # cantools (strict, by name) -> C decoder
+        data = can_wire.with_crc(0x101, db.encode_message(0x101, dict(base, algorithm=name)))
+        got_name, got = parse_decoded(codec(f"decode 101#{data.hex().upper()}"))
+        assert (got_name, got["algorithm"]) == ("SVA_PLAN_BEGIN", number), name
+        # C encoder -> the same bytes; cantools decodes the name and (strict, by number)
+        # encodes the same bytes
+        line = codec("encode SVA_PLAN_BEGIN " + " ".join(
+            f"{k}={v}" for k, v in dict(base, algorithm=number).items() if k != "crc"))
+        assert can_wire.parse_frame(line) == (0x101, data), name
+        assert str(db.decode_message(0x101, data)["algorithm"]) == name
+        assert can_wire.with_crc(0x101, db.encode_message(0x101, dict(base, algorithm=number))) == data
+    with pytest.raises(cantools.database.EncodeError):
+        db.encode_message(0x101, dict(base, algorithm=len(names)))
+
+
+def test_core_flow_plan_transfer_decodes_with_cantools(db):
+    """A flow plan made by the core goes out with BEGIN.algorithm 4, which cantools
+    decodes as "flow" and re-encodes unchanged with strict range checking."""
+    assert TOOL, "SVA_CAN_FRAMES_TOOL not set"
+    out = subprocess.run([TOOL, "plan", str(HERE / "data" / "mission_25x5.json"), "flow", "9"],
+                         check=True, capture_output=True, text=True, timeout=60).stdout
+    plan = json.loads(out)
+    frames = [can_wire.parse_frame(f) for f in plan["frames"]]
+    decoded = can_wire.decode_transfers(db, frames)
+    assert len(decoded) == 1 and decoded[0]["algorithm"] == 4
+    assert decoded[0]["plan_crc"] == plan["plan_crc"] and decoded[0]["items"] == plan["items"]
+    fid, begin = frames[0]
+    assert fid == 0x101
+    sig = db.decode_message(fid, begin)
+    assert str(sig["algorithm"]) == "flow"
+    assert can_wire.with_crc(fid, db.encode_message(fid, dict(sig, crc=0))) == begin

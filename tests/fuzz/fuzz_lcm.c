@@ -8,7 +8,9 @@
 // Properties: nothing crashes or reads out of bounds (ASan, UBSan); a refused message
 // leaves the node's inputs as they were; every published plan has the wire type's
 // exact size and decodes with lcm-gen's decoder; every plan the core made for an
-// accepted fleet + mission passes the independent SPEC checker.
+// accepted fleet + mission passes the independent SPEC checker; flow's certificate is
+// on the wire exactly when the plan is flow's and has routes, equal to the core's
+// (lower_bound <= cost, == cost when optimal), and zero otherwise.
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -54,6 +56,23 @@ static int capture(void* user, const char* channel, const void* bytes, unsigned 
         if (decoded.route_count != (int16_t)node.priv.mission.uav_count) {
             fail("plan does not have one route per UAV");
         }
+        const sva_stats_t* st = &node.priv.plan.stats;
+        if (st->has_bound != (node.algorithm == SVA_ALGO_FLOW) || decoded.has_bound != (st->has_bound ? 1 : 0)) {
+            fail("has_bound is not set exactly for flow plans");
+        }
+        if (st->has_bound &&
+            (decoded.lower_bound != st->lower_bound || decoded.optimal != (st->optimal ? 1 : 0) ||
+             decoded.flow_incomplete != (int8_t)st->flow_incomplete || decoded.lower_bound < 0 ||
+             decoded.lower_bound > decoded.cost || (decoded.optimal == 1 && decoded.lower_bound != decoded.cost))) {
+            fail("flow's certificate on the wire differs from the core's or contradicts the cost");
+        }
+    }
+    if (decoded.status != SVA_LCM_PLAN_T_STATUS_COMPLETE && decoded.status != SVA_LCM_PLAN_T_STATUS_PARTIAL &&
+        (decoded.has_bound != 0 || decoded.lower_bound != 0 || decoded.optimal != 0 || decoded.flow_incomplete != 0)) {
+        fail("a plan without routes carries a certificate");
+    }
+    if (!decoded.has_bound && (decoded.lower_bound != 0 || decoded.optimal != 0 || decoded.flow_incomplete != 0)) {
+        fail("certificate fields set without has_bound");
     }
     return 0;
 }

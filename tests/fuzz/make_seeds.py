@@ -53,9 +53,11 @@ def lcm():
                 ROOT / "fixtures" / "missions" / "hand_3_1.json"]:
         _, fleet, mission = wire.mission_messages(json.loads(src.read_text()), 1, 1)
         f, m = fleet.encode(), mission.encode()
-        # exact-size fleet, then exact-size mission with algorithm bits 0 (sva) / 3 (bfa)
+        # exact-size fleet, then exact-size mission with algorithm bits 0 (sva), 3 (bfa),
+        # 4 (flow: its certificate travels in the plan)
         (d / f"{src.stem}.bin").write_bytes(bytes([0x02]) + f + bytes([0x03]) + m)
         (d / f"{src.stem}_bfa.bin").write_bytes(bytes([0x0E]) + f + bytes([0x0F]) + m)
+        (d / f"{src.stem}_flow.bin").write_bytes(bytes([0x12]) + f + bytes([0x13]) + m)
         # a raw (length-prefixed) mission cut short, then the fleet twice (unchanged)
         (d / f"{src.stem}_raw.bin").write_bytes(
             bytes([0x01]) + struct.pack("<H", 100) + m[:100] + bytes([0x02]) + f + bytes([0x02]) + f)

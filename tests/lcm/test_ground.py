@@ -73,6 +73,15 @@ def test_plan_document_and_diag_text():
                              {"uav": 5, "targets": [], "distance": 0, "fuel_used": 0}]
     assert doc["stranded"] == [5] and doc["uncovered"] == [9]
     assert (doc["status"], doc["algorithm"]) == ("partial", "ga")
+    assert len(p.encode()) == 18976  # SVA_LCM_PLAN_BYTES
+    assert not {"lower_bound", "optimal", "flow_incomplete"} & set(doc["stats"])  # no bound
+    p.algorithm, p.has_bound, p.lower_bound, p.optimal, p.flow_incomplete = 4, 1, 27, 0, 1
+    doc = wire.plan_document(t.plan_t.decode(p.encode()), "m")
+    assert doc["algorithm"] == "flow"
+    assert (doc["stats"]["lower_bound"], doc["stats"]["optimal"],
+            doc["stats"]["flow_incomplete"]) == (27, False, 1)
+    p.lower_bound, p.optimal, p.flow_incomplete = 30, 1, 0
+    assert wire.plan_document(t.plan_t.decode(p.encode()), "m")["stats"]["optimal"] is True
     p.status, p.diag_field, p.diag_rule, p.diag_index = p.STATUS_REJECTED, 18, 1, 3
     p.diag_value, p.diag_limit = 0, 1
     assert wire.diag_text(p) == "targets[3].need: must be >= 1, got 0"

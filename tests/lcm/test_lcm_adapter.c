@@ -212,6 +212,21 @@ static void assert_plan_matches_core(const sva_lcm_plan_t* p, sva_algorithm_t al
     for (; k < SVA_LCM_PLAN_T_MAX_ROUTE_ITEMS; ++k) {
         assert_int_equal(p->route_targets[k], 0);
     }
+    // flow's certificate travels as the core made it; the other algorithms send zeros.
+    const sva_stats_t* st = &direct_plan.stats;
+    assert_int_equal(st->has_bound, algo == SVA_ALGO_FLOW);
+    assert_int_equal(p->has_bound, st->has_bound ? 1 : 0);
+    assert_int_equal(p->lower_bound, st->has_bound ? st->lower_bound : 0);
+    assert_int_equal(p->optimal, (st->has_bound && st->optimal) ? 1 : 0);
+    assert_int_equal(p->flow_incomplete, st->has_bound ? st->flow_incomplete : 0);
+    if (p->has_bound == 1) {
+        assert_true(p->lower_bound >= 0);
+        assert_true(p->lower_bound <= p->cost);
+        if (p->optimal == 1) {
+            assert_int_equal(p->lower_bound, p->cost);
+            assert_int_equal(p->flow_incomplete, 0);
+        }
+    }
 }
 
 static void decode_last_plan(void)
@@ -341,6 +356,77 @@ static void test_every_algorithm(void** state)
         decode_last_plan();
         assert_plan_matches_core(&got_plan, (sva_algorithm_t)a);
     }
+}
+
+// Issue 6: a flow plan over LCM carries its certificate, and only a plan that delivers
+// routes does (the node's wire plan is reused: a rejected or too large plan after a flow
+// plan must not inherit its bound).
+static void test_flow_certificate(void** state)
+{
+    (void)state;
+    node_setup(SVA_ALGO_FLOW);
+    make_inputs(50);
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    decode_last_plan();
+    assert_plan_matches_core(&got_plan, SVA_ALGO_FLOW);
+    // 6 targets, 5 UAVs: flow's search finishes and proves its plan optimal.
+    assert_int_equal(got_plan.has_bound, 1);
+    assert_int_equal(got_plan.optimal, 1);
+    assert_true(got_plan.lower_bound > 0);
+    assert_int_equal(got_plan.lower_bound, got_plan.cost);
+
+    // the core rejects the next mission: the REJECTED plan has no certificate
+    mission.targets[3].id = mission.targets[1].id;
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    decode_last_plan();
+    assert_int_equal(got_plan.status, SVA_LCM_PLAN_T_STATUS_REJECTED);
+    assert_int_equal(got_plan.has_bound, 0);
+    assert_int_equal(got_plan.lower_bound, 0);
+    assert_int_equal(got_plan.optimal, 0);
+    assert_int_equal(got_plan.flow_incomplete, 0);
+
+    // 64 UAVs and 40 targets needing 13 each: 520 copies, above SVA_FLOW_MAX_COPIES
+    // (512), so flow has no relaxation (flow_incomplete 4, lower_bound 0).
+    make_inputs(51);
+    fleet.uav_count = SVA_MAX_UAVS;
+    for (int i = 0; i < SVA_MAX_UAVS; ++i) {
+        fleet.uavs[i] = (sva_lcm_uav_state_t){i + 1, 0, 0, 1000, 0, 0};
+    }
+    mission.target_count = 40;
+    for (int i = 0; i < 40; ++i) {
+        mission.targets[i] = (sva_lcm_target_t){i + 1, i % 7, i % 5, 20 * i + 10, 20 * i + 15, 13};
+    }
+    assert_true(13 * 40 > SVA_FLOW_MAX_COPIES);
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    decode_last_plan();
+    assert_plan_matches_core(&got_plan, SVA_ALGO_FLOW);
+    assert_int_equal(got_plan.has_bound, 1);
+    assert_int_equal(got_plan.flow_incomplete, 4);
+    assert_int_equal(got_plan.optimal, 0);
+    assert_int_equal(got_plan.lower_bound, 0);
+
+    // 65 back-to-back targets at the depot needing all 64 UAVs: 4160 route items, more
+    // than MAX_ROUTE_ITEMS. The core's plan has a bound; the TOO_LARGE plan carries none.
+    make_inputs(52);
+    fleet.uav_count = SVA_MAX_UAVS;
+    for (int i = 0; i < SVA_MAX_UAVS; ++i) {
+        fleet.uavs[i] = (sva_lcm_uav_state_t){i + 1, 0, 0, 1000, 0, 0};
+    }
+    mission.target_count = 65;
+    for (int i = 0; i < 65; ++i) {
+        mission.targets[i] = (sva_lcm_target_t){i + 1, 0, 0, 10 * i + 1, 10 * i + 5, SVA_MAX_UAVS};
+    }
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    decode_last_plan();
+    assert_int_equal(got_plan.status, SVA_LCM_PLAN_T_STATUS_TOO_LARGE);
+    assert_true(node.priv.plan.stats.has_bound);
+    assert_int_equal(got_plan.has_bound, 0);
+    assert_int_equal(got_plan.lower_bound, 0);
+    assert_int_equal(got_plan.optimal, 0);
+    assert_int_equal(got_plan.flow_incomplete, 0);
 }
 
 static void test_unchanged_and_replan(void** state)
@@ -688,6 +774,7 @@ int main(void)
         cmocka_unit_test(test_init_arguments),
         cmocka_unit_test(test_memq_round_trip),
         cmocka_unit_test(test_every_algorithm),
+        cmocka_unit_test(test_flow_certificate),
         cmocka_unit_test(test_unchanged_and_replan),
         cmocka_unit_test(test_unavailable_uav_gets_nothing),
         cmocka_unit_test(test_rejections_frame),

@@ -97,6 +97,10 @@ static void assert_same_plan(const sva_lcm_plan_t* p)
         }
     }
     assert_int_equal(p->item_count, k);
+    assert_false(want.stats.has_bound);  // sva: no certificate, and none on the wire
+    assert_int_equal(p->has_bound, 0);
+    assert_int_equal(p->lower_bound, 0);
+    assert_int_equal(p->optimal, 0);
 }
 
 static void test_golden_replay(void** state)

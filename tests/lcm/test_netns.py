@@ -123,6 +123,20 @@ def without_stats(plan):
     return {k: v for k, v in plan.items() if k != "stats"}
 
 
+CERTIFICATE = ("lower_bound", "optimal", "flow_incomplete")
+SVA_BIN = os.environ.get("SVA_BIN", "")
+
+
+def cli_certificate(mission, algo):
+    """flow's certificate for MISSION as the CLI (`sva plan`) reports it."""
+    assert SVA_BIN and Path(SVA_BIN).exists(), f"SVA_BIN: no sva CLI ({SVA_BIN!r})"
+    r = subprocess.run([SVA_BIN, "plan", "--algo", algo, str(mission)], capture_output=True,
+                       text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    stats = json.loads(r.stdout)["stats"]
+    return {k: stats[k] for k in CERTIFICATE if k in stats}
+
+
 @pytest.mark.parametrize("name", ["rand_7_2", "hand_5_4", "rand_25_1"])
 def test_ground_tool_gets_a_plan_that_checks(node, name, tmp_path):
     """The whole user path: `sva-tools lcm send` to the node, `sva-tools check` on the plan."""
@@ -143,9 +157,11 @@ def test_ground_tool_gets_a_plan_that_checks(node, name, tmp_path):
 def test_every_fixture_over_lcm(algo, tmp_path, capsys):
     """Every bundled mission through a node running ALGO: the plan that comes back over
     udpm passes the independent checker and equals the CLI's golden plan; bfa's size
-    limit reaches the ground as a failure naming the limit."""
+    limit reaches the ground as a failure naming the limit. A flow plan carries flow's
+    certificate (lower bound, optimal) exactly as the CLI reports it; the others none."""
     n = Node(f"F{uuid.uuid4().hex[:6]}_", "--algorithm", algo)
     seen = 0
+    proven = 0
     try:
         for i, mission in enumerate(sorted(MISSIONS.glob("*.json"))):
             out = tmp_path / f"{mission.stem}.json"
@@ -161,12 +177,23 @@ def test_every_fixture_over_lcm(algo, tmp_path, capsys):
             plan = json.loads(out.read_text())
             assert violations(mission, plan) == [], mission.name
             assert without_stats(plan) == json.loads(golden.read_text()), mission.name
+            cert = {k: plan["stats"][k] for k in CERTIFICATE if k in plan["stats"]}
+            if algo == "flow":
+                assert cert == cli_certificate(mission, algo), mission.name
+                assert 0 <= cert["lower_bound"] <= plan["cost"], (mission.name, cert)
+                assert not cert["optimal"] or cert["lower_bound"] == plan["cost"], mission.name
+                proven += cert["optimal"]
+            else:
+                assert cert == {}, (mission.name, cert)
             seen += 1
     finally:
         rc, err = n.stop(signal.SIGINT)
     assert rc == 0, err
     assert "exit:" in err
     assert seen >= 14  # 16 fixtures; bfa skips the two 25-target ones
+    if algo == "flow":
+        print(f"flow over LCM: {proven} of {seen} fixture plans proven optimal")
+        assert proven >= 1
 
 
 def test_node_rejects_bad_options():
@@ -302,7 +329,7 @@ def test_record_and_replay(tmp_path):
     prefix = f"R{uuid.uuid4().hex[:6]}_"
     log = tmp_path / "session.lcmlog"
     plan_json = tmp_path / "plan.json"
-    n = Node(prefix)
+    n = Node(prefix, "--algorithm", "flow")
     rec = subprocess.Popen([str(SVA_TOOLS), "lcm", "record", "-o", str(log),
                             "--url", URL, "--channels", prefix + ".*"])
     try:
@@ -334,6 +361,9 @@ def test_record_and_replay(tmp_path):
         plan["covered"], plan["cost"], plan["uncovered"])
     assert [{k: v for k, v in r.items() if k != "stranded"} for r in jplan[0]["routes"]] == plan["routes"]
     assert [r["uav"] for r in jplan[0]["routes"] if r["stranded"]] == plan["stranded"]
+    assert plan["algorithm"] == "flow" and jplan[0]["has_bound"] == 1
+    assert (jplan[0]["lower_bound"], jplan[0]["optimal"], jplan[0]["flow_incomplete"]) == (
+        plan["stats"]["lower_bound"], int(plan["stats"]["optimal"]), plan["stats"]["flow_incomplete"])
     assert [e["uavs"] for e in java_events if e["channel"] == "FLEET"] == [[u["id"] for u in doc["uavs"]]]
     assert [e["targets"] for e in java_events if e["channel"] == "MISSION"] == [
         [t["id"] for t in doc["targets"]]]

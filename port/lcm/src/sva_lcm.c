@@ -25,6 +25,8 @@ SVA_LCM_STATIC_ASSERT(SVA_LCM_REJECT_COUNT_ <= 32, reasons_fit_logged_mask);
 SVA_LCM_STATIC_ASSERT(SVA_LCM_PLAN_BYTES + SVA_LCM_CHANNEL_SIZE <= 65499, plan_one_datagram);
 // Counts travel as int16_t.
 SVA_LCM_STATIC_ASSERT(SVA_LCM_PLAN_T_MAX_ROUTE_ITEMS <= 32767, items_fit_int16);
+// plan_t.lcm names the algorithm numbers in its comment on `algorithm`.
+SVA_LCM_STATIC_ASSERT(SVA_ALGO_FLOW == 4 && SVA_ALGO_COUNT_ == 5, algorithm_numbers);
 
 static const char* const reject_names[SVA_LCM_REJECT_COUNT_] = {
     "truncated", "trailing", "fingerprint", "count", "value", "invalid", "planner", "too_large",
@@ -297,6 +299,14 @@ static bool fill_plan(sva_lcm_node_t* self)
         }
     }
     p->item_count = (int16_t)k;
+    // flow's certificate: only with the routes it certifies (a TOO_LARGE plan has none,
+    // and keeps the zeros replan's memset left).
+    if (plan->stats.has_bound) {
+        p->has_bound = 1;
+        p->lower_bound = plan->stats.lower_bound;
+        p->optimal = plan->stats.optimal ? (int8_t)1 : (int8_t)0;
+        p->flow_incomplete = (int8_t)plan->stats.flow_incomplete;
+    }
     return true;
 }
 

@@ -37,6 +37,10 @@ public final class SvaLcmDump {
          .append(", \"status\": ").append(p.status)
          .append(", \"covered\": ").append(p.covered)
          .append(", \"cost\": ").append(p.cost)
+         .append(", \"has_bound\": ").append(p.has_bound)
+         .append(", \"lower_bound\": ").append(p.lower_bound)
+         .append(", \"optimal\": ").append(p.optimal)
+         .append(", \"flow_incomplete\": ").append(p.flow_incomplete)
          .append(", \"uncovered\": ").append(ints(p.uncovered, p.uncovered_count))
          .append(", \"routes\": [");
         int k = 0;

@@ -190,4 +190,8 @@ def plan_document(plan, mission_name: str) -> dict:
     doc["stats"] = {"plan_id": plan.plan_id, "solve_us": plan.solve_us,
                     "fleet_revision": plan.fleet_revision,
                     "mission_revision": plan.mission_revision}
+    if plan.has_bound:
+        # flow's certificate, under the CLI's names (tools/cli/plan_json.c)
+        doc["stats"].update(lower_bound=plan.lower_bound, optimal=bool(plan.optimal),
+                            flow_incomplete=plan.flow_incomplete)
     return doc

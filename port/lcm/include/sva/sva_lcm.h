@@ -61,8 +61,11 @@ extern "C" {
 #define SVA_LCM_ROUTE_BYTES 23
 #define SVA_LCM_FLEET_BYTES (8 + 8 + 2 + SVA_LCM_FLEET_STATE_T_MAX_UAVS * SVA_LCM_UAV_STATE_BYTES)
 #define SVA_LCM_MISSION_BYTES (8 + 8 + 20 + 2 + SVA_LCM_MISSION_T_MAX_TARGETS * SVA_LCM_TARGET_BYTES)
+/// The plan: fingerprint, ids and times (32 + 4), algorithm/status/error_code (3), flow's
+/// certificate (11), diag (22), covered and cost (10), uncovered (2 + 4 per target),
+/// routes (2 + 23 per UAV), route items (2 + 4 each): 18976 bytes.
 #define SVA_LCM_PLAN_BYTES                                                      \
-    (8 + 32 + 4 + 3 + 22 + 2 + 8 + 2 + 4 * SVA_LCM_PLAN_T_MAX_TARGETS + 2 +     \
+    (8 + 32 + 4 + 3 + 11 + 22 + 2 + 8 + 2 + 4 * SVA_LCM_PLAN_T_MAX_TARGETS + 2 + \
      SVA_LCM_PLAN_T_MAX_UAVS * SVA_LCM_ROUTE_BYTES + 2 + 4 * SVA_LCM_PLAN_T_MAX_ROUTE_ITEMS)
 #define SVA_LCM_STATUS_BYTES (8 + 8 * 9 + 2 + 4 * SVA_LCM_NODE_STATUS_T_NUM_REASONS)
 
