@@ -114,6 +114,20 @@ static void add_label(sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t
     lg->label_count[t] = (uint8_t)((kept - base) + 1U);
 }
 
+void sva_flow_label_path(sva_flow_lagrange_t* lg, uint32_t l)
+{
+    lg->path_len = 0U;
+    for (uint32_t k = l; k != SVA_FLOW_NO_LABEL; k = lg->label_pred[k]) {
+        lg->path[lg->path_len] = (uint16_t)(k / (uint32_t)SVA_FLOW_LABELS);
+        lg->path_len++;
+    }
+    for (uint16_t i = 0U; i < (lg->path_len / 2U); i++) {
+        const uint16_t k = lg->path[i];
+        lg->path[i] = lg->path[lg->path_len - 1U - i];
+        lg->path[lg->path_len - 1U - i] = k;
+    }
+}
+
 // UAV u's best route under lg->path_price (targets with lg->closed skipped):
 // min over routes of alpha * cells - sum of prices, flying home at once included.
 // The route goes to lg->path. Label extensions count as work.
@@ -171,16 +185,7 @@ int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t
             }
         }
     }
-    lg->path_len = 0U;
-    for (uint32_t l = best_label; l != SVA_FLOW_NO_LABEL; l = lg->label_pred[l]) {
-        lg->path[lg->path_len] = (uint16_t)(l / (uint32_t)SVA_FLOW_LABELS);
-        lg->path_len++;
-    }
-    for (uint16_t i = 0U; i < (lg->path_len / 2U); i++) {
-        const uint16_t k = lg->path[i];
-        lg->path[i] = lg->path[lg->path_len - 1U - i];
-        lg->path[lg->path_len - 1U - i] = k;
-    }
+    sva_flow_label_path(lg, best_label);
     return best;
 }
 
@@ -355,6 +360,22 @@ static void start_prices(sva_flow_work_t* w, const sva_mission_t* m)
     }
 }
 
+// The Lagrangian's value at the duals of the cost master for coverage c (prices'
+// units), or NO_BOUND when the master gives none; its routes go to the stats.
+static int64_t master_value(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan,
+                            int64_t covered, uint64_t budget)
+{
+    int64_t value = NO_BOUND;
+    int64_t mu = 0;
+    if (sva_flow_lp_prices(w, m, plan, covered, false, budget, &mu)) {
+        plan->stats.flow_lp_columns = w->lp.cols;
+        const phase_t at = {SVA_FLOW_PRICE_SCALE, mu, covered, NO_BOUND, 0, 0, 0, 0U};
+        int64_t grad_mu = 0;
+        value = evaluate(w, m, plan, &at, &grad_mu);
+    }
+    return value;
+}
+
 // Coverage phase: true if no plan covers more than `covered` targets.
 static bool prove_coverage(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
                            int64_t covered, uint64_t budget, uint32_t* iters)
@@ -401,16 +422,9 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     const uint64_t left = (budget > w->work) ? (budget - w->work) : 0U;
     // First the route master's duals (flow_lp.c): for the bound alone, as subgradient
     // steps from them find few new plans. Any bound for coverage c holds for more.
-    int64_t lp_value = NO_BOUND;
-    const int64_t lp_covered = covered;
-    int64_t mu = 0;
     plan->stats.flow_lp_columns = 0U;
-    if (sva_flow_lp_prices(w, m, plan, covered, false, w->work + (left / 2U), &mu)) {
-        plan->stats.flow_lp_columns = w->lp.cols;
-        const phase_t at = {s, mu, covered, NO_BOUND, 0, 0, 0, 0U};
-        int64_t grad_mu = 0;
-        lp_value = evaluate(w, m, plan, &at, &grad_mu);
-    }
+    const int64_t lp_covered = covered;
+    int64_t lp_value = master_value(w, m, plan, covered, w->work + (left / 2U));
     start_prices(w, m);
     int64_t most = 0;
     for (uint16_t t = 0U; t < m->target_count; t++) {
@@ -444,10 +458,9 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
         }
     }
     *iters = ph.iters;
-    if ((covered != lp_covered) && sva_flow_lp_prices(w, m, plan, covered, false, budget, &mu)) {
-        const phase_t at = {s, mu, covered, NO_BOUND, 0, 0, 0, 0U};
-        int64_t grad_mu = 0;
-        lp_value = evaluate(w, m, plan, &at, &grad_mu);
+    if (covered != lp_covered) {
+        const int64_t again = master_value(w, m, plan, covered, budget);
+        lp_value = (again > lp_value) ? again : lp_value;
     }
     const int64_t best = (ph.best > lp_value) ? ph.best : lp_value;
     const int64_t bound = (best == NO_BOUND) ? 0 : ceil_div(best, s);

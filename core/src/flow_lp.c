@@ -358,21 +358,6 @@ static bool start(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* 
     return true;
 }
 
-// The route ending at label l (flow_lagrange.c's labels) into lg->path.
-static void label_path(sva_flow_lagrange_t* lg, uint32_t l)
-{
-    lg->path_len = 0U;
-    for (uint32_t k = l; k != SVA_FLOW_NO_LABEL; k = lg->label_pred[k]) {
-        lg->path[lg->path_len] = (uint16_t)(k / (uint32_t)SVA_FLOW_LABELS);
-        lg->path_len++;
-    }
-    for (uint16_t i = 0U; i < (lg->path_len / 2U); i++) {
-        const uint16_t k = lg->path[i];
-        lg->path[i] = lg->path[lg->path_len - 1U - i];
-        lg->path[lg->path_len - 1U - i] = k;
-    }
-}
-
 // Reduced cost (scaled by D) of the label l's route flown home, or 0 if it cannot fly
 // home within fuel.
 static int64_t label_rc(const sva_flow_work_t* w, const sva_mission_t* m, uint16_t u, uint32_t l)
@@ -424,7 +409,7 @@ static bool price_routes(sva_flow_work_t* w, const sva_mission_t* m, const sva_p
             }
             above = pick_rc;
             last = pick;
-            label_path(lg, pick);
+            sva_flow_label_path(lg, pick);
             // Merged labels may stand for no real route: only routes that price out enter.
             int64_t rc = (lp->det * lp->cells_weight * path_cells(m, u, lg->path, lg->path_len)) -
                          lp->dual[lp->group_row[u]];

@@ -134,6 +134,9 @@ void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_
 /// *iters gets the subgradient steps taken.
 /// A label's predecessor when it starts the route.
 #define SVA_FLOW_NO_LABEL 0xFFFFFFFFU
+/// The route ending at label l (none: SVA_FLOW_NO_LABEL) into lg->path, first target
+/// first.
+void sva_flow_label_path(sva_flow_lagrange_t* lg, uint32_t l);
 /// UAV u's best route under w->lagrange.path_price (targets marked closed skipped):
 /// min over its routes within fuel of alpha * cells - sum of prices (flying home at
 /// once included); the route goes to w->lagrange.path. Label extensions count as work.
