@@ -198,39 +198,65 @@ static void test_small_budget_gives_a_checked_unproven_plan(void** state)
     assert_true(unproven > 0);
 }
 
-// A budget the search cannot finish in hands over to the Lagrangian phase: its bound
-// must stay at or below the optimum, its "optimal" must be true, and its plans checked.
-static void test_lagrangian_phase_bound_and_claims_hold(void** state)
+// What a phase did on a run of missions against brute force.
+typedef struct {
+    int ran;     // missions the phase ran on
+    int proven;  // of those, proven optimal
+    int tight;   // of those, with a bound equal to the optimum
+} phase_counts_t;
+
+// `rounds` small missions (min_targets..6 targets, 2..4 UAVs, fuel often binding)
+// planned by flow under `budget` and checked against brute force (bound at or below
+// the optimum, every "optimal" claim true, the plan checked); counts the missions
+// `ran` says the phase under test ran on.
+static phase_counts_t against_brute_force(uint64_t seed_default, int rounds, uint32_t budget,
+                                          int min_targets, bool (*ran)(const sva_plan_t*))
 {
-    (void)state;
-    const uint64_t seed = test_seed(0x1A6EULL);
+    const uint64_t seed = test_seed(seed_default);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
-    int lagrange_runs = 0;
-    int proven_by_it = 0;
-    int tight = 0;
-    const int rounds = 400;
-    planner.flow_max_work = 1000U;
+    phase_counts_t counts = {0, 0, 0};
+    planner.flow_max_work = budget;
     for (int round = 0; round < rounds; round++) {
         const test_gen_params_t p = {
-            test_rng_range(&rng, 4, 6), test_rng_range(&rng, 2, 4),
+            test_rng_range(&rng, min_targets, 6), test_rng_range(&rng, 2, 4),
             20, 4, 15, 60, test_rng_range(&rng, 1, 2), test_rng_range(&rng, 30, 60), 70, 2, 1,
             test_rng_range(&rng, 0, 1), 0};
         test_gen_mission(&rng, &p, &mission);
         const brute_result_t best = brute_force_optimum(&mission);
         must_plan(SVA_ALGO_FLOW, &plan, seed, round);
         check_against_optimum(&plan, &best, seed, round);
-        if (plan.stats.flow_lagrange_iters > 0U) {
-            lagrange_runs++;
-            proven_by_it += plan.stats.optimal ? 1 : 0;
-            tight += (plan.covered == best.covered && plan.stats.lower_bound == best.cost) ? 1 : 0;
+        if (ran(&plan)) {
+            counts.ran++;
+            counts.proven += plan.stats.optimal ? 1 : 0;
+            counts.tight += (plan.covered == best.covered && plan.stats.lower_bound == best.cost) ? 1 : 0;
         }
     }
     assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    return counts;
+}
+
+static bool lagrangian_phase_ran(const sva_plan_t* p)
+{
+    return p->stats.flow_lagrange_iters > 0U;
+}
+
+static bool route_master_ran(const sva_plan_t* p)
+{
+    return p->stats.flow_lp_columns > 0U;
+}
+
+// A budget the search cannot finish in hands over to the Lagrangian phase: its bound
+// must stay at or below the optimum, its "optimal" must be true, and its plans checked.
+static void test_lagrangian_phase_bound_and_claims_hold(void** state)
+{
+    (void)state;
+    const int rounds = 400;
+    const phase_counts_t c = against_brute_force(0x1A6EULL, rounds, 1000U, 4, lagrangian_phase_ran);
     printf("# %d missions: Lagrangian phase ran on %d, proved %d, bound equal to the optimum on %d\n",
-           rounds, lagrange_runs, proven_by_it, tight);
-    assert_true(lagrange_runs >= rounds / 10);
-    assert_true(tight > 0);
+           rounds, c.ran, c.proven, c.tight);
+    assert_true(c.ran >= rounds / 10);
+    assert_true(c.tight > 0);
 }
 
 // The route master's prices (flow_lp.c), at a budget that leaves the master room
@@ -240,35 +266,15 @@ static void test_lagrangian_phase_bound_and_claims_hold(void** state)
 static void test_route_master_bound_and_claims_hold(void** state)
 {
     (void)state;
-    const uint64_t seed = test_seed(0x10C0ULL);
-    test_rng_t rng;
-    test_rng_seed(&rng, seed);
-    int master_runs = 0;
-    int tight = 0;
     const int rounds = 300;
-    planner.flow_max_work = 6000U;
-    for (int round = 0; round < rounds; round++) {
-        const test_gen_params_t p = {
-            test_rng_range(&rng, 5, 6), test_rng_range(&rng, 2, 4),
-            20, 4, 15, 60, test_rng_range(&rng, 1, 2), test_rng_range(&rng, 30, 60), 70, 2, 1,
-            test_rng_range(&rng, 0, 1), 0};
-        test_gen_mission(&rng, &p, &mission);
-        const brute_result_t best = brute_force_optimum(&mission);
-        must_plan(SVA_ALGO_FLOW, &plan, seed, round);
-        check_against_optimum(&plan, &best, seed, round);
-        if (plan.stats.flow_lp_columns > 0U) {
-            master_runs++;
-            tight += (plan.covered == best.covered && plan.stats.lower_bound == best.cost) ? 1 : 0;
-        }
-    }
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
-    printf("# %d missions: the route master ran on %d, bound equal to the optimum on %d\n", rounds,
-           master_runs, tight);
+    const phase_counts_t c = against_brute_force(0x10C0ULL, rounds, 6000U, 5, route_master_ran);
+    printf("# %d missions: the route master ran on %d, proved %d, bound equal to the optimum on %d\n",
+           rounds, c.ran, c.proven, c.tight);
 #if SVA_FLOW_LP_ROWS >= 2
-    assert_true(master_runs >= rounds / 10);
-    assert_true(tight >= master_runs / 4);
+    assert_true(c.ran >= rounds / 10);
+    assert_true(c.tight >= c.ran / 4);
 #else
-    assert_int_equal(master_runs, 0);  // the profile has no master
+    assert_int_equal(c.ran, 0);  // the profile has no master
 #endif
 }
 
