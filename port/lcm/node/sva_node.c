@@ -102,6 +102,20 @@ static int realtime_setup(long rt_priority, int lock_memory)
     return 0;
 }
 
+// An integer option's value in [lo, hi] into *out; false (after the error) otherwise.
+static bool integer_option(const char* name, const char* text, long lo, long hi, long* out)
+{
+    char* end = NULL;
+    errno = 0;
+    const long v = strtol(text, &end, 10);
+    if ((errno != 0) || (end == text) || (*end != '\0') || (v < lo) || (v > hi)) {
+        fprintf(stderr, "sva_node: %s: must be an integer in [%ld, %ld], got '%s'\n", name, lo, hi, text);
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
 static void send_status(void)
 {
     if (sva_lcm_publish_status(&node, realtime_us()) != SVA_OK) {
@@ -132,23 +146,11 @@ int main(int argc, char** argv)
         } else if (((strcmp(a, "-a") == 0) || (strcmp(a, "--algorithm") == 0)) && has_value) {
             algo_name = argv[++i];
         } else if (((strcmp(a, "-s") == 0) || (strcmp(a, "--status-ms") == 0)) && has_value) {
-            char* end = NULL;
-            errno = 0;
-            status_ms = strtol(argv[++i], &end, 10);
-            if ((errno != 0) || (end == argv[i]) || (*end != '\0') || (status_ms < 10) ||
-                (status_ms > 3600000)) {
-                fprintf(stderr, "sva_node: --status-ms: must be an integer in [10, 3600000], got '%s'\n",
-                        argv[i]);
+            if (!integer_option("--status-ms", argv[++i], 10, 3600000, &status_ms)) {
                 return 2;
             }
         } else if (((strcmp(a, "-r") == 0) || (strcmp(a, "--rt-priority") == 0)) && has_value) {
-            char* end = NULL;
-            errno = 0;
-            rt_priority = strtol(argv[++i], &end, 10);
-            if ((errno != 0) || (end == argv[i]) || (*end != '\0') || (rt_priority < 1) ||
-                (rt_priority > 99)) {
-                fprintf(stderr, "sva_node: --rt-priority: must be an integer in [1, 99], got '%s'\n",
-                        argv[i]);
+            if (!integer_option("--rt-priority", argv[++i], 1, 99, &rt_priority)) {
                 return 2;
             }
         } else if ((strcmp(a, "-m") == 0) || (strcmp(a, "--mlock") == 0)) {
