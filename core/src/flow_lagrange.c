@@ -20,7 +20,8 @@
 // prices, a target's price growing with the UAVs already committed to it and a fully
 // served target closed, then repairs the result (flow_repair.c) and offers it.
 // Before the steps, the route master's duals (flow_lp.c) are tried as prices, in
-// both phases: they are the LP's best, which the steps approach only slowly.
+// both phases: they are the LP's best, which the steps approach only slowly. After
+// them, a dive on the master (flow_lp.c) offers one more plan.
 #include "sva_internal.h"
 
 #define THETA_ONE 1024
@@ -367,7 +368,7 @@ static int64_t master_value(sva_flow_work_t* w, const sva_mission_t* m, sva_plan
 {
     int64_t value = NO_BOUND;
     int64_t mu = 0;
-    if (sva_flow_lp_prices(w, m, plan, covered, false, budget, &mu)) {
+    if (sva_flow_lp_prices(w, m, plan, covered, SVA_FLOW_LP_COST, budget, &mu)) {
         plan->stats.flow_lp_columns = w->lp.cols;
         const phase_t at = {SVA_FLOW_PRICE_SCALE, mu, covered, NO_BOUND, 0, 0, 0, 0U};
         int64_t grad_mu = 0;
@@ -384,7 +385,7 @@ static bool prove_coverage(sva_flow_work_t* w, const sva_mission_t* m, const sva
     const int64_t s = SVA_FLOW_PRICE_SCALE;
     phase_t ph = {0, s, 0, NO_BOUND, -s * covered, THETA_START, 0, 0U};
     int64_t mu = 0;
-    if (sva_flow_lp_prices(w, m, plan, covered + 1, true, budget, &mu)) {
+    if (sva_flow_lp_prices(w, m, plan, covered + 1, SVA_FLOW_LP_COVER, budget, &mu)) {
         int64_t grad_mu = 0;
         if (evaluate(w, m, plan, &ph, &grad_mu) > (-s * (covered + 1))) {
             return true;
@@ -458,9 +459,18 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
         }
     }
     *iters = ph.iters;
+    bool master_solved = lp_value != NO_BOUND;
     if (covered != lp_covered) {
         const int64_t again = master_value(w, m, plan, covered, budget);
+        master_solved = again != NO_BOUND;
         lp_value = (again > lp_value) ? again : lp_value;
+    }
+    // A dive on the cost master last solved: a plan from its routes.
+    plan->stats.flow_dive_routes = 0U;
+    if (master_solved && sva_flow_lp_dive(priv, m, plan, w->work + (left / 8U))) {
+        plan->stats.flow_dive_routes = w->lp.fixed_count;
+        sva_flow_repair(priv, m, plan, true);
+        incumbent(priv, m, plan, &cost, &covered);
     }
     const int64_t best = (ph.best > lp_value) ? ph.best : lp_value;
     const int64_t bound = (best == NO_BOUND) ? 0 : ceil_div(best, s);

@@ -24,6 +24,13 @@
 // keeps every product inside int64. Dantzig's rule, Bland's after DEGENERATE_RUN
 // degenerate pivots in a row (no cycling).
 //
+// The dive turns the cost master into a plan: fix the route of largest value (its
+// whole part, at least one UAV), lower the right-hand sides by it, generate columns
+// again, and so on. A fixed fraction leaves a deficit (its column negated, cost M) in
+// the basis, and a target partly served gets cost M on w_t: the basis stays feasible
+// and the primal simplex goes on; both leave for good. The fixed routes go through
+// the repair and the local search (flow_repair.c) like every other plan.
+//
 // Nothing here is trusted for a claim: the prices are only proposed, and the bound is
 // the Lagrangian's value at them (flow_lagrange.c), valid for any prices.
 #include "sva_internal.h"
@@ -79,7 +86,11 @@ static bool has_row(const sva_flow_lp_t* lp, uint16_t col, uint16_t row)
 static int64_t column_cost(const sva_flow_lp_t* lp, uint16_t j)
 {
     if (j >= first_route(lp)) {
-        return lp->cells_weight * lp->col_cost[j - first_route(lp)];
+        const uint16_t col = (uint16_t)(j - first_route(lp));
+        return (lp->col_deficit[col] != 0U) ? lp->big_m : (lp->cells_weight * lp->col_cost[col]);
+    }
+    if (j < lp->targets) {
+        return (lp->forced[j] != 0U) ? lp->big_m : 0;  // the dive: a target partly served
     }
     return (j == artificial(lp)) ? lp->big_m : 0;
 }
@@ -105,7 +116,7 @@ static int64_t dot(const sva_flow_lp_t* lp, const sva_mission_t* m, const int64_
     for (uint16_t k = 0U; k < lp->rows; k++) {
         sum += has_row(lp, col, k) ? v[k] : 0;
     }
-    return sum;
+    return (lp->col_deficit[col] != 0U) ? -sum : sum;
 }
 
 // Duals of the basis (scaled by D); false if one outgrows DUAL_MAX.
@@ -125,6 +136,16 @@ static bool compute_duals(sva_flow_lp_t* lp)
     return true;
 }
 
+// The dive's penalty columns (cost M), which never enter once out: w_t of a target
+// partly served, and a fixed route's deficit.
+static bool penalty(const sva_flow_lp_t* lp, uint16_t j)
+{
+    if (j >= first_route(lp)) {
+        return lp->col_deficit[j - first_route(lp)] != 0U;
+    }
+    return (j < lp->targets) && (lp->forced[j] != 0U);
+}
+
 // The entering column: the most negative reduced cost (Dantzig), or the first
 // negative one (Bland); NO_COLUMN when the basis is optimal.
 static uint16_t lp_entering(const sva_flow_lp_t* lp, const sva_mission_t* m, bool bland)
@@ -133,7 +154,7 @@ static uint16_t lp_entering(const sva_flow_lp_t* lp, const sva_mission_t* m, boo
     uint16_t best = NO_COLUMN;
     int64_t best_rc = 0;
     for (uint16_t j = 0U; j < end; j++) {
-        if (lp->in_basis[j] != 0U) {
+        if ((lp->in_basis[j] != 0U) || penalty(lp, j)) {
             continue;
         }
         const int64_t rc = (lp->det * column_cost(lp, j)) - dot(lp, m, lp->dual, j);
@@ -254,9 +275,10 @@ static int64_t path_cells(const sva_mission_t* m, uint16_t u, const uint16_t* pa
     return cells + sva_distance(x, y, m->depot_x, m->depot_y);
 }
 
-// Adds UAV u's route over path[0..len-1] as a column; false if the master is full.
-static bool add_column(sva_flow_lp_t* lp, const sva_mission_t* m, uint16_t u, const uint16_t* path,
-                       uint16_t len)
+// Adds UAV u's route over path[0..len-1] as a column (flown from the state of UAV
+// first); false if the master is full.
+static bool add_column(sva_flow_lp_t* lp, const sva_mission_t* m, uint16_t u, uint16_t first,
+                       const uint16_t* path, uint16_t len)
 {
     if ((lp->cols >= (uint16_t)SVA_FLOW_LP_COLS) || (len == 0U)) {
         return false;
@@ -271,6 +293,8 @@ static bool add_column(sva_flow_lp_t* lp, const sva_mission_t* m, uint16_t u, co
     const uint16_t g = lp->group_row[u];
     bits[(uint32_t)g / 32U] |= (uint32_t)1U << ((uint32_t)g % 32U);
     lp->col_cost[lp->cols] = (int32_t)path_cells(m, u, path, len);
+    lp->col_uav[lp->cols] = first;
+    lp->col_deficit[lp->cols] = 0U;
     lp->in_basis[first_route(lp) + lp->cols] = 0U;
     lp->cols++;
     return true;
@@ -312,6 +336,7 @@ static bool start(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* 
     lp->cells_weight = cover ? INT64_C(0) : INT64_C(1);
     lp->cols = 0U;
     lp->det = 1;
+    lp->fixed_count = 0U;
     uint16_t g = 0U;
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         lp->group_row[u] = 0U;
@@ -347,6 +372,7 @@ static bool start(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* 
     for (uint16_t t = 0U; t < m->target_count; t++) {
         row[t] = lcm / m->targets[t].need;
         lp->rhs[t] = m->targets[t].need;
+        lp->forced[t] = 0U;
     }
     for (uint16_t i = 0U; i < lp->rows; i++) {
         int64_t sum = 0;
@@ -379,11 +405,11 @@ static bool price_routes(sva_flow_work_t* w, const sva_mission_t* m, const sva_p
     sva_flow_lagrange_t* lg = &w->lagrange;
     for (uint16_t t = 0U; t < m->target_count; t++) {
         lg->path_price[t] = lp->dual[t];
-        lg->closed[t] = 0U;
+        lg->closed[t] = (lp->rhs[t] == 0) ? 1U : 0U;  // served in whole by the dive
     }
     bool added = false;
     for (uint16_t u = 0U; u < m->uav_count; u++) {
-        if (plan->routes[u].stranded || (lg->group[u] != u)) {
+        if (plan->routes[u].stranded || (lg->group[u] != u) || (lp->rhs[lp->group_row[u]] == 0)) {
             continue;
         }
         (void)sva_flow_best_route(w, m, u, lp->det * lp->cells_weight);
@@ -417,7 +443,7 @@ static bool price_routes(sva_flow_work_t* w, const sva_mission_t* m, const sva_p
                 rc -= lp->dual[lg->path[i]];
             }
             if (rc < 0) {
-                added = add_column(lp, m, u, lg->path, lg->path_len) || added;
+                added = add_column(lp, m, u, u, lg->path, lg->path_len) || added;
             }
         }
         w->work += (uint64_t)ENTER_PER_STATE * (uint64_t)m->target_count * (uint64_t)SVA_FLOW_LABELS;
@@ -426,17 +452,19 @@ static bool price_routes(sva_flow_work_t* w, const sva_mission_t* m, const sva_p
 }
 
 bool sva_flow_lp_prices(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
-                        int64_t covered, bool cover, uint64_t budget, int64_t* mu)
+                        int64_t covered, sva_flow_lp_mode_t mode, uint64_t budget, int64_t* mu)
 {
     sva_flow_lp_t* lp = &w->lp;
-    if (!start(w, m, plan, covered, cover)) {
-        return false;
-    }
-    // The incumbent's routes first: with them the master is feasible without a.
-    for (uint16_t u = 0U; u < m->uav_count; u++) {
-        const sva_route_t* r = &plan->routes[u];
-        if (!r->stranded) {
-            (void)add_column(lp, m, u, r->targets, r->target_count);
+    if (mode != SVA_FLOW_LP_RESUME) {
+        if (!start(w, m, plan, covered, mode == SVA_FLOW_LP_COVER)) {
+            return false;
+        }
+        // The incumbent's routes first: with them the master is feasible without a.
+        for (uint16_t u = 0U; u < m->uav_count; u++) {
+            const sva_route_t* r = &plan->routes[u];
+            if (!r->stranded) {
+                (void)add_column(lp, m, u, w->lagrange.group[u], r->targets, r->target_count);
+            }
         }
     }
     bool solved = solve_master(w, m, budget);
@@ -448,7 +476,7 @@ bool sva_flow_lp_prices(sva_flow_work_t* w, const sva_mission_t* m, const sva_pl
     }
     const int64_t s = SVA_FLOW_PRICE_SCALE;
     const int64_t q = -lp->dual[slack_cover(lp)];  // mu = L q / D
-    if (cover) {
+    if (lp->cells_weight == 0) {
         // The coverage phase's prices have mu = S: scale by S / mu.
         if (q <= 0) {
             return false;
@@ -466,18 +494,177 @@ bool sva_flow_lp_prices(sva_flow_work_t* w, const sva_mission_t* m, const sva_pl
     return true;
 }
 
+// True if a penalty column is basic and positive: the master cannot complete the
+// fixed routes.
+static bool penalised(const sva_flow_lp_t* lp)
+{
+    for (uint16_t i = 0U; i < lp->rows; i++) {
+        if ((lp->x[i] > 0) && penalty(lp, lp->basic[i])) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// The basic route with the largest value, or NO_COLUMN if none is positive.
+static uint16_t largest_route(const sva_flow_lp_t* lp)
+{
+    uint16_t best = NO_COLUMN;
+    for (uint16_t i = 0U; i < lp->rows; i++) {
+        if ((lp->basic[i] >= first_route(lp)) && !penalty(lp, lp->basic[i]) && (lp->x[i] > 0) &&
+            ((best == NO_COLUMN) || (lp->x[i] > lp->x[best]))) {
+            best = i;
+        }
+    }
+    return best;
+}
+
+// Fixes route column col k times: its state flies it with k more UAVs, its targets
+// need k fewer, and a target now partly served must be served in whole (w_t costs M).
+static void fix_route(sva_flow_lp_t* lp, uint16_t col, int64_t k)
+{
+    for (int64_t i = 0; (i < k) && (lp->fixed_count < (uint16_t)SVA_MAX_UAVS); i++) {
+        lp->fixed[lp->fixed_count] = col;
+        lp->fixed_count++;
+    }
+    lp->rhs[lp->group_row[lp->col_uav[col]]] -= k;
+    for (uint16_t t = 0U; t < lp->targets; t++) {
+        if (has_row(lp, col, t)) {
+            lp->rhs[t] -= k;
+            lp->forced[t] = 1U;
+        }
+    }
+}
+
+// The fixed routes as a plan in *plan: each flown by a free UAV of its state, its
+// targets in time order.
+static void write_fixed(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+{
+    const sva_flow_lp_t* lp = &priv->flow.lp;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        priv->target_served[t] = 0U;
+    }
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        plan->routes[u].target_count = 0U;
+    }
+    for (uint16_t f = 0U; f < lp->fixed_count; f++) {
+        const uint16_t col = lp->fixed[f];
+        uint16_t v = 0U;
+        while ((v < m->uav_count) && ((priv->flow.lagrange.group[v] != lp->col_uav[col]) ||
+                                      plan->routes[v].stranded || (plan->routes[v].target_count > 0U))) {
+            v++;
+        }
+        if (v == m->uav_count) {
+            continue;  // (cannot be: a state's row caps its routes at its UAVs)
+        }
+        sva_route_t* r = &plan->routes[v];
+        for (uint16_t i = 0U; (i < m->target_count) && (r->target_count < (uint16_t)SVA_MAX_ROUTE_TARGETS); i++) {
+            const uint16_t t = priv->target_order[i];
+            if (has_row(lp, col, t)) {
+                r->targets[r->target_count] = t;
+                r->target_count++;
+                priv->target_served[t]++;
+            }
+        }
+    }
+}
+
+// Position i's route was fixed beyond its value (x_i < 0): its deficit, the column
+// -A_col at cost M, replaces it in the basis. B' = B diag(.., -1, ..): row i of adj
+// and x_i change sign, D stays. False if the master is full.
+static bool swap_in_deficit(sva_flow_lp_t* lp, uint16_t i)
+{
+    const uint16_t col = (uint16_t)(lp->basic[i] - first_route(lp));
+    if (lp->cols >= (uint16_t)SVA_FLOW_LP_COLS) {
+        return false;
+    }
+    const uint16_t q = lp->cols;
+    for (uint32_t k = 0U; k < SVA_FLOW_LP_WORDS; k++) {
+        col_bits(lp, q)[k] = col_bits(lp, col)[k];
+    }
+    lp->col_cost[q] = lp->col_cost[col];
+    lp->col_uav[q] = lp->col_uav[col];
+    lp->col_deficit[q] = 1U;
+    lp->cols++;
+    lp->in_basis[lp->basic[i]] = 0U;
+    lp->basic[i] = (uint16_t)(first_route(lp) + q);
+    lp->in_basis[lp->basic[i]] = 1U;
+    int64_t* row = adj_row(lp, i);
+    for (uint16_t k = 0U; k < lp->rows; k++) {
+        row[k] = -row[k];
+    }
+    lp->x[i] = -lp->x[i];
+    return true;
+}
+
+// The next route to fix: the basic route of largest value, and how many UAVs (its
+// whole part, at least one, within its state's and its targets' rows); NO_COLUMN if
+// none is left or a penalty column is positive.
+static uint16_t route_to_fix(const sva_flow_lp_t* lp, int64_t* k)
+{
+    const uint16_t i = largest_route(lp);
+    if ((i == NO_COLUMN) || penalised(lp)) {
+        return NO_COLUMN;
+    }
+    const uint16_t col = (uint16_t)(lp->basic[i] - first_route(lp));
+    const int64_t state_left = lp->rhs[lp->group_row[lp->col_uav[col]]];
+    int64_t n = lp->x[i] / lp->det;
+    n = (n < 1) ? 1 : n;
+    n = (n > state_left) ? state_left : n;
+    for (uint16_t t = 0U; t < lp->targets; t++) {
+        n = (has_row(lp, col, t) && (lp->rhs[t] < n)) ? lp->rhs[t] : n;
+    }
+    *k = n;
+    return (n < 1) ? NO_COLUMN : i;  // (n >= 1: a positive route fits its rows)
+}
+
+bool sva_flow_lp_dive(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                      uint64_t budget)
+{
+    sva_flow_work_t* w = &priv->flow;
+    sva_flow_lp_t* lp = &w->lp;
+    // Every round fixes at least one UAV's route: at most one round per UAV.
+    bool going = true;
+    int64_t mu = 0;
+    while (going && sva_flow_lp_prices(w, m, plan, 0, SVA_FLOW_LP_RESUME, budget, &mu)) {
+        int64_t k = 0;
+        const uint16_t i = route_to_fix(lp, &k);
+        going = i != NO_COLUMN;
+        if (going) {
+            fix_route(lp, (uint16_t)(lp->basic[i] - first_route(lp)), k);
+            lp->x[i] -= k * lp->det;  // B^-1 (b - k A_col) = x - k e_i: the column is basic at i
+            going = (lp->x[i] >= 0) || swap_in_deficit(lp, i);  // false: the master is full
+        }
+    }
+    if (lp->fixed_count == 0U) {
+        return false;
+    }
+    write_fixed(priv, m, plan);
+    return true;
+}
+
 #else  // SVA_FLOW_LP_ROWS 1: no master (a profile with little RAM)
 
 bool sva_flow_lp_prices(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
-                        int64_t covered, bool cover, uint64_t budget, int64_t* mu)
+                        int64_t covered, sva_flow_lp_mode_t mode, uint64_t budget, int64_t* mu)
 {
     (void)w;
     (void)m;
     (void)plan;
     (void)covered;
-    (void)cover;
+    (void)mode;
     (void)budget;
     (void)mu;
+    return false;
+}
+
+bool sva_flow_lp_dive(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                      uint64_t budget)
+{
+    (void)priv;
+    (void)m;
+    (void)plan;
+    (void)budget;
     return false;
 }
 

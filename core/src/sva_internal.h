@@ -143,15 +143,32 @@ void sva_flow_label_path(sva_flow_lagrange_t* lg, uint32_t l);
 int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t u, int64_t alpha);
 
 // flow_lp.c: the route master's duals as the Lagrangian's prices.
+typedef enum {
+    SVA_FLOW_LP_COST,    ///< a new cost master
+    SVA_FLOW_LP_COVER,   ///< a new cover master (costs left out)
+    SVA_FLOW_LP_RESUME   ///< the master as the last call (or the dive) left it
+} sva_flow_lp_mode_t;
+
 /// Column generation on the route master at coverage `covered`, starting from the
 /// routes of *plan (the incumbent), until no route prices out or the work reaches
 /// `budget`. On success fills w->lagrange.price and *mu (1/SVA_FLOW_PRICE_SCALE cells)
 /// and returns true; false, prices untouched, when the master exceeds
 /// SVA_FLOW_LP_ROWS, a need lcm of 64, route costs of 2^24, or a number guard.
-/// cover: the master of "cover `covered` targets" without costs, whose prices (mu = S)
-/// are for the coverage phase.
+/// SVA_FLOW_LP_COVER: the master of "cover `covered` targets" without costs, whose
+/// prices (mu = S) are for the coverage phase. SVA_FLOW_LP_RESUME: no new master
+/// (`covered` unused), the last one solved again from its basis.
 bool sva_flow_lp_prices(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
-                        int64_t covered, bool cover, uint64_t budget, int64_t* mu);
+                        int64_t covered, sva_flow_lp_mode_t mode, uint64_t budget, int64_t* mu);
+
+/// A dive on the route master as sva_flow_lp_prices last left it (cost master, after a
+/// true return): the route with the largest value is fixed (as many UAVs as its whole
+/// part, at least one; a fraction's deficit enters the basis at cost M, as does the
+/// unserved part of a target now partly served), column generation again, and so on
+/// until no route is left in the master's solution or the work reaches `budget`. The
+/// fixed routes go to *plan's routes and priv->target_served, for the caller's
+/// sva_flow_repair to complete and offer. False if nothing was fixed.
+bool sva_flow_lp_dive(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                      uint64_t budget);
 
 int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                           uint64_t budget, bool* coverage_proven, uint32_t* iters);

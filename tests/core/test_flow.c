@@ -203,6 +203,7 @@ typedef struct {
     int ran;     // missions the phase ran on
     int proven;  // of those, proven optimal
     int tight;   // of those, with a bound equal to the optimum
+    int best;    // of those, with a plan as good as the optimum
 } phase_counts_t;
 
 // `rounds` small missions (min_targets..6 targets, 2..4 UAVs, fuel often binding)
@@ -215,7 +216,7 @@ static phase_counts_t against_brute_force(uint64_t seed_default, int rounds, uin
     const uint64_t seed = test_seed(seed_default);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
-    phase_counts_t counts = {0, 0, 0};
+    phase_counts_t counts = {0, 0, 0, 0};
     planner.flow_max_work = budget;
     for (int round = 0; round < rounds; round++) {
         const test_gen_params_t p = {
@@ -230,6 +231,7 @@ static phase_counts_t against_brute_force(uint64_t seed_default, int rounds, uin
             counts.ran++;
             counts.proven += plan.stats.optimal ? 1 : 0;
             counts.tight += (plan.covered == best.covered && plan.stats.lower_bound == best.cost) ? 1 : 0;
+            counts.best += (plan.covered == best.covered && plan.cost == best.cost) ? 1 : 0;
         }
     }
     assert_int_equal(sva_planner_init(&planner), SVA_OK);
@@ -244,6 +246,11 @@ static bool lagrangian_phase_ran(const sva_plan_t* p)
 static bool route_master_ran(const sva_plan_t* p)
 {
     return p->stats.flow_lp_columns > 0U;
+}
+
+static bool dive_ran(const sva_plan_t* p)
+{
+    return p->stats.flow_dive_routes > 0U;
 }
 
 // A budget the search cannot finish in hands over to the Lagrangian phase: its bound
@@ -273,6 +280,23 @@ static void test_route_master_bound_and_claims_hold(void** state)
 #if SVA_FLOW_LP_ROWS >= 2
     assert_true(c.ran >= rounds / 10);
     assert_true(c.tight >= c.ran / 4);
+#else
+    assert_int_equal(c.ran, 0);  // the profile has no master
+#endif
+}
+
+// The dive on the route master (flow_lp.c) at the same budget: it runs, its plans
+// pass the checks of against_brute_force (valid, never claimed optimal wrongly), and
+// flow's final plan is optimal on most of the missions it ran on.
+static void test_route_master_dive_plans_hold(void** state)
+{
+    (void)state;
+    const int rounds = 300;
+    const phase_counts_t c = against_brute_force(0xD17EULL, rounds, 6000U, 5, dive_ran);
+    printf("# %d missions: the dive ran on %d; flow's plan optimal on %d of them\n", rounds, c.ran, c.best);
+#if SVA_FLOW_LP_ROWS >= 2
+    assert_true(c.ran >= rounds / 10);
+    assert_true(c.best >= c.ran / 2);
 #else
     assert_int_equal(c.ran, 0);  // the profile has no master
 #endif
@@ -405,6 +429,7 @@ int main(void)
         cmocka_unit_test(test_small_budget_gives_a_checked_unproven_plan),
         cmocka_unit_test(test_lagrangian_phase_bound_and_claims_hold),
         cmocka_unit_test(test_route_master_bound_and_claims_hold),
+        cmocka_unit_test(test_route_master_dive_plans_hold),
         cmocka_unit_test(test_plans_do_not_depend_on_the_planners_history),
         cmocka_unit_test(test_past_its_graph_bounds_flow_falls_back_honestly),
         cmocka_unit_test(test_dense_graph_past_the_arc_bound_falls_back),

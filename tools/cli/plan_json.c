@@ -64,7 +64,8 @@ static bool flow_stats(json_t* o, const sva_stats_t* s) {
            put_int(o, "flow_work", (int64_t)s->flow_work) && put_int(o, "flow_graph_arcs", s->flow_graph_arcs) &&
            put_int(o, "flow_max_depth", s->flow_max_depth) &&
            put_int(o, "flow_lagrange_iters", s->flow_lagrange_iters) &&
-           put_int(o, "flow_lp_columns", s->flow_lp_columns) && put_int(o, "flow_incomplete", s->flow_incomplete);
+           put_int(o, "flow_lp_columns", s->flow_lp_columns) && put_int(o, "flow_dive_routes", s->flow_dive_routes) &&
+           put_int(o, "flow_incomplete", s->flow_incomplete);
 }
 
 static json_t* stats_json(const sva_stats_t* s, int64_t solve_us) {

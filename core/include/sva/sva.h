@@ -267,6 +267,9 @@ typedef struct {
     /// Routes in the route master when it gave the Lagrangian its prices (0: it did not
     /// run, or stopped on a bound or the work budget).
     uint16_t flow_lp_columns;
+    /// Routes the dive on the route master fixed before the repair completed its plan
+    /// (0: it did not run).
+    uint16_t flow_dive_routes;
     /// Why flow did not prove optimality: 0 it did (or the search finished), 1 work
     /// budget, 2 SVA_FLOW_MAX_DEPTH, 3 needs whose lcm is too large for exact ties;
     /// 4 needs summed above SVA_FLOW_MAX_COPIES, 5 graph above SVA_FLOW_MAX_ARCS (4 and
@@ -432,6 +435,11 @@ typedef struct {
     uint16_t basic[SVA_FLOW_LP_ROWS];   ///< column of each basic position
     uint32_t col_rows[(uint32_t)SVA_FLOW_LP_COLS * SVA_FLOW_LP_WORDS];  ///< a route's rows
     int32_t col_cost[SVA_FLOW_LP_COLS]; ///< a route's cells
+    uint16_t col_uav[SVA_FLOW_LP_COLS]; ///< the first UAV of the state a route is flown from
+    uint8_t col_deficit[SVA_FLOW_LP_COLS]; ///< the dive's deficit of a fixed route: -A_r, cost big_m
+    uint16_t fixed[SVA_MAX_UAVS];       ///< the dive's fixed routes (columns)
+    uint16_t fixed_count;
+    uint8_t forced[SVA_FLOW_LP_ROWS];   ///< the dive's targets partly served: w_t costs big_m
     uint8_t in_basis[SVA_FLOW_LP_ROWS + 2 + SVA_FLOW_LP_COLS];
     uint16_t group_row[SVA_MAX_UAVS];   ///< master row of a UAV's state
     int64_t lcm;                        ///< L: the lcm of the needs
