@@ -260,25 +260,9 @@ static bool solve_master(sva_flow_work_t* w, const sva_mission_t* m, uint64_t bu
     return false;
 }
 
-// Cells of UAV u's route over targets path[0..len-1], home included.
-static int64_t path_cells(const sva_mission_t* m, uint16_t u, const uint16_t* path, uint16_t len)
-{
-    int32_t x = m->uavs[u].x;
-    int32_t y = m->uavs[u].y;
-    int64_t cells = 0;
-    for (uint16_t i = 0U; i < len; i++) {
-        const sva_target_t* t = &m->targets[path[i]];
-        cells += sva_distance(x, y, t->x, t->y);
-        x = t->x;
-        y = t->y;
-    }
-    return cells + sva_distance(x, y, m->depot_x, m->depot_y);
-}
-
-// Adds UAV u's route over path[0..len-1] as a column (flown from the state of UAV
-// first); false if the master is full.
-static bool add_column(sva_flow_lp_t* lp, const sva_mission_t* m, uint16_t u, uint16_t first,
-                       const uint16_t* path, uint16_t len)
+// Adds UAV u's route over path[0..len-1] as a column; false if the master is full.
+static bool add_column(sva_flow_lp_t* lp, const sva_mission_t* m, uint16_t u, const uint16_t* path,
+                       uint16_t len)
 {
     if ((lp->cols >= (uint16_t)SVA_FLOW_LP_COLS) || (len == 0U)) {
         return false;
@@ -292,8 +276,7 @@ static bool add_column(sva_flow_lp_t* lp, const sva_mission_t* m, uint16_t u, ui
     }
     const uint16_t g = lp->group_row[u];
     bits[(uint32_t)g / 32U] |= (uint32_t)1U << ((uint32_t)g % 32U);
-    lp->col_cost[lp->cols] = (int32_t)path_cells(m, u, path, len);
-    lp->col_uav[lp->cols] = first;
+    lp->col_cost[lp->cols] = (int32_t)sva_path_cells(m, u, path, len);
     lp->col_deficit[lp->cols] = 0U;
     lp->in_basis[first_route(lp) + lp->cols] = 0U;
     lp->cols++;
@@ -437,13 +420,13 @@ static bool price_routes(sva_flow_work_t* w, const sva_mission_t* m, const sva_p
             last = pick;
             sva_flow_label_path(lg, pick);
             // Merged labels may stand for no real route: only routes that price out enter.
-            int64_t rc = (lp->det * lp->cells_weight * path_cells(m, u, lg->path, lg->path_len)) -
+            int64_t rc = (lp->det * lp->cells_weight * sva_path_cells(m, u, lg->path, lg->path_len)) -
                          lp->dual[lp->group_row[u]];
             for (uint16_t i = 0U; i < lg->path_len; i++) {
                 rc -= lp->dual[lg->path[i]];
             }
             if (rc < 0) {
-                added = add_column(lp, m, u, u, lg->path, lg->path_len) || added;
+                added = add_column(lp, m, u, lg->path, lg->path_len) || added;
             }
         }
         w->work += (uint64_t)ENTER_PER_STATE * (uint64_t)m->target_count * (uint64_t)SVA_FLOW_LABELS;
@@ -463,7 +446,7 @@ bool sva_flow_lp_prices(sva_flow_work_t* w, const sva_mission_t* m, const sva_pl
         for (uint16_t u = 0U; u < m->uav_count; u++) {
             const sva_route_t* r = &plan->routes[u];
             if (!r->stranded) {
-                (void)add_column(lp, m, u, w->lagrange.group[u], r->targets, r->target_count);
+                (void)add_column(lp, m, u, r->targets, r->target_count);
             }
         }
     }
@@ -519,6 +502,16 @@ static uint16_t largest_route(const sva_flow_lp_t* lp)
     return best;
 }
 
+// The row of the UAV state route column col is flown from.
+static uint16_t state_row(const sva_flow_lp_t* lp, uint16_t col)
+{
+    uint16_t g = lp->targets;
+    while ((g < slack_cover(lp)) && !has_row(lp, col, g)) {
+        g++;
+    }
+    return g;  // (every route column has one state row)
+}
+
 // Fixes route column col k times: its state flies it with k more UAVs, its targets
 // need k fewer, and a target now partly served must be served in whole (w_t costs M).
 static void fix_route(sva_flow_lp_t* lp, uint16_t col, int64_t k)
@@ -527,7 +520,7 @@ static void fix_route(sva_flow_lp_t* lp, uint16_t col, int64_t k)
         lp->fixed[lp->fixed_count] = col;
         lp->fixed_count++;
     }
-    lp->rhs[lp->group_row[lp->col_uav[col]]] -= k;
+    lp->rhs[state_row(lp, col)] -= k;
     for (uint16_t t = 0U; t < lp->targets; t++) {
         if (has_row(lp, col, t)) {
             lp->rhs[t] -= k;
@@ -549,9 +542,10 @@ static void write_fixed(sva_planner_priv_t* priv, const sva_mission_t* m, sva_pl
     }
     for (uint16_t f = 0U; f < lp->fixed_count; f++) {
         const uint16_t col = lp->fixed[f];
+        const uint16_t row = state_row(lp, col);
         uint16_t v = 0U;
-        while ((v < m->uav_count) && ((priv->flow.lagrange.group[v] != lp->col_uav[col]) ||
-                                      plan->routes[v].stranded || (plan->routes[v].target_count > 0U))) {
+        while ((v < m->uav_count) && (plan->routes[v].stranded || (lp->group_row[v] != row) ||
+                                      (plan->routes[v].target_count > 0U))) {
             v++;
         }
         if (v == m->uav_count) {
@@ -583,7 +577,6 @@ static bool swap_in_deficit(sva_flow_lp_t* lp, uint16_t i)
         col_bits(lp, q)[k] = col_bits(lp, col)[k];
     }
     lp->col_cost[q] = lp->col_cost[col];
-    lp->col_uav[q] = lp->col_uav[col];
     lp->col_deficit[q] = 1U;
     lp->cols++;
     lp->in_basis[lp->basic[i]] = 0U;
@@ -607,7 +600,7 @@ static uint16_t route_to_fix(const sva_flow_lp_t* lp, int64_t* k)
         return NO_COLUMN;
     }
     const uint16_t col = (uint16_t)(lp->basic[i] - first_route(lp));
-    const int64_t state_left = lp->rhs[lp->group_row[lp->col_uav[col]]];
+    const int64_t state_left = lp->rhs[state_row(lp, col)];
     int64_t n = lp->x[i] / lp->det;
     n = (n < 1) ? 1 : n;
     n = (n > state_left) ? state_left : n;

@@ -75,18 +75,23 @@ void sva_commit(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan
     priv->target_served[target]++;
 }
 
-int64_t sva_route_cells(const sva_mission_t* mission, uint16_t uav, const sva_route_t* route)
+int64_t sva_path_cells(const sva_mission_t* mission, uint16_t uav, const uint16_t* targets, uint16_t count)
 {
     int32_t x = mission->uavs[uav].x;
     int32_t y = mission->uavs[uav].y;
     int64_t cells = 0;
-    for (uint16_t k = 0U; k < route->target_count; k++) {
-        const sva_target_t* t = &mission->targets[route->targets[k]];
+    for (uint16_t k = 0U; k < count; k++) {
+        const sva_target_t* t = &mission->targets[targets[k]];
         cells += sva_distance(x, y, t->x, t->y);
         x = t->x;
         y = t->y;
     }
     return cells + sva_distance(x, y, mission->depot_x, mission->depot_y);
+}
+
+int64_t sva_route_cells(const sva_mission_t* mission, uint16_t uav, const sva_route_t* route)
+{
+    return sva_path_cells(mission, uav, route->targets, route->target_count);
 }
 
 // Routes get their legs summed from the mission's start positions (not the state),

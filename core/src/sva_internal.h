@@ -72,7 +72,9 @@ int64_t sva_insertion_cells(const sva_planner_priv_t* priv, const sva_mission_t*
                             uint16_t uav, uint16_t target);
 void sva_commit(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan,
                 uint16_t uav, uint16_t target);
-/// Cells flown by `route` from the UAV's mission position, return leg included.
+/// Cells flown over targets[0..count-1] from the UAV's mission position, return leg
+/// included; sva_route_cells: over a route's targets.
+int64_t sva_path_cells(const sva_mission_t* mission, uint16_t uav, const uint16_t* targets, uint16_t count);
 int64_t sva_route_cells(const sva_mission_t* mission, uint16_t uav, const sva_route_t* route);
 void sva_plan_finish(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan);
 

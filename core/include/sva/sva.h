@@ -435,7 +435,6 @@ typedef struct {
     uint16_t basic[SVA_FLOW_LP_ROWS];   ///< column of each basic position
     uint32_t col_rows[(uint32_t)SVA_FLOW_LP_COLS * SVA_FLOW_LP_WORDS];  ///< a route's rows
     int32_t col_cost[SVA_FLOW_LP_COLS]; ///< a route's cells
-    uint16_t col_uav[SVA_FLOW_LP_COLS]; ///< the first UAV of the state a route is flown from
     uint8_t col_deficit[SVA_FLOW_LP_COLS]; ///< the dive's deficit of a fixed route: -A_r, cost big_m
     uint16_t fixed[SVA_MAX_UAVS];       ///< the dive's fixed routes (columns)
     uint16_t fixed_count;
