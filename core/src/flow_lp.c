@@ -44,6 +44,7 @@
 #define DEGENERATE_RUN 8U
 #define NO_COLUMN 0xFFFFU
 #define ENTER_PER_STATE 8U  // columns one pricing round may add per UAV state
+#define PICKS_PER_STATE 32U // labels one pricing round may read back per UAV state
 
 static uint16_t slack_cover(const sva_flow_lp_t* lp)
 {
@@ -380,8 +381,10 @@ static int64_t label_rc(const sva_flow_work_t* w, const sva_mission_t* m, uint16
     return (lg->label_cost[l] + (w->lp.det * w->lp.cells_weight * home)) - w->lp.dual[w->lp.group_row[u]];
 }
 
-// Pricing: for each UAV state, the labels of its best routes under the duals; the
-// SVA_FLOW_LP_ENTER most negative enter. True if one did.
+// Pricing: for each UAV state, the labels of its best routes under the duals, most
+// negative first; up to ENTER_PER_STATE enter. A merged label's path may break fuel
+// (flow_lagrange.c): such a path is no route, so it is passed over (at most
+// PICKS_PER_STATE labels read). True if a route entered.
 static bool price_routes(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan)
 {
     sva_flow_lp_t* lp = &w->lp;
@@ -396,9 +399,12 @@ static bool price_routes(sva_flow_work_t* w, const sva_mission_t* m, const sva_p
             continue;
         }
         (void)sva_flow_best_route(w, m, u, lp->det * lp->cells_weight);
-        int64_t above = -INT64_MAX;  // the last entered label's reduced cost
+        int64_t above = -INT64_MAX;  // the last read label's reduced cost
         uint32_t last = SVA_FLOW_NO_LABEL;
-        for (uint16_t k = 0U; k < (uint16_t)ENTER_PER_STATE; k++) {
+        uint16_t entered = 0U;
+        uint16_t k = 0U;
+        while ((k < (uint16_t)PICKS_PER_STATE) && (entered < (uint16_t)ENTER_PER_STATE)) {
+            k++;
             // The next label in (reduced cost, index) order.
             uint32_t pick = SVA_FLOW_NO_LABEL;
             int64_t pick_rc = 0;
@@ -420,16 +426,17 @@ static bool price_routes(sva_flow_work_t* w, const sva_mission_t* m, const sva_p
             last = pick;
             sva_flow_label_path(lg, pick);
             // Merged labels may stand for no real route: only routes that price out enter.
-            int64_t rc = (lp->det * lp->cells_weight * sva_path_cells(m, u, lg->path, lg->path_len)) -
-                         lp->dual[lp->group_row[u]];
+            const int64_t cells = sva_path_cells(m, u, lg->path, lg->path_len);
+            int64_t rc = (lp->det * lp->cells_weight * cells) - lp->dual[lp->group_row[u]];
             for (uint16_t i = 0U; i < lg->path_len; i++) {
                 rc -= lp->dual[lg->path[i]];
             }
-            if (rc < 0) {
+            if ((rc < 0) && sva_flow_fits(m, u, cells, lg->path_len)) {
                 added = add_column(lp, m, u, lg->path, lg->path_len) || added;
+                entered++;
             }
         }
-        w->work += (uint64_t)ENTER_PER_STATE * (uint64_t)m->target_count * (uint64_t)SVA_FLOW_LABELS;
+        w->work += (uint64_t)k * (uint64_t)m->target_count * (uint64_t)SVA_FLOW_LABELS;
     }
     return added;
 }

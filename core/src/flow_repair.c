@@ -29,7 +29,7 @@ static void leg_ends(const sva_mission_t* m, uint16_t u, const sva_route_t* r, u
     }
 }
 
-static bool route_fits(const sva_mission_t* m, uint16_t u, int64_t cells, uint32_t targets)
+bool sva_flow_fits(const sva_mission_t* m, uint16_t u, int64_t cells, uint32_t targets)
 {
     return (targets <= (uint32_t)SVA_MAX_ROUTE_TARGETS) &&
            ((cells + ((int64_t)m->hover_fuel * (int64_t)targets)) <= m->uavs[u].fuel);
@@ -48,7 +48,7 @@ bool sva_flow_route_fits(const sva_mission_t* m, uint16_t u, const uint16_t* cop
         y = t->y;
     }
     cells += sva_distance(x, y, m->depot_x, m->depot_y);
-    return route_fits(m, u, cells, n);
+    return sva_flow_fits(m, u, cells, n);
 }
 
 // ---------------------------------------------------------------------------------
@@ -219,7 +219,7 @@ static bool best_place(sva_flow_work_t* w, const sva_mission_t* m, const sva_pla
     for (uint16_t p = 0U; p <= r->target_count; p++) {
         int64_t delta = 0;
         if (!detour(m, u, r, p, p, t, &delta) ||
-            !route_fits(m, u, w->route_cells[u] + delta, (uint32_t)r->target_count + 1U)) {
+            !sva_flow_fits(m, u, w->route_cells[u] + delta, (uint32_t)r->target_count + 1U)) {
             continue;
         }
         if (!found || (delta < w->insert_delta[u])) {
@@ -415,8 +415,8 @@ static bool swap(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, u
             int64_t da = 0;
             int64_t db = 0;
             if (!slot_delta(m, a, ra, k, t, &da) || !slot_delta(m, b, rb, j, s, &db) || ((da + db) >= 0) ||
-                !route_fits(m, a, w->route_cells[a] + da, ra->target_count) ||
-                !route_fits(m, b, w->route_cells[b] + db, rb->target_count) || serves(ra, t) ||
+                !sva_flow_fits(m, a, w->route_cells[a] + da, ra->target_count) ||
+                !sva_flow_fits(m, b, w->route_cells[b] + db, rb->target_count) || serves(ra, t) ||
                 serves(rb, s)) {
                 continue;
             }
@@ -559,8 +559,8 @@ static bool exchange_tails(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_
             const uint16_t nb = (uint16_t)(j + (ra->target_count - i));
             const int64_t ca = spliced_cells(m, a, ra, i, w->piece_pre[0], rb, j, w->piece_post[1]);
             const int64_t cb = (ca < 0) ? -1 : spliced_cells(m, b, rb, j, w->piece_pre[1], ra, i, w->piece_post[0]);
-            if ((cb < 0) || ((ca + cb) >= before) || !route_fits(m, a, ca, na) ||
-                !route_fits(m, b, cb, nb) || !splice_distinct(ra, i, rb, j) ||
+            if ((cb < 0) || ((ca + cb) >= before) || !sva_flow_fits(m, a, ca, na) ||
+                !sva_flow_fits(m, b, cb, nb) || !splice_distinct(ra, i, rb, j) ||
                 !splice_distinct(rb, j, ra, i)) {
                 continue;
             }
@@ -624,7 +624,7 @@ void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_
     }
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         sva_route_t* r = &plan->routes[u];
-        while ((r->target_count > 0U) && !route_fits(m, u, w->route_cells[u], r->target_count)) {
+        while ((r->target_count > 0U) && !sva_flow_fits(m, u, w->route_cells[u], r->target_count)) {
             remove_target(priv, m, plan, r->targets[costliest_stop(m, u, r)]);
         }
     }

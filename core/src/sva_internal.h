@@ -112,6 +112,9 @@ bool sva_flow_solve(sva_flow_work_t* w, sva_stats_t* stats);
 bool sva_flow_covered(const sva_flow_work_t* w, uint16_t copy);
 /// The copies UAV u visits in the current flow, in order; returns how many (<= cap).
 uint16_t sva_flow_route(const sva_flow_work_t* w, uint16_t u, uint16_t* out, uint16_t cap);
+/// Whether UAV u can fly a route of `targets` targets and `cells` cells: its fuel
+/// (hovering included) and SVA_MAX_ROUTE_TARGETS.
+bool sva_flow_fits(const sva_mission_t* m, uint16_t u, int64_t cells, uint32_t targets);
 bool sva_flow_route_fits(const sva_mission_t* m, uint16_t u, const uint16_t* copies,
                          uint16_t n, const sva_flow_work_t* w);
 /// Keeps the plan in *plan (routes + priv->target_served) if it beats the incumbent.

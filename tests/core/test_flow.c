@@ -302,6 +302,100 @@ static void test_route_master_dive_plans_hold(void** state)
 #endif
 }
 
+#if SVA_FLOW_LP_ROWS >= 2
+static int64_t cells_between(int32_t ax, int32_t ay, int32_t bx, int32_t by)
+{
+    const int64_t dx = (int64_t)ax - bx;
+    const int64_t dy = (int64_t)ay - by;
+    return (dx < 0 ? -dx : dx) + (dy < 0 ? -dy : dy);
+}
+
+// Whether column col of the master is a route UAV u can fly: its targets in window
+// order meet every window and the fuel, and its cells are the master's col_cost.
+// Recomputed from the mission alone.
+static bool column_is_route(const sva_flow_lp_t* lp, uint16_t col, uint16_t u)
+{
+    const sva_uav_t* uav = &mission.uavs[u];
+    int32_t x = uav->x;
+    int32_t y = uav->y;
+    int64_t free_at = uav->ready_at_ticks;
+    int64_t cells = 0;
+    int64_t visits = 0;
+    int32_t after = -1;  // the last visited window's start
+    for (;;) {
+        int next = -1;
+        for (uint16_t t = 0U; t < lp->targets; t++) {
+            const uint32_t word = lp->col_rows[((size_t)col * SVA_FLOW_LP_WORDS) + (t / 32U)];
+            const sva_target_t* tg = &mission.targets[t];
+            if (((word >> (t % 32U)) & 1U) != 0U && tg->start_ticks > after &&
+                (next < 0 || tg->start_ticks < mission.targets[next].start_ticks)) {
+                next = t;
+            }
+        }
+        if (next < 0) {
+            break;
+        }
+        const sva_target_t* tg = &mission.targets[next];
+        const int64_t leg = cells_between(x, y, tg->x, tg->y);
+        if (free_at + (leg * mission.ticks_per_cell) > tg->start_ticks) {
+            return false;
+        }
+        cells += leg;
+        visits++;
+        free_at = tg->end_ticks;
+        x = tg->x;
+        y = tg->y;
+        after = tg->start_ticks;
+    }
+    cells += cells_between(x, y, mission.depot_x, mission.depot_y);
+    return cells == lp->col_cost[col] && cells + (visits * mission.hover_fuel) <= uav->fuel;
+}
+#endif
+
+// Every route column of the route master, after flow has planned, is a route its UAV
+// state can fly. Where fuel binds, the labels' merging (flow_lagrange.c) yields paths
+// that break fuel: pricing must pass over them.
+static void test_route_master_holds_only_real_routes(void** state)
+{
+    (void)state;
+    const uint64_t seed = test_seed(0xF0E1ULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    int columns = 0;
+    for (int round = 0; round < 12; round++) {
+        const test_gen_params_t p = {SVA_MAX_TARGETS < 25 ? SVA_MAX_TARGETS : 25,
+                                     SVA_MAX_UAVS < 5 ? SVA_MAX_UAVS : 5, 20, 10, 20, 375, 1, 80,
+                                     80, 2, 1, 0, 0};
+        test_gen_mission(&rng, &p, &mission);
+        must_plan(SVA_ALGO_FLOW, &plan, seed, round);
+#if SVA_FLOW_LP_ROWS >= 2
+        const sva_flow_lp_t* lp = &planner.priv.flow.lp;
+        const uint16_t cols = (plan.stats.flow_lp_columns > 0U) ? lp->cols : 0U;  // else another mission's
+        for (uint16_t col = 0U; col < cols; col++) {
+            if (lp->col_deficit[col] != 0U) {
+                continue;  // a dive's deficit: a copy of a fixed column, checked there
+            }
+            uint16_t u = 0U;  // a UAV of the column's state
+            while (u < mission.uav_count &&
+                   ((lp->col_rows[((size_t)col * SVA_FLOW_LP_WORDS) + (lp->group_row[u] / 32U)] >>
+                     (lp->group_row[u] % 32U)) & 1U) == 0U) {
+                u++;
+            }
+            assert_true(u < mission.uav_count);
+            if (!column_is_route(lp, col, u)) {
+                fail_msg("seed %llu round %d: master column %u is no route of UAV %u",
+                         (unsigned long long)seed, round, col, u);
+            }
+            columns++;
+        }
+#endif
+    }
+    printf("# %d master columns checked\n", columns);
+#if SVA_FLOW_LP_ROWS >= 2
+    assert_true(columns > 0);
+#endif
+}
+
 static sva_mission_t second;
 static sva_plan_t again;
 
@@ -430,6 +524,7 @@ int main(void)
         cmocka_unit_test(test_lagrangian_phase_bound_and_claims_hold),
         cmocka_unit_test(test_route_master_bound_and_claims_hold),
         cmocka_unit_test(test_route_master_dive_plans_hold),
+        cmocka_unit_test(test_route_master_holds_only_real_routes),
         cmocka_unit_test(test_plans_do_not_depend_on_the_planners_history),
         cmocka_unit_test(test_past_its_graph_bounds_flow_falls_back_honestly),
         cmocka_unit_test(test_dense_graph_past_the_arc_bound_falls_back),
