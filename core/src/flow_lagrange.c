@@ -477,5 +477,21 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     // Optimality needs both; the coverage phase runs once the cost is proven.
     *coverage_proven = (covered == (int64_t)m->target_count) ||
                        ((bound >= cost) && prove_coverage(w, m, plan, covered, budget, iters));
+    // Coverage comes first (SPEC 1): while c is not proven the most, a dive on the
+    // cost master for c + 1 targets looks for a plan covering one more. Any bound for
+    // coverage c holds for more.
+    plan->stats.flow_cover_dive = 0U;
+    if (!*coverage_proven) {
+        const uint64_t room = (budget > w->work) ? (budget - w->work) : 0U;
+        const uint64_t up = w->work + ((room < (left / 2U)) ? room : (left / 2U));
+        const int64_t before = covered;
+        int64_t mu = 0;
+        if (sva_flow_lp_prices(w, m, plan, covered + 1, SVA_FLOW_LP_COST, up, &mu) &&
+            sva_flow_lp_dive(priv, m, plan, up)) {
+            sva_flow_repair(priv, m, plan, true);
+            incumbent(priv, m, plan, &cost, &covered);
+            plan->stats.flow_cover_dive = (covered > before) ? 2U : 1U;
+        }
+    }
     return (bound < 0) ? 0 : bound;
 }

@@ -484,12 +484,12 @@ bool sva_flow_lp_prices(sva_flow_work_t* w, const sva_mission_t* m, const sva_pl
     return true;
 }
 
-// True if a penalty column is basic and positive: the master cannot complete the
-// fixed routes.
+// True if a penalty column or the artificial is basic and positive: the master
+// cannot complete the fixed routes, or cannot reach its coverage at all.
 static bool penalised(const sva_flow_lp_t* lp)
 {
     for (uint16_t i = 0U; i < lp->rows; i++) {
-        if ((lp->x[i] > 0) && penalty(lp, lp->basic[i])) {
+        if ((lp->x[i] > 0) && (penalty(lp, lp->basic[i]) || (lp->basic[i] == artificial(lp)))) {
             return true;
         }
     }

@@ -270,6 +270,10 @@ typedef struct {
     /// Routes the dive on the route master fixed before the repair completed its plan
     /// (0: it did not run).
     uint16_t flow_dive_routes;
+    /// The dive on the route master for one target more than the plan covered, run
+    /// when that coverage was not proven the most: 0 did not run, 1 found no such
+    /// plan, 2 found one (the plan covers it).
+    uint8_t flow_cover_dive;
     /// Why flow did not prove optimality: 0 it did (or the search finished), 1 work
     /// budget, 2 SVA_FLOW_MAX_DEPTH, 3 needs whose lcm is too large for exact ties;
     /// 4 needs summed above SVA_FLOW_MAX_COPIES, 5 graph above SVA_FLOW_MAX_ARCS (4 and
