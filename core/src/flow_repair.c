@@ -682,3 +682,76 @@ void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t
     }
     sva_flow_repair(priv, m, plan, polish);
 }
+
+// ---------------------------------------------------------------------------------
+// Ruin and recreate: the incumbent loses a group of related visits, and the repair
+// puts a plan back together (uncovered targets inserted in window order, ejection,
+// local search when within reach, offer). For each group size in turn, each covered
+// target s seeds a group: s and the covered targets nearest to it (cells between
+// them plus the ticks between their window starts, in cells). With need 2 this is
+// how a target short of its second UAV finds one: the group's visits leave room.
+
+#define RUIN_ROUND_UNITS 8U  // work units per round and per target x UAV (insertions)
+
+static int64_t relatedness(const sva_mission_t* m, uint16_t a, uint16_t b)
+{
+    const sva_target_t* ta = &m->targets[a];
+    const sva_target_t* tb = &m->targets[b];
+    const int64_t ticks = (int64_t)ta->start_ticks - (int64_t)tb->start_ticks;
+    return sva_distance(ta->x, ta->y, tb->x, tb->y) + (((ticks < 0) ? -ticks : ticks) / m->ticks_per_cell);
+}
+
+// The incumbent without s and the size - 1 covered targets most related to it.
+static void ruin(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, uint16_t s,
+                 uint8_t size)
+{
+    sva_flow_work_t* w = &priv->flow;
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        w->route_cells[u] = sva_route_cells(m, u, &plan->routes[u]);
+    }
+    remove_target(priv, m, plan, s);
+    for (uint8_t k = 1U; k < size; k++) {
+        int32_t pick = -1;
+        int64_t pick_rel = 0;
+        for (uint16_t t = 0U; t < m->target_count; t++) {
+            const int64_t rel = relatedness(m, s, t);
+            if ((priv->target_served[t] > 0U) && ((pick < 0) || (rel < pick_rel))) {
+                pick = (int32_t)t;
+                pick_rel = rel;
+            }
+        }
+        if (pick >= 0) {
+            remove_target(priv, m, plan, (uint16_t)pick);
+        }
+    }
+}
+
+void sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                            uint64_t end, int64_t proven_bound)
+{
+    static const uint8_t ruin_sizes[] = {6U, 8U, 10U, 3U};  // group sizes, in turn
+    sva_flow_work_t* w = &priv->flow;
+    sva_flow_write_incumbent(priv, m, plan);
+    int64_t cost = 0;
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        cost += plan->routes[u].stranded ? 0 : sva_route_cells(m, u, &plan->routes[u]);
+    }
+    // Not when the coverage is proven and the plan within 1/64 of the bound: the
+    // search, with the rest of the budget, may prove it.
+    const bool near = (proven_bound >= 0) && ((cost - proven_bound) <= (cost / 64));
+    const uint64_t rest = ((end > w->work) && !near) ? (end - w->work) : 0U;
+    const uint64_t budget = w->work + (rest - (rest / 4U));
+    const uint64_t round_units = (uint64_t)m->target_count * (uint64_t)m->uav_count * RUIN_ROUND_UNITS;
+    for (size_t i = 0U; i < (sizeof(ruin_sizes) / sizeof(ruin_sizes[0])); i++) {
+        for (uint16_t s = 0U; (s < m->target_count) && (w->work < budget); s++) {
+            sva_flow_write_incumbent(priv, m, plan);
+            if ((int32_t)priv->target_served[s] == m->targets[s].need) {
+                ruin(priv, m, plan, s, ruin_sizes[i]);
+                sva_flow_repair(priv, m, plan, true);
+                w->work += round_units;
+                plan->stats.flow_ruin_rounds++;
+            }
+        }
+    }
+    sva_flow_write_incumbent(priv, m, plan);
+}

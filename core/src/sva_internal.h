@@ -129,6 +129,12 @@ void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t
 /// beats the incumbent (or, with `polish`, comes within 1/16), and offers it.
 void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                      bool polish);
+/// Ruin and recreate (flow_repair.c): groups of related visits taken out of the
+/// incumbent, the repair completes and offers each plan; with three quarters of the
+/// work left before `end`, unless the incumbent is within 1/64 of `proven_bound`, a
+/// bound with its coverage proven the most (-1: none). Leaves the incumbent in *plan.
+void sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                            uint64_t end, int64_t proven_bound);
 
 // flow_lagrange.c: flow's Lagrangian bound and heuristic.
 /// Scale of the target prices (1/SVA_FLOW_PRICE_SCALE cells).

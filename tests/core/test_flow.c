@@ -253,6 +253,11 @@ static bool dive_ran(const sva_plan_t* p)
     return p->stats.flow_dive_routes > 0U;
 }
 
+static bool ruin_ran(const sva_plan_t* p)
+{
+    return p->stats.flow_ruin_rounds > 0U;
+}
+
 // A budget the search cannot finish in hands over to the Lagrangian phase: its bound
 // must stay at or below the optimum, its "optimal" must be true, and its plans checked.
 static void test_lagrangian_phase_bound_and_claims_hold(void** state)
@@ -396,6 +401,20 @@ static void test_route_master_holds_only_real_routes(void** state)
 #endif
 }
 
+// Ruin and recreate (flow_repair.c) at the same budget: it runs, its plans pass the
+// checks of against_brute_force, and flow's plan is optimal on most of the missions
+// it ran on.
+static void test_ruin_and_recreate_plans_hold(void** state)
+{
+    (void)state;
+    const int rounds = 300;
+    const phase_counts_t c = against_brute_force(0x2E1ULL, rounds, 6000U, 5, ruin_ran);
+    printf("# %d missions: ruin and recreate ran on %d; flow's plan optimal on %d of them\n", rounds, c.ran,
+           c.best);
+    assert_true(c.ran >= rounds / 10);
+    assert_true(c.best >= c.ran / 2);
+}
+
 static sva_mission_t second;
 static sva_plan_t again;
 
@@ -525,6 +544,7 @@ int main(void)
         cmocka_unit_test(test_route_master_bound_and_claims_hold),
         cmocka_unit_test(test_route_master_dive_plans_hold),
         cmocka_unit_test(test_route_master_holds_only_real_routes),
+        cmocka_unit_test(test_ruin_and_recreate_plans_hold),
         cmocka_unit_test(test_plans_do_not_depend_on_the_planners_history),
         cmocka_unit_test(test_past_its_graph_bounds_flow_falls_back_honestly),
         cmocka_unit_test(test_dense_graph_past_the_arc_bound_falls_back),

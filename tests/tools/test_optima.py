@@ -1,9 +1,10 @@
 """flow on missions whose optimum the host tools' ref (CP-SAT) proved: fixtures/optima.
 
 Each MISSION.json has MISSION.ref.json, ref's plan with "optimal": true. flow must
-cover as many targets, at the same cost, with a lower bound at or below it, and its
-plan must pass the independent checker. These are missions flow once missed (a
-target short, or a costlier plan): see fixtures/README.md.
+cover as many targets, with a lower bound at or below the optimum's cost, and its plan
+must pass the independent checker; on `optimum_*` missions it must also reach the
+optimum's cost. These are missions flow once missed (a target short, or a costlier
+plan): see fixtures/README.md.
 """
 import json
 import subprocess
@@ -35,9 +36,13 @@ def test_flow_reaches_the_proven_optimum(sva_bin, ref_path, tmp_path):
     plan_path.write_text(out)
     flow = json.loads(out)
     assert check.check_plan(mission, io.load_plan(str(plan_path))) == []
-    assert (flow["covered"], flow["cost"]) == (ref["covered"], ref["cost"])
-    assert flow["stats"]["lower_bound"] <= ref["cost"]
+    assert flow["covered"] == ref["covered"]
+    assert ref["cost"] >= flow["stats"]["lower_bound"]
+    assert flow["cost"] >= ref["cost"]  # ref's plan is optimal: nothing covering as many costs less
+    if ref_path.name.startswith("optimum_"):
+        assert flow["cost"] == ref["cost"]
 
 
 def test_the_fixtures_are_there():
-    assert len(proven_plans()) >= 2
+    names = [p.name for p in proven_plans()]
+    assert any(n.startswith("optimum_") for n in names) and any(n.startswith("cover_") for n in names)

@@ -280,6 +280,9 @@ typedef struct {
     /// 5: no relaxation, lower_bound 0; the plan is the better of ga's and sva's, with
     /// 5 after the repair and local search).
     uint8_t flow_incomplete;
+    /// Ruin-and-recreate rounds (0: the search or the Lagrangian phase proved the plan,
+    /// or left it within 1/64 of the bound, or no budget was left).
+    uint16_t flow_ruin_rounds;
 } sva_stats_t;
 
 typedef struct {
