@@ -289,6 +289,7 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     budget = (budget < 1000U) ? 1000U : budget;
     budget = (budget > (uint64_t)SVA_FLOW_MAX_WORK) ? (uint64_t)SVA_FLOW_MAX_WORK : budget;
     w->has_inc = false;
+    w->insert_backwards = false;
     w->work = 0U;
     w->local_work = budget / 2U;
     stats->search_nodes = 0U;

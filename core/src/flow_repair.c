@@ -629,7 +629,7 @@ void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_
         }
     }
     for (uint16_t i = 0U; i < m->target_count; i++) {
-        const uint16_t t = priv->target_order[i];
+        const uint16_t t = priv->target_order[w->insert_backwards ? ((m->target_count - 1U) - i) : i];
         if (priv->target_served[t] == 0U) {
             try_insert(priv, m, plan, t);
         }
@@ -685,11 +685,12 @@ void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t
 
 // ---------------------------------------------------------------------------------
 // Ruin and recreate: the incumbent loses a group of related visits, and the repair
-// puts a plan back together (uncovered targets inserted in window order, ejection,
-// local search when within reach, offer). For each group size in turn, each covered
-// target s seeds a group: s and the covered targets nearest to it (cells between
-// them plus the ticks between their window starts, in cells). With need 2 this is
-// how a target short of its second UAV finds one: the group's visits leave room.
+// puts a plan back together (uncovered targets inserted in window order, every other
+// round in reverse, ejection, local search when within reach, offer). For each group
+// size in turn, each covered target s seeds a group: s and the covered targets
+// nearest to it (cells between them plus the ticks between their window starts, in
+// cells). With need 2 this is how a target short of its second UAV finds one: the
+// group's visits leave room.
 
 #define RUIN_ROUND_UNITS 8U  // work units per round and per target x UAV (insertions)
 
@@ -747,7 +748,9 @@ void sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
             sva_flow_write_incumbent(priv, m, plan);
             if ((int32_t)priv->target_served[s] == m->targets[s].need) {
                 ruin(priv, m, plan, s, ruin_sizes[i]);
+                w->insert_backwards = ((s + i) % 2U) == 1U;
                 sva_flow_repair(priv, m, plan, true);
+                w->insert_backwards = false;
                 w->work += round_units;
                 plan->stats.flow_ruin_rounds++;
             }

@@ -499,6 +499,7 @@ typedef struct {
     int64_t insert_delta[SVA_MAX_UAVS];
     uint16_t insert_pos[SVA_MAX_UAVS];
     uint8_t uav_pick[SVA_MAX_UAVS];
+    bool insert_backwards;  ///< the repair inserts in reverse window order (ruin and recreate)
     uint16_t spare_route[SVA_MAX_ROUTE_TARGETS];  ///< a route's tail in an exchange
     uint16_t trade_pos[SVA_MAX_UAVS];             ///< where a traded target was
     int32_t piece_pre[2][SVA_MAX_ROUTE_TARGETS + 1];   ///< two routes' cells up to a stop
