@@ -18,6 +18,7 @@
 #include <time.h>
 
 #include "mission_file.h"
+#include "plan_print.h"
 #include "sva/sva.h"
 #include "sva/sva_can.h"
 
@@ -77,21 +78,6 @@ static int parse_u32(const char* s, const char* opt, uint32_t* out)
     return 0;
 }
 
-static void print_plan(const sva_can_plan_t* w)
-{
-    uint16_t i;
-    printf("{\"plan_id\": %u, \"algorithm\": %u, \"plan_status\": %u, \"route_count\": %u, \"items\": [", w->plan_id,
-           w->algorithm, w->plan_status, w->route_count);
-    for (i = 0; i < w->item_count; ++i) {
-        const sva_can_item_t* it = &w->items[i];
-        printf("%s{\"uav\": %u, \"target\": %u, \"x\": %d, \"y\": %d, \"arrive_by\": %lu, \"hold_until\": %lu}",
-               (i == 0) ? "" : ", ", it->uav_id, it->target_id, it->x, it->y, (unsigned long)it->arrive_by_ticks,
-               (unsigned long)it->hold_until_ticks);
-    }
-    printf("]}\n");
-    fflush(stdout);
-}
-
 // Plans the current fleet state; on success starts sending. Returns the fault bits.
 static uint8_t replan(sva_algorithm_t algo, uint16_t plan_id, uint32_t t, int print, uint8_t* covered)
 {
@@ -125,7 +111,7 @@ static uint8_t replan(sva_algorithm_t algo, uint16_t plan_id, uint32_t t, int pr
             sva_algorithm_name(algo), (g_plan.status == SVA_PLAN_COMPLETE) ? "complete" : "partial", g_plan.covered,
             g_planning.target_count, (long long)g_plan.cost, g_wire.item_count, 2u * g_wire.item_count + 2u);
     if (print) {
-        print_plan(&g_wire);
+        sva_can_plan_print(&g_wire);
     }
     cst = sva_can_sender_start(&g_sender, &g_wire, t);
     if ((cst != SVA_CAN_OK) && (cst != SVA_CAN_AGAIN)) {

@@ -10,6 +10,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "plan_print.h"
 #include "sva/sva_can.h"
 
 static uint32_t now_ms(void)
@@ -22,21 +23,6 @@ static uint32_t now_ms(void)
 }
 
 static sva_can_receiver_t rx;
-
-static void print_plan(const sva_can_plan_t* w)
-{
-    uint16_t i;
-    printf("{\"plan_id\": %u, \"algorithm\": %u, \"plan_status\": %u, \"route_count\": %u, \"items\": [", w->plan_id,
-           w->algorithm, w->plan_status, w->route_count);
-    for (i = 0; i < w->item_count; ++i) {
-        const sva_can_item_t* it = &w->items[i];
-        printf("%s{\"uav\": %u, \"target\": %u, \"x\": %d, \"y\": %d, \"arrive_by\": %lu, \"hold_until\": %lu}",
-               (i == 0) ? "" : ", ", it->uav_id, it->target_id, it->x, it->y, (unsigned long)it->arrive_by_ticks,
-               (unsigned long)it->hold_until_ticks);
-    }
-    printf("]}\n");
-    fflush(stdout);
-}
 
 int main(int argc, char** argv)
 {
@@ -80,7 +66,7 @@ int main(int argc, char** argv)
             }
             if (st == SVA_CAN_APPLIED) {
                 ++applied;
-                print_plan(&rx.active);
+                sva_can_plan_print(&rx.active);
                 if (applied == 1) {
                     sva_can_msg_t vs;
                     sva_can_frame_t vf;
