@@ -17,9 +17,9 @@
 // and `sva` are the first incumbents, so flow never plans worse than either. The
 // search gets a sixteenth of the work budget (SVA_FLOW_MAX_WORK units, deterministic);
 // if it does not finish, the Lagrangian phase (flow_lagrange.c) improves the bound
-// and the plan, and the search runs again on what is left. The bound comes from the
-// nodes left open and from the Lagrangian phase. No recursion: the path is an
-// explicit stack of frames.
+// and the plan, ruin and recreate (flow_repair.c) improves the plan, and the search
+// runs again on what is left. The bound comes from the nodes left open and from the
+// Lagrangian phase. No recursion: the path is an explicit stack of frames.
 #include "sva_internal.h"
 
 #define BRANCH_TARGET 1U

@@ -281,23 +281,6 @@ static void fly_on_prices(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     sva_flow_repair(priv, m, plan, true);
 }
 
-// The incumbent's cost and coverage (the incumbent is written into *plan).
-static void incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
-                      int64_t* cost, int64_t* covered)
-{
-    sva_flow_write_incumbent(priv, m, plan);
-    *cost = 0;
-    *covered = 0;
-    for (uint16_t u = 0U; u < m->uav_count; u++) {
-        if (!plan->routes[u].stranded) {
-            *cost += sva_route_cells(m, u, &plan->routes[u]);
-        }
-    }
-    for (uint16_t t = 0U; t < m->target_count; t++) {
-        *covered += ((int32_t)priv->target_served[t] == m->targets[t].need) ? 1 : 0;
-    }
-}
-
 // Prices' clamp: far above any useful price, far below int64 overflow.
 static int64_t price_limit(const sva_flow_work_t* w)
 {
@@ -419,7 +402,7 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     group_uavs(&w->lagrange, m);
     int64_t cost = 0;
     int64_t covered = 0;
-    incumbent(priv, m, plan, &cost, &covered);
+    sva_flow_incumbent(priv, m, plan, &cost, &covered);
     const uint64_t left = (budget > w->work) ? (budget - w->work) : 0U;
     // First the route master's duals (flow_lp.c): for the bound alone, as subgradient
     // steps from them find few new plans. Any bound for coverage c holds for more.
@@ -445,7 +428,7 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
             rotate = (uint16_t)((rotate + 1U) % m->uav_count);
             int64_t new_cost = 0;
             int64_t new_covered = 0;
-            incumbent(priv, m, plan, &new_cost, &new_covered);
+            sva_flow_incumbent(priv, m, plan, &new_cost, &new_covered);
             if (new_covered != covered) {
                 ph.best = NO_BOUND;  // bounds so far hold for the old coverage only
                 covered = new_covered;
@@ -470,7 +453,7 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     if (master_solved && sva_flow_lp_dive(priv, m, plan, w->work + (left / 8U))) {
         plan->stats.flow_dive_routes = w->lp.fixed_count;
         sva_flow_repair(priv, m, plan, true);
-        incumbent(priv, m, plan, &cost, &covered);
+        sva_flow_incumbent(priv, m, plan, &cost, &covered);
     }
     const int64_t best = (ph.best > lp_value) ? ph.best : lp_value;
     const int64_t bound = (best == NO_BOUND) ? 0 : ceil_div(best, s);
@@ -489,7 +472,7 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
         if (sva_flow_lp_prices(w, m, plan, covered + 1, SVA_FLOW_LP_COST, up, &mu) &&
             sva_flow_lp_dive(priv, m, plan, up)) {
             sva_flow_repair(priv, m, plan, true);
-            incumbent(priv, m, plan, &cost, &covered);
+            sva_flow_incumbent(priv, m, plan, &cost, &covered);
             plan->stats.flow_cover_dive = (covered > before) ? 2U : 1U;
         }
     }

@@ -118,6 +118,22 @@ void sva_flow_write_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, 
     }
 }
 
+void sva_flow_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, int64_t* cost,
+                        int64_t* covered)
+{
+    sva_flow_write_incumbent(priv, m, plan);
+    *cost = 0;
+    *covered = 0;
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        if (!plan->routes[u].stranded) {
+            *cost += sva_route_cells(m, u, &plan->routes[u]);
+        }
+    }
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        *covered += ((int32_t)priv->target_served[t] == m->targets[t].need) ? 1 : 0;
+    }
+}
+
 // ---------------------------------------------------------------------------------
 // Rounding.
 
@@ -732,11 +748,9 @@ void sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
 {
     static const uint8_t ruin_sizes[] = {6U, 8U, 10U, 3U};  // group sizes, in turn
     sva_flow_work_t* w = &priv->flow;
-    sva_flow_write_incumbent(priv, m, plan);
     int64_t cost = 0;
-    for (uint16_t u = 0U; u < m->uav_count; u++) {
-        cost += plan->routes[u].stranded ? 0 : sva_route_cells(m, u, &plan->routes[u]);
-    }
+    int64_t covered = 0;
+    sva_flow_incumbent(priv, m, plan, &cost, &covered);
     // Not when the coverage is proven and the plan within 1/64 of the bound: the
     // search, with the rest of the budget, may prove it.
     const bool near = (proven_bound >= 0) && ((cost - proven_bound) <= (cost / 64));

@@ -120,6 +120,9 @@ bool sva_flow_route_fits(const sva_mission_t* m, uint16_t u, const uint16_t* cop
 /// Keeps the plan in *plan (routes + priv->target_served) if it beats the incumbent.
 bool sva_flow_offer_plan(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan);
 void sva_flow_write_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
+/// The incumbent written into *plan, with its cost in cells and the targets it covers.
+void sva_flow_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, int64_t* cost,
+                        int64_t* covered);
 /// Rounds the current relaxation into a plan (scratch: *plan) and offers it
 /// (sva_flow_repair, with `polish`).
 void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
@@ -139,10 +142,6 @@ void sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
 // flow_lagrange.c: flow's Lagrangian bound and heuristic.
 /// Scale of the target prices (1/SVA_FLOW_PRICE_SCALE cells).
 #define SVA_FLOW_PRICE_SCALE 256
-/// Subgradient phases until the work reaches `budget`: improves the incumbent, and
-/// returns a lower bound on the cost of every plan covering at least as many targets
-/// as the incumbent (0 when it has none); *coverage_proven: no plan covers more.
-/// *iters gets the subgradient steps taken.
 /// A label's predecessor when it starts the route.
 #define SVA_FLOW_NO_LABEL 0xFFFFFFFFU
 /// The route ending at label l (none: SVA_FLOW_NO_LABEL) into lg->path, first target
@@ -152,6 +151,13 @@ void sva_flow_label_path(sva_flow_lagrange_t* lg, uint32_t l);
 /// min over its routes within fuel of alpha * cells - sum of prices (flying home at
 /// once included); the route goes to w->lagrange.path. Label extensions count as work.
 int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t u, int64_t alpha);
+
+/// Subgradient phases until the work reaches `budget`: improves the incumbent, and
+/// returns a lower bound on the cost of every plan covering at least as many targets
+/// as the incumbent (0 when it has none); *coverage_proven: no plan covers more.
+/// *iters gets the subgradient steps taken.
+int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                          uint64_t budget, bool* coverage_proven, uint32_t* iters);
 
 // flow_lp.c: the route master's duals as the Lagrangian's prices.
 typedef enum {
@@ -180,9 +186,6 @@ bool sva_flow_lp_prices(sva_flow_work_t* w, const sva_mission_t* m, const sva_pl
 /// sva_flow_repair to complete and offer. False if nothing was fixed.
 bool sva_flow_lp_dive(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                       uint64_t budget);
-
-int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
-                          uint64_t budget, bool* coverage_proven, uint32_t* iters);
 
 // pipeline.c, ga.c, bfa.c, flow.c: the algorithms.
 sva_status_t sva_run_pipeline(sva_planner_t* self, const sva_mission_t* mission,

@@ -308,6 +308,11 @@ static void test_route_master_dive_plans_hold(void** state)
 }
 
 #if SVA_FLOW_LP_ROWS >= 2
+static bool column_has_row(const sva_flow_lp_t* lp, uint16_t col, uint16_t row)
+{
+    return ((lp->col_rows[((size_t)col * SVA_FLOW_LP_WORDS) + (row / 32U)] >> (row % 32U)) & 1U) != 0U;
+}
+
 static int64_t cells_between(int32_t ax, int32_t ay, int32_t bx, int32_t by)
 {
     const int64_t dx = (int64_t)ax - bx;
@@ -330,9 +335,8 @@ static bool column_is_route(const sva_flow_lp_t* lp, uint16_t col, uint16_t u)
     for (;;) {
         int next = -1;
         for (uint16_t t = 0U; t < lp->targets; t++) {
-            const uint32_t word = lp->col_rows[((size_t)col * SVA_FLOW_LP_WORDS) + (t / 32U)];
             const sva_target_t* tg = &mission.targets[t];
-            if (((word >> (t % 32U)) & 1U) != 0U && tg->start_ticks > after &&
+            if (column_has_row(lp, col, t) && tg->start_ticks > after &&
                 (next < 0 || tg->start_ticks < mission.targets[next].start_ticks)) {
                 next = t;
             }
@@ -381,9 +385,7 @@ static void test_route_master_holds_only_real_routes(void** state)
                 continue;  // a dive's deficit: a copy of a fixed column, checked there
             }
             uint16_t u = 0U;  // a UAV of the column's state
-            while (u < mission.uav_count &&
-                   ((lp->col_rows[((size_t)col * SVA_FLOW_LP_WORDS) + (lp->group_row[u] / 32U)] >>
-                     (lp->group_row[u] % 32U)) & 1U) == 0U) {
+            while (u < mission.uav_count && !column_has_row(lp, col, lp->group_row[u])) {
                 u++;
             }
             assert_true(u < mission.uav_count);

@@ -130,6 +130,15 @@ static void make_inputs(int64_t revision)
     }
 }
 
+// The fleet: SVA_MAX_UAVS UAVs at the depot, fuel 1000, ready at once.
+static void full_fleet_at_depot(void)
+{
+    fleet.uav_count = SVA_MAX_UAVS;
+    for (int i = 0; i < SVA_MAX_UAVS; ++i) {
+        fleet.uavs[i] = (sva_lcm_uav_state_t){i + 1, 0, 0, 1000, 0, 0};
+    }
+}
+
 static int enc_fleet(void)
 {
     return sva_lcm_fleet_state_t_encode(fleet_buf, 0, (int)sizeof fleet_buf, &fleet);
@@ -389,10 +398,7 @@ static void test_flow_certificate(void** state)
     // 64 UAVs and 40 targets needing 13 each: 520 copies, above SVA_FLOW_MAX_COPIES
     // (512), so flow has no relaxation (flow_incomplete 4, lower_bound 0).
     make_inputs(51);
-    fleet.uav_count = SVA_MAX_UAVS;
-    for (int i = 0; i < SVA_MAX_UAVS; ++i) {
-        fleet.uavs[i] = (sva_lcm_uav_state_t){i + 1, 0, 0, 1000, 0, 0};
-    }
+    full_fleet_at_depot();
     mission.target_count = 40;
     for (int i = 0; i < 40; ++i) {
         mission.targets[i] = (sva_lcm_target_t){i + 1, i % 7, i % 5, 20 * i + 10, 20 * i + 15, 13};
@@ -410,10 +416,7 @@ static void test_flow_certificate(void** state)
     // 65 back-to-back targets at the depot needing all 64 UAVs: 4160 route items, more
     // than MAX_ROUTE_ITEMS. The core's plan has a bound; the TOO_LARGE plan carries none.
     make_inputs(52);
-    fleet.uav_count = SVA_MAX_UAVS;
-    for (int i = 0; i < SVA_MAX_UAVS; ++i) {
-        fleet.uavs[i] = (sva_lcm_uav_state_t){i + 1, 0, 0, 1000, 0, 0};
-    }
+    full_fleet_at_depot();
     mission.target_count = 65;
     for (int i = 0; i < 65; ++i) {
         mission.targets[i] = (sva_lcm_target_t){i + 1, 0, 0, 10 * i + 1, 10 * i + 5, SVA_MAX_UAVS};
@@ -645,10 +648,7 @@ static void test_plan_too_large(void** state)
     node_setup(SVA_ALGO_GA);
     make_inputs(30);
     // 64 UAVs at the depot serve 256 back-to-back targets there, 17 each: 4352 items.
-    fleet.uav_count = SVA_MAX_UAVS;
-    for (int i = 0; i < SVA_MAX_UAVS; ++i) {
-        fleet.uavs[i] = (sva_lcm_uav_state_t){i + 1, 0, 0, 1000, 0, 0};
-    }
+    full_fleet_at_depot();
     mission.target_count = SVA_MAX_TARGETS;
     for (int i = 0; i < SVA_MAX_TARGETS; ++i) {
         mission.targets[i] = (sva_lcm_target_t){i + 1, 0, 0, 10 * i + 1, 10 * i + 5, 17};
