@@ -5,8 +5,9 @@
 // forced copy (its own arc has lower bound 1, so the unit is pre-sent). Demands: the
 // depot takes one unit per UAV, a forced copy's in-node one. Costs: arc distances,
 // minus the copy's reward on a copy's own arc. Potentials start as DAG shortest
-// distances (copy ids are a topological order), so reduced costs are never negative
-// and each augmenting path is a Dijkstra run over a static binary heap. Every arc
+// distances (copy ids are a topological order), so reduced costs are never negative;
+// the first unit follows that pass's shortest path, and each further augmenting path
+// is a Dijkstra run over a static binary heap. Every arc
 // carries 0 or 1 unit, so all of it is integer; the relaxation value is a lower
 // bound on cost - reward of every plan that satisfies the node's branching rules.
 #include "sva_internal.h"
@@ -214,6 +215,7 @@ static bool init_potentials(sva_flow_work_t* w, const flow_shape_t* s)
     for (uint16_t u = 0U; u < s->u; u++) {
         if (w->out_start[u + 1U] > w->out_start[u]) {  // not stranded
             w->dist[u] = 0;
+            w->pred[u] = PRED_START;
             w->node_mark[u] = MARK_SUPPLY;
         }
     }
@@ -225,6 +227,7 @@ static bool init_potentials(sva_flow_work_t* w, const flow_shape_t* s)
         w->copy_cover[c] = 0U;
         if ((w->copy_forced[c] != 0U) && copy_usable(w, c)) {
             w->dist[s->u + s->c + c] = 0;
+            w->pred[s->u + s->c + c] = PRED_START;
             w->node_mark[s->u + s->c + c] = MARK_SUPPLY;
             w->node_mark[s->u + c] = MARK_DEFICIT;
         }
@@ -249,6 +252,8 @@ static bool init_potentials(sva_flow_work_t* w, const flow_shape_t* s)
             const int64_t d = w->dist[v] + sva_flow_arc_cost(w, e);
             if (arc_usable(w, s, e) && (d < w->dist[h])) {
                 w->dist[h] = d;
+                w->pred[h] = (int32_t)e;
+                w->pred_node[h] = v;
             }
         }
         if ((v >= s->u) && (v < (uint16_t)(s->u + s->c))) {
@@ -256,10 +261,14 @@ static bool init_potentials(sva_flow_work_t* w, const flow_shape_t* s)
             const int64_t d = w->dist[v] + own_cost(w, c);
             if ((w->copy_forced[c] == 0U) && copy_usable(w, c) && (d < w->dist[v + s->c])) {
                 w->dist[v + s->c] = d;
+                w->pred[v + s->c] = (2 * (int32_t)s->a) + (int32_t)c;
+                w->pred_node[v + s->c] = v;
             }
         }
         if (is_deficit(w, s, v) && (w->dist[v] < w->dist[s->sink])) {
             w->dist[s->sink] = w->dist[v];
+            w->pred[s->sink] = PRED_START - 1;
+            w->pred_node[s->sink] = v;
         }
     }
     for (uint16_t c = 0U; c < s->c; c++) {
@@ -273,6 +282,32 @@ static bool init_potentials(sva_flow_work_t* w, const flow_shape_t* s)
     }
     w->pot_source = 0;
     return true;
+}
+
+// Flips the path that pred[] and pred_node[] trace from the sink back to its supply.
+static void flip_path(sva_flow_work_t* w, const flow_shape_t* s)
+{
+    const int32_t a = (int32_t)s->a;
+    uint16_t v = w->pred_node[s->sink];
+    if (v == s->depot) {
+        w->sink_left--;
+    } else {
+        w->node_mark[v] &= (uint8_t)~MARK_DEFICIT;
+    }
+    while (w->pred[v] != PRED_START) {
+        const int32_t p = w->pred[v];
+        if (p < a) {
+            w->arc_flow[p] = 1U;
+        } else if (p < (2 * a)) {
+            w->arc_flow[p - a] = 0U;
+        } else if (p < ((2 * a) + (int32_t)s->c)) {
+            w->copy_cover[p - (2 * a)] = 1U;
+        } else {
+            w->copy_cover[p - (2 * a) - (int32_t)s->c] = 0U;
+        }
+        v = w->pred_node[v];
+    }
+    w->node_mark[v] &= (uint8_t)~MARK_SUPPLY;
 }
 
 // One shortest augmenting path from any waiting supply to the sink; false if none.
@@ -303,28 +338,7 @@ static bool augment(sva_flow_work_t* w, const flow_shape_t* s)
     if ((w->node_mark[s->sink] & MARK_DONE) == 0U) {
         return false;
     }
-    // Flip the path's arcs, from the sink back to its supply.
-    const int32_t a = (int32_t)s->a;
-    uint16_t v = w->pred_node[s->sink];
-    if (v == s->depot) {
-        w->sink_left--;
-    } else {
-        w->node_mark[v] &= (uint8_t)~MARK_DEFICIT;
-    }
-    while (w->pred[v] != PRED_START) {
-        const int32_t p = w->pred[v];
-        if (p < a) {
-            w->arc_flow[p] = 1U;
-        } else if (p < (2 * a)) {
-            w->arc_flow[p - a] = 0U;
-        } else if (p < ((2 * a) + (int32_t)s->c)) {
-            w->copy_cover[p - (2 * a)] = 1U;
-        } else {
-            w->copy_cover[p - (2 * a) - (int32_t)s->c] = 0U;
-        }
-        v = w->pred_node[v];
-    }
-    w->node_mark[v] &= (uint8_t)~MARK_SUPPLY;
+    flip_path(w, s);
     // Keep reduced costs non-negative: nodes beyond the sink's distance move by it.
     const int64_t reach = w->dist[s->sink];
     for (uint32_t k = 0U; k < nodes; k++) {
@@ -362,10 +376,17 @@ bool sva_flow_solve(sva_flow_work_t* w, sva_stats_t* stats)
     for (uint32_t v = 0U; v <= s.sink; v++) {
         units += ((w->node_mark[v] & MARK_SUPPLY) != 0U) ? 1U : 0U;
     }
+    // The first unit takes the shortest path the potentials' pass found: under
+    // potentials equal to the shortest distances every reduced distance is 0, so a
+    // Dijkstra run would change no potential.
     for (uint32_t k = 0U; k < units; k++) {
         stats->flow_augmentations++;
-        if (!augment(w, &s)) {
-            return false;
+        if ((k == 0U) && (w->dist[s.sink] < FLOW_INF)) {
+            flip_path(w, &s);
+        } else {
+            if (!augment(w, &s)) {
+                return false;
+            }
         }
     }
     w->value = relaxation_value(w, &s);
