@@ -260,6 +260,32 @@ def test_stdin_gives_the_same_plan():
     assert from_file == from_stdin
 
 
+@pytest.mark.parametrize("algo", ALGORITHMS)
+@pytest.mark.parametrize("name", ["rand_10_1", "rand_25_2"])
+def test_repeat_plans_the_same_and_keeps_the_fastest(name, algo):
+    if algo == "bfa" and name == "rand_25_2":
+        pytest.skip("over bfa's limits")
+    path = str(FIXTURES / "missions" / f"{name}.json")
+    once = json.loads(run(["plan", "--algo", algo, path]).stdout)
+    result = run(["plan", "--algo", algo, "--repeat", "4", path])
+    assert result.returncode == 0, result.stderr
+    again = json.loads(result.stdout)
+    assert again["stats"]["solve_us"] >= 0
+    del once["stats"]["solve_us"], again["stats"]["solve_us"]
+    assert once == again  # every stat but the time, and the plan
+
+
+def test_repeat_traces_one_run(tmp_path):
+    path = str(FIXTURES / "missions" / "rand_25_1.json")
+    traces = []
+    for repeat in ("1", "3"):
+        trace = tmp_path / f"trace_{repeat}.jsonl"
+        result = run(["plan", "--repeat", repeat, "--trace", str(trace), path])
+        assert result.returncode == 0, result.stderr
+        traces.append(trace.read_text())
+    assert traces[0] == traces[1] and traces[0].count("\n") > 0
+
+
 def test_plan_is_indented_json_ending_in_newline():
     out = run(["plan", str(FIXTURES / "missions" / "hand_3_1.json")]).stdout.decode()
     assert out.startswith('{\n  "mission": "hand_3_1",\n  "algorithm": "sva",') and out.endswith("}\n")
@@ -383,6 +409,10 @@ def test_trace_is_not_written_for_a_rejected_mission(tmp_path):
     (["plan", "a.json", "b.json"], "plan: one mission expected, got \"a.json\" and \"b.json\""),
     (["plan", "--algo"], "plan: --algo needs a value"),
     (["plan", "--trace"], "plan: --trace needs a file name"),
+    (["plan", "--repeat", "0", "a.json"], "plan: --repeat: must be an integer in [1, 1000]"),
+    (["plan", "--repeat=1001", "a.json"], "plan: --repeat: must be an integer in [1, 1000]"),
+    (["plan", "--repeat", "x", "a.json"], "plan: --repeat: must be an integer in [1, 1000]"),
+    (["plan", "--flow-work", "999", "a.json"], "plan: --flow-work: must be an integer in [1000, "),
     (["plan", "--fast", "a.json"], "plan: unknown option \"--fast\" (try 'sva --help')"),
     (["validate", "--algo", "sva", "a.json"], "validate: unknown option \"--algo\" (try 'sva --help')"),
     (["plan", "--algo", "simplex", "a.json"], "plan: --algo: unknown algorithm \"simplex\" (known: sva, ga, hga, bfa"),

@@ -4,7 +4,8 @@
 Usage (from the repository root, after scripts/setup.sh and scripts/build.sh):
     .venv/bin/python tools/bench/flow_vs_ref.py TARGETS UAVS COUNT [sva-tools gen options]
     e.g. .venv/bin/python tools/bench/flow_vs_ref.py 25 5 30 --width 10:20 --need 1 --hover 2 --fuel 120
-Environment: FLOW_WORK=N passes --flow-work N to the planner; REF_DET (default 10) is
+Environment: FLOW_WORK=N passes --flow-work N to the planner; FLOW_REPEAT=N passes
+--repeat N (flow's time is then its fastest of N runs in one process, memory warm); REF_DET (default 10) is
 ref's deterministic limit (load-independent; docs/tools.md). Missions and ref plans are
 cached under build/flow_vs_ref/ (delete a folder to recompute its ref plans).
 Prints: missions where flow's coverage equals, is below or above ref's; the mean and
@@ -28,6 +29,8 @@ def plan(path, algo):
     cmd = [SVA, "plan", "--algo", algo]
     if algo == "flow" and os.environ.get("FLOW_WORK"):
         cmd += ["--flow-work", os.environ["FLOW_WORK"]]
+    if algo == "flow" and os.environ.get("FLOW_REPEAT"):
+        cmd += ["--repeat", os.environ["FLOW_REPEAT"]]
     return json.loads(subprocess.run(cmd + [path], capture_output=True, text=True, check=True).stdout)
 
 
@@ -69,7 +72,7 @@ def main(argv):
     bad = [n for n, fl, ref in results if ref["stats"].get("optimal") and fl["covered"] == ref["covered"]
            and fl["stats"]["lower_bound"] > ref["cost"]]
     print(f"{targets}x{uavs} {' '.join(gen_args)}: {len(results)} missions, flow-work "
-          f"{os.environ.get('FLOW_WORK', 'default')}")
+          f"{os.environ.get('FLOW_WORK', 'default')}, repeat {os.environ.get('FLOW_REPEAT', '1')}")
     print(f"  coverage equal to ref: {len(equal)}; below: {below}; above (ref not proven): {above}")
     print(f"  cost gap at equal coverage: mean {statistics.mean(gaps) if gaps else 0.0:.3f} %, "
           f"largest {max(gaps) if gaps else 0.0:.2f} %")

@@ -24,6 +24,7 @@
 #include "trace_json.h"
 
 enum { EXIT_PLANNED = 0, EXIT_FAILED = 1, EXIT_BAD_INPUT = 2 };
+enum { REPEAT_MAX = 1000 };  // --repeat: runs of one mission in one process
 
 // Large working structs live in static storage, as on firmware.
 static sva_mission_t g_mission;
@@ -59,19 +60,20 @@ static void print_usage(FILE* out) {
     char algos[128];
     list_algorithms(algos, sizeof algos);
     fprintf(out,
-            "usage: sva plan [--algo NAME] [--flow-work N] [--schedule] [--trace FILE] MISSION.json|-\n"
+            "usage: sva plan [--algo NAME] [--flow-work N] [--repeat N] [--schedule] [--trace FILE] MISSION.json|-\n"
             "       sva validate MISSION.json|-\n"
             "       sva --help | --version\n"
             "\n"
             "plan       plan the mission and print the plan JSON (SPEC section 3)\n"
             "  --algo NAME    algorithm: %s (default sva)\n"
             "  --flow-work N  flow's search budget in arc scans, 1000..%lu (default: the most)\n"
+            "  --repeat N     plan N times in this process, 1..%d; solve_us is the fastest run\n"
             "  --schedule     print a readable schedule instead of JSON\n"
             "  --trace FILE   write each transportation problem to FILE as JSON Lines\n"
             "validate   check the mission only; prints \"ok: NAME: N UAVs, M targets\"\n"
             "\n"
             "exit status: 0 planned or valid, 2 bad input (mission or usage), 1 other errors\n",
-            algos, (unsigned long)SVA_FLOW_MAX_WORK);
+            algos, (unsigned long)SVA_FLOW_MAX_WORK, REPEAT_MAX);
 }
 
 static void print_version(void) {
@@ -88,6 +90,7 @@ typedef struct {
     const char* algo;
     const char* trace;
     long flow_work;  // 0: the planner's default
+    long repeat;     // runs of sva_plan(); 1 unless --repeat
     bool schedule;
     bool help;
 } options_t;
@@ -118,6 +121,7 @@ static const char* option_value(const char* name, int argc, char** argv, int* i,
 static int parse_options(const char* command, bool full, int argc, char** argv, options_t* opt) {
     memset(opt, 0, sizeof *opt);
     opt->algo = "sva";
+    opt->repeat = 1;
     bool only_files = false;
     for (int i = 0; i < argc; ++i) {
         const char* arg = argv[i];
@@ -144,6 +148,15 @@ static int parse_options(const char* command, bool full, int argc, char** argv, 
                                   command, (long)SVA_FLOW_MAX_WORK);
             }
             opt->flow_work = n;
+        } else if (!only_files && full &&
+                   ((value = option_value("--repeat", argc, argv, &i, &missing)) != NULL || missing)) {
+            char* end = NULL;
+            errno = 0;
+            const long n = missing ? 0 : strtol(value, &end, 10);
+            if (missing || errno != 0 || end == value || *end != '\0' || n < 1 || n > REPEAT_MAX) {
+                return error_exit(EXIT_BAD_INPUT, "%s: --repeat: must be an integer in [1, %d]", command, REPEAT_MAX);
+            }
+            opt->repeat = n;
         } else if (!only_files && full &&
                    ((value = option_value("--trace", argc, argv, &i, &missing)) != NULL || missing)) {
             if (missing || value[0] == '\0') {
@@ -261,6 +274,23 @@ static int cmd_plan(int argc, char** argv) {
     if (opt.flow_work > 0) {
         g_planner.flow_max_work = (uint32_t)opt.flow_work;
     }
+    // --repeat: the runs before the last, untraced. Planning is deterministic, so each
+    // run gives the same plan; solve_us is the fastest (the planner's memory warm, as
+    // in a node that plans again and again).
+    sva_diag_t diag;
+    sva_diag_clear(&diag);
+    int64_t fastest = INT64_MAX;
+    for (long run = 1; run < opt.repeat; run++) {
+        struct timespec start, end;
+        clock_gettime(CLOCK_MONOTONIC, &start);
+        const sva_status_t status = sva_plan(&g_planner, &g_mission, algorithm, &g_plan, &diag);
+        clock_gettime(CLOCK_MONOTONIC, &end);
+        if (status != SVA_OK) {
+            return plan_failed(status, &diag);
+        }
+        const int64_t us = elapsed_us(&start, &end);
+        fastest = (us < fastest) ? us : fastest;
+    }
     FILE* trace_file = NULL;
     sva_trace_t trace;
     if (opt.trace != NULL) {
@@ -270,8 +300,6 @@ static int cmd_plan(int argc, char** argv) {
         }
         sva_trace_attach(&trace, &g_planner, trace_file, &g_mission);
     }
-    sva_diag_t diag;
-    sva_diag_clear(&diag);
     struct timespec before, after;
     clock_gettime(CLOCK_MONOTONIC, &before);
     sva_status_t status = sva_plan(&g_planner, &g_mission, algorithm, &g_plan, &diag);
@@ -285,7 +313,8 @@ static int cmd_plan(int argc, char** argv) {
     if (status != SVA_OK) {
         return plan_failed(status, &diag);
     }
-    return print_plan(&opt, name, elapsed_us(&before, &after));
+    const int64_t last = elapsed_us(&before, &after);
+    return print_plan(&opt, name, (last < fastest) ? last : fastest);
 }
 
 int main(int argc, char** argv) {
