@@ -706,7 +706,7 @@ void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t
 // size in turn, each covered target s seeds a group: s and the covered targets
 // nearest to it (cells between them plus the ticks between their window starts, in
 // cells). With need 2 this is how a target short of its second UAV finds one: the
-// group's visits leave room.
+// group's visits leave room. Then swaps: one covered target out, one uncovered in.
 
 #define RUIN_ROUND_UNITS 8U  // work units per round and per target x UAV (insertions)
 
@@ -767,6 +767,24 @@ void sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
                 w->insert_backwards = false;
                 w->work += round_units;
                 plan->stats.flow_ruin_rounds++;
+            }
+        }
+    }
+    // Swaps: a covered target c leaves, an uncovered target t goes in first (all its
+    // need at once), and the repair puts the rest back. With need 2 a plan may cover
+    // the right number of targets but the wrong ones; groups reinserted in window
+    // order rarely change which.
+    for (uint16_t c = 0U; (c < m->target_count) && (w->work < budget); c++) {
+        for (uint16_t t = 0U; (t < m->target_count) && (w->work < budget); t++) {
+            sva_flow_write_incumbent(priv, m, plan);
+            if (((int32_t)priv->target_served[c] == m->targets[c].need) && (priv->target_served[t] == 0U)) {
+                ruin(priv, m, plan, c, 1U);
+                try_insert(priv, m, plan, t);
+                if (priv->target_served[t] != 0U) {
+                    sva_flow_repair(priv, m, plan, true);
+                    plan->stats.flow_ruin_rounds++;
+                }
+                w->work += round_units;
             }
         }
     }
