@@ -757,9 +757,10 @@ void sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     const uint64_t rest = ((end > w->work) && !near) ? (end - w->work) : 0U;
     const uint64_t budget = w->work + (rest - (rest / 4U));
     const uint64_t round_units = (uint64_t)m->target_count * (uint64_t)m->uav_count * RUIN_ROUND_UNITS;
+    // *plan holds the incumbent whenever a round is chosen (sva_flow_incumbent above,
+    // then a write after each round).
     for (size_t i = 0U; i < (sizeof(ruin_sizes) / sizeof(ruin_sizes[0])); i++) {
         for (uint16_t s = 0U; (s < m->target_count) && (w->work < budget); s++) {
-            sva_flow_write_incumbent(priv, m, plan);
             if ((int32_t)priv->target_served[s] == m->targets[s].need) {
                 ruin(priv, m, plan, s, ruin_sizes[i]);
                 w->insert_backwards = ((s + i) % 2U) == 1U;
@@ -767,6 +768,7 @@ void sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
                 w->insert_backwards = false;
                 w->work += round_units;
                 plan->stats.flow_ruin_rounds++;
+                sva_flow_write_incumbent(priv, m, plan);
             }
         }
     }
@@ -776,7 +778,6 @@ void sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     // order rarely change which.
     for (uint16_t c = 0U; (c < m->target_count) && (w->work < budget); c++) {
         for (uint16_t t = 0U; (t < m->target_count) && (w->work < budget); t++) {
-            sva_flow_write_incumbent(priv, m, plan);
             if (((int32_t)priv->target_served[c] == m->targets[c].need) && (priv->target_served[t] == 0U)) {
                 ruin(priv, m, plan, c, 1U);
                 try_insert(priv, m, plan, t);
@@ -785,8 +786,8 @@ void sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
                     plan->stats.flow_ruin_rounds++;
                 }
                 w->work += round_units;
+                sva_flow_write_incumbent(priv, m, plan);
             }
         }
     }
-    sva_flow_write_incumbent(priv, m, plan);
 }

@@ -133,9 +133,10 @@ void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t
 void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                      bool polish);
 /// Ruin and recreate (flow_repair.c): groups of related visits taken out of the
-/// incumbent, the repair completes and offers each plan; with three quarters of the
-/// work left before `end`, unless the incumbent is within 1/64 of `proven_bound`, a
-/// bound with its coverage proven the most (-1: none). Leaves the incumbent in *plan.
+/// incumbent, then swaps (one covered target out, one uncovered in first); the repair
+/// completes and offers each plan. With three quarters of the work left before `end`,
+/// unless the incumbent is within 1/64 of `proven_bound`, a bound with its coverage
+/// proven the most (-1: none). Leaves the incumbent in *plan.
 void sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                             uint64_t end, int64_t proven_bound);
 

@@ -212,6 +212,17 @@ static int64_t elapsed_us(const struct timespec* a, const struct timespec* b) {
     return (int64_t)(b->tv_sec - a->tv_sec) * 1000000 + (int64_t)(b->tv_nsec - a->tv_nsec) / 1000;
 }
 
+// One sva_plan() call into g_plan; *fastest_us becomes its wall time if that is less.
+static sva_status_t timed_plan(sva_algorithm_t algorithm, sva_diag_t* diag, int64_t* fastest_us) {
+    struct timespec before, after;
+    clock_gettime(CLOCK_MONOTONIC, &before);
+    const sva_status_t status = sva_plan(&g_planner, &g_mission, algorithm, &g_plan, diag);
+    clock_gettime(CLOCK_MONOTONIC, &after);
+    const int64_t us = elapsed_us(&before, &after);
+    *fastest_us = (us < *fastest_us) ? us : *fastest_us;
+    return status;
+}
+
 // Maps a failed sva_plan() to its message and exit code.
 static int plan_failed(sva_status_t status, const sva_diag_t* diag) {
     char message[SVA_JSON_ERROR_SIZE];
@@ -281,15 +292,10 @@ static int cmd_plan(int argc, char** argv) {
     sva_diag_clear(&diag);
     int64_t fastest = INT64_MAX;
     for (long run = 1; run < opt.repeat; run++) {
-        struct timespec start, end;
-        clock_gettime(CLOCK_MONOTONIC, &start);
-        const sva_status_t status = sva_plan(&g_planner, &g_mission, algorithm, &g_plan, &diag);
-        clock_gettime(CLOCK_MONOTONIC, &end);
+        const sva_status_t status = timed_plan(algorithm, &diag, &fastest);
         if (status != SVA_OK) {
             return plan_failed(status, &diag);
         }
-        const int64_t us = elapsed_us(&start, &end);
-        fastest = (us < fastest) ? us : fastest;
     }
     FILE* trace_file = NULL;
     sva_trace_t trace;
@@ -300,10 +306,7 @@ static int cmd_plan(int argc, char** argv) {
         }
         sva_trace_attach(&trace, &g_planner, trace_file, &g_mission);
     }
-    struct timespec before, after;
-    clock_gettime(CLOCK_MONOTONIC, &before);
-    sva_status_t status = sva_plan(&g_planner, &g_mission, algorithm, &g_plan, &diag);
-    clock_gettime(CLOCK_MONOTONIC, &after);
+    const sva_status_t status = timed_plan(algorithm, &diag, &fastest);
     if (trace_file != NULL) {
         bool trace_ok = !trace.failed && fflush(trace_file) == 0 && !ferror(trace_file);
         if (fclose(trace_file) != 0 || !trace_ok) {
@@ -313,8 +316,7 @@ static int cmd_plan(int argc, char** argv) {
     if (status != SVA_OK) {
         return plan_failed(status, &diag);
     }
-    const int64_t last = elapsed_us(&before, &after);
-    return print_plan(&opt, name, (last < fastest) ? last : fastest);
+    return print_plan(&opt, name, fastest);
 }
 
 int main(int argc, char** argv) {
