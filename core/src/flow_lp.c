@@ -78,6 +78,15 @@ static int64_t abs64(int64_t v)
     return (v < 0) ? -v : v;
 }
 
+// Index of the one bit set in `bit` (de Bruijn multiplication).
+static uint32_t lowest_bit_index(uint32_t bit)
+{
+    static const uint8_t index_of[32] = {0U,  1U,  28U, 2U,  29U, 14U, 24U, 3U,  30U, 22U, 20U,
+                                         15U, 25U, 17U, 4U,  8U,  31U, 27U, 13U, 23U, 21U, 19U,
+                                         16U, 7U,  26U, 12U, 18U, 6U,  11U, 5U,  10U, 9U};
+    return index_of[(uint32_t)(bit * UINT32_C(0x077CB531)) >> 27U];
+}
+
 static bool has_row(const sva_flow_lp_t* lp, uint16_t col, uint16_t row)
 {
     const uint32_t word = lp->col_rows[((size_t)col * SVA_FLOW_LP_WORDS) + ((size_t)row / 32U)];
@@ -112,10 +121,17 @@ static int64_t dot(const sva_flow_lp_t* lp, const sva_mission_t* m, const int64_
     if (j == artificial(lp)) {
         return -v[cover];
     }
+    // A route's rows are a few set bits: visit those alone, lowest bit first.
     int64_t sum = 0;
     const uint16_t col = (uint16_t)(j - first_route(lp));
-    for (uint16_t k = 0U; k < lp->rows; k++) {
-        sum += has_row(lp, col, k) ? v[k] : 0;
+    const uint32_t* bits = &lp->col_rows[(size_t)col * SVA_FLOW_LP_WORDS];
+    for (uint32_t word = 0U; word < SVA_FLOW_LP_WORDS; word++) {
+        uint32_t left = bits[word];
+        while (left != 0U) {
+            const uint32_t lowest = left & (~left + 1U);
+            sum += v[(word * 32U) + lowest_bit_index(lowest)];
+            left ^= lowest;
+        }
     }
     return (lp->col_deficit[col] != 0U) ? -sum : sum;
 }
@@ -123,16 +139,24 @@ static int64_t dot(const sva_flow_lp_t* lp, const sva_mission_t* m, const int64_
 // Duals of the basis (scaled by D); false if one outgrows DUAL_MAX.
 static bool compute_duals(sva_flow_lp_t* lp)
 {
+    // dual = c_B^T adj, row by row of adj: most basic columns are slacks of cost 0.
     const uint16_t n = lp->rows;
     for (uint16_t k = 0U; k < n; k++) {
-        int64_t sum = 0;
-        for (uint16_t i = 0U; i < n; i++) {
-            sum += column_cost(lp, lp->basic[i]) * adj_row(lp, i)[k];
+        lp->dual[k] = 0;
+    }
+    for (uint16_t i = 0U; i < n; i++) {
+        const int64_t cost = column_cost(lp, lp->basic[i]);
+        if (cost != 0) {
+            const int64_t* row = adj_row(lp, i);
+            for (uint16_t k = 0U; k < n; k++) {
+                lp->dual[k] += cost * row[k];
+            }
         }
-        if (abs64(sum) > DUAL_MAX) {
+    }
+    for (uint16_t k = 0U; k < n; k++) {
+        if (abs64(lp->dual[k]) > DUAL_MAX) {
             return false;
         }
-        lp->dual[k] = sum;
     }
     return true;
 }
@@ -211,12 +235,19 @@ static bool lp_pivot(sva_flow_lp_t* lp, uint16_t r, uint16_t j)
             continue;
         }
         const int64_t ai = lp->alpha[i];
+        if ((ai == 0) && (ar == d)) {
+            continue;  // the row and x_i stay as they are
+        }
         int64_t* row_i = adj_row(lp, i);
         for (uint16_t k = 0U; k < lp->rows; k++) {
             const int64_t num = (ar * row_i[k]) - (ai * row_r[k]);
-            ok = ok && ((num % d) == 0);
-            row_i[k] = num / d;
-            ok = ok && (abs64(row_i[k]) <= ENTRY_MAX);
+            if (num == 0) {
+                row_i[k] = 0;  // adj is mostly zeros: no division
+            } else {
+                ok = ok && ((num % d) == 0);
+                row_i[k] = num / d;
+                ok = ok && (abs64(row_i[k]) <= ENTRY_MAX);
+            }
         }
         const int64_t num = (ar * lp->x[i]) - (ai * lp->x[r]);
         ok = ok && ((num % d) == 0);

@@ -233,6 +233,9 @@ static bool best_place(sva_flow_work_t* w, const sva_mission_t* m, const sva_pla
     const sva_route_t* r = &plan->routes[u];
     bool found = false;
     for (uint16_t p = 0U; p <= r->target_count; p++) {
+        if ((p > 0U) && (m->targets[r->targets[p - 1U]].end_ticks > m->targets[t].start_ticks)) {
+            break;  // routes keep time order: no later place is free by t's start either
+        }
         int64_t delta = 0;
         if (!detour(m, u, r, p, p, t, &delta) ||
             !sva_flow_fits(m, u, w->route_cells[u] + delta, (uint32_t)r->target_count + 1U)) {
