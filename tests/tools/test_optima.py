@@ -4,7 +4,9 @@ Each MISSION.json has MISSION.ref.json, ref's plan with "optimal": true. flow mu
 cover as many targets, with a lower bound at or below the optimum's cost, and its plan
 must pass the independent checker; on `optimum_*` missions it must also reach the
 optimum's cost. These are missions flow once missed (a target short, or a costlier
-plan): see fixtures/README.md.
+plan): see fixtures/README.md. On `proven_*` missions flow's Lagrangian phase proves
+its plan optimal, and flow must stop there instead of spending the rest of its work
+budget.
 """
 import json
 import subprocess
@@ -39,10 +41,25 @@ def test_flow_reaches_the_proven_optimum(sva_bin, ref_path, tmp_path):
     assert flow["covered"] == ref["covered"]
     assert ref["cost"] >= flow["stats"]["lower_bound"]
     assert flow["cost"] >= ref["cost"]  # ref's plan is optimal: nothing covering as many costs less
-    if ref_path.name.startswith("optimum_"):
+    if ref_path.name.startswith(("optimum_", "proven_")):
         assert flow["cost"] == ref["cost"]
+
+
+BUDGET = 2_000_000  # flow's default work budget (SVA_FLOW_MAX_WORK)
+
+
+@pytest.mark.parametrize("ref_path", [p for p in proven_plans() if p.name.startswith("proven_")],
+                         ids=lambda p: p.name[: -len(".ref.json")])
+def test_flow_stops_once_its_bound_proves_the_plan(sva_bin, ref_path):
+    mission_path = Path(str(ref_path)[: -len(".ref.json")] + ".json")
+    out = subprocess.run([sva_bin, "plan", "--algo", "flow", "--flow-work", str(BUDGET),
+                          str(mission_path)], capture_output=True, text=True, check=True).stdout
+    stats = json.loads(out)["stats"]
+    assert stats["optimal"] is True
+    assert stats["flow_lp_columns"] > 0  # proven by the Lagrangian phase, not the first search
+    assert stats["flow_work"] < BUDGET // 2
 
 
 def test_the_fixtures_are_there():
     names = [p.name for p in proven_plans()]
-    assert any(n.startswith("optimum_") for n in names) and any(n.startswith("cover_") for n in names)
+    assert all(any(n.startswith(kind) for n in names) for kind in ("optimum_", "cover_", "proven_"))
