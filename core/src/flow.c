@@ -324,12 +324,10 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     if (open != INT64_MAX) {
         lagrange_bound = sva_flow_lagrange(priv, m, plan, start + (budget - (budget / 4U)),
                                            &coverage_proven, &stats->flow_lagrange_iters);
-        int64_t cost = 0;
-        int64_t covered = 0;
-        sva_flow_incumbent(priv, m, plan, &cost, &covered);
-        // Proven optimal already (the claim below): nothing left to find or prove.
-        if (!w->reward_exact || !coverage_proven || (lagrange_bound < cost)) {
-            sva_flow_ruin_recreate(priv, m, plan, start + budget, coverage_proven ? lagrange_bound : -1);
+        const bool proven = sva_flow_ruin_recreate(priv, m, plan, start + budget,
+                                                   coverage_proven ? lagrange_bound : -1);
+        // Proven optimal already (the claim below): no second search.
+        if (!proven || !w->reward_exact) {
             uint8_t again = finished;
             const int64_t open_again = search(priv, m, plan, start + budget, &again);
             open = (open_again > open) ? open_again : open;

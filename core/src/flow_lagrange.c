@@ -68,25 +68,16 @@ static bool first_copy(const sva_flow_work_t* w, uint16_t d)
     return w->target_first_copy[w->copy_target[d]] == d;
 }
 
-// Whether a label of target t dominates (cost, fuel): most new labels are, so this
-// small test runs before add_label.
-static bool dominated(const sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t fuel)
-{
-    const uint32_t base = (uint32_t)t * (uint32_t)SVA_FLOW_LABELS;
-    const uint32_t end = base + lg->label_count[t];
-    for (uint32_t j = base; j < end; j++) {
-        if ((lg->label_fuel[j] <= fuel) && (lg->label_cost[j] <= cost)) {
-            return true;
-        }
-    }
-    return false;
-}
-
-// Adds label (cost, fuel, pred), which no label dominates, to target t's Pareto set.
+// Adds label (cost, fuel, pred) to target t's Pareto set unless one there dominates it.
 static void add_label(sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t fuel, uint32_t pred)
 {
     const uint32_t base = (uint32_t)t * (uint32_t)SVA_FLOW_LABELS;
     uint32_t n = lg->label_count[t];
+    for (uint32_t j = base; j < (base + n); j++) {
+        if ((lg->label_fuel[j] <= fuel) && (lg->label_cost[j] <= cost)) {
+            return;
+        }
+    }
     int64_t new_cost = cost;
     int32_t new_fuel = fuel;
     uint32_t new_pred = pred;
@@ -156,10 +147,7 @@ int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t
             const uint16_t t = w->copy_target[h - w->uavs];
             if (lg->closed[t] == 0U) {
                 const int64_t leg = sva_distance(uav->x, uav->y, m->targets[t].x, m->targets[t].y);
-                const int64_t cost = (alpha * leg) - lg->path_price[t];
-                if (!dominated(lg, t, cost, (int32_t)(leg + hover))) {
-                    add_label(lg, t, cost, (int32_t)(leg + hover), SVA_FLOW_NO_LABEL);
-                }
+                add_label(lg, t, (alpha * leg) - lg->path_price[t], (int32_t)(leg + hover), SVA_FLOW_NO_LABEL);
                 w->work++;
             }
         }
@@ -176,12 +164,14 @@ int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t
         const uint16_t tail = (uint16_t)(out_base + c);
         // Labels of t are final here: every arc into t comes from an earlier copy.
         const uint32_t end = base + lg->label_count[t];
-        const int64_t home = sva_distance(tg->x, tg->y, m->depot_x, m->depot_y);
-        for (uint32_t l = base; l < end; l++) {
-            if ((((int64_t)lg->label_fuel[l] + home) <= uav->fuel) &&
-                ((lg->label_cost[l] + (alpha * home)) < best)) {
-                best = lg->label_cost[l] + (alpha * home);
-                best_label = l;
+        {
+            const int32_t home = sva_distance(tg->x, tg->y, m->depot_x, m->depot_y);
+            for (uint32_t l = base; l < end; l++) {
+                if ((((int64_t)lg->label_fuel[l] + home) <= uav->fuel) &&
+                    ((lg->label_cost[l] + (alpha * home)) < best)) {
+                    best = lg->label_cost[l] + (alpha * home);
+                    best_label = l;
+                }
             }
         }
         // Arc by arc, then label by label: the arcs lead to different targets, so
@@ -196,14 +186,13 @@ int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t
             if (lg->closed[b] != 0U) {
                 continue;
             }
-            const int64_t leg = sva_distance(tg->x, tg->y, m->targets[b].x, m->targets[b].y);
+            const int32_t leg = sva_distance(tg->x, tg->y, m->targets[b].x, m->targets[b].y);
             const int64_t fuel_cap = uav->fuel - leg - w->target_tail[b];
             const int64_t leg_price = (alpha * leg) - lg->path_price[b];
             for (uint32_t l = base; l < end; l++) {
-                const int64_t cost = lg->label_cost[l] + leg_price;
-                const int32_t fuel = (int32_t)((int64_t)lg->label_fuel[l] + leg + hover);
-                if (((int64_t)lg->label_fuel[l] <= fuel_cap) && !dominated(lg, b, cost, fuel)) {
-                    add_label(lg, b, cost, fuel, l);
+                if ((int64_t)lg->label_fuel[l] <= fuel_cap) {
+                    add_label(lg, b, lg->label_cost[l] + leg_price,
+                              (int32_t)((int64_t)lg->label_fuel[l] + leg + hover), l);
                 }
             }
         }
@@ -470,9 +459,13 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
         master_solved = again != NO_BOUND;
         lp_value = (again > lp_value) ? again : lp_value;
     }
-    // A dive on the cost master last solved: a plan from its routes.
+    // A dive on the cost master last solved: a plan from its routes, unless the bound
+    // already proves a plan covering every target.
     plan->stats.flow_dive_routes = 0U;
-    if (master_solved && sva_flow_lp_dive(priv, m, plan, w->work + (left / 8U))) {
+    const int64_t before_dive = (ph.best > lp_value) ? ph.best : lp_value;
+    const bool done = (covered == (int64_t)m->target_count) && (before_dive != NO_BOUND) &&
+                      (ceil_div(before_dive, s) >= cost);
+    if (master_solved && !done && sva_flow_lp_dive(priv, m, plan, w->work + (left / 8U))) {
         plan->stats.flow_dive_routes = w->lp.fixed_count;
         sva_flow_repair(priv, m, plan, true);
         sva_flow_incumbent(priv, m, plan, &cost, &covered);

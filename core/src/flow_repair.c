@@ -746,7 +746,7 @@ static void ruin(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* p
     }
 }
 
-void sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                             uint64_t end, int64_t proven_bound)
 {
     static const uint8_t ruin_sizes[] = {6U, 8U, 10U, 3U};  // group sizes, in turn
@@ -756,6 +756,9 @@ void sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     sva_flow_incumbent(priv, m, plan, &cost, &covered);
     // Not when the coverage is proven and the plan within 1/64 of the bound: the
     // search, with the rest of the budget, may prove it.
+    if (proven_bound >= cost) {
+        return true;  // proven optimal: nothing to find
+    }
     const bool near = (proven_bound >= 0) && ((cost - proven_bound) <= (cost / 64));
     const uint64_t rest = ((end > w->work) && !near) ? (end - w->work) : 0U;
     const uint64_t budget = w->work + (rest - (rest / 4U));
@@ -793,4 +796,5 @@ void sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
             }
         }
     }
+    return false;
 }

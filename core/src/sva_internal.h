@@ -136,8 +136,9 @@ void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_
 /// incumbent, then swaps (one covered target out, one uncovered in first); the repair
 /// completes and offers each plan. With three quarters of the work left before `end`,
 /// unless the incumbent is within 1/64 of `proven_bound`, a bound with its coverage
-/// proven the most (-1: none). Leaves the incumbent in *plan.
-void sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+/// proven the most (-1: none). Leaves the incumbent in *plan. Returns true, doing
+/// nothing, when the bound reaches the incumbent's cost: it is proven optimal.
+bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                             uint64_t end, int64_t proven_bound);
 
 // flow_lagrange.c: flow's Lagrangian bound and heuristic.
