@@ -254,7 +254,8 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
 
 // Past SVA_FLOW_MAX_COPIES flow has no relaxation and no copies: it returns the better
 // of the ga and sva plans with the trivial bound 0, never claiming optimality. (Past
-// SVA_FLOW_MAX_ARCS the seeds are also improved by the local search: sva_run_flow.)
+// SVA_FLOW_MAX_ARCS the seeds are also improved by the local search and by ruin and
+// recreate: sva_run_flow.)
 static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan, uint8_t why)
 {
     sva_planner_priv_t* priv = &self->priv;
@@ -296,8 +297,9 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     const uint8_t over = sva_flow_build(priv, m, plan, stats);
     if (over == (uint8_t)SVA_FLOW_OVER_ARCS) {
         // No relaxation, but the copies and rewards are in place: the seeds still go
-        // through the repair and the local search.
+        // through the repair and the local search, then ruin and recreate.
         seed(self, m, plan);
+        (void)sva_flow_ruin_recreate(priv, m, plan, w->work + budget, -1);
         sva_flow_write_incumbent(priv, m, plan);
         stats->has_bound = true;
         stats->lower_bound = 0;

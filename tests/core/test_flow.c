@@ -499,6 +499,7 @@ static void test_dense_graph_past_the_arc_bound_falls_back(void** state)
     assert_false(plan.stats.optimal);
     assert_int_equal(plan.stats.lower_bound, 0);
     assert_int_equal(plan.covered, SVA_MAX_TARGETS);
+    assert_true(plan.stats.flow_ruin_rounds > 0U);
     // The seeds, repaired and improved: never worse than sva or ga.
     for (int a = 0; a < 2; a++) {
         must_plan(a == 0 ? SVA_ALGO_SVA : SVA_ALGO_GA, &other, 0U, 0);
