@@ -162,22 +162,40 @@ static int64_t min64(int64_t a, int64_t b)
     return (a < b) ? a : b;
 }
 
-// Depth-first search from the root relaxation; returns the least bound left open
-// (INT64_MAX when the search finished, -INT64_MAX when the budget was already spent)
-// and sets *incomplete.
+// Solves the root's relaxation (*solved: it is in the graph now). When it is a plan it
+// is the optimum: it becomes the incumbent, and neither the seeds nor the search are
+// needed (most missions where fuel does not bind). Only with exact rewards, where the
+// search's own claim would hold.
+static bool root_is_plan(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, bool* solved)
+{
+    sva_flow_work_t* w = &priv->flow;
+    plan->stats.search_nodes++;
+    *solved = sva_flow_solve(w, &plan->stats);
+    if (!*solved || !w->reward_exact || choose_branch(priv, m, plan, &w->stack[0])) {
+        return false;
+    }
+    sva_flow_take_relaxation(priv, m, plan);
+    return true;
+}
+
+// Depth-first search from the root relaxation (already solved and still in the graph
+// when root_solved); returns the least bound left open (INT64_MAX when the search
+// finished, -INT64_MAX when the budget was already spent) and sets *incomplete.
 static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
-                      uint64_t budget, uint8_t* incomplete)
+                      uint64_t budget, bool root_solved, uint8_t* incomplete)
 {
     sva_flow_work_t* w = &priv->flow;
     sva_stats_t* stats = &plan->stats;
     int64_t open = INT64_MAX;
     w->depth = 0U;
-    if (w->work >= budget) {
+    if (!root_solved && (w->work >= budget)) {
         *incomplete = (uint8_t)SVA_FLOW_INCOMPLETE_WORK;
         return -INT64_MAX;  // nothing searched: no bound
     }
-    stats->search_nodes++;
-    if (!sva_flow_solve(w, stats)) {
+    if (!root_solved) {
+        stats->search_nodes++;
+    }
+    if (!root_solved && !sva_flow_solve(w, stats)) {
         // Cannot happen: every UAV that is not stranded may fly home, and the root
         // forces nothing. Claim nothing if it does.
         SVA_ASSERT(false);
@@ -300,6 +318,7 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
         // through the repair and the local search, then ruin and recreate.
         seed(self, m, plan);
         (void)sva_flow_ruin_recreate(priv, m, plan, w->work + budget, -1);
+        sva_flow_canonical_incumbent(priv, m);
         sva_flow_write_incumbent(priv, m, plan);
         stats->has_bound = true;
         stats->lower_bound = 0;
@@ -312,17 +331,23 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
         fall_back(self, m, plan, over);
         return SVA_OK;
     }
-    seed(self, m, plan);
     const uint8_t finished = w->reward_exact ? (uint8_t)SVA_FLOW_COMPLETE : (uint8_t)SVA_FLOW_INCOMPLETE_REWARD;
     uint8_t incomplete = finished;
-    // A sixteenth of the budget to the search; if it does not finish, the Lagrangian phase
-    // (fuel-aware bound, new plans), then the search again with the better incumbent.
-    // The phases' budgets count from here: seeding (two local searches at most, each
-    // within w->local_work) does not eat into the search.
-    const uint64_t start = w->work;
-    int64_t open = search(priv, m, plan, start + (budget / 16U), &incomplete);
+    int64_t open = INT64_MAX;
     int64_t lagrange_bound = 0;
     bool coverage_proven = false;
+    uint64_t start = w->work;
+    bool root_solved = false;
+    if (!root_is_plan(priv, m, plan, &root_solved)) {
+        const uint64_t root_work = w->work - start;
+        // A sixteenth of the budget to the search; if it does not finish, the Lagrangian
+        // phase (fuel-aware bound, new plans), then the search again with the better
+        // incumbent. The phases' budgets count from here: seeding (two local searches at
+        // most, each within w->local_work) does not eat into the search.
+        seed(self, m, plan);
+        start = w->work - root_work;  // the root counts in the search's share, as before
+        open = search(priv, m, plan, start + (budget / 16U), root_solved, &incomplete);
+    }
     if (open != INT64_MAX) {
         lagrange_bound = sva_flow_lagrange(priv, m, plan, start + (budget - (budget / 4U)),
                                            &coverage_proven, &stats->flow_lagrange_iters);
@@ -331,11 +356,12 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
         // Proven optimal already (the claim below): no second search.
         if (!proven || !w->reward_exact) {
             uint8_t again = finished;
-            const int64_t open_again = search(priv, m, plan, start + budget, &again);
+            const int64_t open_again = search(priv, m, plan, start + budget, false, &again);
             open = (open_again > open) ? open_again : open;
             incomplete = (open_again == INT64_MAX) ? again : incomplete;
         }
     }
+    sva_flow_canonical_incumbent(priv, m);
     sva_flow_write_incumbent(priv, m, plan);
 
     // Any plan p: cost(p) - reward(p) >= min(best, open). A plan covering c targets

@@ -99,6 +99,61 @@ bool sva_flow_offer_plan(sva_planner_priv_t* priv, const sva_mission_t* m, const
     return true;
 }
 
+// Whether target a comes before target b in window order (start, end, id).
+static bool window_before(const sva_mission_t* m, uint16_t a, uint16_t b)
+{
+    const sva_target_t* ta = &m->targets[a];
+    const sva_target_t* tb = &m->targets[b];
+    if (ta->start_ticks != tb->start_ticks) {
+        return ta->start_ticks < tb->start_ticks;
+    }
+    if (ta->end_ticks != tb->end_ticks) {
+        return ta->end_ticks < tb->end_ticks;
+    }
+    return ta->id < tb->id;
+}
+
+// Whether the incumbent's route from copy a comes before the one from copy b: their
+// targets compared in window order, a route before its own extensions, an empty route
+// (ROUTE_END) last.
+static bool route_before(const sva_flow_work_t* w, const sva_mission_t* m, uint16_t a, uint16_t b)
+{
+    if ((a == ROUTE_END) || (b == ROUTE_END)) {
+        return (a != ROUTE_END) && (b == ROUTE_END);
+    }
+    uint16_t ca = a;
+    uint16_t cb = b;
+    while ((ca != ROUTE_END) && (cb != ROUTE_END) && (w->copy_target[ca] == w->copy_target[cb])) {
+        ca = w->inc_next[ca];
+        cb = w->inc_next[cb];
+    }
+    if ((ca == ROUTE_END) || (cb == ROUTE_END)) {
+        return (ca == ROUTE_END) && (cb != ROUTE_END);  // a proper prefix first
+    }
+    return window_before(m, w->copy_target[ca], w->copy_target[cb]);
+}
+
+static bool uavs_alike(const sva_uav_t* a, const sva_uav_t* b)
+{
+    return (a->x == b->x) && (a->y == b->y) && (a->fuel == b->fuel) && (a->ready_at_ticks == b->ready_at_ticks);
+}
+
+void sva_flow_canonical_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m)
+{
+    sva_flow_work_t* w = &priv->flow;
+    for (uint16_t i = 0U; i < m->uav_count; i++) {
+        const uint16_t a = priv->uav_order[i];
+        for (uint16_t j = (uint16_t)(i + 1U); j < m->uav_count; j++) {
+            const uint16_t b = priv->uav_order[j];
+            if (uavs_alike(&m->uavs[a], &m->uavs[b]) && route_before(w, m, w->inc_first[b], w->inc_first[a])) {
+                const uint16_t first = w->inc_first[a];
+                w->inc_first[a] = w->inc_first[b];
+                w->inc_first[b] = first;
+            }
+        }
+    }
+}
+
 void sva_flow_write_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
 {
     const sva_flow_work_t* w = &priv->flow;
@@ -679,7 +734,8 @@ void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_
     (void)sva_flow_offer_plan(priv, m, plan);
 }
 
-void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, bool polish)
+// The current relaxation's routes into *plan, over targets, with priv->target_served.
+static void relaxation_routes(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
 {
     sva_flow_work_t* w = &priv->flow;
     for (uint16_t t = 0U; t < m->target_count; t++) {
@@ -699,7 +755,18 @@ void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t
             priv->target_served[r->targets[k]]++;
         }
     }
+}
+
+void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, bool polish)
+{
+    relaxation_routes(priv, m, plan);
     sva_flow_repair(priv, m, plan, polish);
+}
+
+void sva_flow_take_relaxation(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+{
+    relaxation_routes(priv, m, plan);
+    (void)sva_flow_offer_plan(priv, m, plan);
 }
 
 // ---------------------------------------------------------------------------------

@@ -119,6 +119,10 @@ bool sva_flow_route_fits(const sva_mission_t* m, uint16_t u, const uint16_t* cop
                          uint16_t n, const sva_flow_work_t* w);
 /// Keeps the plan in *plan (routes + priv->target_served) if it beats the incumbent.
 bool sva_flow_offer_plan(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan);
+/// Gives UAVs in the same state (position, fuel, ready time) the incumbent's routes in
+/// id order: the route whose targets come first in window order to the lowest id, empty
+/// routes to the highest. The same plan whatever order the mission lists them in.
+void sva_flow_canonical_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m);
 void sva_flow_write_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
 /// The incumbent written into *plan, with its cost in cells and the targets it covers.
 void sva_flow_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, int64_t* cost,
@@ -127,6 +131,9 @@ void sva_flow_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_pl
 /// (sva_flow_repair, with `polish`).
 void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                     bool polish);
+/// Offers the current relaxation as it is, when it is a plan (no target half covered,
+/// every route within fuel and length): then nothing could repair or improve it.
+void sva_flow_take_relaxation(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
 /// Makes the routes in *plan (with priv->target_served) a plan: drops half-covered
 /// targets and routes' excess, inserts what fits, improves it by local search if it
 /// beats the incumbent (or, with `polish`, comes within 1/16), and offers it.

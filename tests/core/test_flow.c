@@ -507,6 +507,47 @@ static void test_dense_graph_past_the_arc_bound_falls_back(void** state)
     }
 }
 
+// UAVs in the same state get their routes in id order (sva_flow_canonical_incumbent):
+// the route starting with the earlier window to the lower id, an empty one to the
+// highest, whatever order the mission lists them in.
+static const sva_route_t* route_of(int32_t id)
+{
+    for (uint16_t u = 0U; u < mission.uav_count; u++) {
+        if (mission.uavs[u].id == id) {
+            return &plan.routes[u];
+        }
+    }
+    fail_msg("no UAV %d", (int)id);
+    return &plan.routes[0];
+}
+
+static void test_alike_uavs_take_routes_in_id_order(void** state)
+{
+    (void)state;
+    if (SVA_MAX_UAVS < 3) {
+        skip();
+    }
+    sva_mission_init(&mission);
+    mission.uav_count = 3;
+    const int32_t ids[3] = {7, 3, 5};
+    mission.target_count = 2;
+    mission.targets[0] = (sva_target_t){2, 0, 5, 10, 20, 1};
+    mission.targets[1] = (sva_target_t){1, 5, 0, 10, 20, 1};  // same window, lower id: first
+    for (int listing = 0; listing < 2; listing++) {
+        for (int u = 0; u < 3; u++) {
+            mission.uavs[u] = (sva_uav_t){ids[(listing == 0) ? u : (2 - u)], 0, 0, 100, 0};
+        }
+        must_plan(SVA_ALGO_FLOW, &plan, 0U, listing);
+        assert_int_equal(plan.cost, 20);
+        assert_true(plan.stats.optimal);
+        assert_int_equal(route_of(3)->target_count, 1);
+        assert_int_equal(route_of(3)->targets[0], 1);  // index of target id 1
+        assert_int_equal(route_of(5)->target_count, 1);
+        assert_int_equal(route_of(5)->targets[0], 0);
+        assert_int_equal(route_of(7)->target_count, 0);
+    }
+}
+
 static int calls;
 static void count_call(void* user, const sva_tp_view_t* problem)
 {
@@ -549,6 +590,7 @@ int main(void)
         cmocka_unit_test(test_route_master_holds_only_real_routes),
         cmocka_unit_test(test_ruin_and_recreate_plans_hold),
         cmocka_unit_test(test_plans_do_not_depend_on_the_planners_history),
+        cmocka_unit_test(test_alike_uavs_take_routes_in_id_order),
         cmocka_unit_test(test_past_its_graph_bounds_flow_falls_back_honestly),
         cmocka_unit_test(test_dense_graph_past_the_arc_bound_falls_back),
         cmocka_unit_test(test_observer_silent_and_stats_only_for_flow),
