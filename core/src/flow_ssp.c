@@ -44,22 +44,26 @@ static bool copy_usable(const sva_flow_work_t* w, uint16_t c)
     return w->copy_banned[c] == 0U;
 }
 
-// Explicit arc allowed under the current branching rules (banned copies included).
-static bool arc_usable(const sva_flow_work_t* w, const flow_shape_t* s, uint32_t e)
+// Whether the explicit arcs out of v may be used: not when v is a banned copy's
+// out-node (tested once per node).
+static bool tail_usable(const sva_flow_work_t* w, const flow_shape_t* s, uint16_t v)
 {
-    if (w->arc_ban[e] != 0U) {
-        return false;
-    }
+    return (v < (uint16_t)(s->u + s->c)) || (v >= s->depot) || copy_usable(w, (uint16_t)(v - s->u - s->c));
+}
+
+// Whether explicit arc e out of a usable tail may be used under the current branching
+// rules: not banned, and not into a banned copy.
+static bool head_usable(const sva_flow_work_t* w, const flow_shape_t* s, uint32_t e)
+{
     const uint16_t h = w->arc_head[e];
-    const uint16_t t = w->arc_tail[e];
-    if ((h >= s->u) && (h < (uint16_t)(s->u + s->c)) && !copy_usable(w, (uint16_t)(h - s->u))) {
-        return false;
-    }
-    if ((t >= (uint16_t)(s->u + s->c)) && (t < s->depot) &&
-        !copy_usable(w, (uint16_t)(t - s->u - s->c))) {
-        return false;
-    }
-    return true;
+    return (w->arc_ban[e] == 0U) &&
+           ((h < s->u) || (h >= (uint16_t)(s->u + s->c)) || copy_usable(w, (uint16_t)(h - s->u)));
+}
+
+// Length of an arc between v and h (sva_flow_arc_cost with its tail or head known).
+static int32_t leg(const sva_flow_work_t* w, uint16_t v, uint16_t h)
+{
+    return sva_distance(w->node_x[v], w->node_y[v], w->node_x[h], w->node_y[h]);
 }
 
 // ---------------------------------------------------------------------------------
@@ -170,19 +174,23 @@ static void offer(sva_flow_work_t* w, uint16_t v, uint16_t h, int64_t cost, int3
 static void scan(sva_flow_work_t* w, const flow_shape_t* s, uint16_t v)
 {
     const int32_t a = (int32_t)s->a;
-    for (uint32_t e = w->out_start[v]; e < w->out_start[v + 1U]; e++) {
-        w->work++;
-        if ((w->arc_flow[e] == 0U) && arc_usable(w, s, e)) {
-            offer(w, v, w->arc_head[e], sva_flow_arc_cost(w, e), (int32_t)e);
+    const uint32_t out_end = w->out_start[v + 1U];
+    if (tail_usable(w, s, v)) {
+        for (uint32_t e = w->out_start[v]; e < out_end; e++) {
+            if ((w->arc_flow[e] == 0U) && head_usable(w, s, e)) {
+                offer(w, v, w->arc_head[e], leg(w, v, w->arc_head[e]), (int32_t)e);
+            }
         }
     }
-    for (uint32_t k = w->in_start[v]; k < w->in_start[v + 1U]; k++) {
+    w->work += (uint64_t)out_end - (uint64_t)w->out_start[v];
+    const uint32_t in_end = w->in_start[v + 1U];
+    for (uint32_t k = w->in_start[v]; k < in_end; k++) {
         const uint32_t e = w->in_arc[k];
-        w->work++;
         if (w->arc_flow[e] != 0U) {
-            offer(w, v, w->arc_tail[e], -(int64_t)sva_flow_arc_cost(w, e), a + (int32_t)e);
+            offer(w, v, w->arc_tail[e], -(int64_t)leg(w, w->arc_tail[e], v), a + (int32_t)e);
         }
     }
+    w->work += (uint64_t)in_end - (uint64_t)w->in_start[v];
     if ((v >= s->u) && (v < (uint16_t)(s->u + s->c))) {
         const uint16_t c = (uint16_t)(v - s->u);
         if ((w->copy_forced[c] == 0U) && (w->copy_cover[c] == 0U) && copy_usable(w, c)) {
@@ -246,16 +254,19 @@ static bool init_potentials(sva_flow_work_t* w, const flow_shape_t* s)
             continue;
         }
         w->node_mark[v] |= MARK_LIVE;
-        for (uint32_t e = w->out_start[v]; e < w->out_start[v + 1U]; e++) {
-            w->work++;
-            const uint16_t h = w->arc_head[e];
-            const int64_t d = w->dist[v] + sva_flow_arc_cost(w, e);
-            if (arc_usable(w, s, e) && (d < w->dist[h])) {
-                w->dist[h] = d;
-                w->pred[h] = (int32_t)e;
-                w->pred_node[h] = v;
+        const uint32_t out_end = w->out_start[v + 1U];
+        if (tail_usable(w, s, v)) {
+            for (uint32_t e = w->out_start[v]; e < out_end; e++) {
+                const uint16_t h = w->arc_head[e];
+                const int64_t d = w->dist[v] + leg(w, v, h);
+                if ((d < w->dist[h]) && head_usable(w, s, e)) {
+                    w->dist[h] = d;
+                    w->pred[h] = (int32_t)e;
+                    w->pred_node[h] = v;
+                }
             }
         }
+        w->work += (uint64_t)out_end - (uint64_t)w->out_start[v];
         if ((v >= s->u) && (v < (uint16_t)(s->u + s->c))) {
             const uint16_t c = (uint16_t)(v - s->u);
             const int64_t d = w->dist[v] + own_cost(w, c);
