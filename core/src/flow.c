@@ -188,19 +188,19 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
     sva_stats_t* stats = &plan->stats;
     int64_t open = INT64_MAX;
     w->depth = 0U;
-    if (!root_solved && (w->work >= budget)) {
-        *incomplete = (uint8_t)SVA_FLOW_INCOMPLETE_WORK;
-        return -INT64_MAX;  // nothing searched: no bound
-    }
     if (!root_solved) {
+        if (w->work >= budget) {
+            *incomplete = (uint8_t)SVA_FLOW_INCOMPLETE_WORK;
+            return -INT64_MAX;  // nothing searched: no bound
+        }
         stats->search_nodes++;
-    }
-    if (!root_solved && !sva_flow_solve(w, stats)) {
-        // Cannot happen: every UAV that is not stranded may fly home, and the root
-        // forces nothing. Claim nothing if it does.
-        SVA_ASSERT(false);
-        *incomplete = (uint8_t)SVA_FLOW_INCOMPLETE_DEPTH;
-        return INT64_MIN / 4;
+        if (!sva_flow_solve(w, stats)) {
+            // Cannot happen: every UAV that is not stranded may fly home, and the root
+            // forces nothing. Claim nothing if it does.
+            SVA_ASSERT(false);
+            *incomplete = (uint8_t)SVA_FLOW_INCOMPLETE_DEPTH;
+            return INT64_MIN / 4;
+        }
     }
     if (w->value >= w->inc_value) {
         return open;

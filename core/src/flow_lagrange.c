@@ -463,9 +463,9 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     // already proves a plan covering every target.
     plan->stats.flow_dive_routes = 0U;
     const int64_t before_dive = (ph.best > lp_value) ? ph.best : lp_value;
-    const bool done = (covered == (int64_t)m->target_count) && (before_dive != NO_BOUND) &&
-                      (ceil_div(before_dive, s) >= cost);
-    if (master_solved && !done && sva_flow_lp_dive(priv, m, plan, w->work + (left / 8U))) {
+    const bool proven_full = (covered == (int64_t)m->target_count) && (before_dive != NO_BOUND) &&
+                             (ceil_div(before_dive, s) >= cost);
+    if (master_solved && !proven_full && sva_flow_lp_dive(priv, m, plan, w->work + (left / 8U))) {
         plan->stats.flow_dive_routes = w->lp.fixed_count;
         sva_flow_repair(priv, m, plan, true);
         sva_flow_incumbent(priv, m, plan, &cost, &covered);
