@@ -215,6 +215,23 @@ static void index_heads(sva_flow_work_t* w, uint32_t nodes)
     w->in_start[0] = 0U;
 }
 
+// UAVs in the same state (position, ready time, fuel) share a group: the first of them.
+static void group_uavs(sva_flow_lagrange_t* lg, const sva_mission_t* m)
+{
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        const sva_uav_t* a = &m->uavs[u];
+        lg->group[u] = u;
+        for (uint16_t v = 0U; v < u; v++) {
+            const sva_uav_t* b = &m->uavs[v];
+            if ((a->x == b->x) && (a->y == b->y) && (a->ready_at_ticks == b->ready_at_ticks) &&
+                (a->fuel == b->fuel)) {
+                lg->group[u] = v;
+                break;
+            }
+        }
+    }
+}
+
 uint8_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan,
                        sva_stats_t* stats)
 {
@@ -241,6 +258,7 @@ uint8_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m, const s
         }
     }
     place_nodes(w, m);
+    group_uavs(&w->lagrange, m);
     set_rewards(w, m, widest_leg(w));
 
     fuel_labels(priv, m, plan);

@@ -201,22 +201,6 @@ int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t
     return best;
 }
 
-static void group_uavs(sva_flow_lagrange_t* lg, const sva_mission_t* m)
-{
-    for (uint16_t u = 0U; u < m->uav_count; u++) {
-        const sva_uav_t* a = &m->uavs[u];
-        lg->group[u] = u;
-        for (uint16_t v = 0U; v < u; v++) {
-            const sva_uav_t* b = &m->uavs[v];
-            if ((a->x == b->x) && (a->y == b->y) && (a->ready_at_ticks == b->ready_at_ticks) &&
-                (a->fuel == b->fuel)) {
-                lg->group[u] = v;
-                break;
-            }
-        }
-    }
-}
-
 // One evaluation of the Lagrangian at the current prices (prices' units); fills
 // lg->grad, and the visits of every target.
 static int64_t evaluate(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
@@ -410,7 +394,6 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
 {
     sva_flow_work_t* w = &priv->flow;
     const int64_t s = SVA_FLOW_PRICE_SCALE;
-    group_uavs(&w->lagrange, m);
     int64_t cost = 0;
     int64_t covered = 0;
     sva_flow_incumbent(priv, m, plan, &cost, &covered);

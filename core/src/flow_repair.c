@@ -99,24 +99,10 @@ bool sva_flow_offer_plan(sva_planner_priv_t* priv, const sva_mission_t* m, const
     return true;
 }
 
-// Whether target a comes before target b in window order (start, end, id).
-static bool window_before(const sva_mission_t* m, uint16_t a, uint16_t b)
-{
-    const sva_target_t* ta = &m->targets[a];
-    const sva_target_t* tb = &m->targets[b];
-    if (ta->start_ticks != tb->start_ticks) {
-        return ta->start_ticks < tb->start_ticks;
-    }
-    if (ta->end_ticks != tb->end_ticks) {
-        return ta->end_ticks < tb->end_ticks;
-    }
-    return ta->id < tb->id;
-}
-
 // Whether the incumbent's route from copy a comes before the one from copy b: their
-// targets compared in window order, a route before its own extensions, an empty route
-// (ROUTE_END) last.
-static bool route_before(const sva_flow_work_t* w, const sva_mission_t* m, uint16_t a, uint16_t b)
+// targets compared in window order (copy ids follow it: flow_graph.c), a route before
+// its own extensions, an empty route (ROUTE_END) last.
+static bool route_before(const sva_flow_work_t* w, uint16_t a, uint16_t b)
 {
     if ((a == ROUTE_END) || (b == ROUTE_END)) {
         return (a != ROUTE_END) && (b == ROUTE_END);
@@ -130,12 +116,7 @@ static bool route_before(const sva_flow_work_t* w, const sva_mission_t* m, uint1
     if ((ca == ROUTE_END) || (cb == ROUTE_END)) {
         return (ca == ROUTE_END) && (cb != ROUTE_END);  // a proper prefix first
     }
-    return window_before(m, w->copy_target[ca], w->copy_target[cb]);
-}
-
-static bool uavs_alike(const sva_uav_t* a, const sva_uav_t* b)
-{
-    return (a->x == b->x) && (a->y == b->y) && (a->fuel == b->fuel) && (a->ready_at_ticks == b->ready_at_ticks);
+    return ca < cb;
 }
 
 void sva_flow_canonical_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m)
@@ -145,7 +126,7 @@ void sva_flow_canonical_incumbent(sva_planner_priv_t* priv, const sva_mission_t*
         const uint16_t a = priv->uav_order[i];
         for (uint16_t j = (uint16_t)(i + 1U); j < m->uav_count; j++) {
             const uint16_t b = priv->uav_order[j];
-            if (uavs_alike(&m->uavs[a], &m->uavs[b]) && route_before(w, m, w->inc_first[b], w->inc_first[a])) {
+            if ((w->lagrange.group[a] == w->lagrange.group[b]) && route_before(w, w->inc_first[b], w->inc_first[a])) {
                 const uint16_t first = w->inc_first[a];
                 w->inc_first[a] = w->inc_first[b];
                 w->inc_first[b] = first;
@@ -821,11 +802,11 @@ bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     int64_t cost = 0;
     int64_t covered = 0;
     sva_flow_incumbent(priv, m, plan, &cost, &covered);
-    // Not when the coverage is proven and the plan within 1/64 of the bound: the
-    // search, with the rest of the budget, may prove it.
     if (proven_bound >= cost) {
         return true;  // proven optimal: nothing to find
     }
+    // Not when the coverage is proven and the plan within 1/64 of the bound: the
+    // search, with the rest of the budget, may prove it.
     const bool near = (proven_bound >= 0) && ((cost - proven_bound) <= (cost / 64));
     const uint64_t rest = ((end > w->work) && !near) ? (end - w->work) : 0U;
     const uint64_t budget = w->work + (rest - (rest / 4U));

@@ -278,7 +278,7 @@ typedef struct {
     /// budget, 2 SVA_FLOW_MAX_DEPTH, 3 needs whose lcm is too large for exact ties;
     /// 4 needs summed above SVA_FLOW_MAX_COPIES, 5 graph above SVA_FLOW_MAX_ARCS (4 and
     /// 5: no relaxation, lower_bound 0; the plan is the better of ga's and sva's, with
-    /// 5 after the repair and local search).
+    /// 5 after the repair, the local search and ruin and recreate).
     uint8_t flow_incomplete;
     /// Ruin-and-recreate rounds (0: the search or the Lagrangian phase proved the plan,
     /// or left it within 1/64 of the bound, or no budget was left).
@@ -422,7 +422,7 @@ typedef struct {
     int32_t label_fuel[SVA_MAX_TARGETS * SVA_FLOW_LABELS];  ///< fuel used so far
     uint32_t label_pred[SVA_MAX_TARGETS * SVA_FLOW_LABELS]; ///< previous label or none
     uint8_t label_count[SVA_MAX_TARGETS];
-    uint16_t group[SVA_MAX_UAVS];         ///< first UAV in the same state
+    uint16_t group[SVA_MAX_UAVS];         ///< first UAV in the same state (flow_graph.c)
     uint16_t path[SVA_MAX_TARGETS];       ///< the last shortest path's targets
     uint16_t path_len;
 } sva_flow_lagrange_t;
