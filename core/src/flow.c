@@ -299,6 +299,68 @@ static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* p
     plan->stats.flow_incomplete = why;
 }
 
+// The pooled graph's relaxation value (flow_graph.c): a lower bound on cost - reward of
+// every plan, for missions whose copies' arcs do not fit. -(INT64_MAX / 4) (no bound) when
+// no need exceeds 1 (the pooled graph is the unit one), a need exceeds UINT8_MAX, or
+// the pooled graph does not fit either. Leaves the graph pooled.
+static int64_t pooled_value(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+{
+    int32_t need_max = 1;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        need_max = (m->targets[t].need > need_max) ? m->targets[t].need : need_max;
+    }
+    if ((need_max == 1) || (need_max > (int32_t)UINT8_MAX) ||
+        (sva_flow_build(priv, m, plan, true, &plan->stats) != 0U) ||
+        !sva_flow_solve(&priv->flow, &plan->stats)) {
+        return -(INT64_MAX / 4);  // the solve cannot fail at the root; claim nothing if it does
+    }
+    return priv->flow.value;
+}
+
+// The incumbent into *plan with its stats: the lower bound and whether it is proven
+// optimal. open: the least bound of the nodes left open (INT64_MAX: none), or any lower
+// bound on cost - reward of every plan; lagrange_bound: a bound on the cost (0: none);
+// incomplete: why the search stopped short.
+static void finish(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, int64_t open,
+                   int64_t lagrange_bound, bool coverage_known, uint8_t incomplete)
+{
+    sva_flow_work_t* w = &priv->flow;
+    sva_stats_t* stats = &plan->stats;
+    sva_flow_canonical_incumbent(priv, m);
+    sva_flow_write_incumbent(priv, m, plan);
+
+    // Any plan p: cost(p) - reward(p) >= min(best, open). A plan covering c targets
+    // earns c * W (exact rewards) or at least c * (W - need + 1), and costs at most
+    // w->max_cost < W.
+    int32_t need_max = 1;
+    int64_t covered = 0;
+    int64_t reward = 0;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        need_max = (m->targets[t].need > need_max) ? m->targets[t].need : need_max;
+        if ((int32_t)priv->target_served[t] == m->targets[t].need) {
+            covered++;
+            reward += (int64_t)m->targets[t].need * w->copy_reward[w->target_first_copy[t]];
+        }
+    }
+    const int64_t cost = w->inc_value + reward;
+    const int64_t least_whole = w->reward_exact ? w->reward_whole : (w->reward_whole - need_max + 1);
+    const int64_t floor_value = min64(w->inc_value, open);
+    int64_t bound = floor_value + (covered * least_whole);
+    bound = (bound < lagrange_bound) ? lagrange_bound : bound;
+    bound = (bound < 0) ? 0 : bound;
+    // No open node holds a plan covering one target more: such a plan's value is at
+    // most max_cost - (covered + 1) * least_whole.
+    const bool coverage_proven =
+        coverage_known || (floor_value > (w->max_cost - ((covered + 1) * least_whole)));
+    stats->has_bound = true;
+    stats->lower_bound = (bound > cost) ? cost : bound;
+    stats->optimal = w->reward_exact &&
+                     (((incomplete == (uint8_t)SVA_FLOW_COMPLETE) && (open == INT64_MAX)) ||
+                      (coverage_proven && (bound >= cost)));
+    stats->flow_incomplete = stats->optimal ? (uint8_t)SVA_FLOW_COMPLETE : incomplete;
+    stats->flow_work = w->work;
+}
+
 sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan)
 {
     sva_planner_priv_t* priv = &self->priv;
@@ -312,19 +374,17 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     w->work = 0U;
     w->local_work = budget / 2U;
     stats->search_nodes = 0U;
-    const uint8_t over = sva_flow_build(priv, m, plan, stats);
+    uint8_t over = sva_flow_build(priv, m, plan, false, stats);
     if (over == (uint8_t)SVA_FLOW_OVER_ARCS) {
-        // No relaxation, but the copies and rewards are in place: the seeds still go
+        // No search: the bound comes from the pooled graph's relaxation, when it fits.
+        // Then the copies again (the repair's plans are in copies): the seeds go
         // through the repair and the local search, then ruin and recreate.
+        const int64_t pooled = pooled_value(priv, m, plan);
+        over = sva_flow_build(priv, m, plan, false, stats);
+        SVA_ASSERT(over == (uint8_t)SVA_FLOW_OVER_ARCS);
         seed(self, m, plan);
         (void)sva_flow_ruin_recreate(priv, m, plan, w->work + budget, -1);
-        sva_flow_canonical_incumbent(priv, m);
-        sva_flow_write_incumbent(priv, m, plan);
-        stats->has_bound = true;
-        stats->lower_bound = 0;
-        stats->optimal = false;
-        stats->flow_incomplete = over;
-        stats->flow_work = w->work;
+        finish(priv, m, plan, pooled, 0, false, (uint8_t)SVA_FLOW_OVER_ARCS);
         return SVA_OK;
     }
     if (over != 0U) {
@@ -361,37 +421,6 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
             incomplete = (open_again == INT64_MAX) ? again : incomplete;
         }
     }
-    sva_flow_canonical_incumbent(priv, m);
-    sva_flow_write_incumbent(priv, m, plan);
-
-    // Any plan p: cost(p) - reward(p) >= min(best, open). A plan covering c targets
-    // earns c * W (exact rewards) or at least c * (W - need + 1), and costs at most
-    // w->max_cost < W.
-    int32_t need_max = 1;
-    int64_t covered = 0;
-    int64_t reward = 0;
-    for (uint16_t t = 0U; t < m->target_count; t++) {
-        need_max = (m->targets[t].need > need_max) ? m->targets[t].need : need_max;
-        if ((int32_t)priv->target_served[t] == m->targets[t].need) {
-            covered++;
-            reward += (int64_t)m->targets[t].need * w->copy_reward[w->target_first_copy[t]];
-        }
-    }
-    const int64_t cost = w->inc_value + reward;
-    const int64_t least_whole = w->reward_exact ? w->reward_whole : (w->reward_whole - need_max + 1);
-    const int64_t floor_value = min64(w->inc_value, open);
-    int64_t bound = floor_value + (covered * least_whole);
-    bound = (bound < lagrange_bound) ? lagrange_bound : bound;
-    bound = (bound < 0) ? 0 : bound;
-    // No open node holds a plan covering one target more: such a plan's value is at
-    // most max_cost - (covered + 1) * least_whole.
-    coverage_proven = coverage_proven || (floor_value > (w->max_cost - ((covered + 1) * least_whole)));
-    stats->has_bound = true;
-    stats->lower_bound = (bound > cost) ? cost : bound;
-    stats->optimal = w->reward_exact &&
-                     (((incomplete == (uint8_t)SVA_FLOW_COMPLETE) && (open == INT64_MAX)) ||
-                      (coverage_proven && (bound >= cost)));
-    stats->flow_incomplete = stats->optimal ? (uint8_t)SVA_FLOW_COMPLETE : incomplete;
-    stats->flow_work = w->work;
+    finish(priv, m, plan, open, lagrange_bound, coverage_proven, incomplete);
     return SVA_OK;
 }

@@ -1,7 +1,11 @@
 // flow_graph.c -- flow's time-feasibility graph (DESIGN.md section 7).
 //
 // A target with need n becomes n copies of need 1, so every node carries at most one
-// unit and a flow decomposes into routes in exactly one way. Node ids:
+// unit and a flow decomposes into routes in exactly one way. The pooled graph (for the
+// bound alone, when the copies' arcs do not fit) keeps one copy per target whose own
+// arc carries up to n units: the same relaxation value, with about a quarter of the
+// arcs at need 2 (copies of a target are interchangeable, and a path through the DAG
+// visits a target once). Node ids:
 //   0 .. U-1          the UAVs (mission order); a stranded UAV has no arcs
 //   U .. U+C-1        copy c's in-node  (U + c)
 //   U+C .. U+2C-1     copy c's out-node (U + C + c); in -> out is the copy's own arc
@@ -30,7 +34,12 @@ static void set_rewards(sva_flow_work_t* w, const sva_mission_t* m, int64_t wide
     for (uint16_t t = 0U; t < m->target_count; t++) {
         need_max = (m->targets[t].need > need_max) ? m->targets[t].need : need_max;
     }
-    const int64_t max_cost = ((int64_t)w->uavs + (int64_t)w->copies) * widest_leg;
+    // Units cross arcs: at most one per UAV and one per slot (need summed) on their way.
+    int64_t slots = 0;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        slots += m->targets[t].need;
+    }
+    const int64_t max_cost = ((int64_t)w->uavs + slots) * widest_leg;
     const int64_t base =
         max_cost + 1 + ((int64_t)m->target_count * (int64_t)need_max);
     const int64_t room = FLOW_INT64_LIMIT / (base * ((int64_t)m->target_count + 1));
@@ -233,24 +242,26 @@ static void group_uavs(sva_flow_lagrange_t* lg, const sva_mission_t* m)
 }
 
 uint8_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan,
-                       sva_stats_t* stats)
+                       bool pooled, sva_stats_t* stats)
 {
     sva_flow_work_t* w = &priv->flow;
-    int64_t slots = 0;
+    int64_t copies = 0;
     for (uint16_t t = 0U; t < m->target_count; t++) {
-        slots += m->targets[t].need;
+        copies += pooled ? 1 : m->targets[t].need;
     }
-    if (slots > SVA_FLOW_MAX_COPIES) {
+    if (copies > SVA_FLOW_MAX_COPIES) {
         return SVA_FLOW_OVER_COPIES;
     }
     w->uavs = m->uav_count;
-    w->copies = (uint16_t)slots;
+    w->copies = (uint16_t)copies;
     uint16_t c = 0U;
     for (uint16_t i = 0U; i < m->target_count; i++) {
         const uint16_t t = priv->target_order[i];
+        const int32_t need = m->targets[t].need;
         w->target_first_copy[t] = c;
-        for (int32_t k = 0; k < m->targets[t].need; k++) {
+        for (int32_t k = 0; k < (pooled ? 1 : need); k++) {
             w->copy_target[c] = t;
+            w->copy_units[c] = (uint8_t)(pooled ? need : 1);  // pooled: need <= UINT8_MAX
             w->copy_cover[c] = 0U;
             w->copy_forced[c] = 0U;
             w->copy_banned[c] = 0U;

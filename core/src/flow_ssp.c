@@ -7,9 +7,11 @@
 // minus the copy's reward on a copy's own arc. Potentials start as DAG shortest
 // distances (copy ids are a topological order), so reduced costs are never negative;
 // the first unit follows that pass's shortest path, and each further augmenting path
-// is a Dijkstra run over a static binary heap. Every arc
-// carries 0 or 1 unit, so all of it is integer; the relaxation value is a lower
-// bound on cost - reward of every plan that satisfies the node's branching rules.
+// is a Dijkstra run over a static binary heap. A copy's own arc carries up to its
+// copy_units (1; a target's need in the pooled graph), explicit arcs are uncapacitated
+// (with unit copies no arc can carry two units: its tail holds at most one), and
+// every unit is whole; the relaxation value is a lower bound on cost - reward of
+// every plan that satisfies the node's branching rules.
 #include "sva_internal.h"
 
 #define FLOW_INF (INT64_MAX / 2)
@@ -177,7 +179,7 @@ static void scan(sva_flow_work_t* w, const flow_shape_t* s, uint16_t v)
     const uint32_t out_end = w->out_start[v + 1U];
     if (tail_usable(w, s, v)) {
         for (uint32_t e = w->out_start[v]; e < out_end; e++) {
-            if ((w->arc_flow[e] == 0U) && head_usable(w, s, e)) {
+            if (head_usable(w, s, e)) {
                 offer(w, v, w->arc_head[e], leg(w, v, w->arc_head[e]), (int32_t)e);
             }
         }
@@ -193,7 +195,7 @@ static void scan(sva_flow_work_t* w, const flow_shape_t* s, uint16_t v)
     w->work += (uint64_t)in_end - (uint64_t)w->in_start[v];
     if ((v >= s->u) && (v < (uint16_t)(s->u + s->c))) {
         const uint16_t c = (uint16_t)(v - s->u);
-        if ((w->copy_forced[c] == 0U) && (w->copy_cover[c] == 0U) && copy_usable(w, c)) {
+        if ((w->copy_forced[c] == 0U) && (w->copy_cover[c] < w->copy_units[c]) && copy_usable(w, c)) {
             offer(w, v, (uint16_t)(v + s->c), own_cost(w, c), (2 * a) + (int32_t)c);
         }
     } else if ((v >= (uint16_t)(s->u + s->c)) && (v < s->depot)) {
@@ -308,13 +310,13 @@ static void flip_path(sva_flow_work_t* w, const flow_shape_t* s)
     while (w->pred[v] != PRED_START) {
         const int32_t p = w->pred[v];
         if (p < a) {
-            w->arc_flow[p] = 1U;
+            w->arc_flow[p]++;
         } else if (p < (2 * a)) {
-            w->arc_flow[p - a] = 0U;
+            w->arc_flow[p - a]--;
         } else if (p < ((2 * a) + (int32_t)s->c)) {
-            w->copy_cover[p - (2 * a)] = 1U;
+            w->copy_cover[p - (2 * a)]++;
         } else {
-            w->copy_cover[p - (2 * a) - (int32_t)s->c] = 0U;
+            w->copy_cover[p - (2 * a) - (int32_t)s->c]--;
         }
         v = w->pred_node[v];
     }
@@ -365,12 +367,14 @@ static int64_t relaxation_value(const sva_flow_work_t* w, const flow_shape_t* s)
     int64_t value = 0;
     for (uint32_t e = 0U; e < s->a; e++) {
         if (w->arc_flow[e] != 0U) {
-            value += sva_flow_arc_cost(w, e);
+            value += (int64_t)w->arc_flow[e] * sva_flow_arc_cost(w, e);
         }
     }
     for (uint16_t c = 0U; c < s->c; c++) {
-        if ((w->copy_cover[c] != 0U) || ((w->copy_forced[c] != 0U) && copy_usable(w, c))) {
-            value -= w->copy_reward[c];
+        if ((w->copy_forced[c] != 0U) && copy_usable(w, c)) {
+            value -= w->copy_reward[c];  // forced copies exist in the unit graph alone
+        } else {
+            value -= (int64_t)w->copy_cover[c] * w->copy_reward[c];
         }
     }
     return value;

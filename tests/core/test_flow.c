@@ -21,6 +21,7 @@
 #include "brute_force.h"
 #include "mission_gen.h"
 #include "checked_plan.h"
+#include "flow_certificate.h"
 #include "spec_checker.h"
 #include "sva/sva.h"
 
@@ -34,39 +35,6 @@ static void must_plan(sva_algorithm_t algorithm, sva_plan_t* out, uint64_t seed,
     char why[320] = "";
     if (checked_plan(&planner, &mission, algorithm, out, why, sizeof(why)) != 0) {
         fail_msg("seed %llu round %d %s", (unsigned long long)seed, round, why);
-    }
-}
-
-static void check_certificate(const sva_plan_t* p, uint64_t seed, int round)
-{
-    if (!p->stats.has_bound || p->stats.lower_bound < 0 || p->stats.lower_bound > p->cost) {
-        fail_msg("seed %llu round %d: bound %lld outside [0, cost %lld]", (unsigned long long)seed,
-                 round, (long long)p->stats.lower_bound, (long long)p->cost);
-    }
-    if (p->stats.optimal && p->stats.lower_bound != p->cost) {
-        fail_msg("seed %llu round %d: optimal but bound %lld != cost %lld", (unsigned long long)seed,
-                 round, (long long)p->stats.lower_bound, (long long)p->cost);
-    }
-}
-
-// A flow plan against the brute-force optimum: checked certificate, never better than
-// the optimum, "optimal" only when it is, and a bound at most the optimum's cost when
-// it covers no more targets than the optimum.
-static void check_against_optimum(const sva_plan_t* p, const brute_result_t* best, uint64_t seed, int round)
-{
-    check_certificate(p, seed, round);
-    if (spec_better(p->covered, p->cost, best->covered, best->cost)) {
-        fail_msg("seed %llu round %d: flow (%d, %lld) beats the optimum (%d, %lld)", (unsigned long long)seed,
-                 round, p->covered, (long long)p->cost, best->covered, best->cost);
-    }
-    if (p->stats.optimal && (p->covered != best->covered || p->cost != best->cost)) {
-        fail_msg("seed %llu round %d: flow claims optimal (%d, %lld), optimum (%d, %lld)",
-                 (unsigned long long)seed, round, p->covered, (long long)p->cost, best->covered, best->cost);
-    }
-    if (p->covered <= best->covered && p->stats.lower_bound > best->cost) {
-        fail_msg("seed %llu round %d: bound %lld above the optimum %lld (covering %d <= %d)",
-                 (unsigned long long)seed, round, (long long)p->stats.lower_bound, best->cost, p->covered,
-                 best->covered);
     }
 }
 

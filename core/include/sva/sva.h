@@ -477,6 +477,7 @@ typedef struct {
     uint8_t arc_flow[SVA_FLOW_MAX_ARCS];
     uint8_t arc_ban[SVA_FLOW_MAX_ARCS];           ///< banning levels (0: allowed)
     uint8_t copy_cover[SVA_FLOW_MAX_COPIES];      ///< flow on the copy's own arc
+    uint8_t copy_units[SVA_FLOW_MAX_COPIES];      ///< its capacity: 1, need when pooled
     uint8_t copy_forced[SVA_FLOW_MAX_COPIES];     ///< forcing levels
     uint8_t copy_banned[SVA_FLOW_MAX_COPIES];     ///< banning levels
     // Shortest augmenting paths (Dijkstra with potentials, static binary heap).

@@ -1,0 +1,150 @@
+// flow's pooled graph (core/src/flow_graph.c): one node per target carrying its need,
+// which gives flow its bound when the graph of copies is past SVA_FLOW_MAX_ARCS. Built
+// against a core whose arc bound is SVA_FLOW_MAX_ARCS 48, so that small missions with
+// need 2 go past it and brute force can judge the bound:
+// - where both graphs fit, the pooled relaxation's value equals the copies' (the same
+//   min-cost flow: copies of a target are interchangeable);
+// - past the arc bound: a bound from the pooled graph that never exceeds the optimum,
+//   "optimal" only when it is, and every plan checked; with need 1 everywhere the
+//   pooled graph is the copies' and there is no bound (0).
+// Seeds are printed and replayable (SVA_TEST_SEED=...).
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <cmocka.h>
+
+#include "brute_force.h"
+#include "checked_plan.h"
+#include "flow_certificate.h"
+#include "mission_gen.h"
+#include "sva_internal.h"
+
+static sva_planner_t planner;
+static sva_mission_t mission;
+static sva_plan_t plan;
+
+// Small missions with needs 1 and 2, fuel often binding; `spread` widens the horizon
+// and shrinks the grid, so more windows chain (more arcs).
+static void next_mission(test_rng_t* rng, int targets_min, int targets_max, bool spread)
+{
+    const test_gen_params_t p = {test_rng_range(rng, targets_min, targets_max), test_rng_range(rng, 2, 3),
+                                 spread ? 10 : 20, 4, 15, spread ? 120 : 60, 2, test_rng_range(rng, 30, spread ? 90 : 60),
+                                 spread ? 120 : 70, 2, 1, test_rng_range(rng, 0, 1), 0};
+    test_gen_mission(rng, &p, &mission);
+}
+
+static void test_pooled_relaxation_equals_the_copies(void** state)
+{
+    (void)state;
+    const uint64_t seed = test_seed(0x9001EDULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    sva_planner_priv_t* priv = &planner.priv;
+    int compared = 0;
+    for (int round = 0; round < 400; round++) {
+        next_mission(&rng, 3, 4, false);
+        sva_state_reset(priv, &mission, &plan);
+        if (sva_flow_build(priv, &mission, &plan, false, &plan.stats) != 0U) {
+            continue;  // the copies do not fit this core
+        }
+        const uint32_t copy_arcs = plan.stats.flow_graph_arcs;
+        assert_true(sva_flow_solve(&priv->flow, &plan.stats));
+        const int64_t copies_value = priv->flow.value;
+        assert_int_equal(sva_flow_build(priv, &mission, &plan, true, &plan.stats), 0);
+        assert_true(plan.stats.flow_graph_arcs <= copy_arcs);
+        assert_true(sva_flow_solve(&priv->flow, &plan.stats));
+        if (priv->flow.value != copies_value) {
+            fail_msg("seed %llu round %d: pooled value %lld, copies %lld", (unsigned long long)seed, round,
+                     (long long)priv->flow.value, (long long)copies_value);
+        }
+        compared++;
+    }
+    printf("# pooled and copies' relaxations compared on %d of 400 missions\n", compared);
+    assert_true(compared >= 100);
+}
+
+static void test_past_the_arc_bound_the_pooled_bound_holds(void** state)
+{
+    (void)state;
+    const uint64_t seed = test_seed(0x9002EDULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    int past = 0;
+    int full = 0;     // of those, covering every target
+    int bounded = 0;  // of those, with a bound above 0
+    int proven = 0;   // of those, proven optimal
+    for (int round = 0; round < 400; round++) {
+        next_mission(&rng, 5, 6, true);
+        const brute_result_t best = brute_force_optimum(&mission);
+        char why[320] = "";
+        if (checked_plan(&planner, &mission, SVA_ALGO_FLOW, &plan, why, sizeof(why)) != 0) {
+            fail_msg("seed %llu round %d %s", (unsigned long long)seed, round, why);
+        }
+        check_against_optimum(&plan, &best, seed, round);
+        if (plan.stats.flow_graph_arcs > (uint32_t)SVA_FLOW_MAX_ARCS) {
+            assert_int_equal(plan.stats.flow_incomplete, plan.stats.optimal ? 0 : 5);
+            past++;
+            // Fewer targets than the fuel-free relaxation covers get the bound 0 (it
+            // earns more rewards); every target covered gets the relaxation's cost, above
+            // 0 when some UAV leaves the depot. The pooled graph always fits here (6
+            // targets and 3 UAVs: at most 18 + 15 + 6 + 3 arcs).
+            if (plan.covered == mission.target_count) {
+                full++;
+                bounded += (plan.stats.lower_bound > 0) ? 1 : 0;
+                proven += plan.stats.optimal ? 1 : 0;
+            }
+        }
+    }
+    printf("# 400 missions: %d past the arc bound, %d of them covering every target, %d with a bound, %d "
+           "proven optimal\n", past, full, bounded, proven);
+    assert_true(past >= 100);
+    assert_true(full >= 15);
+    assert_int_equal(bounded, full);
+    assert_true(proven > 0);
+}
+
+static void test_need_one_past_the_arc_bound_has_no_bound(void** state)
+{
+    (void)state;
+    // 12 chained windows, 2 UAVs, need 1: 2 * 12 + 66 + 12 + 2 = 104 arcs.
+    sva_mission_init(&mission);
+    mission.uav_count = 2;
+    for (int32_t u = 0; u < 2; u++) {
+        mission.uavs[u] = (sva_uav_t){u + 1, 0, 0, 1000, 0};
+    }
+    mission.target_count = 12;
+    for (int32_t t = 0; t < 12; t++) {
+        mission.targets[t] = (sva_target_t){t + 1, t % 3, t % 4, 100 + (20 * t), 105 + (20 * t), 1};
+    }
+    char why[320] = "";
+    if (checked_plan(&planner, &mission, SVA_ALGO_FLOW, &plan, why, sizeof(why)) != 0) {
+        fail_msg("%s", why);
+    }
+    assert_true(plan.stats.flow_graph_arcs > (uint32_t)SVA_FLOW_MAX_ARCS);
+    assert_int_equal(plan.stats.flow_incomplete, 5);
+    assert_int_equal(plan.stats.lower_bound, 0);
+    assert_false(plan.stats.optimal);
+    // With need 2 the pooled graph holds the same 104 arcs: still past, still no bound.
+    for (int32_t t = 0; t < 12; t++) {
+        mission.targets[t].need = 2;
+    }
+    if (checked_plan(&planner, &mission, SVA_ALGO_FLOW, &plan, why, sizeof(why)) != 0) {
+        fail_msg("%s", why);
+    }
+    assert_int_equal(plan.stats.flow_incomplete, 5);
+    assert_int_equal(plan.stats.lower_bound, 0);
+}
+
+int main(void)
+{
+    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_pooled_relaxation_equals_the_copies),
+        cmocka_unit_test(test_past_the_arc_bound_the_pooled_bound_holds),
+        cmocka_unit_test(test_need_one_past_the_arc_bound_has_no_bound),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
