@@ -302,8 +302,9 @@ static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* p
 // The pooled graph's relaxation value (flow_graph.c): a lower bound on cost - reward of
 // every plan, for missions whose copies' arcs do not fit. -(INT64_MAX / 4) (no bound) when
 // no need exceeds 1 (the pooled graph is the unit one), a need exceeds UINT8_MAX, or
-// the pooled graph does not fit either. Leaves the graph pooled.
-static int64_t pooled_value(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+// the pooled graph does not fit either. Otherwise its flow's routes are in *plan
+// (sva_flow_pooled_routes) and *whole says whether they are a plan.
+static int64_t pooled_value(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, bool* whole)
 {
     int32_t need_max = 1;
     for (uint16_t t = 0U; t < m->target_count; t++) {
@@ -314,7 +315,9 @@ static int64_t pooled_value(sva_planner_priv_t* priv, const sva_mission_t* m, sv
         !sva_flow_solve(&priv->flow, &plan->stats)) {
         return -(INT64_MAX / 4);  // the solve cannot fail at the root; claim nothing if it does
     }
-    return priv->flow.value;
+    const int64_t value = priv->flow.value;
+    *whole = sva_flow_pooled_routes(priv, m, plan);
+    return value;
 }
 
 // The incumbent into *plan with its stats: the lower bound and whether it is proven
@@ -379,11 +382,28 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
         // No search: the bound comes from the pooled graph's relaxation, when it fits.
         // Then the copies again (the repair's plans are in copies): the seeds go
         // through the repair and the local search, then ruin and recreate.
-        const int64_t pooled = pooled_value(priv, m, plan);
+        bool whole = false;
+        const int64_t pooled = pooled_value(priv, m, plan, &whole);
         over = sva_flow_build(priv, m, plan, false, stats);
         SVA_ASSERT(over == (uint8_t)SVA_FLOW_OVER_ARCS);
-        seed(self, m, plan);
-        (void)sva_flow_ruin_recreate(priv, m, plan, w->work + budget, -1);
+        bool proven = false;
+        if (pooled > -(INT64_MAX / 4)) {
+            // The pooled flow's routes are the first incumbent: as they are when they
+            // are a plan (then the optimum, with exact rewards), else repaired.
+            const sva_stats_t kept = *stats;
+            if (whole) {
+                (void)sva_flow_offer_plan(priv, m, plan);
+            } else {
+                sva_flow_repair(priv, m, plan, true);
+            }
+            *stats = kept;
+            sva_state_reset(priv, m, plan);
+            proven = w->reward_exact && (w->inc_value <= pooled);
+        }
+        if (!proven) {
+            seed(self, m, plan);
+            (void)sva_flow_ruin_recreate(priv, m, plan, w->work + budget, -1);
+        }
         finish(priv, m, plan, pooled, 0, false, (uint8_t)SVA_FLOW_OVER_ARCS);
         return SVA_OK;
     }
