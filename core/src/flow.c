@@ -304,6 +304,7 @@ static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* p
 // no need exceeds 1 (the pooled graph is the unit one), a need exceeds UINT8_MAX, or
 // the pooled graph does not fit either. Otherwise its flow's routes are in *plan
 // (sva_flow_pooled_routes) and *whole says whether they are a plan.
+#if SVA_FLOW_POOLED
 static int64_t pooled_value(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, bool* whole)
 {
     int32_t need_max = 1;
@@ -319,6 +320,17 @@ static int64_t pooled_value(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     *whole = sva_flow_pooled_routes(priv, m, plan);
     return value;
 }
+#else
+// Every graph of copies fits this build's SVA_FLOW_MAX_ARCS: never called past it.
+static int64_t pooled_value(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, bool* whole)
+{
+    (void)priv;
+    (void)m;
+    (void)plan;
+    *whole = false;
+    return -(INT64_MAX / 4);
+}
+#endif
 
 // The incumbent into *plan with its stats: the lower bound and whether it is proven
 // optimal. open: the least bound of the nodes left open (INT64_MAX: none), or any lower

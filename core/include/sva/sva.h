@@ -276,9 +276,12 @@ typedef struct {
     uint8_t flow_cover_dive;
     /// Why flow did not prove optimality: 0 it did (or the search finished), 1 work
     /// budget, 2 SVA_FLOW_MAX_DEPTH, 3 needs whose lcm is too large for exact ties;
-    /// 4 needs summed above SVA_FLOW_MAX_COPIES, 5 graph above SVA_FLOW_MAX_ARCS (4 and
-    /// 5: no relaxation, lower_bound 0; the plan is the better of ga's and sva's, with
-    /// 5 after the repair, the local search and ruin and recreate).
+    /// 4 needs summed above SVA_FLOW_MAX_COPIES (no relaxation, lower_bound 0; the plan
+    /// is the better of ga's and sva's); 5 graph of copies above SVA_FLOW_MAX_ARCS: no
+    /// search; with a need above 1 the bound is the pooled graph's relaxation (one node
+    /// per target) when that fits, else 0; the plan is the pooled flow's routes, and
+    /// unless they are proven optimal (then 0 here), the better of them and ga's and
+    /// sva's plans after the repair, the local search and ruin and recreate.
     uint8_t flow_incomplete;
     /// Ruin-and-recreate rounds (0: the search or the Lagrangian phase proved the plan,
     /// or left it within 1/64 of the bound, or no budget was left).
