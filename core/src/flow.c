@@ -304,7 +304,6 @@ static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* p
 // no need exceeds 1 (the pooled graph is the unit one), a need exceeds UINT8_MAX, or
 // the pooled graph does not fit either. Otherwise its flow's routes are in *plan
 // (sva_flow_pooled_routes) and *whole says whether they are a plan.
-#if SVA_FLOW_POOLED
 static int64_t pooled_value(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, bool* whole)
 {
     int32_t need_max = 1;
@@ -320,17 +319,6 @@ static int64_t pooled_value(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     *whole = sva_flow_pooled_routes(priv, m, plan);
     return value;
 }
-#else
-// Every graph of copies fits this build's SVA_FLOW_MAX_ARCS: never called past it.
-static int64_t pooled_value(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, bool* whole)
-{
-    (void)priv;
-    (void)m;
-    (void)plan;
-    *whole = false;
-    return -(INT64_MAX / 4);
-}
-#endif
 
 // The incumbent into *plan with its stats: the lower bound and whether it is proven
 // optimal. open: the least bound of the nodes left open (INT64_MAX: none), or any lower
@@ -374,6 +362,31 @@ static void finish(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t*
                       (coverage_proven && (bound >= cost)));
     stats->flow_incomplete = stats->optimal ? (uint8_t)SVA_FLOW_COMPLETE : incomplete;
     stats->flow_work = w->work;
+}
+
+// With a need above 1, the pooled graph's relaxation comes first (about a quarter of
+// the copies' arcs at need 2): when its flow's routes are a plan, that plan is the
+// optimum, and flow takes it as root_is_plan does. Otherwise the graph of copies is
+// built again and nothing is kept: the mission plans as it would without this step.
+static bool pooled_root_is_plan(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+{
+    sva_flow_work_t* w = &priv->flow;
+    bool whole = false;
+    const int64_t pooled = pooled_value(priv, m, plan, &whole);
+    if (pooled <= -(INT64_MAX / 4)) {
+        return false;  // need 1 everywhere: the graph of copies is still in place
+    }
+    const uint8_t over = sva_flow_build(priv, m, plan, false, &plan->stats);
+    SVA_ASSERT(over == 0U);  // it fitted before the pooled graph replaced it
+    if (whole && w->reward_exact) {
+        (void)sva_flow_offer_plan(priv, m, plan);
+        // The routes carry the relaxation's flow, so they reach its value.
+        SVA_ASSERT(w->inc_value <= pooled);
+        finish(priv, m, plan, pooled, 0, false, (uint8_t)SVA_FLOW_COMPLETE);
+        return true;
+    }
+    sva_state_reset(priv, m, plan);
+    return false;
 }
 
 sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan)
@@ -421,6 +434,9 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     }
     if (over != 0U) {
         fall_back(self, m, plan, over);
+        return SVA_OK;
+    }
+    if (pooled_root_is_plan(priv, m, plan)) {
         return SVA_OK;
     }
     const uint8_t finished = w->reward_exact ? (uint8_t)SVA_FLOW_COMPLETE : (uint8_t)SVA_FLOW_INCOMPLETE_REWARD;

@@ -750,7 +750,6 @@ void sva_flow_take_relaxation(sva_planner_priv_t* priv, const sva_mission_t* m, 
     (void)sva_flow_offer_plan(priv, m, plan);
 }
 
-#if SVA_FLOW_POOLED
 bool sva_flow_pooled_routes(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
 {
     sva_flow_work_t* w = &priv->flow;
@@ -797,7 +796,6 @@ bool sva_flow_pooled_routes(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     }
     return whole;
 }
-#endif
 
 // ---------------------------------------------------------------------------------
 // Ruin and recreate: the incumbent loses a group of related visits, and the repair

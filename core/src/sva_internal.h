@@ -135,16 +135,11 @@ void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t
 /// Offers the current relaxation as it is, when it is a plan (no target half covered,
 /// every route within fuel and length): then nothing could repair or improve it.
 void sva_flow_take_relaxation(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
-/// Whether a graph of copies can exceed SVA_FLOW_MAX_ARCS in this build; if not (tiny),
-/// the pooled graph's code past the arc bound is left out.
-#define SVA_FLOW_POOLED (SVA_FLOW_MAX_ARCS < SVA_FLOW_DENSE_ARCS)
-#if SVA_FLOW_POOLED
 /// The pooled graph's flow (sva_flow_build with pooled) split into one route per UAV,
 /// over targets, with priv->target_served; takes the flow off the arcs as it goes.
 /// Returns whether the routes are a plan: every target served by none or all of its
 /// need, every route within fuel and SVA_MAX_ROUTE_TARGETS.
 bool sva_flow_pooled_routes(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
-#endif
 /// Makes the routes in *plan (with priv->target_served) a plan: drops half-covered
 /// targets and routes' excess, inserts what fits, improves it by local search if it
 /// beats the incumbent (or, with `polish`, comes within 1/16), and offers it.

@@ -7,7 +7,10 @@
 // - past the arc bound: a bound from the pooled graph that never exceeds the optimum,
 //   "optimal" only when it is, every plan checked and never behind sva's or ga's (the
 //   pooled flow's routes are the first plan, then those seeds unless it is proven);
-//   with need 1 everywhere the pooled graph is the copies' and there is no bound (0).
+//   with need 1 everywhere the pooled graph is the copies' and there is no bound (0);
+// - under the arc bound, with a need above 1: when the pooled flow's routes are a plan,
+//   flow takes them as the optimum with no search (search_nodes 0), and brute force
+//   agrees.
 // Seeds are printed and replayable (SVA_TEST_SEED=...).
 #include <setjmp.h>
 #include <stdarg.h>
@@ -69,7 +72,7 @@ static void test_pooled_relaxation_equals_the_copies(void** state)
     assert_true(compared >= 100);
 }
 
-static void test_past_the_arc_bound_the_pooled_bound_holds(void** state)
+static void test_pooled_bounds_and_plans_against_brute_force(void** state)
 {
     (void)state;
     const uint64_t seed = test_seed(0x9002EDULL);
@@ -79,6 +82,7 @@ static void test_past_the_arc_bound_the_pooled_bound_holds(void** state)
     int full = 0;     // of those, covering every target
     int bounded = 0;  // of those, with a bound above 0
     int proven = 0;   // of those, proven optimal
+    int taken = 0;    // under the bound: the pooled root taken as the plan
     for (int round = 0; round < 400; round++) {
         next_mission(&rng, 5, 6, true);
         const brute_result_t best = brute_force_optimum(&mission);
@@ -87,6 +91,10 @@ static void test_past_the_arc_bound_the_pooled_bound_holds(void** state)
             fail_msg("seed %llu round %d %s", (unsigned long long)seed, round, why);
         }
         check_against_optimum(&plan, &best, seed, round);
+        if ((plan.stats.flow_graph_arcs <= (uint32_t)SVA_FLOW_MAX_ARCS) && (plan.stats.search_nodes == 0U)) {
+            assert_true(plan.stats.optimal);  // and check_against_optimum held it to that
+            taken++;
+        }
         if (plan.stats.flow_graph_arcs > (uint32_t)SVA_FLOW_MAX_ARCS) {
             assert_int_equal(plan.stats.flow_incomplete, plan.stats.optimal ? 0 : 5);
             // The pooled routes come first; ga and sva seed it unless they are proven.
@@ -114,7 +122,8 @@ static void test_past_the_arc_bound_the_pooled_bound_holds(void** state)
         }
     }
     printf("# 400 missions: %d past the arc bound, %d of them covering every target, %d with a bound, %d "
-           "proven optimal\n", past, full, bounded, proven);
+           "proven optimal; under it, the pooled root taken on %d\n", past, full, bounded, proven, taken);
+    assert_true(taken > 0);
     assert_true(past >= 100);
     assert_true(full >= 15);
     assert_int_equal(bounded, full);
@@ -158,7 +167,7 @@ int main(void)
     assert_int_equal(sva_planner_init(&planner), SVA_OK);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_pooled_relaxation_equals_the_copies),
-        cmocka_unit_test(test_past_the_arc_bound_the_pooled_bound_holds),
+        cmocka_unit_test(test_pooled_bounds_and_plans_against_brute_force),
         cmocka_unit_test(test_need_one_past_the_arc_bound_has_no_bound),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
