@@ -19,7 +19,10 @@
 // if it does not finish, the Lagrangian phase (flow_lagrange.c) improves the bound
 // and the plan, ruin and recreate (flow_repair.c) improves the plan, and the search
 // runs again on what is left. The bound comes from the nodes left open and from the
-// Lagrangian phase. No recursion: the path is an explicit stack of frames.
+// Lagrangian phase. With a need above 1 the pooled graph (one node per target) is
+// solved first: its routes are taken when they are a plan, and past
+// SVA_FLOW_MAX_ARCS it gives the bound and the first plan. No recursion: the path is
+// an explicit stack of frames.
 #include "sva_internal.h"
 
 #define BRANCH_TARGET 1U
@@ -300,7 +303,7 @@ static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* p
 }
 
 // The pooled graph's relaxation value (flow_graph.c): a lower bound on cost - reward of
-// every plan, for missions whose copies' arcs do not fit. -(INT64_MAX / 4) (no bound) when
+// every plan, with a quarter of the copies' arcs at need 2. -(INT64_MAX / 4) (no bound) when
 // no need exceeds 1 (the pooled graph is the unit one), a need exceeds UINT8_MAX, or
 // the pooled graph does not fit either. Otherwise its flow's routes are in *plan
 // (sva_flow_pooled_routes) and *whole says whether they are a plan.
