@@ -302,26 +302,7 @@ static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* p
     plan->stats.flow_incomplete = why;
 }
 
-// The pooled graph's relaxation value (flow_graph.c): a lower bound on cost - reward of
-// every plan, with a quarter of the copies' arcs at need 2. -(INT64_MAX / 4) (no bound) when
-// no need exceeds 1 (the pooled graph is the unit one), a need exceeds UINT8_MAX, or
-// the pooled graph does not fit either. Otherwise its flow's routes are in *plan
-// (sva_flow_pooled_routes) and *whole says whether they are a plan.
-static int64_t pooled_value(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, bool* whole)
-{
-    int32_t need_max = 1;
-    for (uint16_t t = 0U; t < m->target_count; t++) {
-        need_max = (m->targets[t].need > need_max) ? m->targets[t].need : need_max;
-    }
-    if ((need_max == 1) || (need_max > (int32_t)UINT8_MAX) ||
-        (sva_flow_build(priv, m, plan, true, &plan->stats) != 0U) ||
-        !sva_flow_solve(&priv->flow, &plan->stats)) {
-        return -(INT64_MAX / 4);  // the solve cannot fail at the root; claim nothing if it does
-    }
-    const int64_t value = priv->flow.value;
-    *whole = sva_flow_pooled_routes(priv, m, plan);
-    return value;
-}
+#define NO_POOLED (-(INT64_MAX / 4))  // pooled_first: no pooled relaxation
 
 // The incumbent into *plan with its stats: the lower bound and whether it is proven
 // optimal. open: the least bound of the nodes left open (INT64_MAX: none), or any lower
@@ -367,29 +348,50 @@ static void finish(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t*
     stats->flow_work = w->work;
 }
 
-// With a need above 1, the pooled graph's relaxation comes first (about a quarter of
-// the copies' arcs at need 2): when its flow's routes are a plan, that plan is the
-// optimum, and flow takes it as root_is_plan does. Otherwise the graph of copies is
-// built again and nothing is kept: the mission plans as it would without this step.
-static bool pooled_root_is_plan(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+// With a need above 1 (and none above UINT8_MAX), the pooled graph's relaxation comes
+// first (about a quarter of the copies' arcs at need 2). When its flow's routes are a
+// plan they carry its value: the optimum, taken as root_is_plan takes a root. Past the
+// arc bound (`past`) they are otherwise repaired into the first incumbent; under it
+// nothing is kept, and the mission plans as it would without this step. Returns the
+// pooled value, a lower bound on cost - reward of every plan (NO_POOLED: none, when no
+// need calls for it or the pooled graph does not fit either), with the graph of copies
+// in place again; *proven: the incumbent reaches it.
+static int64_t pooled_first(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, bool past,
+                            bool* proven)
 {
     sva_flow_work_t* w = &priv->flow;
+    *proven = false;
+    int32_t need_max = 1;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        need_max = (m->targets[t].need > need_max) ? m->targets[t].need : need_max;
+    }
+    if ((need_max == 1) || (need_max > (int32_t)UINT8_MAX)) {
+        return NO_POOLED;  // the pooled graph would be the copies' (or its units overflow)
+    }
+    int64_t pooled = NO_POOLED;
     bool whole = false;
-    const int64_t pooled = pooled_value(priv, m, plan, &whole);
-    if (pooled <= -(INT64_MAX / 4)) {
-        return false;  // need 1 everywhere: the graph of copies is still in place
+    // The solve cannot fail at the root; claim nothing if it does.
+    if ((sva_flow_build(priv, m, plan, true, &plan->stats) == 0U) && sva_flow_solve(w, &plan->stats)) {
+        pooled = w->value;
+        whole = sva_flow_pooled_routes(priv, m, plan);
     }
     const uint8_t over = sva_flow_build(priv, m, plan, false, &plan->stats);
-    SVA_ASSERT(over == 0U);  // it fitted before the pooled graph replaced it
-    if (whole && w->reward_exact) {
-        (void)sva_flow_offer_plan(priv, m, plan);
-        // The routes carry the relaxation's flow, so they reach its value.
-        SVA_ASSERT(w->inc_value <= pooled);
-        finish(priv, m, plan, pooled, 0, false, (uint8_t)SVA_FLOW_COMPLETE);
-        return true;
+    SVA_ASSERT(over == (past ? (uint8_t)SVA_FLOW_OVER_ARCS : 0U));  // as before the pooled graph
+    if (pooled == NO_POOLED) {
+        return pooled;
     }
+    const sva_stats_t kept = plan->stats;
+    if (whole && (past || w->reward_exact)) {
+        (void)sva_flow_offer_plan(priv, m, plan);
+    } else if (past) {
+        sva_flow_repair(priv, m, plan, true);
+    } else {
+        // under the arc bound: no incumbent from here
+    }
+    plan->stats = kept;
     sva_state_reset(priv, m, plan);
-    return false;
+    *proven = w->has_inc && w->reward_exact && (w->inc_value <= pooled);
+    return pooled;
 }
 
 sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan)
@@ -405,41 +407,22 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     w->work = 0U;
     w->local_work = budget / 2U;
     stats->search_nodes = 0U;
-    uint8_t over = sva_flow_build(priv, m, plan, false, stats);
-    if (over == (uint8_t)SVA_FLOW_OVER_ARCS) {
-        // No search: the bound comes from the pooled graph's relaxation, when it fits.
-        // Then the copies again (the repair's plans are in copies): the seeds go
-        // through the repair and the local search, then ruin and recreate.
-        bool whole = false;
-        const int64_t pooled = pooled_value(priv, m, plan, &whole);
-        over = sva_flow_build(priv, m, plan, false, stats);
-        SVA_ASSERT(over == (uint8_t)SVA_FLOW_OVER_ARCS);
-        bool proven = false;
-        if (pooled > -(INT64_MAX / 4)) {
-            // The pooled flow's routes are the first incumbent: as they are when they
-            // are a plan (then the optimum, with exact rewards), else repaired.
-            const sva_stats_t kept = *stats;
-            if (whole) {
-                (void)sva_flow_offer_plan(priv, m, plan);
-            } else {
-                sva_flow_repair(priv, m, plan, true);
-            }
-            *stats = kept;
-            sva_state_reset(priv, m, plan);
-            proven = w->reward_exact && (w->inc_value <= pooled);
-        }
-        if (!proven) {
-            seed(self, m, plan);
-            (void)sva_flow_ruin_recreate(priv, m, plan, w->work + budget, -1);
-        }
-        finish(priv, m, plan, pooled, 0, false, (uint8_t)SVA_FLOW_OVER_ARCS);
-        return SVA_OK;
-    }
-    if (over != 0U) {
+    const uint8_t over = sva_flow_build(priv, m, plan, false, stats);
+    if (over == (uint8_t)SVA_FLOW_OVER_COPIES) {
         fall_back(self, m, plan, over);
         return SVA_OK;
     }
-    if (pooled_root_is_plan(priv, m, plan)) {
+    const bool past = over == (uint8_t)SVA_FLOW_OVER_ARCS;
+    bool pooled_proven = false;
+    const int64_t pooled = pooled_first(priv, m, plan, past, &pooled_proven);
+    if (past || pooled_proven) {
+        // Past the arc bound, no search: unless the pooled plan is proven, the seeds go
+        // through the repair and the local search, then ruin and recreate.
+        if (!pooled_proven) {
+            seed(self, m, plan);
+            (void)sva_flow_ruin_recreate(priv, m, plan, w->work + budget, -1);
+        }
+        finish(priv, m, plan, pooled, 0, false, over);
         return SVA_OK;
     }
     const uint8_t finished = w->reward_exact ? (uint8_t)SVA_FLOW_COMPLETE : (uint8_t)SVA_FLOW_INCOMPLETE_REWARD;

@@ -1,9 +1,9 @@
 // flow_graph.c -- flow's time-feasibility graph (DESIGN.md section 7).
 //
 // A target with need n becomes n copies of need 1, so every node carries at most one
-// unit and a flow decomposes into routes in exactly one way. The pooled graph (for the
-// bound alone, when the copies' arcs do not fit) keeps one copy per target whose own
-// arc carries up to n units: the same relaxation value, with about a quarter of the
+// unit and a flow decomposes into routes in exactly one way. The pooled graph (its root
+// alone: flow.c's pooled_first) keeps one copy per target whose own arc carries up to
+// n units: the same relaxation value, with about a quarter of the
 // arcs at need 2 (copies of a target are interchangeable, and a path through the DAG
 // visits a target once). Node ids:
 //   0 .. U-1          the UAVs (mission order); a stranded UAV has no arcs

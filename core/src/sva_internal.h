@@ -103,8 +103,8 @@ enum {
     SVA_FLOW_OVER_COPIES = 4,        ///< needs summed above SVA_FLOW_MAX_COPIES
     SVA_FLOW_OVER_ARCS = 5,          ///< graph above SVA_FLOW_MAX_ARCS
 };
-/// Builds the graph (pooled: one copy per target carrying its need, for the bound
-/// alone; needs up to UINT8_MAX); 0, or SVA_FLOW_OVER_COPIES / SVA_FLOW_OVER_ARCS.
+/// Builds the graph (pooled: one copy per target carrying its need, for the root
+/// relaxation alone; needs up to UINT8_MAX); 0, or SVA_FLOW_OVER_COPIES / SVA_FLOW_OVER_ARCS.
 uint8_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan,
                        bool pooled, sva_stats_t* stats);
 int32_t sva_flow_arc_cost(const sva_flow_work_t* w, uint32_t arc);

@@ -32,6 +32,14 @@ static sva_mission_t mission;
 static sva_plan_t plan;
 static sva_plan_t other;
 
+static void must_plan(sva_algorithm_t algorithm, sva_plan_t* out, uint64_t seed, int round)
+{
+    char why[320] = "";
+    if (checked_plan(&planner, &mission, algorithm, out, why, sizeof(why)) != 0) {
+        fail_msg("seed %llu round %d %s", (unsigned long long)seed, round, why);
+    }
+}
+
 // Small missions with needs 1 and 2, fuel often binding; `spread` widens the horizon
 // and shrinks the grid, so more windows chain (more arcs).
 static void next_mission(test_rng_t* rng, int targets_min, int targets_max, bool spread)
@@ -86,10 +94,7 @@ static void test_pooled_bounds_and_plans_against_brute_force(void** state)
     for (int round = 0; round < 400; round++) {
         next_mission(&rng, 5, 6, true);
         const brute_result_t best = brute_force_optimum(&mission);
-        char why[320] = "";
-        if (checked_plan(&planner, &mission, SVA_ALGO_FLOW, &plan, why, sizeof(why)) != 0) {
-            fail_msg("seed %llu round %d %s", (unsigned long long)seed, round, why);
-        }
+        must_plan(SVA_ALGO_FLOW, &plan, seed, round);
         check_against_optimum(&plan, &best, seed, round);
         if ((plan.stats.flow_graph_arcs <= (uint32_t)SVA_FLOW_MAX_ARCS) && (plan.stats.search_nodes == 0U)) {
             assert_true(plan.stats.optimal);  // and check_against_optimum held it to that
@@ -99,10 +104,7 @@ static void test_pooled_bounds_and_plans_against_brute_force(void** state)
             assert_int_equal(plan.stats.flow_incomplete, plan.stats.optimal ? 0 : 5);
             // The pooled routes come first; ga and sva seed it unless they are proven.
             for (int a = 0; a < 2; a++) {
-                if (checked_plan(&planner, &mission, (a == 0) ? SVA_ALGO_SVA : SVA_ALGO_GA, &other, why,
-                                 sizeof(why)) != 0) {
-                    fail_msg("seed %llu round %d %s", (unsigned long long)seed, round, why);
-                }
+                must_plan((a == 0) ? SVA_ALGO_SVA : SVA_ALGO_GA, &other, seed, round);
                 if (spec_better(other.covered, other.cost, plan.covered, plan.cost)) {
                     fail_msg("seed %llu round %d: flow (%d, %lld) behind %s (%d, %lld)", (unsigned long long)seed,
                              round, plan.covered, (long long)plan.cost, (a == 0) ? "sva" : "ga", other.covered,
@@ -143,10 +145,7 @@ static void test_need_one_past_the_arc_bound_has_no_bound(void** state)
     for (int32_t t = 0; t < 12; t++) {
         mission.targets[t] = (sva_target_t){t + 1, t % 3, t % 4, 100 + (20 * t), 105 + (20 * t), 1};
     }
-    char why[320] = "";
-    if (checked_plan(&planner, &mission, SVA_ALGO_FLOW, &plan, why, sizeof(why)) != 0) {
-        fail_msg("%s", why);
-    }
+    must_plan(SVA_ALGO_FLOW, &plan, 0U, 0);
     assert_true(plan.stats.flow_graph_arcs > (uint32_t)SVA_FLOW_MAX_ARCS);
     assert_int_equal(plan.stats.flow_incomplete, 5);
     assert_int_equal(plan.stats.lower_bound, 0);
@@ -155,9 +154,7 @@ static void test_need_one_past_the_arc_bound_has_no_bound(void** state)
     for (int32_t t = 0; t < 12; t++) {
         mission.targets[t].need = 2;
     }
-    if (checked_plan(&planner, &mission, SVA_ALGO_FLOW, &plan, why, sizeof(why)) != 0) {
-        fail_msg("%s", why);
-    }
+    must_plan(SVA_ALGO_FLOW, &plan, 0U, 1);
     assert_int_equal(plan.stats.flow_incomplete, 5);
     assert_int_equal(plan.stats.lower_bound, 0);
 }
