@@ -68,16 +68,25 @@ static bool first_copy(const sva_flow_work_t* w, uint16_t d)
     return w->target_first_copy[w->copy_target[d]] == d;
 }
 
-// Adds label (cost, fuel, pred) to target t's Pareto set unless one there dominates it.
+// Whether a label of target t's Pareto set dominates (cost, fuel): the common case,
+// tested inline before the call to add_label.
+static inline bool dominated(const sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t fuel)
+{
+    const uint32_t base = (uint32_t)t * (uint32_t)SVA_FLOW_LABELS;
+    const uint32_t end = base + lg->label_count[t];
+    for (uint32_t j = base; j < end; j++) {
+        if ((lg->label_fuel[j] <= fuel) && (lg->label_cost[j] <= cost)) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// Adds label (cost, fuel, pred) to target t's Pareto set, which none dominates.
 static void add_label(sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t fuel, uint32_t pred)
 {
     const uint32_t base = (uint32_t)t * (uint32_t)SVA_FLOW_LABELS;
     uint32_t n = lg->label_count[t];
-    for (uint32_t j = base; j < (base + n); j++) {
-        if ((lg->label_fuel[j] <= fuel) && (lg->label_cost[j] <= cost)) {
-            return;
-        }
-    }
     int64_t new_cost = cost;
     int32_t new_fuel = fuel;
     uint32_t new_pred = pred;
@@ -147,7 +156,10 @@ int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t
             const uint16_t t = w->copy_target[h - w->uavs];
             if (lg->closed[t] == 0U) {
                 const int64_t leg = sva_distance(uav->x, uav->y, m->targets[t].x, m->targets[t].y);
-                add_label(lg, t, (alpha * leg) - lg->path_price[t], (int32_t)(leg + hover), SVA_FLOW_NO_LABEL);
+                const int64_t cost = (alpha * leg) - lg->path_price[t];
+                if (!dominated(lg, t, cost, (int32_t)(leg + hover))) {
+                    add_label(lg, t, cost, (int32_t)(leg + hover), SVA_FLOW_NO_LABEL);
+                }
                 w->work++;
             }
         }
@@ -175,24 +187,30 @@ int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t
             }
         }
         // Arc by arc, then label by label: the arcs lead to different targets, so
-        // each target b still receives t's labels in index order.
-        for (uint32_t e = w->out_start[tail]; e < w->out_start[tail + 1U]; e++) {
+        // each target b still receives t's labels in index order. flow_graph.c adds
+        // the arcs in copy order, the depot's last: the arcs into b's copies are
+        // adjacent, its first copy's first, and that one stands for all need of them
+        // (the Lagrangian phase runs on the graph of copies, never the pooled one).
+        uint32_t e = w->out_start[tail];
+        while (e < w->out_start[tail + 1U]) {
             const uint16_t h = w->arc_head[e];
-            if ((h >= out_base) || !first_copy(w, (uint16_t)(h - w->uavs))) {
-                continue;  // the depot, or a copy other than its target's first
+            if (h >= out_base) {
+                break;  // the depot
             }
-            w->work += lg->label_count[t];
+            SVA_ASSERT(first_copy(w, (uint16_t)(h - w->uavs)) && (w->copy_units[h - w->uavs] == 1U));
             const uint16_t b = w->copy_target[h - w->uavs];
-            if (lg->closed[b] != 0U) {
-                continue;
-            }
-            const int32_t leg = sva_distance(tg->x, tg->y, m->targets[b].x, m->targets[b].y);
-            const int64_t fuel_cap = uav->fuel - leg - w->target_tail[b];
-            const int64_t leg_price = (alpha * leg) - lg->path_price[b];
-            for (uint32_t l = base; l < end; l++) {
-                if ((int64_t)lg->label_fuel[l] <= fuel_cap) {
-                    add_label(lg, b, lg->label_cost[l] + leg_price,
-                              (int32_t)((int64_t)lg->label_fuel[l] + leg + hover), l);
+            e += (uint32_t)m->targets[b].need;
+            w->work += lg->label_count[t];
+            if (lg->closed[b] == 0U) {
+                const int32_t leg = sva_distance(tg->x, tg->y, m->targets[b].x, m->targets[b].y);
+                const int64_t fuel_cap = uav->fuel - leg - w->target_tail[b];
+                const int64_t leg_price = (alpha * leg) - lg->path_price[b];
+                for (uint32_t l = base; l < end; l++) {
+                    const int64_t cost = lg->label_cost[l] + leg_price;
+                    const int32_t fuel = (int32_t)((int64_t)lg->label_fuel[l] + leg + hover);
+                    if (((int64_t)lg->label_fuel[l] <= fuel_cap) && !dominated(lg, b, cost, fuel)) {
+                        add_label(lg, b, cost, fuel, l);
+                    }
                 }
             }
         }
