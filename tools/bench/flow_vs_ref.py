@@ -11,7 +11,9 @@ cached under build/flow_vs_ref/ (delete a folder to recompute its ref plans).
 Prints: missions where flow's coverage equals, is below or above ref's; the mean and
 largest cost gap at equal coverage; how many flow plans are proven optimal; flow's
 median and p95 solve time; the gap to the proven optima alone; flow's own certified
-gap; and any bound above a proven optimum (must be none).
+gap; on how many proven optima fuel matters (flow's optimum of the same mission with
+fuel no route can use up differs from ref's; issue 6 calibrates its protocol by it:
+about a third); and any bound above a proven optimum (must be none).
 """
 import concurrent.futures
 import json
@@ -19,6 +21,7 @@ import os
 import statistics
 import subprocess
 import sys
+import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SVA = os.path.join(ROOT, "build", "bin", "sva")
@@ -32,6 +35,24 @@ def plan(path, algo):
     if algo == "flow" and os.environ.get("FLOW_REPEAT"):
         cmd += ["--repeat", os.environ["FLOW_REPEAT"]]
     return json.loads(subprocess.run(cmd + [path], capture_output=True, text=True, check=True).stdout)
+
+
+def fuel_free(path):
+    """(covered, cost) of flow's plan for the mission at path with fuel no route uses up
+    (every leg at most the grid's width plus height), or None if flow does not prove it."""
+    with open(path) as f:
+        doc = json.load(f)
+    points = [(doc["depot"]["x"], doc["depot"]["y"])] + [(p["x"], p["y"]) for p in doc["uavs"] + doc["targets"]]
+    leg = (max(x for x, _ in points) - min(x for x, _ in points)) + (max(y for _, y in points) - min(y for _, y in points))
+    n = len(doc["targets"])
+    for u in doc["uavs"]:
+        u["fuel"] = (n + 1) * leg + n * doc["hover_fuel"] + 1
+    with tempfile.NamedTemporaryFile("w", suffix=".json") as f:
+        json.dump(doc, f)
+        f.flush()
+        out = json.loads(subprocess.run([SVA, "plan", "--algo", "flow", f.name], capture_output=True, text=True,
+                                        check=True).stdout)
+    return (out["covered"], out["cost"]) if out["stats"]["optimal"] else None
 
 
 def main(argv):
@@ -63,6 +84,8 @@ def main(argv):
     above = [(n, fl["covered"], ref["covered"]) for n, fl, ref in results if fl["covered"] > ref["covered"]]
     gaps = [100.0 * (fl["cost"] - ref["cost"]) / ref["cost"] for _, fl, ref in equal if ref["cost"] > 0]
     exact = [(fl, ref) for _, fl, ref in results if ref["stats"].get("optimal")]
+    free = [fuel_free(os.path.join(folder, n)) for n, _, ref in results if ref["stats"].get("optimal")]
+    fuel_matters = sum(1 for (_, ref), f in zip(exact, free) if f is not None and f != (ref["covered"], ref["cost"]))
     exact_gaps = [100.0 * (fl["cost"] - ref["cost"]) / ref["cost"] for fl, ref in exact
                   if fl["covered"] == ref["covered"] and ref["cost"] > 0]
     certified = [100.0 * (fl["cost"] - fl["stats"]["lower_bound"]) / fl["stats"]["lower_bound"]
@@ -85,6 +108,8 @@ def main(argv):
           f"{max(certified) if certified else 0.0:.2f} % ({len(certified)} plans with a bound)")
     print(f"  flow proven optimal: {proven}/{len(results)}; solve median {times[len(times) // 2]} us, "
           f"p95 {times[min(len(times) - 1, int(len(times) * 0.95))]} us")
+    print(f"  fuel matters (the optimum without it differs) on {fuel_matters} of the {len(exact)} proven optima"
+          f" ({sum(1 for f in free if f is None)} fuel-free plans unproven)")
     print(f"  bounds above a proven optimum: {bad}")
     return 1 if bad else 0
 
