@@ -68,8 +68,8 @@ static bool first_copy(const sva_flow_work_t* w, uint16_t d)
     return w->target_first_copy[w->copy_target[d]] == d;
 }
 
-// Whether a label of target t's Pareto set dominates (cost, fuel): the common case,
-// tested inline before the call to add_label.
+// Whether a label of target t's Pareto set dominates (cost, fuel); tested inline, so
+// that only labels that go in pay for the call to add_label.
 static inline bool dominated(const sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t fuel)
 {
     const uint32_t base = (uint32_t)t * (uint32_t)SVA_FLOW_LABELS;

@@ -42,11 +42,12 @@ def fuel_free(path):
     (every leg at most the grid's width plus height), or None if flow does not prove it."""
     with open(path) as f:
         doc = json.load(f)
-    points = [(doc["depot"]["x"], doc["depot"]["y"])] + [(p["x"], p["y"]) for p in doc["uavs"] + doc["targets"]]
-    leg = (max(x for x, _ in points) - min(x for x, _ in points)) + (max(y for _, y in points) - min(y for _, y in points))
+    xs = [doc["depot"]["x"]] + [p["x"] for p in doc["uavs"] + doc["targets"]]
+    ys = [doc["depot"]["y"]] + [p["y"] for p in doc["uavs"] + doc["targets"]]
+    leg = (max(xs) - min(xs)) + (max(ys) - min(ys))
     n = len(doc["targets"])
     for u in doc["uavs"]:
-        u["fuel"] = (n + 1) * leg + n * doc["hover_fuel"] + 1
+        u["fuel"] = min((n + 1) * leg + n * doc["hover_fuel"] + 1, 10**9)  # SVA_MAX_FUEL
     with tempfile.NamedTemporaryFile("w", suffix=".json") as f:
         json.dump(doc, f)
         f.flush()
