@@ -1,12 +1,22 @@
-// flow_certificate.c -- checks of a flow plan's certificate (flow_certificate.h).
+// flow_certificate.c -- checks shared by the flow tests (flow_certificate.h).
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "checked_plan.h"
 #include "flow_certificate.h"
 #include "spec_checker.h"
+
+void must_plan_checked(sva_planner_t* planner, const sva_mission_t* mission, sva_algorithm_t algorithm,
+                       sva_plan_t* out, uint64_t seed, int round)
+{
+    char why[320] = "";
+    if (checked_plan(planner, mission, algorithm, out, why, sizeof(why)) != 0) {
+        fail_msg("seed %llu round %d %s", (unsigned long long)seed, round, why);
+    }
+}
 
 void check_certificate(const sva_plan_t* p, uint64_t seed, int round)
 {

@@ -1,5 +1,5 @@
-// flow_certificate.h -- checks of a flow plan's certificate (stats.lower_bound and
-// stats.optimal), shared by the flow tests; a failure names the seed and round.
+// flow_certificate.h -- checks shared by the flow tests: a checked plan, and the
+// certificate (stats.lower_bound and stats.optimal); a failure names the seed and round.
 #ifndef SVA_FLOW_CERTIFICATE_H
 #define SVA_FLOW_CERTIFICATE_H
 
@@ -7,6 +7,10 @@
 
 #include "brute_force.h"
 #include "sva/sva.h"
+
+/// Plans with checked_plan (flow or a rival); fails the test when that does.
+void must_plan_checked(sva_planner_t* planner, const sva_mission_t* mission, sva_algorithm_t algorithm,
+                       sva_plan_t* out, uint64_t seed, int round);
 
 /// The bound is in [0, cost], and equals the cost when the plan claims optimality.
 void check_certificate(const sva_plan_t* p, uint64_t seed, int round);

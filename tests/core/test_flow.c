@@ -20,7 +20,6 @@
 
 #include "brute_force.h"
 #include "mission_gen.h"
-#include "checked_plan.h"
 #include "flow_certificate.h"
 #include "spec_checker.h"
 #include "sva/sva.h"
@@ -29,14 +28,6 @@ static sva_planner_t planner;
 static sva_mission_t mission;
 static sva_plan_t plan;
 static sva_plan_t other;
-
-static void must_plan(sva_algorithm_t algorithm, sva_plan_t* out, uint64_t seed, int round)
-{
-    char why[320] = "";
-    if (checked_plan(&planner, &mission, algorithm, out, why, sizeof(why)) != 0) {
-        fail_msg("seed %llu round %d %s", (unsigned long long)seed, round, why);
-    }
-}
 
 static void test_tiny_missions_equal_brute_force(void** state)
 {
@@ -54,12 +45,12 @@ static void test_tiny_missions_equal_brute_force(void** state)
             test_rng_range(&rng, 1, 2), test_rng_range(&rng, 0, 1), 0};
         test_gen_mission(&rng, &p, &mission);
         const brute_result_t best = brute_force_optimum(&mission);
-        must_plan(SVA_ALGO_FLOW, &plan, seed, round);
+        must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
         check_against_optimum(&plan, &best, seed, round);
         proven += plan.stats.optimal ? 1 : 0;
         fuel_bound += (plan.stats.search_nodes > 1U) ? 1 : 0;
         for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
-            must_plan((sva_algorithm_t)a, &other, seed, round);
+            must_plan_checked(&planner, &mission, (sva_algorithm_t)a, &other, seed, round);
             if (other.covered > plan.covered) {
                 fail_msg("seed %llu round %d: %s covers %d, flow %d", (unsigned long long)seed, round,
                          sva_algorithm_name((sva_algorithm_t)a), other.covered, plan.covered);
@@ -85,13 +76,13 @@ static void test_without_fuel_limit_root_is_optimal(void** state)
                                      5, 20, 60, 1, 100000, 100000, test_rng_range(&rng, 0, 3),
                                      1, test_rng_range(&rng, 0, 1), 0};
         test_gen_mission(&rng, &p, &mission);
-        must_plan(SVA_ALGO_FLOW, &plan, seed, round);
+        must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
         check_certificate(&plan, seed, round);
         if (!plan.stats.optimal || plan.stats.search_nodes != 1U) {
             fail_msg("seed %llu round %d: not optimal at the root (nodes %llu)",
                      (unsigned long long)seed, round, (unsigned long long)plan.stats.search_nodes);
         }
-        must_plan(SVA_ALGO_BFA, &other, seed, round);
+        must_plan_checked(&planner, &mission, SVA_ALGO_BFA, &other, seed, round);
         if (other.covered != plan.covered || other.cost != plan.cost) {
             fail_msg("seed %llu round %d: flow (%d, %lld), bfa (%d, %lld)", (unsigned long long)seed,
                      round, plan.covered, (long long)plan.cost, other.covered, (long long)other.cost);
@@ -116,12 +107,12 @@ static void test_paper_sizes_never_worse_than_the_paper(void** state)
                                          4 * sizes[size][0], test_rng_range(&rng, 1, 2),
                                          test_rng_range(&rng, 40, 120), 160, 2, 1, 0, 0};
             test_gen_mission(&rng, &p, &mission);
-            must_plan(SVA_ALGO_FLOW, &plan, seed, round);
+            must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
             check_certificate(&plan, seed, round);
             bool better_than_all = true;
             const sva_algorithm_t rivals[] = {SVA_ALGO_SVA, SVA_ALGO_GA, SVA_ALGO_HGA};
             for (size_t r = 0; r < sizeof(rivals) / sizeof(rivals[0]); r++) {
-                must_plan(rivals[r], &other, seed, round);
+                must_plan_checked(&planner, &mission, rivals[r], &other, seed, round);
                 if (other.covered > plan.covered) {
                     fail_msg("seed %llu round %d: %s covers %d, flow %d", (unsigned long long)seed,
                              round, sva_algorithm_name(rivals[r]), other.covered, plan.covered);
@@ -155,7 +146,7 @@ static void test_small_budget_gives_a_checked_unproven_plan(void** state)
                                      SVA_MAX_UAVS < 5 ? SVA_MAX_UAVS : 5, 20, 10, 20, 100, 2, 60,
                                      100, 2, 1, 0, 0};
         test_gen_mission(&rng, &p, &mission);
-        must_plan(SVA_ALGO_FLOW, &plan, seed, round);
+        must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
         check_certificate(&plan, seed, round);
         if (!plan.stats.optimal) {
             unproven++;
@@ -193,7 +184,7 @@ static phase_counts_t against_brute_force(uint64_t seed_default, int rounds, uin
             test_rng_range(&rng, 0, 1), 0};
         test_gen_mission(&rng, &p, &mission);
         const brute_result_t best = brute_force_optimum(&mission);
-        must_plan(SVA_ALGO_FLOW, &plan, seed, round);
+        must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
         check_against_optimum(&plan, &best, seed, round);
         if (ran(&plan)) {
             counts.ran++;
@@ -344,7 +335,7 @@ static void test_route_master_holds_only_real_routes(void** state)
                                      SVA_MAX_UAVS < 5 ? SVA_MAX_UAVS : 5, 20, 10, 20, 375, 1, 80,
                                      80, 2, 1, 0, 0};
         test_gen_mission(&rng, &p, &mission);
-        must_plan(SVA_ALGO_FLOW, &plan, seed, round);
+        must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
 #if SVA_FLOW_LP_ROWS >= 2
         const sva_flow_lp_t* lp = &planner.priv.flow.lp;
         const uint16_t cols = (plan.stats.flow_lp_columns > 0U) ? lp->cols : 0U;  // else another mission's
@@ -402,12 +393,12 @@ static void test_plans_do_not_depend_on_the_planners_history(void** state)
         test_gen_mission(&rng, &p, &mission);
         test_gen_mission(&rng, &p, &second);
         assert_int_equal(sva_planner_init(&planner), SVA_OK);
-        must_plan(SVA_ALGO_FLOW, &plan, seed, round);
+        must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
         const sva_mission_t kept = mission;
         mission = second;
-        must_plan(SVA_ALGO_FLOW, &other, seed, round);
+        must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &other, seed, round);
         mission = kept;
-        must_plan(SVA_ALGO_FLOW, &again, seed, round);
+        must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &again, seed, round);
         assert_int_equal(plan.cost, again.cost);
         assert_int_equal(plan.covered, again.covered);
         assert_int_equal(plan.stats.lower_bound, again.stats.lower_bound);
@@ -436,11 +427,11 @@ static void test_past_its_graph_bounds_flow_falls_back_honestly(void** state)
     for (int32_t t = 0; (t < targets) && (t < SVA_MAX_TARGETS); t++) {
         mission.targets[t] = (sva_target_t){t + 1, 1, 1, 10 * t + 5, 10 * t + 8, need};
     }
-    must_plan(SVA_ALGO_FLOW, &plan, 0U, 0);
+    must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, 0U, 0);
     assert_int_equal(plan.stats.flow_incomplete, 4);
     assert_false(plan.stats.optimal);
     assert_int_equal(plan.stats.lower_bound, 0);
-    must_plan(SVA_ALGO_SVA, &other, 0U, 0);
+    must_plan_checked(&planner, &mission, SVA_ALGO_SVA, &other, 0U, 0);
     assert_false(spec_better(other.covered, other.cost, plan.covered, plan.cost));
 }
 
@@ -461,7 +452,7 @@ static void test_dense_graph_past_the_arc_bound_falls_back(void** state)
     if (arcs <= (long)SVA_FLOW_MAX_ARCS) {
         skip();  // this profile's arc bound holds the dense graph
     }
-    must_plan(SVA_ALGO_FLOW, &plan, 0U, 0);
+    must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, 0U, 0);
     assert_int_equal(plan.stats.flow_incomplete, 5);
     assert_true(plan.stats.flow_graph_arcs > (uint32_t)SVA_FLOW_MAX_ARCS);
     assert_false(plan.stats.optimal);
@@ -470,7 +461,7 @@ static void test_dense_graph_past_the_arc_bound_falls_back(void** state)
     assert_true(plan.stats.flow_ruin_rounds > 0U);
     // The seeds, repaired and improved: never worse than sva or ga.
     for (int a = 0; a < 2; a++) {
-        must_plan(a == 0 ? SVA_ALGO_SVA : SVA_ALGO_GA, &other, 0U, 0);
+        must_plan_checked(&planner, &mission, a == 0 ? SVA_ALGO_SVA : SVA_ALGO_GA, &other, 0U, 0);
         assert_false(spec_better(other.covered, other.cost, plan.covered, plan.cost));
     }
 }
@@ -505,7 +496,7 @@ static void test_alike_uavs_take_routes_in_id_order(void** state)
         for (int u = 0; u < 3; u++) {
             mission.uavs[u] = (sva_uav_t){ids[(listing == 0) ? u : (2 - u)], 0, 0, 100, 0};
         }
-        must_plan(SVA_ALGO_FLOW, &plan, 0U, listing);
+        must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, 0U, listing);
         assert_int_equal(plan.cost, 20);
         assert_true(plan.stats.optimal);
         assert_int_equal(route_of(3)->target_count, 1);
@@ -533,12 +524,12 @@ static void test_observer_silent_and_stats_only_for_flow(void** state)
     test_gen_mission(&rng, &p, &mission);
     planner.on_transport = count_call;
     calls = 0;
-    must_plan(SVA_ALGO_FLOW, &plan, 11U, 0);
+    must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, 11U, 0);
     assert_int_equal(calls, 0);  // flow's seeding runs sva without the caller's observer
     assert_ptr_equal(planner.on_transport, count_call);
     assert_true(plan.stats.has_bound);
     assert_true(plan.stats.flow_solves >= 1U);
-    must_plan(SVA_ALGO_SVA, &other, 11U, 0);
+    must_plan_checked(&planner, &mission, SVA_ALGO_SVA, &other, 11U, 0);
     assert_true(calls > 0);
     assert_false(other.stats.has_bound);
     planner.on_transport = NULL;

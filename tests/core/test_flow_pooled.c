@@ -21,7 +21,6 @@
 #include <cmocka.h>
 
 #include "brute_force.h"
-#include "checked_plan.h"
 #include "flow_certificate.h"
 #include "mission_gen.h"
 #include "spec_checker.h"
@@ -31,14 +30,6 @@ static sva_planner_t planner;
 static sva_mission_t mission;
 static sva_plan_t plan;
 static sva_plan_t other;
-
-static void must_plan(sva_algorithm_t algorithm, sva_plan_t* out, uint64_t seed, int round)
-{
-    char why[320] = "";
-    if (checked_plan(&planner, &mission, algorithm, out, why, sizeof(why)) != 0) {
-        fail_msg("seed %llu round %d %s", (unsigned long long)seed, round, why);
-    }
-}
 
 // Small missions with needs 1 and 2, fuel often binding; `spread` widens the horizon
 // and shrinks the grid, so more windows chain (more arcs).
@@ -94,7 +85,7 @@ static void test_pooled_bounds_and_plans_against_brute_force(void** state)
     for (int round = 0; round < 400; round++) {
         next_mission(&rng, 5, 6, true);
         const brute_result_t best = brute_force_optimum(&mission);
-        must_plan(SVA_ALGO_FLOW, &plan, seed, round);
+        must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
         check_against_optimum(&plan, &best, seed, round);
         if ((plan.stats.flow_graph_arcs <= (uint32_t)SVA_FLOW_MAX_ARCS) && (plan.stats.search_nodes == 0U)) {
             assert_true(plan.stats.optimal);  // and check_against_optimum held it to that
@@ -104,7 +95,8 @@ static void test_pooled_bounds_and_plans_against_brute_force(void** state)
             assert_int_equal(plan.stats.flow_incomplete, plan.stats.optimal ? 0 : 5);
             // The pooled routes come first; ga and sva seed it unless they are proven.
             for (int a = 0; a < 2; a++) {
-                must_plan((a == 0) ? SVA_ALGO_SVA : SVA_ALGO_GA, &other, seed, round);
+                const sva_algorithm_t rival = (a == 0) ? SVA_ALGO_SVA : SVA_ALGO_GA;
+                must_plan_checked(&planner, &mission, rival, &other, seed, round);
                 if (spec_better(other.covered, other.cost, plan.covered, plan.cost)) {
                     fail_msg("seed %llu round %d: flow (%d, %lld) behind %s (%d, %lld)", (unsigned long long)seed,
                              round, plan.covered, (long long)plan.cost, (a == 0) ? "sva" : "ga", other.covered,
@@ -145,7 +137,7 @@ static void test_need_one_past_the_arc_bound_has_no_bound(void** state)
     for (int32_t t = 0; t < 12; t++) {
         mission.targets[t] = (sva_target_t){t + 1, t % 3, t % 4, 100 + (20 * t), 105 + (20 * t), 1};
     }
-    must_plan(SVA_ALGO_FLOW, &plan, 0U, 0);
+    must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, 0U, 0);
     assert_true(plan.stats.flow_graph_arcs > (uint32_t)SVA_FLOW_MAX_ARCS);
     assert_int_equal(plan.stats.flow_incomplete, 5);
     assert_int_equal(plan.stats.lower_bound, 0);
@@ -154,7 +146,7 @@ static void test_need_one_past_the_arc_bound_has_no_bound(void** state)
     for (int32_t t = 0; t < 12; t++) {
         mission.targets[t].need = 2;
     }
-    must_plan(SVA_ALGO_FLOW, &plan, 0U, 1);
+    must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, 0U, 1);
     assert_int_equal(plan.stats.flow_incomplete, 5);
     assert_int_equal(plan.stats.lower_bound, 0);
 }
