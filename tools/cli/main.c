@@ -118,6 +118,22 @@ static const char* option_value(const char* name, int argc, char** argv, int* i,
 }
 
 // Parses the arguments after the command. `full` allows the plan-only options.
+// An option's value as a decimal integer in [lo, hi] into *out; false if it is missing,
+// not one, or out of range.
+static bool long_in(const char* value, bool missing, long lo, long hi, long* out) {
+    if (missing) {
+        return false;
+    }
+    char* end = NULL;
+    errno = 0;
+    const long n = strtol(value, &end, 10);
+    if (errno != 0 || end == value || *end != '\0' || n < lo || n > hi) {
+        return false;
+    }
+    *out = n;
+    return true;
+}
+
 static int parse_options(const char* command, bool full, int argc, char** argv, options_t* opt) {
     memset(opt, 0, sizeof *opt);
     opt->algo = "sva";
@@ -140,23 +156,15 @@ static int parse_options(const char* command, bool full, int argc, char** argv, 
             opt->algo = value;
         } else if (!only_files && full &&
                    ((value = option_value("--flow-work", argc, argv, &i, &missing)) != NULL || missing)) {
-            char* end = NULL;
-            errno = 0;
-            const long n = missing ? 0 : strtol(value, &end, 10);
-            if (missing || errno != 0 || end == value || *end != '\0' || n < 1000 || n > (long)SVA_FLOW_MAX_WORK) {
+            if (!long_in(value, missing, 1000, (long)SVA_FLOW_MAX_WORK, &opt->flow_work)) {
                 return error_exit(EXIT_BAD_INPUT, "%s: --flow-work: must be an integer in [1000, %ld] (SVA_FLOW_MAX_WORK)",
                                   command, (long)SVA_FLOW_MAX_WORK);
             }
-            opt->flow_work = n;
         } else if (!only_files && full &&
                    ((value = option_value("--repeat", argc, argv, &i, &missing)) != NULL || missing)) {
-            char* end = NULL;
-            errno = 0;
-            const long n = missing ? 0 : strtol(value, &end, 10);
-            if (missing || errno != 0 || end == value || *end != '\0' || n < 1 || n > REPEAT_MAX) {
+            if (!long_in(value, missing, 1, REPEAT_MAX, &opt->repeat)) {
                 return error_exit(EXIT_BAD_INPUT, "%s: --repeat: must be an integer in [1, %d]", command, REPEAT_MAX);
             }
-            opt->repeat = n;
         } else if (!only_files && full &&
                    ((value = option_value("--trace", argc, argv, &i, &missing)) != NULL || missing)) {
             if (missing || value[0] == '\0') {
