@@ -87,6 +87,7 @@ if(TARGET sva_json)
 endif()
 
 # --- svaConfig.cmake ------------------------------------------------------------------
+list(JOIN SVA_INSTALLED_COMPONENTS " " SVA_INSTALLED_COMPONENTS_TEXT)  # for its messages
 configure_package_config_file("${_pkg}/svaConfig.cmake.in" "${PROJECT_BINARY_DIR}/svaConfig.cmake"
     INSTALL_DESTINATION "${SVA_CMAKE_INSTALL_DIR}")
 write_basic_package_version_file("${PROJECT_BINARY_DIR}/svaConfigVersion.cmake"

@@ -105,7 +105,7 @@ cmake)
             -DSVA_COMPONENTS="nosuch" > "$d2/log" 2>&1; then
         fail "find_package(sva COMPONENTS nosuch) succeeded"
     fi
-    grep -q "sva component 'nosuch' is not installed" "$d2/log" || { cat "$d2/log" >&2; fail "no message naming the component"; }
+    grep -q "sva component 'nosuch' is not installed (installed: core $components" "$d2/log" || { cat "$d2/log" >&2; fail "no message naming the component"; }
     ;;
 pkgconfig)
     [ -f "$prefix/lib/pkgconfig/sva.pc" ] || fail "no install in $prefix (package_install)"
