@@ -98,6 +98,13 @@ cmake)
         -DSVA_COMPONENTS="${components// /;}" -DREADME_EXAMPLE="$d/readme_example.c" >/dev/null
     run cmake --build "$d" >/dev/null
     run_consumers "$d"
+    # Exactly as the README says: find_package(sva) with no component, then sva::core.
+    d1="$work/consumer_cmake_plain"
+    rm -rf "$d1" && mkdir -p "$d1"
+    run cmake -S "$here/consumer" -B "$d1" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" \
+        -DREADME_EXAMPLE="$d/readme_example.c" >/dev/null
+    run cmake --build "$d1" >/dev/null
+    components="" run_consumers "$d1"
     # A component that is not installed is an error naming it, not a silent success.
     d2="$work/consumer_cmake_missing"
     rm -rf "$d2" && mkdir -p "$d2"
@@ -118,6 +125,10 @@ pkgconfig)
     readme_example "$d/readme_example.c"
     run make -s -f "$here/consumer/Makefile" O="$d" PORTS="$components" README_EXAMPLE="$d/readme_example.c"
     run_consumers "$d"
+    # docs/packaging.md's shell recipe: eval reads the quoted definition.
+    # shellcheck disable=SC2046
+    eval cc -std=c99 -Wall -Wextra -Werror "$d/readme_example.c" -o "$d/readme_eval" $(pkg-config --cflags --libs sva)
+    run "$d/readme_eval" || fail "the README example built with eval and pkg-config exited $?"
     ;;
 subdir)
     d="$work/consumer_subdir"
