@@ -104,6 +104,12 @@ def test_integers_are_written_as_integers():
     assert schema.first_error(doc, "mission") == "targets[0].need: must be an integer, got real"
 
 
+def _cli_stats_errors(plan):
+    """The stats exactly as `sva plan` writes them (plan schema's cli_stats, cli_flow_stats)."""
+    definition = "cli_flow_stats" if plan["algorithm"] == "flow" else "cli_stats"
+    return schema.errors(plan["stats"], "plan", definition, root="stats")
+
+
 def _run(sva_bin, *args, cwd=None):
     return subprocess.run([str(sva_bin), *map(str, args)], capture_output=True, text=True, cwd=cwd)
 
@@ -125,6 +131,7 @@ def test_cli_plans_and_traces_match_the_schemas(sva_bin, tmp_path, algo):
         assert r.returncode == 0, f"{mission.name}: {r.stderr}"
         plan = json.loads(r.stdout)
         assert schema.errors(plan, "plan") == [], mission.name
+        assert _cli_stats_errors(plan) == [], mission.name
         records = io.load_trace(str(trace))  # the trace schema and its rules, per line
         assert len(records) == plan["stats"]["transport_problems"], mission.name
         assert all(rec["algorithm"] == algo for rec in records)
@@ -138,7 +145,7 @@ def test_flow_on_a_small_budget_matches_the_schema(sva_bin):
     assert r.returncode == 0, r.stderr
     plan = json.loads(r.stdout)
     assert plan["stats"]["optimal"] is False and plan["stats"]["flow_incomplete"] == 1
-    assert schema.errors(plan, "plan") == []
+    assert schema.errors(plan, "plan") == [] and _cli_stats_errors(plan) == []
 
 
 @pytest.fixture
@@ -163,10 +170,22 @@ def _mutated(doc, path, value):
     return d
 
 
+STATS_MUTATIONS = [
+    (["pivots"], KeyError, 'stats: missing key "pivots"'),
+    (["lower_bound"], 0, 'stats: unknown key "lower_bound"'),  # flow's key on an sva plan
+    (["pivots"], -1, "stats.pivots: must be >= 0, got -1"),
+]
+
+
+@pytest.mark.parametrize("path,value,message", STATS_MUTATIONS, ids=lambda v: str(v)[:30])
+def test_mutated_cli_stats_are_rejected(cli_plan, path, value, message):
+    assert _cli_stats_errors(cli_plan) == []
+    assert _cli_stats_errors(_mutated(cli_plan, ["stats"] + path, value))[0] == message
+
+
 PLAN_MUTATIONS = [
-    (["stats", "pivots"], KeyError, 'stats: missing key "pivots"'),
-    (["stats", "lower_bound"], 0, 'stats: unknown key "lower_bound"'),  # flow's key on an sva plan
     (["stats", "solve_us"], -1, "stats.solve_us: must be >= 0, got -1"),
+    (["stats", "optimal"], 1, "stats.optimal: must be a boolean, got integer"),
     (["algorithm"], "simplex", 'algorithm: must be one of "sva", "ga", "hga", "bfa", "flow", "ih", '
                                '"ref", "peer", got "simplex"'),
     (["status"], "complete", 'uncovered: must be empty when status is "complete", got 1 entries'),
@@ -191,9 +210,9 @@ def test_a_mutated_plan_is_rejected(cli_plan, path, value, message):
 def test_a_flow_plan_needs_its_certificate(sva_bin):
     r = _run(sva_bin, "plan", "--algo", "flow", FIXTURES / "missions" / "hand_3_3.json")
     plan = json.loads(r.stdout)
-    assert schema.errors(plan, "plan") == []
-    assert schema.first_error(_mutated(plan, ["stats", "optimal"], KeyError), "plan") == \
-        'stats: missing key "optimal"'
+    assert schema.errors(plan, "plan") == [] and _cli_stats_errors(plan) == []
+    assert _cli_stats_errors(_mutated(plan, ["stats", "optimal"], KeyError)) == \
+        ['stats: missing key "optimal"']
     assert schema.first_error(_mutated(plan, ["stats", "flow_incomplete"], 6), "plan") == \
         "stats.flow_incomplete: must be one of 0, 1, 2, 3, 4, 5, got 6"
 
@@ -266,3 +285,15 @@ def test_bound_and_cache_entry_match_their_schemas(tmp_path):
     p.write_text(json.dumps(entry))
     assert schema.first_error(entry, "cache-entry") == "result.plan.cost: must be >= 0, got -1"
     assert c.get(m, "ref", {"det_limit": 10}) is None  # a foreign entry is a miss
+
+
+def test_plans_of_other_producers_match_the_plan_schema(cli_plan):
+    """stats differ by producer; the plan schema types every known key and allows the rest."""
+    lcm = _mutated(cli_plan, ["stats"], {"plan_id": 7, "solve_us": 41, "fleet_revision": 1,
+                                         "mission_revision": 2})
+    assert schema.errors(lcm, "plan") == []
+    assert schema.first_error(_mutated(lcm, ["stats", "plan_id"], "7"), "plan") == \
+        "stats.plan_id: must be an integer, got string"
+    peer = _mutated(cli_plan, ["algorithm"], "peer")
+    peer["stats"] = {"solve_us": 9, "solution_limit": 100, "stopped_by": "local_optimum"}
+    assert schema.errors(peer, "plan") == []

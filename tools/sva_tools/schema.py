@@ -67,10 +67,17 @@ def _registry() -> Registry:
 
 
 @functools.lru_cache(maxsize=None)
-def validator(kind: str) -> Draft202012Validator:
+def validator(kind: str, definition: str = "") -> Draft202012Validator:
+    """The validator of a kind's schema, or of one of its $defs (e.g. plan's cli_stats:
+    the stats exactly as `sva plan` writes them)."""
     if kind not in KINDS:
         raise ValueError(f"unknown kind {kind!r} (known: {', '.join(KINDS)})")
-    return _Validator(schemas()[kind], registry=_registry())
+    s = schemas()[kind]
+    if definition:
+        if definition not in s.get("$defs", {}):
+            raise ValueError(f"{kind} schema has no definition {definition!r}")
+        s = {"$ref": f"{s['$id']}#/$defs/{definition}"}
+    return _Validator(s, registry=_registry())
 
 
 def version() -> int:
@@ -116,9 +123,9 @@ def _article(type_name: str) -> str:
     return "an" if type_name[0] in "aeiou" else "a"
 
 
-def _described(err, root: str) -> Optional[Found]:
+def _described(err, root: str, prefix: Tuple = ()) -> Optional[Found]:
     kw, sch, v = err.validator, err.schema, err.instance
-    parts = list(err.absolute_path)
+    parts = list(prefix) + list(err.absolute_path)
     where = field_path(root, parts)
     pos = _position(parts)
     rule = sch.get("x-sva-rule") if isinstance(sch, dict) else None
@@ -164,7 +171,7 @@ def _described(err, root: str) -> Optional[Found]:
         return (_VALUE, pos, 0, f"{where}: must have {word} {err.validator_value} entries, got {len(v)}")
     if kw in ("oneOf", "anyOf") and err.context:
         # "null or X": report why the value is not an X.
-        inner = [_described(e, root) for e in err.context if e.validator != "type"
+        inner = [_described(e, root, prefix) for e in err.context if e.validator != "type"
                  or e.validator_value != "null"]
         inner = [f for f in inner if f is not None]
         if inner:
@@ -264,12 +271,14 @@ def _trace_rules(doc: Any, found: List[Found]) -> None:
 _RULES = {"mission": _mission_rules, "trace": _trace_rules}
 
 
-def errors(doc: Any, kind: str) -> List[str]:
-    """Every error of doc as a `kind` file, the CLI's first one first."""
-    root = ROOT_NAMES[kind]
-    found = [f for f in (_described(e, root) for e in validator(kind).iter_errors(doc))
-             if f is not None]
-    if kind in _RULES:
+def errors(doc: Any, kind: str, definition: str = "", root: str = "") -> List[str]:
+    """Every error of doc as a `kind` file (or as that schema's $defs `definition`,
+    named `root` in messages), the CLI's first one first."""
+    root = root or ROOT_NAMES[kind]
+    prefix = (root,) if definition else ()  # a part of a document: name it from its root
+    found = [f for f in (_described(e, root, prefix)
+                         for e in validator(kind, definition).iter_errors(doc)) if f is not None]
+    if kind in _RULES and not definition:
         _RULES[kind](doc, found)
     found.sort(key=lambda f: f[:3])
     out: List[str] = []
