@@ -297,3 +297,22 @@ def test_plans_of_other_producers_match_the_plan_schema(cli_plan):
     peer = _mutated(cli_plan, ["algorithm"], "peer")
     peer["stats"] = {"solve_us": 9, "solution_limit": 100, "stopped_by": "local_optimum"}
     assert schema.errors(peer, "plan") == []
+
+
+def test_files_the_tools_write_match_their_schemas(tmp_path):
+    """gen's missions, ih's plan and its --trace: written by the tools, read back through
+    the schemas (a drift between writer and schema fails here)."""
+    r = sva_tools("gen", "--count", "3", "--targets", "12", "--hover", "2", "--seed", "5",
+                  "-o", tmp_path / "gen")
+    assert r.returncode == 0, r.stderr
+    generated = sorted((tmp_path / "gen").glob("*.json"))
+    assert len(generated) == 3
+    for p in generated:
+        assert schema.errors(_load(p), "mission") == [], p.name
+    trace, plan = tmp_path / "ih.jsonl", tmp_path / "ih.json"
+    r = sva_tools("ih", generated[0], "--trace", trace, "-o", plan)
+    assert r.returncode == 0, r.stderr
+    assert schema.errors(_load(plan), "plan") == []
+    records = io.load_trace(str(trace))
+    assert records and all(rec["algorithm"] == "ih" for rec in records)
+    assert len(records) == _load(plan)["stats"]["transport_problems"]
