@@ -186,8 +186,7 @@ def test_mutated_cli_stats_are_rejected(cli_plan, path, value, message):
 PLAN_MUTATIONS = [
     (["stats", "solve_us"], -1, "stats.solve_us: must be >= 0, got -1"),
     (["stats", "optimal"], 1, "stats.optimal: must be a boolean, got integer"),
-    (["algorithm"], "simplex", 'algorithm: must be one of "sva", "ga", "hga", "bfa", "flow", "ih", '
-                               '"ref", "peer", got "simplex"'),
+    (["algorithm"], "Simplex", 'algorithm: must match ^[a-z][a-z0-9_-]{0,31}$, got "Simplex"'),
     (["status"], "complete", 'uncovered: must be empty when status is "complete", got 1 entries'),
     (["cost"], -3, "cost: must be >= 0, got -3"),
     (["covered"], 1.0, "covered: must be an integer, got real"),
