@@ -346,3 +346,13 @@ def _check_citations(path, sections, bad):
     found = list(CITATION.finditer(text))
     bad.extend(f"{path.relative_to(REPO)}: {m.group(0)}" for m in found if int(m.group(1)) not in sections)
     return len(found)
+
+
+def test_input_cap_is_the_clis(tmp_path, sva_bin):
+    big = tmp_path / "big.json"
+    big.write_bytes(b"{" + b" " * io.MAX_INPUT_BYTES + b"}")
+    with pytest.raises(io.InputError) as e:
+        io.load_mission(str(big))
+    assert str(e.value) == "input exceeds 16777216 bytes"
+    r = _run(sva_bin, "validate", big)
+    assert r.returncode == 2 and r.stderr == f"sva: error: {big}: input exceeds 16777216 bytes\n"
