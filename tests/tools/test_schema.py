@@ -356,3 +356,14 @@ def test_input_cap_is_the_clis(tmp_path, sva_bin):
     assert str(e.value) == "input exceeds 16777216 bytes"
     r = _run(sva_bin, "validate", big)
     assert r.returncode == 2 and r.stderr == f"sva: error: {big}: input exceeds 16777216 bytes\n"
+
+
+def test_spec_examples_match_the_schemas():
+    """docs/SPEC.md's mission, plan and trace examples are valid, and the plan is right."""
+    from sva_tools import check
+
+    blocks = re.findall(r"```json\n(.*?)```", (REPO / "docs" / "SPEC.md").read_text(), re.S)
+    mission, plan, record = (json.loads(b.replace("\n ", " ")) for b in blocks)
+    assert schema.errors(mission, "mission") == [] and schema.errors(plan, "plan") == []
+    assert schema.errors(record, "trace") == []
+    assert check.check_plan(io.mission_from_json(mission), io.plan_from_json(plan)) == []
