@@ -8,11 +8,11 @@ from typing import List, Optional
 
 from . import io
 
-SUBCOMMANDS = ("gen", "check", "ref", "ih", "peer", "bench", "plot")
+SUBCOMMANDS = ("gen", "check", "validate", "ref", "ih", "peer", "bench", "plot")
 
 
 def _lcm(argv: List[str]) -> int:
-    # `lcm` belongs to the LCM port's helper package sva_tools.lcm (issue 4); it is
+    # `lcm` belongs to the LCM port's helper package sva_tools.lcm; it is
     # dispatched when present and reported clearly when not.
     try:
         mod = importlib.import_module("sva_tools.lcm.cli")
