@@ -84,9 +84,12 @@ static void print_version(void) {
     sva_limits_t limits = sva_limits();
     printf("sva %d.%d.%d (mission/plan schema %d)\n", SVA_VERSION_MAJOR, SVA_VERSION_MINOR, SVA_VERSION_PATCH,
            SVA_SCHEMA_VERSION);
-    printf("limits: SVA_MAX_UAVS %lu, SVA_MAX_TARGETS %lu, SVA_BFA_MAX_UAVS %lu, SVA_BFA_MAX_TARGETS %lu\n",
+    printf("limits: SVA_MAX_UAVS %lu, SVA_MAX_TARGETS %lu, SVA_BFA_MAX_UAVS %lu, SVA_BFA_MAX_TARGETS %lu, "
+           "SVA_BFA_MAX_NODES %lu\n",
            (unsigned long)limits.max_uavs, (unsigned long)limits.max_targets, (unsigned long)limits.bfa_max_uavs,
-           (unsigned long)limits.bfa_max_targets);
+           (unsigned long)limits.bfa_max_targets, (unsigned long)limits.bfa_max_nodes);
+    printf("bfa plans a mission within SVA_BFA_MAX_UAVS and SVA_BFA_MAX_TARGETS unless its search passes "
+           "SVA_BFA_MAX_NODES nodes\n");
 }
 
 typedef struct {
