@@ -13,6 +13,7 @@ import sys
 from typing import Any, Dict, List, Optional
 
 from . import model as M
+from .text import shown
 
 
 class InputError(Exception):
@@ -198,5 +199,5 @@ def write_json(doc: Any, path: Optional[str]) -> None:
 
 
 def fail(path: str, err: InputError) -> int:
-    print(f"sva-tools: error: {path}: {err}", file=sys.stderr)
+    print(f"sva-tools: error: {shown(path)}: {shown(err)}", file=sys.stderr)
     return 2
