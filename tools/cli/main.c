@@ -132,8 +132,8 @@ static const struct option VALIDATE_OPTIONS[] = {
     {NULL, 0, NULL, 0},
 };
 
-// Error of an option that needs a value and got none.
-static int missing_value(const char* command, int code) {
+// Error of an option whose value is missing or wrong.
+static int bad_value(const char* command, int code) {
     switch (code) {
         case OPT_ALGO: return error_exit(EXIT_BAD_INPUT, "%s: --algo needs a value", command);
         case OPT_TRACE: return error_exit(EXIT_BAD_INPUT, "%s: --trace needs a file name", command);
@@ -181,21 +181,21 @@ static int parse_options(const char* command, bool full, int argc, char** argv, 
             case OPT_ALGO: opt->algo = optarg; break;
             case OPT_FLOW_WORK:
                 if (!long_in(optarg, 1000, (long)SVA_FLOW_MAX_WORK, &opt->flow_work)) {
-                    return missing_value(command, code);
+                    return bad_value(command, code);
                 }
                 break;
             case OPT_REPEAT:
                 if (!long_in(optarg, 1, REPEAT_MAX, &opt->repeat)) {
-                    return missing_value(command, code);
+                    return bad_value(command, code);
                 }
                 break;
             case OPT_TRACE:
                 if (optarg[0] == '\0') {
-                    return missing_value(command, code);
+                    return bad_value(command, code);
                 }
                 opt->trace = optarg;
                 break;
-            case ':': return missing_value(command, optopt);
+            case ':': return bad_value(command, optopt);
             default: return unknown_option(command, argv);
         }
     }
