@@ -1,5 +1,6 @@
 """Bad mission and plan files get SPEC 4's treatment: exit 2, one line naming the field."""
 import copy
+import os
 import json
 
 import pytest
@@ -118,3 +119,31 @@ def test_highspy_is_neither_pinned_nor_imported():
     for name in names:
         importlib.import_module(name)
     assert "highspy" not in sys.modules
+
+
+HOSTILE = "x\n\x1b[31mforged"
+HOSTILE_SHOWN = "x\\n\\x1b[31mforged"
+
+
+def test_shown_escapes_like_the_c_helper():
+    from sva_tools.text import shown
+    assert shown("plain \\ é €") == "plain \\ é €"
+    assert shown("a\nb\rc\td\x1b[2J\x7f") == "a\\nb\\rc\\td\\x1b[2J\\x7f"
+    assert shown("\u009b31m") == "\\xc2\\x9b31m"  # C1 CSI, as its UTF-8 bytes
+    assert shown(os.fsdecode(b"bad\xff")) == "bad\\xff"  # a byte that was not UTF-8
+    assert shown(shown(HOSTILE)) == shown(HOSTILE) == HOSTILE_SHOWN
+
+
+def test_hostile_file_and_mission_names_are_escaped(tmp_path):
+    r = sva_tools("ih", str(tmp_path / HOSTILE))
+    assert r.returncode == 2 and "\x1b" not in r.stderr
+    assert r.stderr.splitlines() == [f"sva-tools: error: {tmp_path}/{HOSTILE_SHOWN}: cannot read file: "
+                                     "No such file or directory"]
+    # a bad mission whose file name is hostile: one line, escaped
+    mp = write(tmp_path, HOSTILE + ".json", bad(["targets", 0, "need"], 0))
+    r = sva_tools("ref", "--bound", mp)
+    assert r.returncode == 2 and "\x1b" not in r.stderr and len(r.stderr.splitlines()) == 1
+    assert r.stderr.startswith(f"sva-tools: error: {tmp_path}/{HOSTILE_SHOWN}.json: ")
+    # a usage error quoting the argument (argparse)
+    r = sva_tools("gen", "--targets", HOSTILE)
+    assert r.returncode == 2 and "\x1b" not in r.stderr and HOSTILE_SHOWN in r.stderr

@@ -25,6 +25,7 @@ from typing import Dict, List, Optional, Tuple
 from . import io
 from . import model as M
 from . import solvers
+from .text import shown
 
 
 @dataclass
@@ -276,7 +277,7 @@ def run(args) -> int:
             try:
                 compare_mission(m, cv)
             except cbin.CliMissing as e:
-                print(f"sva-tools: error: {e}", file=sys.stderr)
+                print(f"sva-tools: error: {shown(e)}", file=sys.stderr)
                 return 2
         _print_trace_verdict(cv.trace)
         print(f"missions: {cv.missions}; identical plans: {cv.same}; differ with the same "

@@ -16,6 +16,7 @@ from typing import Any, Dict, List, Optional
 
 from . import model as M
 from . import schema
+from .text import shown
 
 
 class InputError(Exception):
@@ -202,5 +203,5 @@ def write_json(doc: Any, path: Optional[str]) -> None:
 
 def fail(path: str, err: InputError) -> int:
     where = f"{path}:{err.where}" if err.where else path
-    print(f"sva-tools: error: {where}: {err}", file=sys.stderr)
+    print(f"sva-tools: error: {shown(where)}: {shown(err)}", file=sys.stderr)
     return 2
