@@ -22,7 +22,9 @@
 /// (firmware writes `static sva_planner_t planner;`):
 ///   sva_mission_t  the input (mission and fleet state), read only by the planner;
 ///   sva_plan_t     the output;
-///   sva_planner_t  all working memory (tableau, per-UAV state, search stacks).
+///   sva_planner_t  all working memory (tableau, per-UAV state, search stacks); the
+///                  layout of its `priv` member is in sva_private.h, private and
+///                  read-only to users.
 /// Their sizes follow from sva_config.h (formulas there and in DESIGN.md); the default
 /// profile's sizes are reported by sva_limits(). The core uses no heap, no stdio, no
 /// floating point, no recursion and no variable-length arrays; its stack use is

@@ -372,12 +372,13 @@ static int64_t pooled_first(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     int64_t pooled = NO_POOLED;
     bool whole = false;
     // The solve cannot fail at the root; claim nothing if it does.
-    if ((sva_flow_build(priv, m, plan, true, &plan->stats) == 0U) && sva_flow_solve(w, &plan->stats)) {
+    if ((sva_flow_build(priv, m, plan, true, &plan->stats) == SVA_FLOW_COMPLETE) &&
+        sva_flow_solve(w, &plan->stats)) {
         pooled = w->value;
         whole = sva_flow_pooled_routes(priv, m, plan);
     }
     const sva_flow_incomplete_t over = sva_flow_build(priv, m, plan, false, &plan->stats);
-    SVA_ASSERT(over == (past ? SVA_FLOW_OVER_ARCS : SVA_FLOW_COMPLETE));  // as before the pooled graph
+    SVA_ASSERT(past ? (over == SVA_FLOW_OVER_ARCS) : (over == SVA_FLOW_COMPLETE));  // as before the pooled graph
     if (pooled == NO_POOLED) {
         return pooled;
     }

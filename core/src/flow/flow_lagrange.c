@@ -322,7 +322,7 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     // Coverage comes first (SPEC 1): while c is not proven the most, a dive on the
     // cost master for c + 1 targets looks for a plan covering one more. Any bound for
     // coverage c holds for more.
-    plan->stats.flow_cover_dive = (uint8_t)SVA_FLOW_COVER_DIVE_NOT_RUN;
+    sva_flow_cover_dive_t dive = SVA_FLOW_COVER_DIVE_NOT_RUN;
     if (!*coverage_proven) {
         const uint64_t room = (budget > w->work) ? (budget - w->work) : 0U;
         const uint64_t up = w->work + ((room < (left / 2U)) ? room : (left / 2U));
@@ -332,9 +332,9 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
             sva_flow_lp_dive(priv, m, plan, up)) {
             sva_flow_repair(priv, m, plan, true);
             sva_flow_incumbent(priv, m, plan, &cost, &covered);
-            plan->stats.flow_cover_dive = (covered > before) ? (uint8_t)SVA_FLOW_COVER_DIVE_FOUND
-                                                            : (uint8_t)SVA_FLOW_COVER_DIVE_NONE;
+            dive = (covered > before) ? SVA_FLOW_COVER_DIVE_FOUND : SVA_FLOW_COVER_DIVE_NONE;
         }
     }
+    plan->stats.flow_cover_dive = (uint8_t)dive;
     return (bound < 0) ? 0 : bound;
 }
