@@ -27,6 +27,7 @@ bool sva_flow_solve(sva_flow_work_t* w, sva_stats_t* stats);
 bool sva_flow_covered(const sva_flow_work_t* w, uint16_t copy);
 /// The copies UAV u visits in the current flow, in order; returns how many (<= cap).
 uint16_t sva_flow_route(const sva_flow_work_t* w, uint16_t u, uint16_t* out, uint16_t cap);
+
 // flow_incumbent.c: plans, and the best one found so far.
 /// An incumbent's route ends here (its links are copies of the graph).
 #define SVA_FLOW_ROUTE_END 0xFFFFU
@@ -49,6 +50,7 @@ void sva_flow_write_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, 
 /// The incumbent written into *plan, with its cost in cells and the targets it covers.
 void sva_flow_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, int64_t* cost,
                         int64_t* covered);
+
 // flow_insert.c: edits of the plan under construction in *plan (its routes,
 // priv->target_served, priv->flow.route_cells).
 /// Where route r of UAV u is after its first p targets: position and free time.
@@ -106,6 +108,7 @@ bool sva_flow_pooled_routes(sva_planner_priv_t* priv, const sva_mission_t* m, sv
 /// beats the incumbent (or, with `polish`, comes within 1/16), and offers it.
 void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                      bool polish);
+
 // flow_ruin.c: ruin and recreate.
 /// Ruin and recreate: groups of related visits taken out of the
 /// incumbent, then swaps (one covered target out, one uncovered in first); the repair
