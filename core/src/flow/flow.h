@@ -85,12 +85,7 @@ void sva_flow_remove_at(const sva_mission_t* m, sva_flow_work_t* w, sva_route_t*
 /// moves to another UAV. Covers one more target (true) or changes nothing.
 bool sva_flow_eject_for(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, uint16_t t);
 
-// flow_local.c: local search.
-/// Relocations, swaps, tail exchanges and trades while the plan gets shorter, at most
-/// a few passes and priv->flow.local_work; coverage never changes.
-void sva_flow_local_search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
-
-// flow_repair.c: rounding and repair.
+// flow_round.c, flow_repair.c: rounding, and the repair (with the local search).
 /// Rounds the current relaxation into a plan (scratch: *plan) and offers it
 /// (sva_flow_repair, with `polish`).
 void sva_flow_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
