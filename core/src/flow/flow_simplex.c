@@ -1,5 +1,5 @@
 // flow_simplex.c -- the simplex of flow's route master (flow_lp.c), revised and
-// fraction-free (DESIGN.md section 8).
+// fraction-free: exact in integers (DESIGN.md section 8).
 //
 // It keeps D = |det(B)| and adj = D * B^-1, and pivots by the Bareiss update (each new
 // entry is a 2x2 determinant divided exactly by the old D), so every number is a minor
