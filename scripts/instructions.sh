@@ -37,7 +37,7 @@ if command -v i686-linux-gnu-gcc >/dev/null && [ -f "$prefix/lib/libjansson.a" ]
     i686-linux-gnu-gcc -std=c99 -O2 -g -static -DNDEBUG \
         -Icore/include -Icore/profiles -Iport/json/include -Iport/json/src -I"$prefix/include" \
         -DSVA_CONFIG_HEADER='"sva_profile_default.h"' \
-        core/src/*.c tools/cli/*.c port/json/src/*.c "$prefix/lib/libjansson.a" -o "$out/sva-i686"
+        core/src/*/*.c core/src/*.c tools/cli/*.c port/json/src/*.c "$prefix/lib/libjansson.a" -o "$out/sva-i686"
     cli[i686]=$out/sva-i686
     archs="x86-64 i686"
 else

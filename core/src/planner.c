@@ -1,5 +1,6 @@
 // planner.c -- the public entry points: planner set-up and sva_plan().
-#include "sva_internal.h"
+#include "flow/flow.h"
+#include "paper/paper.h"
 
 #include <string.h>
 

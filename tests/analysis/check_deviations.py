@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Compares cppcheck findings with the deviations table of docs/misra-deviations.md.
 
-Table rows look like  | `misra-c2012-15.5` | `core/src/bfa.c` | 7 | reason |
+Table rows look like  | `misra-c2012-15.5` | `core/src/paper/bfa.c` | 7 | reason |
 File `*` covers every file not named in its own row; count `*` allows any number
 (project-wide deviations). A (rule, file) pair with more findings than its row allows,
 or with no row, is a new finding: listed, exit status 1. Rows allowing more than is

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# clang-tidy over core/src/*.c with the checked-in .clang-tidy (every warning an error),
-# compiled as the default profile builds it (ctest analysis_clang_tidy). A planted
-# defect (canary/tidy_canary.c) must be rejected first, or clang-tidy checks nothing.
+# clang-tidy over core/src/*/*.c and core/src/*.c with the checked-in .clang-tidy
+# (every warning an error), compiled as the default profile builds it (ctest
+# analysis_clang_tidy). A planted defect (canary/tidy_canary.c) must be rejected first, or clang-tidy checks nothing.
 # Usage: run_clang_tidy.sh SOURCE_ROOT WORK_DIR [PYTHON] [CLANG_TIDY]
 set -euo pipefail
 root=$1
@@ -31,7 +31,7 @@ done
 status=0
 findings="$work/findings.txt"
 : >"$findings"
-for src in core/src/*.c; do
+for src in core/src/*/*.c core/src/*.c; do
     rc=0
     out=$("$tidy" --quiet --config-file="$root/.clang-tidy" "$src" -- "${flags[@]}" 2>&1) || rc=$?
     grep -v '^[0-9]* warnings\? generated\.$' <<<"$out" | grep -E ': (error|warning): ' || true
@@ -47,5 +47,5 @@ done
 if ! "$python" "$here/check_deviations.py" "$findings" "$root/docs/misra-deviations.md"; then
     status=1
 fi
-echo "clang-tidy: $(wc -l <"$findings") findings in $(ls core/src/*.c | wc -l) files of core/src"
+echo "clang-tidy: $(wc -l <"$findings") findings in $(ls core/src/*/*.c core/src/*.c | wc -l) files of core/src"
 exit "$status"

@@ -31,5 +31,5 @@ fi
 cd "$root"
 cppcheck "${common[@]}" --cppcheck-build-dir="$work/build" --output-file="$work/findings.txt" \
     -Icore/include -Icore/src -Icore/profiles '-DSVA_CONFIG_HEADER="sva_profile_default.h"' \
-    core/src/*.c >/dev/null
+    core/src/*/*.c core/src/*.c >/dev/null
 "$python" "$here/check_deviations.py" "$work/findings.txt" "$root/docs/misra-deviations.md"

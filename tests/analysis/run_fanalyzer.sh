@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# gcc -fanalyzer over core/src/*.c, warnings as errors, for the tiny, default and max
-# bound profiles (ctest analysis_gcc_fanalyzer). A planted use-after-free
-# (canary/analyzer_canary.c) must be rejected first, or the analyzer checks nothing.
+# gcc -fanalyzer over core/src/*/*.c and core/src/*.c, warnings as errors, for the
+# tiny, default and max bound profiles (ctest analysis_gcc_fanalyzer). A planted
+# use-after-free (canary/analyzer_canary.c) must be rejected first, or the analyzer
+# checks nothing.
 # Usage: run_fanalyzer.sh SOURCE_ROOT WORK_DIR [GCC]
 set -euo pipefail
 root=$1
@@ -23,7 +24,7 @@ fi
 status=0
 n=0
 for profile in tiny default max; do
-    for src in core/src/*.c; do
+    for src in core/src/*/*.c core/src/*.c; do
         n=$((n + 1))
         if ! "$cc" "${flags[@]}" -Icore/include -Icore/src -Icore/profiles \
                 "-DSVA_CONFIG_HEADER=\"sva_profile_${profile}.h\"" \

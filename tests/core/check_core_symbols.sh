@@ -4,7 +4,7 @@
 set -u
 lib=${1:?usage: check_core_symbols.sh LIBSVA_CORE}
 # strlen: GCC at -O2 and above (CMAKE_BUILD_TYPE Release) makes one of the diagnostic
-# writer's string loop (core/src/diag.c).
+# writer's string loop (core/src/model/diag.c).
 allowed='^(memset|memcpy|memmove|strlen|__assert_fail|__stack_chk_fail)$'
 # Undefined in some member and defined in none: what the library needs from outside.
 defined=$(nm --defined-only "$lib" | awk 'NF == 3 {print $3}' | sort -u)

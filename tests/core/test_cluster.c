@@ -6,7 +6,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
-#include "sva_internal.h"
+#include "paper/paper.h"
 
 static sva_planner_t planner;
 static sva_mission_t mission;

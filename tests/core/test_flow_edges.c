@@ -1,11 +1,11 @@
-// Edge cases of the flow planner (core/src/flow*.c) that the random tests do not
+// Edge cases of the flow planner (core/src/flow/) that the random tests do not
 // reach, each on a hand-built mission whose answer is known:
 // - a route over its fuel is branched on while an earlier UAV is stranded (the
 //   stranded UAV is skipped; the plan equals bfa's optimum, proven);
 // - needs whose least common multiple does not fit the exact rewards: flow says so
-//   (flow_incomplete 3, not optimal) and its plan is still checked and no worse than
+//   (SVA_FLOW_INCOMPLETE_REWARD, not optimal) and its plan is still checked and no worse than
 //   sva's; the same mission with need 1 everywhere is exact;
-// - needs summed past SVA_FLOW_MAX_COPIES: the fallback (flow_incomplete 4, bound 0).
+// - needs summed past SVA_FLOW_MAX_COPIES: the fallback (SVA_FLOW_OVER_COPIES, bound 0).
 // Every plan passes the independent SPEC checker (tests/support/spec_checker.c).
 #include <setjmp.h>
 #include <stdarg.h>
@@ -88,7 +88,7 @@ static void test_needs_past_exact_rewards_are_reported(void** state)
     }
     build_prime_needs(false);
     must_plan(SVA_ALGO_FLOW, &plan);
-    assert_int_equal(plan.stats.flow_incomplete, 3);  // needs' lcm too large
+    assert_int_equal(plan.stats.flow_incomplete, SVA_FLOW_INCOMPLETE_REWARD);  // needs' lcm too large
     assert_false(plan.stats.optimal);
     assert_true(plan.stats.has_bound);
     assert_true(plan.stats.lower_bound >= 0);
@@ -101,7 +101,7 @@ static void test_needs_past_exact_rewards_are_reported(void** state)
     // The control: the same mission with need 1 everywhere has exact rewards.
     build_prime_needs(true);
     must_plan(SVA_ALGO_FLOW, &plan);
-    assert_int_not_equal(plan.stats.flow_incomplete, 3);
+    assert_int_not_equal(plan.stats.flow_incomplete, SVA_FLOW_INCOMPLETE_REWARD);
 }
 
 static void test_needs_past_the_copy_bound_fall_back(void** state)
@@ -123,7 +123,7 @@ static void test_needs_past_the_copy_bound_fall_back(void** state)
         mission.targets[t] = (sva_target_t){t + 1, 2, 3, (100 * t) + 10, (100 * t) + 20, need};
     }
     must_plan(SVA_ALGO_FLOW, &plan);
-    assert_int_equal(plan.stats.flow_incomplete, 4);  // needs summed above the bound
+    assert_int_equal(plan.stats.flow_incomplete, SVA_FLOW_OVER_COPIES);  // needs summed above the bound
     assert_false(plan.stats.optimal);
     assert_int_equal(plan.stats.lower_bound, 0);
     assert_int_equal(plan.stats.flow_graph_arcs, 0);  // no graph was built

@@ -1,4 +1,4 @@
-// flow's pooled graph (core/src/flow_graph.c): one node per target carrying its need,
+// flow's pooled graph (core/src/flow/flow_graph.c): one node per target carrying its need,
 // which gives flow its bound when the graph of copies is past SVA_FLOW_MAX_ARCS. Built
 // against a core whose arc bound is SVA_FLOW_MAX_ARCS 48, so that small missions with
 // need 2 go past it and brute force can judge the bound:
@@ -24,7 +24,7 @@
 #include "flow_certificate.h"
 #include "mission_gen.h"
 #include "spec_checker.h"
-#include "sva_internal.h"
+#include "flow/flow.h"
 
 static sva_planner_t planner;
 static sva_mission_t mission;
@@ -92,7 +92,7 @@ static void test_pooled_bounds_and_plans_against_brute_force(void** state)
             taken++;
         }
         if (plan.stats.flow_graph_arcs > (uint32_t)SVA_FLOW_MAX_ARCS) {
-            assert_int_equal(plan.stats.flow_incomplete, plan.stats.optimal ? 0 : 5);
+            assert_int_equal(plan.stats.flow_incomplete, plan.stats.optimal ? SVA_FLOW_COMPLETE : SVA_FLOW_OVER_ARCS);
             // The pooled routes come first; ga and sva seed it unless they are proven.
             for (int a = 0; a < 2; a++) {
                 const sva_algorithm_t rival = (a == 0) ? SVA_ALGO_SVA : SVA_ALGO_GA;
@@ -139,7 +139,7 @@ static void test_need_one_past_the_arc_bound_has_no_bound(void** state)
     }
     must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, 0U, 0);
     assert_true(plan.stats.flow_graph_arcs > (uint32_t)SVA_FLOW_MAX_ARCS);
-    assert_int_equal(plan.stats.flow_incomplete, 5);
+    assert_int_equal(plan.stats.flow_incomplete, SVA_FLOW_OVER_ARCS);
     assert_int_equal(plan.stats.lower_bound, 0);
     assert_false(plan.stats.optimal);
     // With need 2 the pooled graph holds the same 104 arcs: still past, still no bound.
@@ -147,7 +147,7 @@ static void test_need_one_past_the_arc_bound_has_no_bound(void** state)
         mission.targets[t].need = 2;
     }
     must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, 0U, 1);
-    assert_int_equal(plan.stats.flow_incomplete, 5);
+    assert_int_equal(plan.stats.flow_incomplete, SVA_FLOW_OVER_ARCS);
     assert_int_equal(plan.stats.lower_bound, 0);
 }
 

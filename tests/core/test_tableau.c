@@ -10,7 +10,7 @@
 #include <cmocka.h>
 
 #include "mission_gen.h"
-#include "sva_internal.h"
+#include "paper/paper.h"
 
 static sva_planner_t planner;
 #define NO SVA_TP_NO_ARC

@@ -6,11 +6,19 @@
 /// one and exports it PUBLIC, so every consumer sees the same struct layout).
 /// sva_limits() reports the compiled values at run time.
 ///
-/// Memory formulas (bytes, default profile in brackets) are in DESIGN.md section 4;
-/// the headline terms are:
+/// Memory formulas (bytes on x86-64, measured by varying each bound; DESIGN.md
+/// section 4 has the default profile's totals):
 ///   sva_mission_t  ~ 20 * SVA_MAX_UAVS + 24 * SVA_MAX_TARGETS
 ///   sva_plan_t     ~ SVA_MAX_UAVS * (24 + 2 * SVA_MAX_ROUTE_TARGETS) + 2 * SVA_MAX_TARGETS
-///   sva_planner_t  ~ SVA_TABLEAU_CELLS * 1 + SVA_TABLEAU_COLS * 22 + per-UAV/target state
+///   sva_planner_t  ~ SVA_TABLEAU_CELLS + 22 * SVA_TABLEAU_COLS           (tableau)
+///                  + 16 * SVA_MAX_TP_SOURCES * SVA_MAX_TP_SINKS          (problem, hga)
+///                  + bfa's stack (~3 KB by default)
+///                  + 154 * SVA_MAX_UAVS + (74 + 16 * SVA_FLOW_LABELS) * SVA_MAX_TARGETS
+///                  + 8 * SVA_FLOW_MAX_ARCS                               (flow's graph)
+///                  + (104 + 2 * SVA_FLOW_MAX_DEPTH) * SVA_FLOW_MAX_COPIES (copies, search)
+///                  + 8 * SVA_FLOW_LP_ROWS^2 + 68 * SVA_FLOW_LP_ROWS
+///                  + 14 * SVA_FLOW_LP_COLS                               (route master)
+///   (default profile: 710,200 B, of which flow's sva_flow_work_t is 564,288 B.)
 
 #ifndef SVA_CONFIG_H
 #define SVA_CONFIG_H
@@ -125,7 +133,8 @@
 #endif
 
 // ---------------------------------------------------------------------------------
-// flow: min-cost flow relaxation plus branch and bound (flow*.c, DESIGN.md section 7).
+// flow: min-cost flow relaxation plus branch and bound (core/src/flow/, DESIGN.md
+// section 8).
 // A target with need n becomes n copies of need 1; every bound below is a clear
 // SVA_ERR_LIMIT (or, for the budgets, a plan not proven optimal), never a crash.
 
@@ -218,7 +227,8 @@
 
 // ---------------------------------------------------------------------------------
 // Value bounds (SPEC section 1). Coordinates are fixed by the SPEC; the others keep
-// every sum inside int64 with a wide margin and every leg inside int32 (DESIGN.md 5).
+// every sum inside int64 with a wide margin and every leg inside int32 (DESIGN.md
+// section 5).
 
 #define SVA_COORD_MIN (-32768L)
 #define SVA_COORD_MAX 32767L

@@ -25,7 +25,7 @@ FIELD_NAMES = [
     "", "depot.x", "depot.y", "ticks_per_cell", "hover_fuel", "overlap_percent", "uavs",
     "uavs.id", "uavs.x", "uavs.y", "uavs.fuel", "uavs.ready_at", "targets", "targets.id",
     "targets.x", "targets.y", "targets.start", "targets.end", "targets.need",
-]  # sva_field_t order (core/src/diag.c)
+]  # sva_field_t order (core/src/model/diag.c)
 ALGORITHMS = ["sva", "ga", "hga", "bfa", "flow"]  # sva_algorithm_t order
 REJECT_REASONS = ["truncated", "trailing", "fingerprint", "count", "value", "invalid",
                   "planner", "too_large"]  # sva_lcm_reject_t order

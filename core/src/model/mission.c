@@ -1,5 +1,5 @@
 // mission.c -- mission defaults (SPEC section 3).
-#include "sva_internal.h"
+#include "model.h"
 
 #include <string.h>
 

@@ -1,5 +1,5 @@
 // diag.c -- diagnostics: filling and formatting sva_diag_t without stdio.
-#include "sva_internal.h"
+#include "model.h"
 
 void sva_diag_clear(sva_diag_t* self)
 {

@@ -1,4 +1,4 @@
-// flow_graph.c -- flow's time-feasibility graph (DESIGN.md section 7).
+// flow_graph.c -- flow's time-feasibility graph (DESIGN.md section 8).
 //
 // A target with need n becomes n copies of need 1, so every node carries at most one
 // unit and a flow decomposes into routes in exactly one way. The pooled graph (its root
@@ -19,7 +19,7 @@
 //   c_out -> d_in  the windows chain in time, and some UAV could fly a route
 //                through t -> t' on its fuel (fuel_labels: a necessary condition);
 //   c_out -> z.
-#include "sva_internal.h"
+#include "flow.h"
 
 #define FLOW_INT64_LIMIT (INT64_MAX / 4)
 
@@ -241,8 +241,8 @@ static void group_uavs(sva_flow_lagrange_t* lg, const sva_mission_t* m)
     }
 }
 
-uint8_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan,
-                       bool pooled, sva_stats_t* stats)
+sva_flow_incomplete_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                     const sva_plan_t* plan, bool pooled, sva_stats_t* stats)
 {
     sva_flow_work_t* w = &priv->flow;
     int64_t copies = 0;
@@ -314,7 +314,7 @@ uint8_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m, const s
         w->arc_ban[e] = 0U;
     }
     index_heads(w, nodes);
-    return 0U;
+    return SVA_FLOW_COMPLETE;
 }
 
 int32_t sva_flow_arc_cost(const sva_flow_work_t* w, uint32_t arc)

@@ -1,5 +1,5 @@
 // algorithm.c -- algorithm names used on every interface (SPEC section 2).
-#include "sva_internal.h"
+#include "model.h"
 
 static const char* const algorithm_names[SVA_ALGO_COUNT_] = {"sva", "ga", "hga", "bfa", "flow"};
 

@@ -1,7 +1,7 @@
 // ga.c -- the paper's greedy algorithm (section 4.3): targets by (start, end, id); each
 // is filled with the nearest ready UAVs (ties: lower id). A target that cannot get its
 // whole need is left uncovered and takes no UAV (SPEC section 1).
-#include "sva_internal.h"
+#include "paper.h"
 
 void sva_run_ga(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan)
 {

@@ -2,7 +2,7 @@
 // time order, each cut into chunks of at most SVA_MAX_TP_SINKS targets; every chunk
 // with the UAVs ready for it is a transportation problem, solved, committed, and the
 // UAVs advance (SPEC section 2).
-#include "sva_internal.h"
+#include "paper.h"
 
 // SPEC section 2: when the problem cannot be covered in full, never half-cover. The
 // tableau's optimum delivers as many units as possible; while some sink is short,

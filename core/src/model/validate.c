@@ -1,6 +1,6 @@
 // validate.c -- SPEC section 4: untrusted missions are checked field by field; the
 // first violation (instance fields, then UAVs, then targets, in list order) wins.
-#include "sva_internal.h"
+#include "model.h"
 
 // Checks lo <= value <= hi; on failure fills diag and returns false.
 static bool in_range(sva_diag_t* diag, sva_field_t field, int32_t index, int64_t value,

@@ -4,7 +4,7 @@
 // sink is filled by a vector of units per source, enumerated greedy-first.
 // Deterministic node budget SVA_HGA_MAX_NODES: past it the best assignment found is
 // kept and counted in sva_stats_t.truncated_searches.
-#include "sva_internal.h"
+#include "paper.h"
 
 enum { PHASE_FRESH = 0, PHASE_FILLED = 1, PHASE_SKIPPED = 2 };
 

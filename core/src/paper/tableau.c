@@ -21,7 +21,7 @@
 // Anti-cycling: Dantzig's rule (most negative reduced cost), switching to Bland's rule
 // (lowest index) after SVA_TABLEAU_BLAND_AFTER consecutive degenerate pivots until a
 // pivot makes progress; leaving ties go to the lowest basic column (Bland).
-#include "sva_internal.h"
+#include "paper.h"
 
 #include <string.h>
 

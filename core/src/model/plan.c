@@ -1,6 +1,6 @@
 // plan.c -- the planning state every algorithm shares: where each UAV is, when it is
 // free, how much fuel it has left, its route so far; and the finished plan.
-#include "sva_internal.h"
+#include "model.h"
 
 #include <string.h>
 

@@ -1,6 +1,6 @@
 // transport.c -- one cluster chunk plus the ready UAVs as a transportation problem
 // (SPEC section 2), and committing its solution.
-#include "sva_internal.h"
+#include "paper.h"
 
 #include <string.h>
 

@@ -1,5 +1,5 @@
 // limits.c -- the compiled bounds, reported at run time.
-#include "sva_internal.h"
+#include "model.h"
 
 sva_limits_t sva_limits(void)
 {

@@ -1,5 +1,5 @@
 // flow_ssp.c -- flow's relaxation: a min-cost flow over the time-feasibility graph
-// (flow_graph.c) by successive shortest augmenting paths (DESIGN.md section 7).
+// (flow_graph.c) by successive shortest augmenting paths (DESIGN.md section 8).
 //
 // Supplies: every UAV that is not stranded (one unit), and the out-node of every
 // forced copy (its own arc has lower bound 1, so the unit is pre-sent). Demands: the
@@ -12,7 +12,7 @@
 // (with unit copies no arc can carry two units: its tail holds at most one), and
 // every unit is whole; the relaxation value is a lower bound on cost - reward of
 // every plan that satisfies the node's branching rules.
-#include "sva_internal.h"
+#include "flow.h"
 
 #define FLOW_INF (INT64_MAX / 2)
 
@@ -172,7 +172,7 @@ static void offer(sva_flow_work_t* w, uint16_t v, uint16_t h, int64_t cost, int3
     }
 }
 
-// Every residual arc leaving v (DESIGN.md section 7 lists them).
+// Every residual arc leaving v (DESIGN.md section 8 lists them).
 static void scan(sva_flow_work_t* w, const flow_shape_t* s, uint16_t v)
 {
     const int32_t a = (int32_t)s->a;

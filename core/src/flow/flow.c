@@ -1,5 +1,5 @@
 // flow.c -- the `flow` planner: a min-cost flow relaxation inside a depth-first
-// branch and bound, with a certified lower bound (DESIGN.md section 7).
+// branch and bound, with a certified lower bound (DESIGN.md section 8).
 //
 // Objective: cost - W * covered, with W above any flow's cost (flow_graph.c), which
 // orders plans exactly as SPEC section 1 does. Without fuel the relaxation (flow_ssp.c)
@@ -23,7 +23,8 @@
 // solved first: its routes are taken when they are a plan, and past
 // SVA_FLOW_MAX_ARCS it gives the bound and the first plan. No recursion: the path is
 // an explicit stack of frames.
-#include "sva_internal.h"
+#include "flow.h"
+#include "../paper/paper.h"
 
 #define BRANCH_TARGET 1U
 #define BRANCH_ROUTE 2U
@@ -185,7 +186,7 @@ static bool root_is_plan(sva_planner_priv_t* priv, const sva_mission_t* m, sva_p
 // when root_solved); returns the least bound left open (INT64_MAX when the search
 // finished, -INT64_MAX when the budget was already spent) and sets *incomplete.
 static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
-                      uint64_t budget, bool root_solved, uint8_t* incomplete)
+                      uint64_t budget, bool root_solved, sva_flow_incomplete_t* incomplete)
 {
     sva_flow_work_t* w = &priv->flow;
     sva_stats_t* stats = &plan->stats;
@@ -193,7 +194,7 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
     w->depth = 0U;
     if (!root_solved) {
         if (w->work >= budget) {
-            *incomplete = (uint8_t)SVA_FLOW_INCOMPLETE_WORK;
+            *incomplete = SVA_FLOW_INCOMPLETE_WORK;
             return -INT64_MAX;  // nothing searched: no bound
         }
         stats->search_nodes++;
@@ -201,7 +202,7 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
             // Cannot happen: every UAV that is not stranded may fly home, and the root
             // forces nothing. Claim nothing if it does.
             SVA_ASSERT(false);
-            *incomplete = (uint8_t)SVA_FLOW_INCOMPLETE_DEPTH;
+            *incomplete = SVA_FLOW_INCOMPLETE_DEPTH;
             return INT64_MIN / 4;
         }
     }
@@ -230,7 +231,7 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
                     open = min64(open, w->stack[d].bound);
                 }
             }
-            *incomplete = (uint8_t)SVA_FLOW_INCOMPLETE_WORK;
+            *incomplete = SVA_FLOW_INCOMPLETE_WORK;
             break;
         }
         // Route frames try the longest kept prefix first: the plan that drops the
@@ -252,7 +253,7 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
         }
         if (w->depth >= (uint16_t)SVA_FLOW_MAX_DEPTH) {
             open = min64(open, w->value);
-            *incomplete = (uint8_t)SVA_FLOW_INCOMPLETE_DEPTH;
+            *incomplete = SVA_FLOW_INCOMPLETE_DEPTH;
             continue;
         }
         if (choose_branch(priv, m, plan, &w->stack[w->depth])) {
@@ -277,7 +278,7 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
 // of the ga and sva plans with the trivial bound 0, never claiming optimality. (Past
 // SVA_FLOW_MAX_ARCS the seeds are also improved by the local search and by ruin and
 // recreate: sva_run_flow.)
-static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan, uint8_t why)
+static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan, sva_flow_incomplete_t why)
 {
     sva_planner_priv_t* priv = &self->priv;
     const sva_stats_t kept = plan->stats;
@@ -299,7 +300,7 @@ static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* p
     plan->stats.has_bound = true;
     plan->stats.lower_bound = 0;
     plan->stats.optimal = false;
-    plan->stats.flow_incomplete = why;
+    plan->stats.flow_incomplete = (uint8_t)why;
 }
 
 #define NO_POOLED (-(INT64_MAX / 4))  // pooled_first: no pooled relaxation
@@ -309,7 +310,7 @@ static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* p
 // bound on cost - reward of every plan; lagrange_bound: a bound on the cost (0: none);
 // incomplete: why the search stopped short.
 static void finish(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, int64_t open,
-                   int64_t lagrange_bound, bool coverage_known, uint8_t incomplete)
+                   int64_t lagrange_bound, bool coverage_known, sva_flow_incomplete_t incomplete)
 {
     sva_flow_work_t* w = &priv->flow;
     sva_stats_t* stats = &plan->stats;
@@ -342,9 +343,9 @@ static void finish(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t*
     stats->has_bound = true;
     stats->lower_bound = (bound > cost) ? cost : bound;
     stats->optimal = w->reward_exact &&
-                     (((incomplete == (uint8_t)SVA_FLOW_COMPLETE) && (open == INT64_MAX)) ||
+                     (((incomplete == SVA_FLOW_COMPLETE) && (open == INT64_MAX)) ||
                       (coverage_proven && (bound >= cost)));
-    stats->flow_incomplete = stats->optimal ? (uint8_t)SVA_FLOW_COMPLETE : incomplete;
+    stats->flow_incomplete = stats->optimal ? (uint8_t)SVA_FLOW_COMPLETE : (uint8_t)incomplete;
     stats->flow_work = w->work;
 }
 
@@ -371,12 +372,13 @@ static int64_t pooled_first(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     int64_t pooled = NO_POOLED;
     bool whole = false;
     // The solve cannot fail at the root; claim nothing if it does.
-    if ((sva_flow_build(priv, m, plan, true, &plan->stats) == 0U) && sva_flow_solve(w, &plan->stats)) {
+    if ((sva_flow_build(priv, m, plan, true, &plan->stats) == SVA_FLOW_COMPLETE) &&
+        sva_flow_solve(w, &plan->stats)) {
         pooled = w->value;
         whole = sva_flow_pooled_routes(priv, m, plan);
     }
-    const uint8_t over = sva_flow_build(priv, m, plan, false, &plan->stats);
-    SVA_ASSERT(over == (past ? (uint8_t)SVA_FLOW_OVER_ARCS : 0U));  // as before the pooled graph
+    const sva_flow_incomplete_t over = sva_flow_build(priv, m, plan, false, &plan->stats);
+    SVA_ASSERT(past ? (over == SVA_FLOW_OVER_ARCS) : (over == SVA_FLOW_COMPLETE));  // as before the pooled graph
     if (pooled == NO_POOLED) {
         return pooled;
     }
@@ -407,12 +409,12 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     w->work = 0U;
     w->local_work = budget / 2U;
     stats->search_nodes = 0U;
-    const uint8_t over = sva_flow_build(priv, m, plan, false, stats);
-    if (over == (uint8_t)SVA_FLOW_OVER_COPIES) {
+    const sva_flow_incomplete_t over = sva_flow_build(priv, m, plan, false, stats);
+    if (over == SVA_FLOW_OVER_COPIES) {
         fall_back(self, m, plan, over);
         return SVA_OK;
     }
-    const bool past = over == (uint8_t)SVA_FLOW_OVER_ARCS;
+    const bool past = over == SVA_FLOW_OVER_ARCS;
     bool pooled_proven = false;
     const int64_t pooled = pooled_first(priv, m, plan, past, &pooled_proven);
     if (past || pooled_proven) {
@@ -425,8 +427,8 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
         finish(priv, m, plan, pooled, 0, false, over);
         return SVA_OK;
     }
-    const uint8_t finished = w->reward_exact ? (uint8_t)SVA_FLOW_COMPLETE : (uint8_t)SVA_FLOW_INCOMPLETE_REWARD;
-    uint8_t incomplete = finished;
+    const sva_flow_incomplete_t finished = w->reward_exact ? SVA_FLOW_COMPLETE : SVA_FLOW_INCOMPLETE_REWARD;
+    sva_flow_incomplete_t incomplete = finished;
     int64_t open = INT64_MAX;
     int64_t lagrange_bound = 0;
     bool coverage_proven = false;
@@ -449,7 +451,7 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
                                                    coverage_proven ? lagrange_bound : -1);
         // Proven optimal already (the claim below): no second search.
         if (!proven || !w->reward_exact) {
-            uint8_t again = finished;
+            sva_flow_incomplete_t again = finished;
             const int64_t open_again = search(priv, m, plan, start + budget, false, &again);
             open = (open_again > open) ? open_again : open;
             incomplete = (open_again == INT64_MAX) ? again : incomplete;

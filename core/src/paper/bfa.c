@@ -11,7 +11,7 @@
 // inequality), so a branch that cannot cover more than the best plan, or covers as
 // many at no lower cost, is cut. UAVs in identical state (position, free time, fuel)
 // are interchangeable: only the lowest-ranked of them are chosen (symmetry breaking).
-#include "sva_internal.h"
+#include "paper.h"
 
 enum { PHASE_FRESH = 0, PHASE_PICKED = 1, PHASE_SKIPPED = 2 };
 

@@ -1,0 +1,145 @@
+// flow_incumbent.c -- flow's plans: whether a route fits its UAV, the value of a plan,
+// and the best plan found so far (the incumbent), kept as linked copies of the graph
+// (DESIGN.md section 8).
+#include "flow.h"
+
+bool sva_flow_fits(const sva_mission_t* m, uint16_t u, int64_t cells, uint32_t targets)
+{
+    return (targets <= (uint32_t)SVA_MAX_ROUTE_TARGETS) &&
+           ((cells + ((int64_t)m->hover_fuel * (int64_t)targets)) <= m->uavs[u].fuel);
+}
+
+bool sva_flow_route_fits(const sva_mission_t* m, uint16_t u, const uint16_t* copies,
+                         uint16_t n, const sva_flow_work_t* w)
+{
+    int32_t x = m->uavs[u].x;
+    int32_t y = m->uavs[u].y;
+    int64_t cells = 0;
+    for (uint16_t k = 0U; k < n; k++) {
+        const sva_target_t* t = &m->targets[w->copy_target[copies[k]]];
+        cells += sva_distance(x, y, t->x, t->y);
+        x = t->x;
+        y = t->y;
+    }
+    cells += sva_distance(x, y, m->depot_x, m->depot_y);
+    return sva_flow_fits(m, u, cells, n);
+}
+
+// ---------------------------------------------------------------------------------
+// The incumbent.
+
+int64_t sva_flow_plan_value(const sva_planner_priv_t* priv, const sva_mission_t* m,
+                            const sva_plan_t* plan)
+{
+    const sva_flow_work_t* w = &priv->flow;
+    int64_t value = 0;
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        if (!plan->routes[u].stranded) {
+            value += sva_route_cells(m, u, &plan->routes[u]);
+        }
+    }
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        if ((int32_t)priv->target_served[t] == m->targets[t].need) {
+            value -= (int64_t)m->targets[t].need * w->copy_reward[w->target_first_copy[t]];
+        }
+    }
+    return value;
+}
+
+bool sva_flow_offer_plan(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan)
+{
+    sva_flow_work_t* w = &priv->flow;
+    const int64_t value = sva_flow_plan_value(priv, m, plan);
+    if (w->has_inc && (value >= w->inc_value)) {
+        return false;
+    }
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        w->target_taken[t] = 0U;
+    }
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        const sva_route_t* r = &plan->routes[u];
+        uint16_t* link = &w->inc_first[u];
+        for (uint16_t k = 0U; k < r->target_count; k++) {
+            const uint16_t t = r->targets[k];
+            const uint16_t c = (uint16_t)(w->target_first_copy[t] + w->target_taken[t]);
+            w->target_taken[t]++;
+            *link = c;
+            link = &w->inc_next[c];
+        }
+        *link = SVA_FLOW_ROUTE_END;
+    }
+    w->inc_value = value;
+    w->has_inc = true;
+    return true;
+}
+
+// Whether the incumbent's route from copy a comes before the one from copy b: their
+// targets compared in window order (copy ids follow it: flow_graph.c), a route before
+// its own extensions, an empty route (SVA_FLOW_ROUTE_END) last.
+static bool route_before(const sva_flow_work_t* w, uint16_t a, uint16_t b)
+{
+    if ((a == SVA_FLOW_ROUTE_END) || (b == SVA_FLOW_ROUTE_END)) {
+        return (a != SVA_FLOW_ROUTE_END) && (b == SVA_FLOW_ROUTE_END);
+    }
+    uint16_t ca = a;
+    uint16_t cb = b;
+    while ((ca != SVA_FLOW_ROUTE_END) && (cb != SVA_FLOW_ROUTE_END) && (w->copy_target[ca] == w->copy_target[cb])) {
+        ca = w->inc_next[ca];
+        cb = w->inc_next[cb];
+    }
+    if ((ca == SVA_FLOW_ROUTE_END) || (cb == SVA_FLOW_ROUTE_END)) {
+        return (ca == SVA_FLOW_ROUTE_END) && (cb != SVA_FLOW_ROUTE_END);  // a proper prefix first
+    }
+    return ca < cb;
+}
+
+void sva_flow_canonical_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m)
+{
+    sva_flow_work_t* w = &priv->flow;
+    for (uint16_t i = 0U; i < m->uav_count; i++) {
+        const uint16_t a = priv->uav_order[i];
+        for (uint16_t j = (uint16_t)(i + 1U); j < m->uav_count; j++) {
+            const uint16_t b = priv->uav_order[j];
+            if ((w->lagrange.group[a] == w->lagrange.group[b]) && route_before(w, w->inc_first[b], w->inc_first[a])) {
+                const uint16_t first = w->inc_first[a];
+                w->inc_first[a] = w->inc_first[b];
+                w->inc_first[b] = first;
+            }
+        }
+    }
+}
+
+void sva_flow_write_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+{
+    const sva_flow_work_t* w = &priv->flow;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        priv->target_served[t] = 0U;
+    }
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        sva_route_t* r = &plan->routes[u];
+        r->target_count = 0U;
+        for (uint16_t c = w->inc_first[u]; c != SVA_FLOW_ROUTE_END; c = w->inc_next[c]) {
+            const uint16_t t = w->copy_target[c];
+            SVA_ASSERT(r->target_count < SVA_MAX_ROUTE_TARGETS);
+            r->targets[r->target_count] = t;
+            r->target_count++;
+            priv->target_served[t]++;
+        }
+    }
+}
+
+void sva_flow_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, int64_t* cost,
+                        int64_t* covered)
+{
+    sva_flow_write_incumbent(priv, m, plan);
+    *cost = 0;
+    *covered = 0;
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        if (!plan->routes[u].stranded) {
+            *cost += sva_route_cells(m, u, &plan->routes[u]);
+        }
+    }
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        *covered += ((int32_t)priv->target_served[t] == m->targets[t].need) ? 1 : 0;
+    }
+}

@@ -1,0 +1,338 @@
+// flow_repair.c -- flow's repair: any routes (a rounded relaxation, a dive's fixed
+// routes, a ruined plan) made a plan, improved by local search, and offered to the
+// incumbent (DESIGN.md section 8).
+//
+// The repair: drop every target served by fewer than `need` UAVs; while a route breaks
+// its fuel (or SVA_MAX_ROUTE_TARGETS), drop from every route the target whose removal
+// shortens that route most; then insert each uncovered target, in (start, end, id)
+// order, at the cheapest time- and fuel-feasible place of its `need` cheapest UAVs, or
+// leave it out (flow_insert.c); then the local search below. Removing a target keeps a
+// route feasible in time (triangle inequality), so every result is a plan. The plan
+// under construction lives in the caller's sva_plan_t (its routes and
+// priv->target_served), exactly as the other algorithms build theirs. The local search
+// is in this file so that the compiler can fold it into the repair's frame: flow's
+// worst stack path runs through it (docs/embedded.md).
+//
+// Local search: move one UAV's visit to another UAV, swap two UAVs' visits (each in
+// the other's slot), swap two routes' tails, or trade a covered target for an
+// uncovered one of the same need, whenever the plan gets shorter. First improvement;
+// passes until none helps, at most LOCAL_PASSES, and no new pass once a call has used
+// w->local_work. Coverage never changes; every step keeps a plan.
+#include "flow.h"
+
+#define LOCAL_PASSES 8U
+
+static bool serves(const sva_route_t* r, uint16_t t)
+{
+    for (uint16_t k = 0U; k < r->target_count; k++) {
+        if (r->targets[k] == t) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// Puts target t back at position k of route u (undoing remove_at).
+static void put_back(const sva_mission_t* m, sva_flow_work_t* w, sva_route_t* r, uint16_t u,
+                     uint16_t k, uint16_t t)
+{
+    w->insert_pos[u] = k;
+    w->insert_delta[u] = 0;
+    sva_flow_insert_at(w, r, u, t);
+    w->route_cells[u] = sva_route_cells(m, u, r);
+}
+
+// Moves the k-th visit of route a to another UAV when that saves cells.
+static bool relocate(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, uint16_t a, uint16_t k)
+{
+    sva_route_t* ra = &plan->routes[a];
+    const uint16_t t = ra->targets[k];
+    const int64_t saving = sva_flow_stop_saving(m, a, ra, k);
+    for (uint16_t b = 0U; b < m->uav_count; b++) {
+        sva_route_t* rb = &plan->routes[b];
+        w->work += 1U + rb->target_count;
+        if ((b == a) || rb->stranded || serves(rb, t) || !sva_flow_best_place(w, m, plan, b, t) ||
+            (w->insert_delta[b] >= saving)) {
+            continue;
+        }
+        sva_flow_remove_at(m, w, ra, a, k);
+        sva_flow_insert_at(w, rb, b, t);
+        return true;
+    }
+    return false;
+}
+
+// Whether target t fits the slot of route u's k-th target in time; *delta gets the
+// cells the route grows by with t in that slot.
+static bool slot_delta(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t k, uint16_t t,
+                       int64_t* delta)
+{
+    int64_t cells = 0;
+    if (!sva_flow_detour(m, u, r, k, (uint16_t)(k + 1U), t, &cells)) {
+        return false;
+    }
+    *delta = cells - sva_flow_stop_saving(m, u, r, k);
+    return true;
+}
+
+// Swaps the k-th visit of route a with a visit of a later route, each taking the
+// other's slot, when that saves cells.
+static bool swap(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, uint16_t a, uint16_t k)
+{
+    sva_route_t* ra = &plan->routes[a];
+    const uint16_t s = ra->targets[k];
+    for (uint16_t b = (uint16_t)(a + 1U); b < m->uav_count; b++) {
+        sva_route_t* rb = &plan->routes[b];
+        if (rb->stranded) {
+            continue;
+        }
+        for (uint16_t j = 0U; j < rb->target_count; j++) {
+            const uint16_t t = rb->targets[j];
+            w->work++;
+            int64_t da = 0;
+            int64_t db = 0;
+            if (!slot_delta(m, a, ra, k, t, &da) || !slot_delta(m, b, rb, j, s, &db) || ((da + db) >= 0) ||
+                !sva_flow_fits(m, a, w->route_cells[a] + da, ra->target_count) ||
+                !sva_flow_fits(m, b, w->route_cells[b] + db, rb->target_count) || serves(ra, t) ||
+                serves(rb, s)) {
+                continue;
+            }
+            ra->targets[k] = t;
+            rb->targets[j] = s;
+            w->route_cells[a] += da;
+            w->route_cells[b] += db;
+            return true;
+        }
+    }
+    return false;
+}
+
+static int64_t plan_cells(const sva_flow_work_t* w, const sva_mission_t* m)
+{
+    int64_t cells = 0;
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        cells += w->route_cells[u];
+    }
+    return cells;
+}
+
+// Trade: covered target s gives way to an uncovered target t of the same need, served
+// by its `need` cheapest UAVs, when that saves cells (coverage unchanged).
+static bool trade(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, uint16_t s)
+{
+    sva_flow_work_t* w = &priv->flow;
+    const int32_t need = m->targets[s].need;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        if ((priv->target_served[t] != 0U) || (m->targets[t].need != need)) {
+            continue;
+        }
+        w->work += (uint64_t)m->uav_count * 4U;
+        const int64_t before = plan_cells(w, m);
+        for (uint16_t u = 0U; u < m->uav_count; u++) {
+            const sva_route_t* r = &plan->routes[u];
+            w->trade_pos[u] = SVA_FLOW_ROUTE_END;
+            for (uint16_t k = 0U; k < r->target_count; k++) {
+                w->trade_pos[u] = (r->targets[k] == s) ? k : w->trade_pos[u];
+            }
+        }
+        sva_flow_remove_target(priv, m, plan, s);
+        sva_flow_try_insert(priv, m, plan, t);
+        if ((priv->target_served[t] != 0U) && (plan_cells(w, m) < before)) {
+            return true;
+        }
+        if (priv->target_served[t] != 0U) {
+            sva_flow_remove_target(priv, m, plan, t);
+        }
+        for (uint16_t u = 0U; u < m->uav_count; u++) {
+            if (w->trade_pos[u] != SVA_FLOW_ROUTE_END) {
+                put_back(m, w, &plan->routes[u], u, w->trade_pos[u], s);
+            }
+        }
+        priv->target_served[s] = (uint16_t)need;
+    }
+    return false;
+}
+
+// Cells of route u's pieces: pre[i] from the UAV to its i-th target (pre[0] = 0),
+// post[i] from its i-th target on to the depot (post[n] = 0).
+static void piece_cells(const sva_mission_t* m, uint16_t u, const sva_route_t* r, int32_t* pre,
+                        int32_t* post)
+{
+    int32_t x = m->uavs[u].x;
+    int32_t y = m->uavs[u].y;
+    pre[0] = 0;
+    for (uint16_t k = 0U; k < r->target_count; k++) {
+        const sva_target_t* t = &m->targets[r->targets[k]];
+        pre[k + 1U] = pre[k] + ((k == 0U) ? 0 : sva_distance(x, y, t->x, t->y));
+        x = t->x;
+        y = t->y;
+    }
+    post[r->target_count] = 0;
+    x = m->depot_x;
+    y = m->depot_y;
+    for (uint16_t k = r->target_count; k > 0U; k--) {
+        const sva_target_t* t = &m->targets[r->targets[k - 1U]];
+        post[k - 1U] = post[k] + sva_distance(t->x, t->y, x, y);
+        x = t->x;
+        y = t->y;
+    }
+}
+
+// The route UAV u would fly taking ra's first i targets, then rb's from j on (pieces'
+// cells from piece_cells): its cells, or -1 if the joint breaks time.
+static int64_t spliced_cells(const sva_mission_t* m, uint16_t u, const sva_route_t* ra, uint16_t i,
+                             const int32_t* pre_a, const sva_route_t* rb, uint16_t j, const int32_t* post_b)
+{
+    int32_t x = 0;
+    int32_t y = 0;
+    int64_t free_at = 0;
+    sva_flow_leg_ends(m, u, ra, i, &x, &y, &free_at);
+    int32_t nx = m->depot_x;
+    int32_t ny = m->depot_y;
+    if (j < rb->target_count) {
+        const sva_target_t* next = &m->targets[rb->targets[j]];
+        if (!sva_flow_arrives_in_time(m, free_at, x, y, next)) {
+            return -1;
+        }
+        nx = next->x;
+        ny = next->y;
+    }
+    // pre_a[i] counts from ra's first target; the UAV's first leg is in the joint
+    // when i == 0, else it is leg 0 of ra.
+    const int64_t first = (i == 0U) ? 0
+                                    : sva_distance(m->uavs[u].x, m->uavs[u].y, m->targets[ra->targets[0]].x,
+                                                   m->targets[ra->targets[0]].y);
+    return first + pre_a[i] + sva_distance(x, y, nx, ny) + post_b[j];
+}
+
+// No target both in ra's first i and in rb's from j on (needs above 1).
+static bool splice_distinct(const sva_route_t* ra, uint16_t i, const sva_route_t* rb, uint16_t j)
+{
+    for (uint16_t k = 0U; k < i; k++) {
+        for (uint16_t l = j; l < rb->target_count; l++) {
+            if (ra->targets[k] == rb->targets[l]) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+// Tail exchange: routes a and b swap everything after a cut each (a keeps its first i
+// targets and takes b's from j on; b the other way round) when that saves cells.
+static bool exchange_tails(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, uint16_t a,
+                           uint16_t b)
+{
+    sva_route_t* ra = &plan->routes[a];
+    sva_route_t* rb = &plan->routes[b];
+    const int64_t before = w->route_cells[a] + w->route_cells[b];
+    piece_cells(m, a, ra, w->piece_pre[0], w->piece_post[0]);
+    piece_cells(m, b, rb, w->piece_pre[1], w->piece_post[1]);
+    w->work += (uint32_t)ra->target_count + rb->target_count;
+    for (uint16_t i = 0U; i <= ra->target_count; i++) {
+        for (uint16_t j = 0U; j <= rb->target_count; j++) {
+            w->work++;
+            const uint16_t na = (uint16_t)(i + (rb->target_count - j));
+            const uint16_t nb = (uint16_t)(j + (ra->target_count - i));
+            const int64_t ca = spliced_cells(m, a, ra, i, w->piece_pre[0], rb, j, w->piece_post[1]);
+            const int64_t cb = (ca < 0) ? -1 : spliced_cells(m, b, rb, j, w->piece_pre[1], ra, i, w->piece_post[0]);
+            if ((cb < 0) || ((ca + cb) >= before) || !sva_flow_fits(m, a, ca, na) ||
+                !sva_flow_fits(m, b, cb, nb) || !splice_distinct(ra, i, rb, j) ||
+                !splice_distinct(rb, j, ra, i)) {
+                continue;
+            }
+            const uint16_t tail = (uint16_t)(ra->target_count - i);
+            for (uint16_t k = 0U; k < tail; k++) {
+                w->spare_route[k] = ra->targets[i + k];
+            }
+            for (uint16_t k = j; k < rb->target_count; k++) {
+                ra->targets[i + (k - j)] = rb->targets[k];
+            }
+            for (uint16_t k = 0U; k < tail; k++) {
+                rb->targets[j + k] = w->spare_route[k];
+            }
+            ra->target_count = na;
+            rb->target_count = nb;
+            w->route_cells[a] = ca;
+            w->route_cells[b] = cb;
+            return true;
+        }
+    }
+    return false;
+}
+
+static void local_search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+{
+    sva_flow_work_t* w = &priv->flow;
+    const uint64_t stop = w->work + w->local_work;
+    bool better = true;
+    for (uint32_t pass = 0U; better && (pass < LOCAL_PASSES) && (w->work < stop); pass++) {
+        better = false;
+        for (uint16_t a = 0U; a < m->uav_count; a++) {
+            for (uint16_t k = 0U; k < plan->routes[a].target_count; k++) {
+                if (relocate(w, m, plan, a, k) || swap(w, m, plan, a, k)) {
+                    better = true;
+                }
+            }
+            for (uint16_t b = (uint16_t)(a + 1U); (b < m->uav_count) && !plan->routes[a].stranded; b++) {
+                if (!plan->routes[b].stranded && exchange_tails(w, m, plan, a, b)) {
+                    better = true;
+                }
+            }
+        }
+        for (uint16_t s = 0U; s < m->target_count; s++) {
+            if (((int32_t)priv->target_served[s] == m->targets[s].need) && trade(priv, m, plan, s)) {
+                better = true;
+            }
+        }
+    }
+}
+
+void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, bool polish)
+{
+    sva_flow_work_t* w = &priv->flow;
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        w->route_cells[u] = sva_route_cells(m, u, &plan->routes[u]);
+    }
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        if ((priv->target_served[t] > 0U) && ((int32_t)priv->target_served[t] < m->targets[t].need)) {
+            sva_flow_remove_target(priv, m, plan, t);
+        }
+    }
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        sva_route_t* r = &plan->routes[u];
+        while ((r->target_count > 0U) && !sva_flow_fits(m, u, w->route_cells[u], r->target_count)) {
+            sva_flow_remove_target(priv, m, plan, r->targets[sva_flow_costliest_stop(m, u, r)]);
+        }
+    }
+    for (uint16_t i = 0U; i < m->target_count; i++) {
+        const uint16_t t = priv->target_order[w->insert_backwards ? ((m->target_count - 1U) - i) : i];
+        if (priv->target_served[t] == 0U) {
+            sva_flow_try_insert(priv, m, plan, t);
+        }
+    }
+    for (uint16_t i = 0U; i < m->target_count; i++) {
+        const uint16_t t = priv->target_order[i];
+        if ((priv->target_served[t] == 0U) && (m->targets[t].need == 1)) {
+            (void)sva_flow_eject_for(priv, m, plan, t);
+        }
+    }
+    // Local search only for plans within reach of the best: better already, or (when
+    // `polish`) at most 1/16 of their length worse.
+    int64_t margin = 0;
+    for (uint16_t u = 0U; polish && (u < m->uav_count); u++) {
+        margin += w->route_cells[u] / 16;
+    }
+    if (w->has_inc && (sva_flow_plan_value(priv, m, plan) >= (w->inc_value + margin))) {
+        (void)sva_flow_offer_plan(priv, m, plan);
+        return;
+    }
+    local_search(priv, m, plan);
+    for (uint16_t i = 0U; i < m->target_count; i++) {
+        const uint16_t t = priv->target_order[i];
+        if (priv->target_served[t] == 0U) {
+            sva_flow_try_insert(priv, m, plan, t);
+        }
+    }
+    (void)sva_flow_offer_plan(priv, m, plan);
+}
