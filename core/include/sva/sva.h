@@ -116,6 +116,17 @@ typedef enum {
     SVA_FIELD_TARGET_START,
     SVA_FIELD_TARGET_END,
     SVA_FIELD_TARGET_NEED,
+    SVA_FIELD_CHANGE_PENALTY,  ///< a live mission's change_penalty
+    SVA_FIELD_ROUTES,          ///< a plan in force's route list (its length)
+    SVA_FIELD_ROUTE_UAV,       ///< a route's UAV id
+    SVA_FIELD_ROUTE_TARGETS,   ///< a route's target list (value: the target index)
+    SVA_FIELD_EVENT_TYPE,
+    SVA_FIELD_EVENT_AT,
+    SVA_FIELD_EVENT_UAV,
+    SVA_FIELD_EVENT_TARGET,    ///< the id an event names
+    SVA_FIELD_EVENT_X,
+    SVA_FIELD_EVENT_Y,
+    SVA_FIELD_EVENT_FUEL,
     SVA_FIELD_COUNT_  ///< number of fields (not a field)
 } sva_field_t;
 
@@ -128,6 +139,11 @@ typedef enum {
     SVA_RULE_DUPLICATE,  ///< id equal to the one at index `limit` of the same list
     SVA_RULE_AFTER,      ///< end <= start: value is end, limit is start
     SVA_RULE_ALGO_LIMIT, ///< an algorithm limit (limit_name names it)
+    SVA_RULE_UNKNOWN,    ///< no UAV or target has the id `value`
+    SVA_RULE_PAST,       ///< the tick `value` is before the live mission's now (`limit`)
+    SVA_RULE_STARTED,    ///< the target's window started at `value`; now is `limit`
+    SVA_RULE_STATE,      ///< the UAV or target is in a state (`value`) the event needs otherwise
+    SVA_RULE_ROUTE,      ///< a plan in force's route names the target `value` twice or a UAV out of order
     SVA_RULE_COUNT_      ///< number of rules (not a rule)
 } sva_rule_t;
 
@@ -190,6 +206,9 @@ typedef struct {
     int32_t ticks_per_cell;   ///< travel ticks per cell, [1, SVA_MAX_TICKS_PER_CELL]
     int32_t hover_fuel;       ///< fuel per served window, [0, SVA_MAX_HOVER_FUEL]
     int32_t overlap_percent;  ///< clustering threshold, [0, 100]
+    /// Live missions only (SPEC section 5.4): cells a replan pays per changed visit,
+    /// [0, SVA_MAX_CHANGE_PENALTY]; sva_plan() ignores it.
+    int32_t change_penalty;
     uint16_t uav_count;       ///< [0, SVA_MAX_UAVS]
     uint16_t target_count;    ///< [0, SVA_MAX_TARGETS]
     sva_uav_t uavs[SVA_MAX_UAVS];
@@ -393,6 +412,161 @@ SVA_NODISCARD sva_status_t sva_plan(sva_planner_t* self,
                                     sva_algorithm_t algorithm,
                                     sva_plan_t* plan,
                                     sva_diag_t* diag);
+
+// =================================================================================
+// Live missions (docs/SPEC.md section 5)
+//
+// A live mission is a mission under way: a clock, the plan in force, every target's
+// state, and events that change the mission (UAVs lost or back, fuel readings, targets
+// added, cancelled or changed). sva_live_apply() takes one event; sva_live_replan()
+// plans what is left (the residual mission) with any algorithm and makes the result the
+// plan in force. Visits under way are never broken by a replan, and a replan never
+// covers fewer targets than the plan in force still could (it is always a candidate).
+// Everything lives in the caller's sva_live_t: firmware writes `static sva_live_t live;`.
+
+/// A target's state in a live mission.
+typedef enum {
+    SVA_TARGET_WAITING = 0,  ///< its window has not started (or starts now)
+    SVA_TARGET_UNDER_WAY,    ///< window started with its UAVs present; they stay to the end
+    SVA_TARGET_DONE,         ///< window ended with its UAVs present: covered
+    SVA_TARGET_EXPIRED,      ///< not under way and fewer than `need` UAVs can reach its start
+    SVA_TARGET_CANCELLED,    ///< cancelled by an event
+    SVA_TARGET_LOST,         ///< under way when one of its UAVs was lost: not covered
+    SVA_TARGET_STATE_COUNT_  ///< number of states (not a state)
+} sva_target_state_t;
+
+/// The SPEC name of a target state ("waiting", "under_way", "done", "expired",
+/// "cancelled", "lost"), or "" when out of range. Never NULL.
+const char* sva_target_state_name(sva_target_state_t state);
+
+/// What an event does (SPEC section 5.3).
+typedef enum {
+    SVA_EVENT_CLOCK = 0,         ///< time passes: now becomes at_ticks
+    SVA_EVENT_UAV_LOST,          ///< uav_id leaves service
+    SVA_EVENT_UAV_BACK,          ///< uav_id returns to service at (x, y) with fuel
+    SVA_EVENT_FUEL,              ///< uav_id's remaining fuel reads `fuel`
+    SVA_EVENT_TARGET_ADDED,      ///< `target` joins the mission (a new id)
+    SVA_EVENT_TARGET_CANCELLED,  ///< target.id is cancelled
+    SVA_EVENT_TARGET_CHANGED,    ///< target.id gets target's position, window and need
+    SVA_EVENT_COUNT_             ///< number of event types (not a type)
+} sva_event_type_t;
+
+/// The SPEC name of an event type ("clock", "uav_lost", "uav_back", "fuel",
+/// "target_added", "target_cancelled", "target_changed"), or "" when out of range.
+const char* sva_event_type_name(sva_event_type_t type);
+
+/// Looks an event type up by its SPEC name. SVA_OK, or SVA_ERR_ARGUMENT when unknown.
+SVA_NODISCARD sva_status_t sva_event_type_from_name(const char* name, sva_event_type_t* out);
+
+/// One event. Fields an event type does not use are ignored.
+typedef struct {
+    sva_event_type_t type;
+    int32_t at_ticks;     ///< when it happened: >= the live mission's now
+    int32_t uav_id;       ///< uav_lost, uav_back, fuel
+    int32_t x;            ///< uav_back
+    int32_t y;            ///< uav_back
+    int32_t fuel;         ///< uav_back, fuel: [0, SVA_MAX_FUEL]
+    sva_target_t target;  ///< target_added, target_changed; target_cancelled reads target.id
+} sva_event_t;
+
+/// What sva_live_replan() chose (valid until the next call on the same sva_live_t).
+typedef struct {
+    /// The residual mission the planner saw: the UAVs in service where the flight model
+    /// puts them at `now` (a UAV under way waits at its target until the window ends),
+    /// and the targets still waiting. A standalone mission: sva_plan() accepts it.
+    const sva_mission_t* residual;
+    /// The new plan in force, over `residual` (indices into residual->targets).
+    const sva_plan_t* plan;
+    /// The plan in force before the replan, over `residual`: its visits of the residual
+    /// targets, as planned (whether or not they still fit). A changed visit is a
+    /// (UAV, target) pair in one of `previous` and `plan` but not in the other.
+    const sva_plan_t* previous;
+    int32_t now_ticks;
+    uint32_t revision;        ///< events applied so far (the clock's included)
+    uint16_t under_way;       ///< targets under way with their UAVs (covered, not replanned)
+    uint16_t covered;         ///< under_way + plan->covered
+    uint32_t dropped;         ///< pairs of `previous` that `plan` drops
+    uint32_t added;           ///< pairs of `plan` that `previous` lacks
+    int64_t objective;        ///< plan->cost + change_penalty * (dropped + added)
+    /// The plan in force, less what no longer fits, won (ties go to it); false: the
+    /// planner's plan of the residual mission won.
+    bool kept;
+} sva_live_result_t;
+
+// ---------------------------------------------------------------------------------
+// Private layout of a live mission, public only because sva_live_t is caller-owned:
+// read-only to users; it may change in any release.
+
+/// One UAV of a live mission: where its route in force starts, and the route.
+typedef struct {
+    int32_t x;           ///< the route starts here,
+    int32_t y;
+    int64_t fuel;        ///< with this much fuel,
+    int64_t from_ticks;  ///< at this tick (it may leave then)
+    int32_t busy_with;   ///< until from_ticks: the target under way there, or -1
+    bool lost;           ///< out of service
+    uint16_t route_count;
+    uint16_t route[SVA_MAX_ROUTE_TARGETS];  ///< indices into mission.targets, in visit order
+} sva_live_uav_t;
+
+/// A live mission. Initialise with sva_live_init(); then read only.
+typedef struct {
+    sva_mission_t mission;   ///< UAVs as they started; targets as they stand now
+    int32_t now_ticks;
+    uint32_t revision;       ///< events applied
+    uint8_t target_state[SVA_MAX_TARGETS];   ///< sva_target_state_t of each target
+    int32_t target_ended[SVA_MAX_TARGETS];   ///< tick it was lost or cancelled
+    sva_live_uav_t uavs[SVA_MAX_UAVS];
+    struct {
+        sva_mission_t residual;
+        sva_plan_t plan;
+        sva_plan_t candidate;
+        sva_plan_t previous;
+        uint16_t uav_of[SVA_MAX_UAVS];       ///< residual UAV -> mission UAV
+        uint16_t target_of[SVA_MAX_TARGETS]; ///< residual target -> mission target
+        int32_t busy_with[SVA_MAX_UAVS];     ///< residual UAV's target under way, or -1
+        int32_t residual_of[SVA_MAX_TARGETS]; ///< mission target -> residual target, or -1
+        uint16_t served[SVA_MAX_TARGETS];     ///< UAVs per residual target (scratch)
+    } priv;
+} sva_live_t;
+
+/// Starts a live mission at now = 0 from a mission (its change_penalty included) and,
+/// when plan is not NULL, the plan in force (over the same mission, e.g. sva_plan()'s;
+/// only its routes are read).
+/// Returns SVA_OK; SVA_ERR_ARGUMENT for a NULL self or mission; SVA_ERR_INVALID when the
+/// mission breaks a rule or a route names an unknown target, a target twice or a UAV out of mission order (diag
+/// says which). Fails iff it returns non-zero, and then *self is unspecified.
+/// Allocates nothing; O(U * R + T^2 + U^2) with R = SVA_MAX_ROUTE_TARGETS.
+SVA_NODISCARD sva_status_t sva_live_init(sva_live_t* self, const sva_mission_t* mission,
+                                         const sva_plan_t* plan, sva_diag_t* diag);
+
+/// Applies one event: first the clock moves to event->at_ticks (visits start, end or
+/// expire on the way), then the event acts (SPEC section 5.3). Returns SVA_OK, or
+/// SVA_ERR_INVALID with diag naming the field and rule: an event before now, an unknown
+/// UAV or target, a duplicate target id, target_changed at or after its start, a fuel
+/// reading of a UAV out of service, uav_back of a UAV in service, a cancelled target
+/// that is done or lost, a target over SVA_MAX_TARGETS or breaking a mission rule.
+/// All-or-nothing: a rejected event leaves *self byte for byte as it was.
+/// Allocates nothing; O(U * R + T).
+SVA_NODISCARD sva_status_t sva_live_apply(sva_live_t* self, const sva_event_t* event,
+                                          sva_diag_t* diag);
+
+/// Plans the residual mission with `algorithm` and makes the better of that plan and the
+/// plan in force (less what no longer fits) the new plan in force: more targets covered
+/// first, then the smaller cost + change_penalty * changed visits (SPEC section 5.4).
+/// Returns SVA_OK with *result filled; otherwise sva_plan()'s status and diag, and the
+/// plan in force stays as it was. Allocates nothing; sva_plan()'s complexity plus
+/// O(U * R * T).
+SVA_NODISCARD sva_status_t sva_live_replan(sva_live_t* self, sva_planner_t* planner,
+                                           sva_algorithm_t algorithm,
+                                           sva_live_result_t* result, sva_diag_t* diag);
+
+/// Where a UAV is at `at_ticks` (>= now) by the flight model of SPEC section 5.2, with
+/// its fuel and the tick from which it can take new work (later than at_ticks while
+/// it finishes a cell step or a visit under way). False for an unknown index or a UAV
+/// out of service. Allocates nothing; O(R).
+bool sva_live_uav_at(const sva_live_t* self, uint16_t uav, int32_t at_ticks, int32_t* x,
+                     int32_t* y, int32_t* fuel, int32_t* ready_ticks);
 
 // =================================================================================
 // Compiled limits

@@ -265,6 +265,16 @@
 #error "SVA_MAX_HOVER_FUEL must be in [0, 100000000]"
 #endif
 
+/// Largest change_penalty of a live mission (cells per changed visit). The objective
+/// cost + change_penalty * changes stays far inside int64_t: changes are at most
+/// 2 * SVA_MAX_UAVS * SVA_MAX_ROUTE_TARGETS.
+#ifndef SVA_MAX_CHANGE_PENALTY
+#define SVA_MAX_CHANGE_PENALTY 1000000L
+#endif
+#if (SVA_MAX_CHANGE_PENALTY < 0L) || (SVA_MAX_CHANGE_PENALTY > 1000000000L)
+#error "SVA_MAX_CHANGE_PENALTY must be in [0, 1000000000]"
+#endif
+
 /// Largest UAV or target id (ids are positive).
 #define SVA_MAX_ID 2147483647L
 

@@ -30,6 +30,9 @@ const char* sva_field_name(sva_field_t field)
         "uavs.x",           "uavs.y",         "uavs.fuel",      "uavs.ready_at",
         "targets",          "targets.id",     "targets.x",      "targets.y",
         "targets.start",    "targets.end",    "targets.need",
+        "change_penalty",   "routes",         "routes.uav",     "routes.targets",
+        "event.type",       "event.at",       "event.uav",      "event.target",
+        "event.x",          "event.y",        "event.fuel",
     };
     if ((unsigned)field >= (unsigned)SVA_FIELD_COUNT_) {
         return "";
@@ -165,6 +168,37 @@ size_t sva_diag_format(const sva_diag_t* self, char* buf, size_t size)
         put_str(&w, " (");
         put_int(&w, self->limit);
         put_str(&w, ")");
+        break;
+    case SVA_RULE_UNKNOWN:
+        put_str(&w, "unknown id ");
+        put_int(&w, self->value);
+        break;
+    case SVA_RULE_PAST:
+        put_int(&w, self->value);
+        put_str(&w, " is before now (");
+        put_int(&w, self->limit);
+        put_str(&w, ")");
+        break;
+    case SVA_RULE_STARTED:
+        put_str(&w, "its window started at ");
+        put_int(&w, self->value);
+        put_str(&w, " (now ");
+        put_int(&w, self->limit);
+        put_str(&w, "): only a target not yet started may change");
+        break;
+    case SVA_RULE_STATE:
+        if (self->field == SVA_FIELD_EVENT_UAV) {
+            put_str(&w, (self->value != 0) ? "the UAV is lost" : "the UAV is in service");
+        } else {
+            put_str(&w, "the target is ");
+            put_str(&w, sva_target_state_name((sva_target_state_t)self->value));
+        }
+        break;
+    case SVA_RULE_ROUTE:
+        put_str(&w, "must follow the mission's UAVs (");
+        put_int(&w, self->limit);
+        put_str(&w, "), got ");
+        put_int(&w, self->value);
         break;
     case SVA_RULE_COUNT_:
     default:

@@ -1,0 +1,165 @@
+// live_replan.c -- a live mission's replan (SPEC section 5.4): the residual mission,
+// two candidates (the planner's plan of it, the plan in force carried over), the better
+// by coverage, then cost + change_penalty * changed visits, made the plan in force.
+#include "live_internal.h"
+
+#include <string.h>
+
+// The residual mission at now: the UAVs in service where the flight model puts them
+// (busy ones at their target until its end), the targets still waiting.
+static void build_residual(sva_live_t* self)
+{
+    const sva_mission_t* m = &self->mission;
+    sva_mission_t* r = &self->priv.residual;
+    sva_mission_init(r);
+    r->depot_x = m->depot_x;
+    r->depot_y = m->depot_y;
+    r->ticks_per_cell = m->ticks_per_cell;
+    r->hover_fuel = m->hover_fuel;
+    r->overlap_percent = m->overlap_percent;
+    r->change_penalty = m->change_penalty;
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        if (self->uavs[u].lost) {
+            continue;
+        }
+        sva_live_pos_t pos;
+        sva_live_walk(self, u, self->now_ticks, &pos, -1, NULL);
+        sva_uav_t* uav = &r->uavs[r->uav_count];
+        uav->id = m->uavs[u].id;
+        uav->x = pos.x;
+        uav->y = pos.y;
+        // Fuel readings may say less than the model flew: an empty tank is 0.
+        uav->fuel = (int32_t)((pos.fuel < 0) ? 0 : pos.fuel);
+        uav->ready_at_ticks = (int32_t)((pos.ready > SVA_MAX_TICK) ? SVA_MAX_TICK : pos.ready);
+        self->priv.uav_of[r->uav_count] = u;
+        self->priv.busy_with[r->uav_count] = pos.busy_with;
+        r->uav_count++;
+    }
+    for (uint16_t i = 0U; i < m->target_count; i++) {
+        self->priv.residual_of[i] = -1;
+        if ((self->target_state[i] == (uint8_t)SVA_TARGET_WAITING) &&
+            (m->targets[i].start_ticks >= self->now_ticks)) {
+            self->priv.residual_of[i] = (int32_t)r->target_count;
+            self->priv.target_of[r->target_count] = i;
+            r->targets[r->target_count] = m->targets[i];
+            r->target_count++;
+        }
+    }
+}
+
+// The plan in force's visits of residual targets, per residual UAV, as planned.
+static void build_previous(sva_live_t* self)
+{
+    const sva_mission_t* r = &self->priv.residual;
+    sva_plan_t* prev = &self->priv.previous;
+    (void)memset(prev, 0, sizeof(*prev));
+    prev->route_count = r->uav_count;
+    for (uint16_t k = 0U; k < r->uav_count; k++) {
+        const sva_live_uav_t* v = &self->uavs[self->priv.uav_of[k]];
+        sva_route_t* route = &prev->routes[k];
+        route->uav_id = r->uavs[k].id;
+        for (uint16_t j = 0U; j < v->route_count; j++) {
+            const int32_t t = self->priv.residual_of[v->route[j]];
+            if (t >= 0) {
+                route->targets[route->target_count] = (uint16_t)t;
+                route->target_count++;
+            }
+        }
+    }
+}
+
+static bool has_visit(const sva_route_t* route, uint16_t t)
+{
+    for (uint16_t k = 0U; k < route->target_count; k++) {
+        if (route->targets[k] == t) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// Visits of `a` that `b` lacks.
+static uint32_t missing_in(const sva_plan_t* a, const sva_plan_t* b)
+{
+    uint32_t count = 0U;
+    for (uint16_t r = 0U; r < a->route_count; r++) {
+        for (uint16_t k = 0U; k < a->routes[r].target_count; k++) {
+            count += has_visit(&b->routes[r], a->routes[r].targets[k]) ? 0U : 1U;
+        }
+    }
+    return count;
+}
+
+static int64_t objective(const sva_live_t* self, const sva_plan_t* plan)
+{
+    const uint32_t changes = missing_in(&self->priv.previous, plan) +
+                             missing_in(plan, &self->priv.previous);
+    return plan->cost + ((int64_t)self->mission.change_penalty * (int64_t)changes);
+}
+
+// The chosen plan becomes the plan in force: each UAV's route starts where the residual
+// mission put it.
+static void commit(sva_live_t* self, const sva_plan_t* plan)
+{
+    const sva_mission_t* r = &self->priv.residual;
+    for (uint16_t k = 0U; k < r->uav_count; k++) {
+        sva_live_uav_t* v = &self->uavs[self->priv.uav_of[k]];
+        const sva_route_t* route = &plan->routes[k];
+        sva_live_pos_t pos;
+        sva_live_walk(self, self->priv.uav_of[k], self->now_ticks, &pos, -1, NULL);
+        v->x = pos.x;
+        v->y = pos.y;
+        v->fuel = pos.fuel;
+        v->from_ticks = pos.ready;
+        v->busy_with = pos.busy_with;
+        v->route_count = route->target_count;
+        for (uint16_t j = 0U; j < route->target_count; j++) {
+            v->route[j] = self->priv.target_of[route->targets[j]];
+        }
+    }
+}
+
+sva_status_t sva_live_replan(sva_live_t* self, sva_planner_t* planner, sva_algorithm_t algorithm,
+                             sva_live_result_t* result, sva_diag_t* diag)
+{
+    SVA_ASSERT((self != NULL) && (planner != NULL) && (result != NULL));
+    if ((self == NULL) || (planner == NULL) || (result == NULL)) {
+        return SVA_ERR_ARGUMENT;
+    }
+    build_residual(self);
+    const sva_status_t status =
+        sva_plan(planner, &self->priv.residual, algorithm, &self->priv.plan, diag);
+    if (status != SVA_OK) {
+        return status;
+    }
+    build_previous(self);
+    self->priv.candidate = self->priv.previous;
+    sva_live_carry(&self->priv.residual, &self->priv.candidate, algorithm, self->priv.served);
+    self->priv.candidate.stats = self->priv.plan.stats;
+    const sva_plan_t* fresh = &self->priv.plan;
+    const sva_plan_t* kept = &self->priv.candidate;
+    const bool keep =
+        (kept->covered > fresh->covered) ||
+        ((kept->covered == fresh->covered) && (objective(self, kept) <= objective(self, fresh)));
+    if (keep) {
+        self->priv.plan = self->priv.candidate;
+    }
+    commit(self, &self->priv.plan);
+    (void)memset(result, 0, sizeof(*result));
+    result->residual = &self->priv.residual;
+    result->plan = &self->priv.plan;
+    result->previous = &self->priv.previous;
+    result->now_ticks = self->now_ticks;
+    result->revision = self->revision;
+    for (uint16_t i = 0U; i < self->mission.target_count; i++) {
+        if (self->target_state[i] == (uint8_t)SVA_TARGET_UNDER_WAY) {
+            result->under_way++;
+        }
+    }
+    result->covered = (uint16_t)(result->under_way + self->priv.plan.covered);
+    result->dropped = missing_in(&self->priv.previous, &self->priv.plan);
+    result->added = missing_in(&self->priv.plan, &self->priv.previous);
+    result->objective = objective(self, &self->priv.plan);
+    result->kept = keep;
+    return SVA_OK;
+}
