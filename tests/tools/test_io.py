@@ -137,7 +137,7 @@ def test_shown_escapes_like_the_c_helper():
 def test_hostile_file_and_mission_names_are_escaped(tmp_path):
     r = sva_tools("ih", str(tmp_path / HOSTILE))
     assert r.returncode == 2 and "\x1b" not in r.stderr
-    assert r.stderr.splitlines() == [f"sva-tools: error: {tmp_path}/{HOSTILE_SHOWN}: cannot read file: "
+    assert r.stderr.splitlines() == [f"sva-tools: error: {tmp_path}/{HOSTILE_SHOWN}: cannot open: "
                                      "No such file or directory"]
     # a bad mission whose file name is hostile: one line, escaped
     mp = write(tmp_path, HOSTILE + ".json", bad(["targets", 0, "need"], 0))

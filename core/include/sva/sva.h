@@ -493,49 +493,28 @@ typedef struct {
     bool kept;
 } sva_live_result_t;
 
-// ---------------------------------------------------------------------------------
-// Private layout of a live mission, public only because sva_live_t is caller-owned:
-// read-only to users; it may change in any release.
-
-/// One UAV of a live mission: where its route in force starts, and the route.
-typedef struct {
-    int32_t x;           ///< the route starts here,
-    int32_t y;
-    int64_t fuel;        ///< with this much fuel,
-    int64_t from_ticks;  ///< at this tick (it may leave then)
-    int32_t busy_with;   ///< until from_ticks: the target under way there, or -1
-    bool lost;           ///< out of service
-    uint16_t route_count;
-    uint16_t route[SVA_MAX_ROUTE_TARGETS];  ///< indices into mission.targets, in visit order
-} sva_live_uav_t;
-
 /// A live mission. Initialise with sva_live_init(); then read only.
 typedef struct {
-    sva_mission_t mission;   ///< UAVs as they started; targets as they stand now
+    sva_mission_t mission;  ///< UAVs as they started; targets as they stand now
     int32_t now_ticks;
-    uint32_t revision;       ///< events applied
-    uint8_t target_state[SVA_MAX_TARGETS];   ///< sva_target_state_t of each target
-    int32_t target_ended[SVA_MAX_TARGETS];   ///< tick it was lost or cancelled
-    sva_live_uav_t uavs[SVA_MAX_UAVS];
-    struct {
-        sva_mission_t residual;
-        sva_plan_t plan;
-        sva_plan_t candidate;
-        sva_plan_t previous;
-        uint16_t uav_of[SVA_MAX_UAVS];       ///< residual UAV -> mission UAV
-        uint16_t target_of[SVA_MAX_TARGETS]; ///< residual target -> mission target
-        int32_t busy_with[SVA_MAX_UAVS];     ///< residual UAV's target under way, or -1
-        int32_t residual_of[SVA_MAX_TARGETS]; ///< mission target -> residual target, or -1
-        uint16_t served[SVA_MAX_TARGETS];     ///< UAVs per residual target (scratch)
-    } priv;
+    uint32_t revision;                      ///< events applied
+    uint8_t target_state[SVA_MAX_TARGETS];  ///< sva_target_state_t of each target
+    /// The last replan, where sva_live_result_t points: the residual mission, the plan
+    /// chosen and the plan in force before it (candidate: the replan's scratch).
+    sva_mission_t residual;
+    sva_plan_t plan;
+    sva_plan_t previous;
+    sva_plan_t candidate;
+    sva_live_priv_t priv;  ///< read-only to users (sva_private.h)
 } sva_live_t;
 
 /// Starts a live mission at now = 0 from a mission (its change_penalty included) and,
 /// when plan is not NULL, the plan in force (over the same mission, e.g. sva_plan()'s;
 /// only its routes are read).
 /// Returns SVA_OK; SVA_ERR_ARGUMENT for a NULL self or mission; SVA_ERR_INVALID when the
-/// mission breaks a rule or a route names an unknown target, a target twice or a UAV out of mission order (diag
-/// says which). Fails iff it returns non-zero, and then *self is unspecified.
+/// mission breaks a rule or a route names an unknown target, a target twice or a UAV
+/// out of mission order (diag says which). Fails iff it returns non-zero, and then
+/// *self is unspecified.
 /// Allocates nothing; O(U * R + T^2 + U^2) with R = SVA_MAX_ROUTE_TARGETS.
 SVA_NODISCARD sva_status_t sva_live_init(sva_live_t* self, const sva_mission_t* mission,
                                          const sva_plan_t* plan, sva_diag_t* diag);

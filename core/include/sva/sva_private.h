@@ -229,6 +229,30 @@ typedef struct {
     sva_flow_work_t flow;
 } sva_planner_priv_t;
 
+/// One UAV of a live mission (core/src/live/): where its route in force starts, and
+/// the route.
+typedef struct {
+    int32_t x;           ///< the route starts here,
+    int32_t y;
+    int64_t fuel;        ///< with this much fuel,
+    int64_t from_ticks;  ///< at this tick (it may leave then)
+    int32_t busy_with;   ///< until from_ticks: the target under way there, or -1
+    bool lost;           ///< out of service
+    uint16_t route_count;
+    uint16_t route[SVA_MAX_ROUTE_TARGETS];  ///< indices into mission.targets, in visit order
+} sva_live_uav_t;
+
+/// A live mission's own state and the replan's scratch (sva_live_t.priv).
+typedef struct {
+    sva_live_uav_t uavs[SVA_MAX_UAVS];
+    int32_t target_ended[SVA_MAX_TARGETS];  ///< tick it was lost or cancelled
+    uint16_t uav_of[SVA_MAX_UAVS];          ///< residual UAV -> mission UAV
+    uint16_t target_of[SVA_MAX_TARGETS];    ///< residual target -> mission target
+    int32_t busy_with[SVA_MAX_UAVS];        ///< residual UAV's target under way, or -1
+    int32_t residual_of[SVA_MAX_TARGETS];   ///< mission target -> residual target, or -1
+    uint16_t served[SVA_MAX_TARGETS];       ///< UAVs per residual target (scratch)
+} sva_live_priv_t;
+
 #ifdef __cplusplus
 }
 #endif

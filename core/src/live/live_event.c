@@ -4,39 +4,6 @@
 
 #include <string.h>
 
-const char* sva_target_state_name(sva_target_state_t state)
-{
-    static const char* const names[SVA_TARGET_STATE_COUNT_] = {
-        "waiting", "under_way", "done", "expired", "cancelled", "lost",
-    };
-    return ((unsigned)state < (unsigned)SVA_TARGET_STATE_COUNT_) ? names[state] : "";
-}
-
-static const char* const event_names[SVA_EVENT_COUNT_] = {
-    "clock",        "uav_lost",         "uav_back",       "fuel",
-    "target_added", "target_cancelled", "target_changed",
-};
-
-const char* sva_event_type_name(sva_event_type_t type)
-{
-    return ((unsigned)type < (unsigned)SVA_EVENT_COUNT_) ? event_names[type] : "";
-}
-
-sva_status_t sva_event_type_from_name(const char* name, sva_event_type_t* out)
-{
-    SVA_ASSERT(out != NULL);
-    if ((name == NULL) || (out == NULL)) {
-        return SVA_ERR_ARGUMENT;
-    }
-    for (int32_t k = 0; k < (int32_t)SVA_EVENT_COUNT_; k++) {
-        if (strcmp(name, event_names[k]) == 0) {
-            *out = (sva_event_type_t)k;
-            return SVA_OK;
-        }
-    }
-    return SVA_ERR_ARGUMENT;
-}
-
 int32_t sva_live_find_uav(const sva_live_t* self, int32_t id)
 {
     for (uint16_t u = 0U; u < self->mission.uav_count; u++) {
@@ -154,7 +121,7 @@ sva_status_t sva_live_init(sva_live_t* self, const sva_mission_t* mission, const
     (void)memset(self, 0, sizeof(*self));
     self->mission = *mission;
     for (uint16_t u = 0U; u < mission->uav_count; u++) {
-        sva_live_uav_t* v = &self->uavs[u];
+        sva_live_uav_t* v = &self->priv.uavs[u];
         const sva_uav_t* s = &mission->uavs[u];
         v->x = s->x;
         v->y = s->y;
@@ -197,9 +164,9 @@ static bool event_ok(const sva_live_t* self, const sva_event_t* e, sva_diag_t* d
             return false;
         }
         // The UAV must be lost for uav_back, in service for the others (value: 1 lost).
-        if (self->uavs[u].lost != (e->type == SVA_EVENT_UAV_BACK)) {
+        if (self->priv.uavs[u].lost != (e->type == SVA_EVENT_UAV_BACK)) {
             sva_diag_set(diag, SVA_FIELD_EVENT_UAV, SVA_RULE_STATE, -1,
-                         self->uavs[u].lost ? 1 : 0, 0, NULL);
+                         self->priv.uavs[u].lost ? 1 : 0, 0, NULL);
             return false;
         }
     }
@@ -265,9 +232,9 @@ static bool event_ok(const sva_live_t* self, const sva_event_t* e, sva_diag_t* d
 static void end_target(sva_live_t* self, uint16_t i, sva_target_state_t state, int64_t at)
 {
     self->target_state[i] = (uint8_t)state;
-    self->target_ended[i] = (int32_t)at;
+    self->priv.target_ended[i] = (int32_t)at;
     for (uint16_t u = 0U; u < self->mission.uav_count; u++) {
-        sva_live_uav_t* v = &self->uavs[u];
+        sva_live_uav_t* v = &self->priv.uavs[u];
         if (v->lost) {
             continue;
         }
@@ -292,7 +259,7 @@ sva_status_t sva_live_apply(sva_live_t* self, const sva_event_t* event, sva_diag
     const int64_t at = event->at_ticks;
     sva_live_advance(self, at);
     const int32_t u = sva_live_find_uav(self, event->uav_id);
-    sva_live_uav_t* v = (u >= 0) ? &self->uavs[u] : NULL;
+    sva_live_uav_t* v = (u >= 0) ? &self->priv.uavs[u] : NULL;
     switch (event->type) {
     case SVA_EVENT_UAV_LOST: {
         sva_live_pos_t pos;
@@ -333,7 +300,7 @@ sva_status_t sva_live_apply(sva_live_t* self, const sva_event_t* event, sva_diag
         const uint16_t i = (uint16_t)sva_live_find_target(self, event->target.id);
         // Fix the tracks flown so far before the target moves under them.
         for (uint16_t w = 0U; w < self->mission.uav_count; w++) {
-            if (!self->uavs[w].lost) {
+            if (!self->priv.uavs[w].lost) {
                 sva_live_rebase(self, w, at);
             }
         }
@@ -356,7 +323,7 @@ bool sva_live_uav_at(const sva_live_t* self, uint16_t uav, int32_t at_ticks, int
 {
     SVA_ASSERT((self != NULL) && (x != NULL) && (y != NULL) && (fuel != NULL) &&
                (ready_ticks != NULL));
-    if ((self == NULL) || (uav >= self->mission.uav_count) || self->uavs[uav].lost ||
+    if ((self == NULL) || (uav >= self->mission.uav_count) || self->priv.uavs[uav].lost ||
         (at_ticks < self->now_ticks)) {
         return false;
     }

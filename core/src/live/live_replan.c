@@ -10,7 +10,7 @@
 static void build_residual(sva_live_t* self)
 {
     const sva_mission_t* m = &self->mission;
-    sva_mission_t* r = &self->priv.residual;
+    sva_mission_t* r = &self->residual;
     sva_mission_init(r);
     r->depot_x = m->depot_x;
     r->depot_y = m->depot_y;
@@ -19,7 +19,7 @@ static void build_residual(sva_live_t* self)
     r->overlap_percent = m->overlap_percent;
     r->change_penalty = m->change_penalty;
     for (uint16_t u = 0U; u < m->uav_count; u++) {
-        if (self->uavs[u].lost) {
+        if (self->priv.uavs[u].lost) {
             continue;
         }
         sva_live_pos_t pos;
@@ -50,12 +50,12 @@ static void build_residual(sva_live_t* self)
 // The plan in force's visits of residual targets, per residual UAV, as planned.
 static void build_previous(sva_live_t* self)
 {
-    const sva_mission_t* r = &self->priv.residual;
-    sva_plan_t* prev = &self->priv.previous;
+    const sva_mission_t* r = &self->residual;
+    sva_plan_t* prev = &self->previous;
     (void)memset(prev, 0, sizeof(*prev));
     prev->route_count = r->uav_count;
     for (uint16_t k = 0U; k < r->uav_count; k++) {
-        const sva_live_uav_t* v = &self->uavs[self->priv.uav_of[k]];
+        const sva_live_uav_t* v = &self->priv.uavs[self->priv.uav_of[k]];
         sva_route_t* route = &prev->routes[k];
         route->uav_id = r->uavs[k].id;
         for (uint16_t j = 0U; j < v->route_count; j++) {
@@ -92,8 +92,8 @@ static uint32_t missing_in(const sva_plan_t* a, const sva_plan_t* b)
 
 static int64_t objective(const sva_live_t* self, const sva_plan_t* plan)
 {
-    const uint32_t changes = missing_in(&self->priv.previous, plan) +
-                             missing_in(plan, &self->priv.previous);
+    const uint32_t changes = missing_in(&self->previous, plan) +
+                             missing_in(plan, &self->previous);
     return plan->cost + ((int64_t)self->mission.change_penalty * (int64_t)changes);
 }
 
@@ -101,9 +101,9 @@ static int64_t objective(const sva_live_t* self, const sva_plan_t* plan)
 // mission put it.
 static void commit(sva_live_t* self, const sva_plan_t* plan)
 {
-    const sva_mission_t* r = &self->priv.residual;
+    const sva_mission_t* r = &self->residual;
     for (uint16_t k = 0U; k < r->uav_count; k++) {
-        sva_live_uav_t* v = &self->uavs[self->priv.uav_of[k]];
+        sva_live_uav_t* v = &self->priv.uavs[self->priv.uav_of[k]];
         const sva_route_t* route = &plan->routes[k];
         sva_live_pos_t pos;
         sva_live_walk(self, self->priv.uav_of[k], self->now_ticks, &pos, -1, NULL);
@@ -128,27 +128,27 @@ sva_status_t sva_live_replan(sva_live_t* self, sva_planner_t* planner, sva_algor
     }
     build_residual(self);
     const sva_status_t status =
-        sva_plan(planner, &self->priv.residual, algorithm, &self->priv.plan, diag);
+        sva_plan(planner, &self->residual, algorithm, &self->plan, diag);
     if (status != SVA_OK) {
         return status;
     }
     build_previous(self);
-    self->priv.candidate = self->priv.previous;
-    sva_live_carry(&self->priv.residual, &self->priv.candidate, algorithm, self->priv.served);
-    self->priv.candidate.stats = self->priv.plan.stats;
-    const sva_plan_t* fresh = &self->priv.plan;
-    const sva_plan_t* kept = &self->priv.candidate;
+    self->candidate = self->previous;
+    sva_live_carry(&self->residual, &self->candidate, algorithm, self->priv.served);
+    self->candidate.stats = self->plan.stats;
+    const sva_plan_t* fresh = &self->plan;
+    const sva_plan_t* kept = &self->candidate;
     const bool keep =
         (kept->covered > fresh->covered) ||
         ((kept->covered == fresh->covered) && (objective(self, kept) <= objective(self, fresh)));
     if (keep) {
-        self->priv.plan = self->priv.candidate;
+        self->plan = self->candidate;
     }
-    commit(self, &self->priv.plan);
+    commit(self, &self->plan);
     (void)memset(result, 0, sizeof(*result));
-    result->residual = &self->priv.residual;
-    result->plan = &self->priv.plan;
-    result->previous = &self->priv.previous;
+    result->residual = &self->residual;
+    result->plan = &self->plan;
+    result->previous = &self->previous;
     result->now_ticks = self->now_ticks;
     result->revision = self->revision;
     for (uint16_t i = 0U; i < self->mission.target_count; i++) {
@@ -156,10 +156,10 @@ sva_status_t sva_live_replan(sva_live_t* self, sva_planner_t* planner, sva_algor
             result->under_way++;
         }
     }
-    result->covered = (uint16_t)(result->under_way + self->priv.plan.covered);
-    result->dropped = missing_in(&self->priv.previous, &self->priv.plan);
-    result->added = missing_in(&self->priv.plan, &self->priv.previous);
-    result->objective = objective(self, &self->priv.plan);
+    result->covered = (uint16_t)(result->under_way + self->plan.covered);
+    result->dropped = missing_in(&self->previous, &self->plan);
+    result->added = missing_in(&self->plan, &self->previous);
+    result->objective = objective(self, &self->plan);
     result->kept = keep;
     return SVA_OK;
 }

@@ -33,7 +33,7 @@ void sva_live_walk(const sva_live_t* self, uint16_t u, int64_t at, sva_live_pos_
                    int32_t probe, int64_t* arrival)
 {
     const sva_mission_t* m = &self->mission;
-    const sva_live_uav_t* v = &self->uavs[u];
+    const sva_live_uav_t* v = &self->priv.uavs[u];
     const int64_t tpc = m->ticks_per_cell;
     int32_t x = v->x;
     int32_t y = v->y;
@@ -130,7 +130,7 @@ void sva_live_route_remove(sva_live_uav_t* uav, uint16_t target)
 
 void sva_live_rebase(sva_live_t* self, uint16_t u, int64_t at)
 {
-    sva_live_uav_t* v = &self->uavs[u];
+    sva_live_uav_t* v = &self->priv.uavs[u];
     if (at < v->from_ticks) {
         return;  // the route has not started yet: nothing is behind it
     }
@@ -155,7 +155,7 @@ static int32_t present(const sva_live_t* self, uint16_t i)
     const sva_target_t* tg = &self->mission.targets[i];
     int32_t count = 0;
     for (uint16_t u = 0U; u < self->mission.uav_count; u++) {
-        const sva_live_uav_t* v = &self->uavs[u];
+        const sva_live_uav_t* v = &self->priv.uavs[u];
         if (v->lost) {
             continue;
         }
@@ -184,7 +184,7 @@ static int32_t reachable(const sva_live_t* self, uint16_t i, int64_t at)
     const int64_t home = sva_distance(tg->x, tg->y, m->depot_x, m->depot_y);
     int32_t count = 0;
     for (uint16_t u = 0U; u < m->uav_count; u++) {
-        if (self->uavs[u].lost) {
+        if (self->priv.uavs[u].lost) {
             continue;
         }
         sva_live_pos_t pos;

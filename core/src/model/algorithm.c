@@ -11,7 +11,7 @@ const char* sva_algorithm_name(sva_algorithm_t algorithm)
     return algorithm_names[algorithm];
 }
 
-static bool names_equal(const char* a, const char* b)
+bool sva_names_equal(const char* a, const char* b)
 {
     const char* x = a;
     const char* y = b;
@@ -28,7 +28,7 @@ sva_status_t sva_algorithm_from_name(const char* name, sva_algorithm_t* out)
         return SVA_ERR_ARGUMENT;
     }
     for (int i = 0; i < (int)SVA_ALGO_COUNT_; i++) {
-        if (names_equal(name, algorithm_names[i])) {
+        if (sva_names_equal(name, algorithm_names[i])) {
             *out = (sva_algorithm_t)i;
             return SVA_OK;
         }

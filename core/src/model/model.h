@@ -73,4 +73,7 @@ int64_t sva_path_cells(const sva_mission_t* mission, uint16_t uav, const uint16_
 int64_t sva_route_cells(const sva_mission_t* mission, uint16_t uav, const sva_route_t* route);
 void sva_plan_finish(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan);
 
+// algorithm.c: name lookups without the C library.
+bool sva_names_equal(const char* a, const char* b);
+
 #endif  // SVA_MODEL_H
