@@ -8,7 +8,7 @@ from typing import List, Optional
 
 from . import io
 
-SUBCOMMANDS = ("gen", "check", "ref", "ih", "peer", "bench", "plot")
+SUBCOMMANDS = ("gen", "check", "ref", "ih", "peer", "bench", "plot", "sim")
 
 
 def _lcm(argv: List[str]) -> int:
