@@ -380,6 +380,57 @@ def simulate(mission: M.Mission, events: List[dict], penalty: Optional[int] = No
     return Flight(mission, events, penalty, algo, planner).fly()
 
 
+# --- the timeline --------------------------------------------------------------------
+
+def _event_text(e: dict) -> str:
+    k = e["type"]
+    if k == "uav_lost":
+        return f"uav {e['uav']} lost"
+    if k == "uav_back":
+        return f"uav {e['uav']} back at ({e['x']}, {e['y']}) with fuel {e['fuel']}"
+    if k == "fuel":
+        return f"uav {e['uav']} fuel reads {e['fuel']}"
+    if k == "target_added":
+        t = e["target"]
+        return (f"target {t['id']} added at ({t['x']}, {t['y']}) [{t['start']}, {t['end']}) "
+                f"need {t['need']}")
+    if k == "target_cancelled":
+        return f"target {e['target']} cancelled"
+    if k == "target_changed":
+        t = e["target"]
+        return (f"target {t['id']} moved to ({t['x']}, {t['y']}) [{t['start']}, {t['end']}) "
+                f"need {t['need']}")
+    return "clock"
+
+
+def timeline(log: dict) -> str:
+    """One line per replan (tick, cause, targets the planner then expects covered: done
+    ones included, plan cost, changed visits, kept or not, solve time) under the events
+    that caused it, and the flight's summary."""
+    by_tick: Dict[int, List[dict]] = {}
+    for e in log["scenario"]["events"]:
+        by_tick.setdefault(e["at"], []).append(e)
+    lines = [f"{'tick':>6}  {'cause':<28} {'covered':>7} {'cost':>6} {'changes':>7} "
+             f"{'kept':>5} {'solve_us':>9}"]
+    for r in log["replans"]:
+        for e in by_tick.get(r["at"], []):
+            lines.append(f"{e['at']:>6}  - {_event_text(e)}")
+        live = r.get("live") or {}
+        done = sum(1 for t in live.get("targets", []) if t.get("state") == "done")
+        covered = done + int(live.get("covered", r["plan"].get("covered", 0)))
+        ch = r.get("changes") or {}
+        kept = live.get("kept")
+        lines.append(f"{r['at']:>6}  {r['cause'][:28]:<28} {covered:>7} {r['plan']['cost']:>6} "
+                     f"{ch.get('count', 0):>7} {('-' if kept is None else str(kept).lower()):>5} "
+                     f"{r['solve_us'] if r['solve_us'] is not None else '-':>9}")
+    s = log["summary"]
+    lines.append(f"flown to tick {log['end_tick']}: covered {s['covered']} of {s['coverable']} "
+                 f"coverable ({s['targets']} targets; cancelled and lost ones are not "
+                 f"coverable), {s['distance']} cells, {s['replans']} replans, "
+                 f"{s['changes']} changed visits")
+    return "\n".join(lines) + "\n"
+
+
 # --- the command ---------------------------------------------------------------------
 
 def add_parser(sub) -> None:
@@ -388,7 +439,9 @@ def add_parser(sub) -> None:
     ap.add_argument("scenario", help="SCENARIO.json: {mission, events, change_penalty}")
     ap.add_argument("--algo", default="sva", choices=list(cbin.C_ALGORITHMS),
                     help="the on-board planner's algorithm (default sva)")
-    ap.add_argument("--out", default="-", help="flight log JSON (default: stdout)")
+    ap.add_argument("--out", help="flight log JSON (default: stdout, or none with --timeline)")
+    ap.add_argument("--timeline", action="store_true",
+                    help="print a timeline of events and replans on stdout instead of the log")
     ap.add_argument("--plot", metavar="FILE.png", help="also draw the flight (map and Gantt)")
     ap.add_argument("--via", choices=["cli", "lcm"], default="cli",
                     help="how the planner is reached: cli (`sva replan`, default); lcm is "
@@ -410,7 +463,10 @@ def run(args) -> int:
     except SimError as e:
         print(f"sva-tools: error: {args.scenario}: {e}", file=sys.stderr)
         return e.status
-    io.write_json(log, args.out)
+    if args.timeline:
+        sys.stdout.write(timeline(log))
+    if args.out or not args.timeline:
+        io.write_json(log, args.out or "-")
     if args.plot:
         from . import simplot
         simplot.render_flight(log, args.plot)
