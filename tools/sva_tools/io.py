@@ -97,7 +97,7 @@ def _coord(v: Any, where: str) -> int:
 def mission_from_json(doc: Any) -> M.Mission:
     """Validates a SPEC 3 mission (every SPEC 4 rule, default-profile bounds)."""
     d = _obj(doc, "", ["name", "depot", "uavs", "targets"],
-             ["ticks_per_cell", "hover_fuel", "overlap_percent"])
+             ["ticks_per_cell", "hover_fuel", "overlap_percent", "change_penalty"])
     if not isinstance(d["name"], str):
         raise InputError("name: must be a string")
     dep = _obj(d["depot"], "depot", ["x", "y"], [])
@@ -107,6 +107,9 @@ def mission_from_json(doc: Any) -> M.Mission:
     hover = _int(d.get("hover_fuel", M.DEFAULT_HOVER_FUEL), "hover_fuel",
                  0, M.SVA_MAX_HOVER_FUEL, "", "SVA_MAX_HOVER_FUEL")
     ovl = _int(d.get("overlap_percent", M.DEFAULT_OVERLAP_PERCENT), "overlap_percent", 0, 100)
+    # SPEC 5.4: a live mission's price of a changed visit; planning ignores it.
+    penalty = _int(d.get("change_penalty", 0), "change_penalty", 0, M.SVA_MAX_CHANGE_PENALTY,
+                   "", "SVA_MAX_CHANGE_PENALTY")
     uavs = []
     seen: Dict[int, int] = {}
     for i, u in enumerate(_list(d["uavs"], "uavs", M.SVA_MAX_UAVS, "SVA_MAX_UAVS")):
@@ -136,7 +139,7 @@ def mission_from_json(doc: Any) -> M.Mission:
             raise InputError(f"{w}.end: must be > start ({start}), got {end}")
         need = _int(t["need"], w + ".need", 1, M.SVA_MAX_UAVS, "", "SVA_MAX_UAVS")
         targets.append(M.Target(tid, x, y, start, end, need))
-    return M.Mission(d["name"], depot, uavs, targets, tpc, hover, ovl)
+    return M.Mission(d["name"], depot, uavs, targets, tpc, hover, ovl, penalty)
 
 
 def plan_from_json(doc: Any) -> M.Plan:
