@@ -20,7 +20,9 @@ scenario stored in the log (the mission and the events) and the SPEC text, and j
   service on its cell for every tick of [start, end); `served_by` lists the UAVs there
   for the whole window; the summary counts agree.
 - replans: one at tick 0 (cause "start") and one at each tick with events; each plan
-  passes `sva-tools check` on its residual mission; and the never-fewer rule: a replan
+  passes `sva-tools check` on its residual mission; its changes are the (UAV, target)
+  pairs of the residual mission the previous plan had and it drops, or it adds; and
+  the never-fewer rule: a replan
   covers no fewer targets than the previous plan's visits of the new residual mission
   still could (those visits pruned by SPEC 5.4 step 2, recomputed here).
 - the end: every UAV in service is at the depot (or has no fuel) at end_tick.
@@ -284,6 +286,19 @@ def check_flight(log: dict) -> List[str]:
         if prev is not None:
             backs = {e["uav"] for e in events
                      if e["type"] == "uav_back" and prev["at"] < e["at"] <= r["at"]}
+            uids = {u["id"] for u in r["mission"]["uavs"]}
+            tids = {t["id"] for t in r["mission"]["targets"]}
+            before = {(x["uav"], t) for x in prev["plan"]["routes"]
+                      if x["uav"] in uids and x["uav"] not in backs
+                      for t in x["targets"] if t in tids}
+            now = {(x["uav"], t) for x in r["plan"]["routes"] for t in x["targets"]}
+            ch = r.get("changes") or {}
+            if ({tuple(p) for p in ch.get("dropped", [])} != before - now or
+                    {tuple(p) for p in ch.get("added", [])} != now - before or
+                    ch.get("count") != len(before ^ now)):
+                v.append(f"replans[{k}] (tick {r['at']}): changes {ch.get('dropped')} dropped, "
+                         f"{ch.get('added')} added; the plans say {sorted(before - now)} "
+                         f"dropped, {sorted(now - before)} added")
             could = carried_covered(prev["plan"], r["mission"], backs)
             if p.covered < could:
                 v.append(f"replans[{k}] (tick {r['at']}): covers {p.covered} residual targets, "

@@ -212,7 +212,8 @@ def test_target_changed_moves_the_visit(sva_bin):
     doc = scenario([(1, 0, 0, 100)], [(1, 3, 0, 20, 30, 1)],
                    [{"at": 2, "type": "target_changed", "target": tjson(1, 0, 7, 25, 35, 1)}])
     log = ok(fly(doc))
-    assert uav(log, 1)["visits"] == [{"target": 1, "arrived": 9, "left": 35}]
+    # At (2, 0) at tick 2: 2 cells back in x, then 7 in y.
+    assert uav(log, 1)["visits"] == [{"target": 1, "arrived": 11, "left": 35}]
     assert target(log, 1)["covered"]
 
 

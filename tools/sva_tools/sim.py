@@ -276,15 +276,43 @@ class Flight:
         out, residual = self.planner(self.mission_doc(), list(history), t, self.algo)
         for e in now_events:
             self._apply(e, t)
-        changes = out.pop("changes", None)
+        cli_changes = out.pop("changes", None)
         live = out.pop("live", None)
         solve_us = (out.get("stats") or {}).get("solve_us")
+        changes = self._changes(residual, out, now_events, cli_changes)
         self.replans.append({"at": t, "cause": cause, "mission": residual, "plan": out,
                              "changes": changes, "solve_us": solve_us, "live": live})
         routes = {r["uav"]: list(r["targets"]) for r in out.get("routes", [])}
         for c in self.crafts:
             if c.in_service:
                 c.orders = routes.get(c.id, [])
+
+    def _changes(self, residual: dict, plan: dict, now_events: List[dict],
+                 cli_changes: Optional[dict]) -> dict:
+        """SPEC 5.4's changed visits of this replan: (UAV, target) pairs of the residual
+        mission that the plan in force had (the previous replan's plan; none for a UAV
+        that came back since) and this plan drops, or that this plan adds. Recomputed
+        here from consecutive plans, as the CLI's own figure describes only its last
+        replan over the history."""
+        if not self.replans:
+            pairs_before: set = set()
+        else:
+            uavs = {u["id"] for u in residual.get("uavs", [])}
+            targets = {t["id"] for t in residual.get("targets", [])}
+            back = {e["uav"] for e in now_events if e["type"] == "uav_back"}
+            pairs_before = {(r["uav"], tid) for r in self.replans[-1]["plan"]["routes"]
+                            if r["uav"] in uavs and r["uav"] not in back
+                            for tid in r["targets"] if tid in targets}
+        pairs_now = {(r["uav"], tid) for r in plan.get("routes", []) for tid in r["targets"]}
+        dropped = sorted(pairs_before - pairs_now)
+        added = sorted(pairs_now - pairs_before) if self.replans else []
+        count = len(dropped) + len(added)
+        pen = self.penalty or 0
+        out = {"dropped": [list(p) for p in dropped], "added": [list(p) for p in added],
+               "count": count, "penalty": pen * count}
+        if cli_changes is not None:
+            out["cli"] = cli_changes
+        return out
 
     def _idle(self, c: Craft) -> bool:
         if not c.in_service:
