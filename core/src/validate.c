@@ -30,7 +30,9 @@ static bool instance_ok(const sva_mission_t* m, sva_diag_t* diag)
                     SVA_MAX_TICKS_PER_CELL, "SVA_MAX_TICKS_PER_CELL") &&
            in_range(diag, SVA_FIELD_HOVER_FUEL, -1, m->hover_fuel, 0, SVA_MAX_HOVER_FUEL,
                     "SVA_MAX_HOVER_FUEL") &&
-           in_range(diag, SVA_FIELD_OVERLAP_PERCENT, -1, m->overlap_percent, 0, 100, NULL);
+           in_range(diag, SVA_FIELD_OVERLAP_PERCENT, -1, m->overlap_percent, 0, 100, NULL) &&
+           in_range(diag, SVA_FIELD_CHANGE_PENALTY, -1, m->change_penalty, 0,
+                    SVA_MAX_CHANGE_PENALTY, "SVA_MAX_CHANGE_PENALTY");
 }
 
 static bool uav_ok(const sva_mission_t* m, int32_t i, sva_diag_t* diag)

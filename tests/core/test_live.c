@@ -27,6 +27,7 @@ static sva_plan_t plan;
 static void start_hand(int32_t change_penalty)
 {
     sva_mission_init(&mission);
+    mission.change_penalty = change_penalty;
     mission.uav_count = 2U;
     for (uint16_t u = 0U; u < 2U; u++) {
         mission.uavs[u] = (sva_uav_t){.id = (int32_t)u + 1, .x = 0, .y = 0, .fuel = 100};
@@ -40,7 +41,7 @@ static void start_hand(int32_t change_penalty)
     plan.routes[0] = (sva_route_t){.uav_id = 1, .target_count = 2U, .targets = {0U, 1U}};
     plan.routes[1] = (sva_route_t){.uav_id = 2, .target_count = 2U, .targets = {0U, 2U}};
     sva_diag_t diag;
-    assert_int_equal(sva_live_init(&live, &mission, &plan, change_penalty, &diag), SVA_OK);
+    assert_int_equal(sva_live_init(&live, &mission, &plan, &diag), SVA_OK);
     assert_int_equal(sva_planner_init(&planner), SVA_OK);
 }
 
@@ -320,7 +321,7 @@ static void test_rejected_events_change_nothing(void** state)
     rejected(e, "event.uav: the UAV is in service");
     e.uav_id = 2;
     e.x = 40000;
-    rejected(e, "event.x: must be <= SVA_COORD_MAX (32767), got 40000");
+    rejected(e, "event.x: must be <= 32767, got 40000");
     e = at_event(SVA_EVENT_TARGET_ADDED, 14);
     e.target = (sva_target_t){3, 1, 1, 50, 60, 1};
     rejected(e, "event.target: duplicate id 3 (first at index 2)");
@@ -355,19 +356,26 @@ static void test_rejected_starts(void** state)
     start_hand(0);
     sva_diag_t diag;
     char msg[160];
-    assert_int_equal(sva_live_init(&live, &mission, &plan, -1, &diag), SVA_ERR_INVALID);
+    mission.change_penalty = -1;
+    assert_int_equal(sva_live_init(&live, &mission, &plan, &diag), SVA_ERR_INVALID);
     (void)sva_diag_format(&diag, msg, sizeof msg);
     assert_string_equal(msg, "change_penalty: must be >= 0, got -1");
+    mission.change_penalty = 2000000;
+    assert_int_equal(sva_live_init(&live, &mission, &plan, &diag), SVA_ERR_INVALID);
+    (void)sva_diag_format(&diag, msg, sizeof msg);
+    assert_string_equal(msg,
+                        "change_penalty: must be <= SVA_MAX_CHANGE_PENALTY (1000000), got 2000000");
+    mission.change_penalty = 0;
     plan.routes[1].targets[1] = 0U;
-    assert_int_equal(sva_live_init(&live, &mission, &plan, 0, &diag), SVA_ERR_INVALID);
+    assert_int_equal(sva_live_init(&live, &mission, &plan, &diag), SVA_ERR_INVALID);
     (void)sva_diag_format(&diag, msg, sizeof msg);
     assert_string_equal(msg, "routes[1].targets: duplicate id 1 (first at index 0)");
     plan.routes[1].targets[1] = 7U;
-    assert_int_equal(sva_live_init(&live, &mission, &plan, 0, &diag), SVA_ERR_INVALID);
+    assert_int_equal(sva_live_init(&live, &mission, &plan, &diag), SVA_ERR_INVALID);
     (void)sva_diag_format(&diag, msg, sizeof msg);
     assert_string_equal(msg, "routes[1].targets: must be <= 2, got 7");
     plan.routes[1].uav_id = 5;
-    assert_int_equal(sva_live_init(&live, &mission, &plan, 0, &diag), SVA_ERR_INVALID);
+    assert_int_equal(sva_live_init(&live, &mission, &plan, &diag), SVA_ERR_INVALID);
     (void)sva_diag_format(&diag, msg, sizeof msg);
     assert_string_equal(msg, "routes[1].uav: must follow the mission's UAVs (2), got 5");
 }
@@ -459,9 +467,8 @@ static void test_random_live_missions(void** state)
         if (sva_plan(&planner, &mission, algo, &plan, NULL) != SVA_OK) {
             continue;
         }
-        assert_int_equal(sva_live_init(&live, &mission, &plan, test_rng_range(&rng, 0, 1) * 50,
-                                       NULL),
-                         SVA_OK);
+        mission.change_penalty = test_rng_range(&rng, 0, 1) * 50;
+        assert_int_equal(sva_live_init(&live, &mission, &plan, NULL), SVA_OK);
         int32_t at = 0;
         for (int k = 0; k < 6; k++) {
             at += test_rng_range(&rng, 1, 12);

@@ -201,6 +201,9 @@ typedef struct {
     int32_t ticks_per_cell;   ///< travel ticks per cell, [1, SVA_MAX_TICKS_PER_CELL]
     int32_t hover_fuel;       ///< fuel per served window, [0, SVA_MAX_HOVER_FUEL]
     int32_t overlap_percent;  ///< clustering threshold, [0, 100]
+    /// Live missions only (SPEC section 5.4): cells a replan pays per changed visit,
+    /// [0, SVA_MAX_CHANGE_PENALTY]; sva_plan() ignores it.
+    int32_t change_penalty;
     uint16_t uav_count;       ///< [0, SVA_MAX_UAVS]
     uint16_t target_count;    ///< [0, SVA_MAX_TARGETS]
     sva_uav_t uavs[SVA_MAX_UAVS];
@@ -690,7 +693,6 @@ typedef struct {
 typedef struct {
     sva_mission_t mission;   ///< UAVs as they started; targets as they stand now
     int32_t now_ticks;
-    int32_t change_penalty;  ///< cells per changed visit, [0, SVA_MAX_CHANGE_PENALTY]
     uint32_t revision;       ///< events applied
     uint8_t target_state[SVA_MAX_TARGETS];   ///< sva_target_state_t of each target
     int32_t target_ended[SVA_MAX_TARGETS];   ///< tick it was lost or cancelled
@@ -708,16 +710,15 @@ typedef struct {
     } priv;
 } sva_live_t;
 
-/// Starts a live mission at now = 0 from a mission and, when plan is not NULL, the plan
-/// in force (over the same mission, e.g. sva_plan()'s; only its routes are read).
+/// Starts a live mission at now = 0 from a mission (its change_penalty included) and,
+/// when plan is not NULL, the plan in force (over the same mission, e.g. sva_plan()'s;
+/// only its routes are read).
 /// Returns SVA_OK; SVA_ERR_ARGUMENT for a NULL self or mission; SVA_ERR_INVALID when the
-/// mission breaks a rule, change_penalty is outside [0, SVA_MAX_CHANGE_PENALTY], or a
-/// route names an unknown target, a target twice or a UAV out of mission order (diag
+/// mission breaks a rule or a route names an unknown target, a target twice or a UAV out of mission order (diag
 /// says which). Fails iff it returns non-zero, and then *self is unspecified.
 /// Allocates nothing; O(U * R + T^2 + U^2) with R = SVA_MAX_ROUTE_TARGETS.
 SVA_NODISCARD sva_status_t sva_live_init(sva_live_t* self, const sva_mission_t* mission,
-                                         const sva_plan_t* plan, int32_t change_penalty,
-                                         sva_diag_t* diag);
+                                         const sva_plan_t* plan, sva_diag_t* diag);
 
 /// Applies one event: first the clock moves to event->at_ticks (visits start, end or
 /// expire on the way), then the event acts (SPEC section 5.3). Returns SVA_OK, or

@@ -74,11 +74,9 @@ static bool in_range(sva_diag_t* diag, sva_field_t field, int32_t index, int64_t
 
 bool sva_live_target_ok(const sva_target_t* t, int32_t index, int64_t now, sva_diag_t* diag)
 {
-    if (!in_range(diag, SVA_FIELD_TARGET_ID, index, t->id, 1, SVA_MAX_ID, "SVA_MAX_ID") ||
-        !in_range(diag, SVA_FIELD_TARGET_X, index, t->x, SVA_COORD_MIN, SVA_COORD_MAX,
-                  "SVA_COORD_MAX") ||
-        !in_range(diag, SVA_FIELD_TARGET_Y, index, t->y, SVA_COORD_MIN, SVA_COORD_MAX,
-                  "SVA_COORD_MAX") ||
+    if (!in_range(diag, SVA_FIELD_TARGET_ID, index, t->id, 1, SVA_MAX_ID, NULL) ||
+        !in_range(diag, SVA_FIELD_TARGET_X, index, t->x, SVA_COORD_MIN, SVA_COORD_MAX, NULL) ||
+        !in_range(diag, SVA_FIELD_TARGET_Y, index, t->y, SVA_COORD_MIN, SVA_COORD_MAX, NULL) ||
         !in_range(diag, SVA_FIELD_TARGET_START, index, t->start_ticks, 0, SVA_MAX_TICK - 1,
                   "SVA_MAX_TICK")) {
         return false;
@@ -138,7 +136,7 @@ static bool plan_ok(const sva_mission_t* m, const sva_plan_t* plan, sva_diag_t* 
 }
 
 sva_status_t sva_live_init(sva_live_t* self, const sva_mission_t* mission, const sva_plan_t* plan,
-                           int32_t change_penalty, sva_diag_t* diag)
+                           sva_diag_t* diag)
 {
     SVA_ASSERT((self != NULL) && (mission != NULL));
     if ((self == NULL) || (mission == NULL)) {
@@ -150,14 +148,11 @@ sva_status_t sva_live_init(sva_live_t* self, const sva_mission_t* mission, const
     if (sva_mission_validate(mission, diag) != SVA_OK) {
         return SVA_ERR_INVALID;
     }
-    if (!in_range(diag, SVA_FIELD_CHANGE_PENALTY, -1, change_penalty, 0, SVA_MAX_CHANGE_PENALTY,
-                  "SVA_MAX_CHANGE_PENALTY") ||
-        ((plan != NULL) && !plan_ok(mission, plan, diag))) {
+    if ((plan != NULL) && !plan_ok(mission, plan, diag)) {
         return SVA_ERR_INVALID;
     }
     (void)memset(self, 0, sizeof(*self));
     self->mission = *mission;
-    self->change_penalty = change_penalty;
     for (uint16_t u = 0U; u < mission->uav_count; u++) {
         sva_live_uav_t* v = &self->uavs[u];
         const sva_uav_t* s = &mission->uavs[u];
@@ -210,10 +205,8 @@ static bool event_ok(const sva_live_t* self, const sva_event_t* e, sva_diag_t* d
     }
     switch (e->type) {
     case SVA_EVENT_UAV_BACK:
-        return in_range(diag, SVA_FIELD_EVENT_X, -1, e->x, SVA_COORD_MIN, SVA_COORD_MAX,
-                        "SVA_COORD_MAX") &&
-               in_range(diag, SVA_FIELD_EVENT_Y, -1, e->y, SVA_COORD_MIN, SVA_COORD_MAX,
-                        "SVA_COORD_MAX") &&
+        return in_range(diag, SVA_FIELD_EVENT_X, -1, e->x, SVA_COORD_MIN, SVA_COORD_MAX, NULL) &&
+               in_range(diag, SVA_FIELD_EVENT_Y, -1, e->y, SVA_COORD_MIN, SVA_COORD_MAX, NULL) &&
                in_range(diag, SVA_FIELD_EVENT_FUEL, -1, e->fuel, 0, SVA_MAX_FUEL, "SVA_MAX_FUEL");
     case SVA_EVENT_FUEL:
         return in_range(diag, SVA_FIELD_EVENT_FUEL, -1, e->fuel, 0, SVA_MAX_FUEL, "SVA_MAX_FUEL");

@@ -93,7 +93,7 @@ static int64_t objective(const sva_live_t* self, const sva_plan_t* plan)
 {
     const uint32_t changes = missing_in(&self->priv.previous, plan) +
                              missing_in(plan, &self->priv.previous);
-    return plan->cost + ((int64_t)self->change_penalty * (int64_t)changes);
+    return plan->cost + ((int64_t)self->mission.change_penalty * (int64_t)changes);
 }
 
 // The chosen plan becomes the plan in force: each UAV's route starts where the residual
