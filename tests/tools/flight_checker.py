@@ -221,10 +221,12 @@ def check_flight(log: dict) -> List[str]:
             if (uid, t) in fuel_at:
                 prev_fuel = fuel_at[(uid, t)]
             later = t + tpc
-            moves = 1 if (later in p and later - 1 in p and p[later] != p[later - 1]) else 0
+            # A loss before the step would end cuts it short (a return may follow).
+            cut = any(t < lt <= later for lt in lost_at.get(uid, []))
+            moves = 1 if (not cut and later in p and later - 1 in p and
+                          p[later] != p[later - 1]) else 0
             want = moves + hover * hover_ticks.get(t, 0)
             paid = prev_fuel - f
-            cut = later not in ticks and any(t < lt <= later for lt in lost_at.get(uid, []))
             if paid != want and not (cut and paid == want + 1):
                 v.append(f"{w}: fuel drops by {paid} at tick {t}, the flight pays {want} "
                          f"({moves} step(s), {hover_ticks.get(t, 0)} window(s) starting)")
