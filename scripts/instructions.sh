@@ -35,9 +35,9 @@ declare -A cli=([x86-64]=build/bin/sva)
 prefix=build/cross/i686/prefix
 if command -v i686-linux-gnu-gcc >/dev/null && [ -f "$prefix/lib/libjansson.a" ]; then
     i686-linux-gnu-gcc -std=c99 -O2 -g -static -DNDEBUG \
-        -Icore/include -Icore/profiles -Itools/cli -I"$prefix/include" \
+        -Icore/include -Icore/profiles -Iport/json/include -Iport/json/src -I"$prefix/include" \
         -DSVA_CONFIG_HEADER='"sva_profile_default.h"' \
-        core/src/*.c tools/cli/*.c "$prefix/lib/libjansson.a" -o "$out/sva-i686"
+        core/src/*.c tools/cli/*.c port/json/src/*.c "$prefix/lib/libjansson.a" -o "$out/sva-i686"
     cli[i686]=$out/sva-i686
     archs="x86-64 i686"
 else

@@ -431,7 +431,65 @@ def test_help_and_version():
     result = run(["--version"])
     assert result.returncode == 0
     assert re.match(r"sva \d+\.\d+\.\d+ \(mission/plan schema \d+\)\n", result.stdout.decode())
-    assert {"SVA_MAX_UAVS", "SVA_MAX_TARGETS", "SVA_BFA_MAX_UAVS", "SVA_BFA_MAX_TARGETS"} <= set(limits())
+    assert {"SVA_MAX_UAVS", "SVA_MAX_TARGETS", "SVA_BFA_MAX_UAVS", "SVA_BFA_MAX_TARGETS",
+            "SVA_BFA_MAX_NODES"} <= set(limits())
+    assert "unless its search passes SVA_BFA_MAX_NODES nodes" in result.stdout.decode()
+
+
+# ---------------------------------------------------------------------------------
+# bfa at its advertised bounds: SVA_BFA_MAX_UAVS x SVA_BFA_MAX_TARGETS is planned
+# unless the search passes SVA_BFA_MAX_NODES; one more UAV or target is refused.
+
+def bfa_mission(uavs, targets, need):
+    """All UAVs at the depot. Targets in chained windows (each can follow every
+    earlier one), so with need >= 2 the search is at its widest."""
+    xs = [7, -3, 12, -15, 4, 9, -8, 18, -11, 2, 14, -6, 5, -17]
+    return {
+        "name": f"bfa_{uavs}x{targets}_need{need}",
+        "depot": {"x": 0, "y": 0},
+        "uavs": [{"id": u + 1, "x": 0, "y": 0, "fuel": 100000} for u in range(uavs)],
+        "targets": [{"id": t + 1, "x": xs[t], "y": xs[-1 - t], "start": 100 * (t + 1), "end": 100 * (t + 1) + 5,
+                     "need": need} for t in range(targets)],
+    }
+
+
+def plan_bfa(tmp_path, m):
+    path = tmp_path / f"{m['name']}.json"
+    path.write_text(json.dumps(m))
+    return run(["plan", "--algo", "bfa", str(path)])
+
+
+def test_bfa_plans_a_mission_at_its_size_bounds(tmp_path):
+    lim = limits()
+    m = bfa_mission(lim["SVA_BFA_MAX_UAVS"], lim["SVA_BFA_MAX_TARGETS"], 1)
+    result = plan_bfa(tmp_path, m)
+    assert result.returncode == 0, result.stderr
+    plan = json.loads(result.stdout)
+    check_plan(m, plan, "bfa")
+    assert plan["status"] == "complete"
+    assert 0 < plan["stats"]["search_nodes"] <= lim["SVA_BFA_MAX_NODES"]
+
+
+@pytest.mark.parametrize("extra_uav, extra_target, bound", [(1, 0, "SVA_BFA_MAX_UAVS"),
+                                                            (0, 1, "SVA_BFA_MAX_TARGETS")])
+def test_bfa_refuses_one_past_its_size_bounds(tmp_path, extra_uav, extra_target, bound):
+    lim = limits()
+    m = bfa_mission(lim["SVA_BFA_MAX_UAVS"] + extra_uav, lim["SVA_BFA_MAX_TARGETS"] + extra_target, 1)
+    message = assert_one_error_line(plan_bfa(tmp_path, m), 1)
+    size = lim[bound] + 1
+    assert message == f"{'uavs' if extra_uav else 'targets'}: {size} entries exceed {bound} ({lim[bound]})"
+
+
+def test_bfa_within_its_size_bounds_is_refused_past_its_node_budget(tmp_path):
+    """8 x 12 with need 3 in chained windows: within the size bounds, but the search
+    passes the node budget (about 5 s); refused as --version says, one node past it."""
+    lim = limits()
+    m = bfa_mission(lim["SVA_BFA_MAX_UAVS"], lim["SVA_BFA_MAX_TARGETS"], 3)
+    message = assert_one_error_line(plan_bfa(tmp_path, m), 1)
+    budget = lim["SVA_BFA_MAX_NODES"]
+    assert message == f"mission: {budget + 1} search nodes exceed SVA_BFA_MAX_NODES ({budget})"
+    # the same mission is within every other algorithm's reach
+    assert json.loads(run(["plan", str(tmp_path / f"{m['name']}.json")]).stdout)["algorithm"] == "sva"
 
 
 @pytest.mark.skipif(not Path("/dev/full").exists(), reason="needs /dev/full")
@@ -475,3 +533,124 @@ def test_mutated_missions_never_crash():
         else:
             assert result.returncode in (1, 2), f"{where}: exit {result.returncode}: {result.stderr[-2000:]!r}"
             assert_one_error_line(result, result.returncode)
+
+
+# ---------------------------------------------------------------------------------
+# getopt_long: both value forms, abbreviations, options anywhere, "--"
+
+def test_value_forms_give_the_same_plan():
+    path = str(FIXTURES / "missions" / "hand_5_3.json")
+    runs = [run(args) for args in (["plan", "--algo=hga", "--repeat=2", path],
+                                   ["plan", "--algo", "hga", "--repeat", "2", path],
+                                   ["plan", path, "--repeat", "2", "--algo", "hga"],
+                                   ["plan", "--al=hga", "--rep", "2", path])]  # unique prefixes
+    plans = []
+    for result in runs:
+        assert result.returncode == 0 and result.stderr == b"", result.stderr
+        plan = json.loads(result.stdout)
+        del plan["stats"]
+        plans.append(plan)
+    assert plans[0]["algorithm"] == "hga" and all(p == plans[0] for p in plans)
+
+
+def test_double_dash_ends_the_options(tmp_path):
+    (tmp_path / "--algo").write_bytes((FIXTURES / "missions" / "hand_3_1.json").read_bytes())
+    result = run(["validate", "--", "--algo"], cwd=tmp_path)
+    assert result.returncode == 0 and result.stdout == b"ok: hand_3_1: 3 UAVs, 3 targets\n"
+    result = run(["plan", "--schedule", "--", "--algo"], cwd=tmp_path)
+    assert result.returncode == 0 and result.stdout.startswith(b"mission hand_3_1: algorithm sva")
+
+
+@pytest.mark.parametrize("args, message", [
+    (["plan", "a.json", "--algo"], "plan: --algo needs a value"),
+    (["plan", "a.json", "--trace"], "plan: --trace needs a file name"),
+    (["plan", "--trace=", "a.json"], "plan: --trace needs a file name"),
+    (["plan", "a.json", "--repeat"], "plan: --repeat: must be an integer in [1, 1000]"),
+    (["plan", "a.json", "--flow-work"], "plan: --flow-work: must be an integer in [1000, "),
+    (["plan", "--algo=", "a.json"], "plan: --algo: unknown algorithm \"\" (known: sva, ga, hga, bfa"),
+    (["plan", "--schedule=yes", "a.json"], "plan: unknown option \"--schedule=yes\" (try 'sva --help')"),
+    (["plan", "-x", "a.json"], "plan: unknown option \"-x\" (try 'sva --help')"),
+    (["plan", "--", "a.json", "b.json"], "plan: one mission expected, got \"a.json\" and \"b.json\""),
+    (["validate", "--schedule", "a.json"], "validate: unknown option \"--schedule\" (try 'sva --help')"),
+    (["validate", "--algo=sva", "a.json"], "validate: unknown option \"--algo=sva\" (try 'sva --help')"),
+])
+def test_getopt_usage_errors(args, message):
+    got = assert_one_error_line(run(args), 2)
+    assert got.startswith(message), got
+
+
+# ---------------------------------------------------------------------------------
+# user-supplied text is printed escaped: no forged lines, no terminal control
+
+HOSTILE = "x\n\x1b[31mforged\x1b[0m\r\t\x7f"
+HOSTILE_SHOWN = "x\\n\\x1b[31mforged\\x1b[0m\\r\\t\\x7f"
+
+
+def assert_no_raw_control(data):
+    """Only the line ends of the output itself: no ESC, CR, TAB, DEL or C1 byte."""
+    assert all(b >= 0x20 or b == 0x0a for b in data) and b"\x7f" not in data, data
+    text = data.decode("utf-8")
+    assert not any(0x80 <= ord(c) <= 0x9f for c in text), text
+
+
+def test_hostile_algo_value_is_escaped():
+    path = str(FIXTURES / "missions" / "hand_3_1.json")
+    for args in (["plan", f"--algo={HOSTILE}", path], ["plan", "--algo", HOSTILE, path]):
+        result = run(args)
+        assert_no_raw_control(result.stderr)
+        got = assert_one_error_line(result, 2)
+        assert got.startswith(f'plan: --algo: unknown algorithm "{HOSTILE_SHOWN}" (known: '), got
+
+
+def test_hostile_command_and_option_are_escaped():
+    result = run([HOSTILE])
+    assert_no_raw_control(result.stderr)
+    assert assert_one_error_line(result, 2) == f"unknown command \"{HOSTILE_SHOWN}\" (try 'sva --help')"
+    result = run(["plan", "--" + HOSTILE, "a.json"])
+    assert_no_raw_control(result.stderr)
+    assert assert_one_error_line(result, 2) == f"plan: unknown option \"--{HOSTILE_SHOWN}\" (try 'sva --help')"
+    result = run(["plan", "--repeat", HOSTILE, "a.json"])
+    assert_no_raw_control(result.stderr)
+    assert_one_error_line(result, 2)
+
+
+@pytest.mark.sanitize
+def test_hostile_file_names_are_escaped(tmp_path):
+    # missing, then present but invalid JSON, then a trace file that cannot be opened
+    result = run(["validate", HOSTILE + ".json"], cwd=tmp_path)
+    assert_no_raw_control(result.stderr)
+    assert assert_one_error_line(result, 2) == f"{HOSTILE_SHOWN}.json: cannot open: No such file or directory"
+    (tmp_path / (HOSTILE + ".json")).write_text("{\n  oops")
+    result = run(["plan", HOSTILE + ".json"], cwd=tmp_path)
+    assert_no_raw_control(result.stderr)
+    assert assert_one_error_line(result, 2).startswith(f"{HOSTILE_SHOWN}.json:2:6: invalid JSON: ")
+    mission_path = str((FIXTURES / "missions" / "hand_3_1.json").resolve())
+    result = run(["plan", "--trace", f"no_dir/{HOSTILE}", mission_path], cwd=tmp_path)
+    assert_no_raw_control(result.stderr)
+    assert assert_one_error_line(result, 1) == f"no_dir/{HOSTILE_SHOWN}: cannot open for writing: No such file or directory"
+    result = run(["plan", f"{HOSTILE}\u009b.json"], cwd=tmp_path)  # a C1 control (CSI), UTF-8 c2 9b
+    assert_no_raw_control(result.stderr)
+    assert assert_one_error_line(result, 2).startswith(f"{HOSTILE_SHOWN}\\xc2\\x9b.json: cannot open")
+
+
+@pytest.mark.sanitize
+def test_hostile_mission_name_is_escaped(tmp_path):
+    m = mission("hand_3_1")
+    m["name"] = "évasion " + HOSTILE  # printable UTF-8 is kept
+    path = tmp_path / "hostile.json"
+    path.write_text(json.dumps(m))
+    result = run(["validate", str(path)])
+    assert result.returncode == 0 and result.stderr == b""
+    assert_no_raw_control(result.stdout)
+    assert result.stdout.decode() == f"ok: évasion {HOSTILE_SHOWN}: 3 UAVs, 3 targets\n"
+    result = run(["plan", "--schedule", str(path)])
+    assert result.returncode == 0 and result.stderr == b""
+    assert_no_raw_control(result.stdout)
+    lines = result.stdout.decode().split("\n")
+    assert lines[0].startswith(f"mission évasion {HOSTILE_SHOWN}: algorithm sva, ")
+    assert lines[1].startswith("depot (")
+    # in the plan JSON the name is a JSON string, escaped by JSON's rules (which let DEL
+    # through), read back whole
+    result = run(["plan", str(path)])
+    assert all(b >= 0x20 or b == 0x0a for b in result.stdout)
+    assert json.loads(result.stdout)["mission"] == m["name"]

@@ -1,4 +1,4 @@
-// Fuzz target: mission JSON (tools/cli's sva_json reader) -> sva_mission_validate ->
+// Fuzz target: mission JSON (port/json's sva_json reader) -> sva_mission_validate ->
 // sva_plan with every algorithm. Properties checked on every input:
 //   - the reader either accepts or writes a one-line message naming what is wrong;
 //   - an accepted and valid mission gets a plan from every algorithm (bfa and flow may
@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mission_json.h"
+#include <sva/sva_json.h>
 #include "spec_checker.h"
 #include "sva/sva.h"
 

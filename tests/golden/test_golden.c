@@ -1,7 +1,7 @@
 // test_golden.c -- golden plans (fixtures/golden/<algo>/<mission>.json).
 //
 // For every mission in fixtures/missions and every algorithm: plan it through the
-// CLI's JSON layer (sva_json) and compare with the golden file using json_equal,
+// JSON layer (sva::json) and compare with the golden file using json_equal,
 // "stats" removed from both. sva, ga and hga must have a golden file for every
 // mission; a missing bfa golden file is accepted only when bfa refuses the mission
 // with SVA_ERR_LIMIT. A golden file without its mission fails too.
@@ -20,8 +20,7 @@
 #include <jansson.h>
 #include <sva/sva.h>
 
-#include "mission_json.h"
-#include "plan_json.h"
+#include <sva/sva_json.h>
 
 #define MAX_MISSIONS 256
 #define PATH_SIZE 1024

@@ -206,6 +206,38 @@ def test_node_rejects_bad_options():
         assert r.returncode == 2 and "--rt-priority: must be an integer in [1, 99]" in r.stderr
 
 
+HOSTILE = "x\n\x1b[31mforged"
+HOSTILE_SHOWN = "x\\n\\x1b[31mforged"
+
+
+def test_node_prints_user_text_escaped(tmp_path):
+    """Option values, the URL and channel names (from --prefix) reach stderr escaped:
+    exactly the expected lines, no raw control bytes."""
+    def lines(r):
+        assert "\x1b" not in r.stderr and "\r" not in r.stderr, r.stderr
+        return r.stderr.splitlines()
+    r = subprocess.run([NODE, "--algorithm", HOSTILE], capture_output=True, text=True)
+    assert r.returncode == 2
+    assert lines(r) == [f"sva_node: --algorithm: unknown name '{HOSTILE_SHOWN}' (sva, ga, hga, bfa, flow)"]
+    r = subprocess.run([NODE, "--status-ms", HOSTILE], capture_output=True, text=True)
+    assert r.returncode == 2
+    assert lines(r) == [f"sva_node: --status-ms: must be an integer in [10, 3600000], got '{HOSTILE_SHOWN}'"]
+    r = subprocess.run([NODE, "--" + HOSTILE], capture_output=True, text=True)
+    assert r.returncode == 2
+    assert lines(r)[0] == f"sva_node: unknown or incomplete option '--{HOSTILE_SHOWN}'"
+    # a one-event log as provider: the start line names the channels of the prefix
+    log = tmp_path / "one.lcmlog"
+    out = lcm.EventLog(str(log), "w", overwrite=True)
+    out.write_event(0, "OTHER", b"\0" * 8)
+    out.close()
+    r = subprocess.run([NODE, "--url", f"file://{log}?mode=r", "--prefix", HOSTILE, "--exit-on-eof"],
+                       capture_output=True, text=True, timeout=30)
+    assert r.returncode == 0, r.stderr
+    start = [line for line in lines(r) if line.startswith("sva_node: in ")]
+    assert start == [f"sva_node: in {HOSTILE_SHOWN}FLEET {HOSTILE_SHOWN}MISSION, out {HOSTILE_SHOWN}PLAN "
+                     f"{HOSTILE_SHOWN}STATUS; algorithm sva; file://{log}?mode=r"]
+
+
 def test_realtime_options(tmp_path):
     """--rt-priority puts every thread of the node (LCM's udpm receive thread included)
     under SCHED_FIFO; --mlock locks its memory; it still plans."""

@@ -182,4 +182,4 @@ def test_cli_exit_codes(tmp_path):
     assert len(r.stdout.strip().splitlines()) == 2  # one line per violation
     bad_doc.pop("routes")
     r = sva_tools("check", mp, write(tmp_path, "shape.json", bad_doc))
-    assert r.returncode == 2 and "routes: missing key" in r.stderr
+    assert r.returncode == 2 and 'plan: missing key "routes"' in r.stderr

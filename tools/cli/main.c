@@ -7,6 +7,7 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
+#include <getopt.h>
 #include <stdarg.h>
 #include <stdbool.h>
 #include <stdint.h>
@@ -18,10 +19,10 @@
 #include <jansson.h>
 #include <sva/sva.h>
 
-#include "mission_json.h"
-#include "plan_json.h"
+#include <sva/sva_json.h>
+#include <sva/sva_text.h>
+
 #include "schedule.h"
-#include "trace_json.h"
 
 enum { EXIT_PLANNED = 0, EXIT_FAILED = 1, EXIT_BAD_INPUT = 2 };
 enum { REPEAT_MAX = 1000 };  // --repeat: runs of one mission in one process
@@ -40,7 +41,10 @@ static int error_exit(int code, const char* fmt, ...) {
     va_start(args, fmt);
     vsnprintf(message, sizeof message, fmt, args);
     va_end(args);
-    fprintf(stderr, "sva: error: %s\n", message);
+    // User-supplied text in the message (arguments, file names) can hold anything:
+    // escaped, the message stays one printable line.
+    char shown[SVA_TEXT_ESCAPED_SIZE(sizeof message)];
+    fprintf(stderr, "sva: error: %s\n", sva_text_escape(shown, sizeof shown, message));
     return code;
 }
 
@@ -80,9 +84,12 @@ static void print_version(void) {
     sva_limits_t limits = sva_limits();
     printf("sva %d.%d.%d (mission/plan schema %d)\n", SVA_VERSION_MAJOR, SVA_VERSION_MINOR, SVA_VERSION_PATCH,
            SVA_SCHEMA_VERSION);
-    printf("limits: SVA_MAX_UAVS %lu, SVA_MAX_TARGETS %lu, SVA_BFA_MAX_UAVS %lu, SVA_BFA_MAX_TARGETS %lu\n",
+    printf("limits: SVA_MAX_UAVS %lu, SVA_MAX_TARGETS %lu, SVA_BFA_MAX_UAVS %lu, SVA_BFA_MAX_TARGETS %lu, "
+           "SVA_BFA_MAX_NODES %lu\n",
            (unsigned long)limits.max_uavs, (unsigned long)limits.max_targets, (unsigned long)limits.bfa_max_uavs,
-           (unsigned long)limits.bfa_max_targets);
+           (unsigned long)limits.bfa_max_targets, (unsigned long)limits.bfa_max_nodes);
+    printf("bfa plans a mission within SVA_BFA_MAX_UAVS and SVA_BFA_MAX_TARGETS unless its search passes "
+           "SVA_BFA_MAX_NODES nodes\n");
 }
 
 typedef struct {
@@ -95,35 +102,9 @@ typedef struct {
     bool help;
 } options_t;
 
-// Value of "--name VALUE" or "--name=VALUE"; NULL when `arg` is another option.
-// Advances *i past a separate value. *missing is set when the value is absent.
-static const char* option_value(const char* name, int argc, char** argv, int* i, bool* missing) {
-    const char* arg = argv[*i];
-    size_t len = strlen(name);
-    if (strncmp(arg, name, len) != 0) {
-        return NULL;
-    }
-    if (arg[len] == '=') {
-        return arg + len + 1;
-    }
-    if (arg[len] != '\0') {
-        return NULL;
-    }
-    if (*i + 1 >= argc) {
-        *missing = true;
-        return NULL;
-    }
-    *i += 1;
-    return argv[*i];
-}
-
-// Parses the arguments after the command. `full` allows the plan-only options.
-// An option's value as a decimal integer in [lo, hi] into *out; false if it is missing,
-// not one, or out of range.
-static bool long_in(const char* value, bool missing, long lo, long hi, long* out) {
-    if (missing) {
-        return false;
-    }
+// An option's value as a decimal integer in [lo, hi] into *out; false if it is not
+// one or out of range.
+static bool long_in(const char* value, long lo, long hi, long* out) {
     char* end = NULL;
     errno = 0;
     const long n = strtol(value, &end, 10);
@@ -134,51 +115,96 @@ static bool long_in(const char* value, bool missing, long lo, long hi, long* out
     return true;
 }
 
+// getopt_long codes of the options; -h is the one short option.
+enum { OPT_MISSION = 1, OPT_HELP = 'h', OPT_ALGO = 256, OPT_FLOW_WORK, OPT_REPEAT, OPT_SCHEDULE, OPT_TRACE };
+
+static const struct option PLAN_OPTIONS[] = {
+    {"algo", required_argument, NULL, OPT_ALGO},
+    {"flow-work", required_argument, NULL, OPT_FLOW_WORK},
+    {"repeat", required_argument, NULL, OPT_REPEAT},
+    {"schedule", no_argument, NULL, OPT_SCHEDULE},
+    {"trace", required_argument, NULL, OPT_TRACE},
+    {"help", no_argument, NULL, OPT_HELP},
+    {NULL, 0, NULL, 0},
+};
+static const struct option VALIDATE_OPTIONS[] = {
+    {"help", no_argument, NULL, OPT_HELP},
+    {NULL, 0, NULL, 0},
+};
+
+// Error of an option whose value is missing or wrong.
+static int bad_value(const char* command, int code) {
+    switch (code) {
+        case OPT_ALGO: return error_exit(EXIT_BAD_INPUT, "%s: --algo needs a value", command);
+        case OPT_TRACE: return error_exit(EXIT_BAD_INPUT, "%s: --trace needs a file name", command);
+        case OPT_FLOW_WORK:
+            return error_exit(EXIT_BAD_INPUT, "%s: --flow-work: must be an integer in [1000, %ld] (SVA_FLOW_MAX_WORK)",
+                              command, (long)SVA_FLOW_MAX_WORK);
+        case OPT_REPEAT:
+        default: return error_exit(EXIT_BAD_INPUT, "%s: --repeat: must be an integer in [1, %d]", command, REPEAT_MAX);
+    }
+}
+
+// Error of an option getopt_long did not accept: unknown, ambiguous, or given a value
+// it does not take. `argv[optind - 1]` is the argument for a long option; a short
+// one is named by optopt.
+static int unknown_option(const char* command, char** argv) {
+    char short_form[3] = {'-', (char)optopt, '\0'};
+    const bool is_long = optopt == 0 || optopt == OPT_HELP || optopt >= OPT_ALGO;
+    return error_exit(EXIT_BAD_INPUT, "%s: unknown option \"%s\" (try 'sva --help')", command,
+                      is_long ? argv[optind - 1] : short_form);
+}
+
+// Parses the arguments after the command with getopt_long: options and the mission in
+// any order, "--" ends the options, long options as "--name VALUE" or "--name=VALUE"
+// (or a unique prefix of the name). `full` allows the plan-only options.
+// argv[0] is the command.
 static int parse_options(const char* command, bool full, int argc, char** argv, options_t* opt) {
     memset(opt, 0, sizeof *opt);
     opt->algo = "sva";
     opt->repeat = 1;
-    bool only_files = false;
-    for (int i = 0; i < argc; ++i) {
-        const char* arg = argv[i];
-        bool missing = false;
-        const char* value = NULL;
-        if (!only_files && strcmp(arg, "--") == 0) {
-            only_files = true;
-        } else if (!only_files && (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0)) {
-            opt->help = true;
-        } else if (!only_files && full && strcmp(arg, "--schedule") == 0) {
-            opt->schedule = true;
-        } else if (!only_files && full && ((value = option_value("--algo", argc, argv, &i, &missing)) != NULL || missing)) {
-            if (missing) {
-                return error_exit(EXIT_BAD_INPUT, "%s: --algo needs a value", command);
-            }
-            opt->algo = value;
-        } else if (!only_files && full &&
-                   ((value = option_value("--flow-work", argc, argv, &i, &missing)) != NULL || missing)) {
-            if (!long_in(value, missing, 1000, (long)SVA_FLOW_MAX_WORK, &opt->flow_work)) {
-                return error_exit(EXIT_BAD_INPUT, "%s: --flow-work: must be an integer in [1000, %ld] (SVA_FLOW_MAX_WORK)",
-                                  command, (long)SVA_FLOW_MAX_WORK);
-            }
-        } else if (!only_files && full &&
-                   ((value = option_value("--repeat", argc, argv, &i, &missing)) != NULL || missing)) {
-            if (!long_in(value, missing, 1, REPEAT_MAX, &opt->repeat)) {
-                return error_exit(EXIT_BAD_INPUT, "%s: --repeat: must be an integer in [1, %d]", command, REPEAT_MAX);
-            }
-        } else if (!only_files && full &&
-                   ((value = option_value("--trace", argc, argv, &i, &missing)) != NULL || missing)) {
-            if (missing || value[0] == '\0') {
-                return error_exit(EXIT_BAD_INPUT, "%s: --trace needs a file name", command);
-            }
-            opt->trace = value;
-        } else if (!only_files && arg[0] == '-' && arg[1] != '\0') {
-            return error_exit(EXIT_BAD_INPUT, "%s: unknown option \"%s\" (try 'sva --help')", command, arg);
-        } else if (opt->mission != NULL) {
-            return error_exit(EXIT_BAD_INPUT, "%s: one mission expected, got \"%s\" and \"%s\"", command, opt->mission,
-                              arg);
-        } else {
-            opt->mission = arg;
+    opterr = 0;  // the messages are ours, one line each
+    optind = 1;
+    // "-": non-options come back in order as OPT_MISSION; ":": a missing value is ':'.
+    int code;
+    while ((code = getopt_long(argc, argv, "-:h", full ? PLAN_OPTIONS : VALIDATE_OPTIONS, NULL)) != -1) {
+        switch (code) {
+            case OPT_MISSION:
+                if (opt->mission != NULL) {
+                    return error_exit(EXIT_BAD_INPUT, "%s: one mission expected, got \"%s\" and \"%s\"", command,
+                                      opt->mission, optarg);
+                }
+                opt->mission = optarg;
+                break;
+            case OPT_HELP: opt->help = true; break;
+            case OPT_SCHEDULE: opt->schedule = true; break;
+            case OPT_ALGO: opt->algo = optarg; break;
+            case OPT_FLOW_WORK:
+                if (!long_in(optarg, 1000, (long)SVA_FLOW_MAX_WORK, &opt->flow_work)) {
+                    return bad_value(command, code);
+                }
+                break;
+            case OPT_REPEAT:
+                if (!long_in(optarg, 1, REPEAT_MAX, &opt->repeat)) {
+                    return bad_value(command, code);
+                }
+                break;
+            case OPT_TRACE:
+                if (optarg[0] == '\0') {
+                    return bad_value(command, code);
+                }
+                opt->trace = optarg;
+                break;
+            case ':': return bad_value(command, optopt);
+            default: return unknown_option(command, argv);
         }
+    }
+    for (; optind < argc; ++optind) {  // after "--"
+        if (opt->mission != NULL) {
+            return error_exit(EXIT_BAD_INPUT, "%s: one mission expected, got \"%s\" and \"%s\"", command,
+                              opt->mission, argv[optind]);
+        }
+        opt->mission = argv[optind];
     }
     if (!opt->help && opt->mission == NULL) {
         return error_exit(EXIT_BAD_INPUT, "%s: missing MISSION.json (or - for standard input)", command);
@@ -209,7 +235,9 @@ static int cmd_validate(int argc, char** argv) {
     if (code != EXIT_PLANNED) {
         return code;
     }
-    printf("ok: %s: %u UAVs, %u targets\n", name, (unsigned)g_mission.uav_count, (unsigned)g_mission.target_count);
+    char shown[SVA_TEXT_ESCAPED_SIZE(SVA_JSON_NAME_MAX)];
+    printf("ok: %s: %u UAVs, %u targets\n", sva_text_escape(shown, sizeof shown, name), (unsigned)g_mission.uav_count,
+           (unsigned)g_mission.target_count);
     if (fflush(stdout) != 0) {
         return error_exit(EXIT_FAILED, "writing to standard output: %s", strerror(errno));
     }
@@ -341,10 +369,10 @@ int main(int argc, char** argv) {
         return EXIT_PLANNED;
     }
     if (strcmp(command, "plan") == 0) {
-        return cmd_plan(argc - 2, argv + 2);
+        return cmd_plan(argc - 1, argv + 1);
     }
     if (strcmp(command, "validate") == 0) {
-        return cmd_validate(argc - 2, argv + 2);
+        return cmd_validate(argc - 1, argv + 1);
     }
     return error_exit(EXIT_BAD_INPUT, "unknown command \"%s\" (try 'sva --help')", command);
 }

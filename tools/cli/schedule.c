@@ -3,6 +3,9 @@
 
 #include <stdbool.h>
 
+#include <sva/sva_json.h>
+#include <sva/sva_text.h>
+
 static void write_target(FILE* out, const char* lead, const sva_target_t* t) {
     fprintf(out, "%starget %ld at (%ld, %ld), window [%ld, %ld], need %ld\n", lead, (long)t->id, (long)t->x,
             (long)t->y, (long)t->start_ticks, (long)t->end_ticks, (long)t->need);
@@ -28,7 +31,8 @@ static void write_route(FILE* out, const sva_mission_t* mission, const sva_uav_t
 }
 
 int sva_write_schedule(FILE* out, const sva_mission_t* mission, const char* name, const sva_plan_t* plan) {
-    fprintf(out, "mission %s: algorithm %s, %s, covered %u/%u targets, cost %lld\n", name,
+    char shown[SVA_TEXT_ESCAPED_SIZE(SVA_JSON_NAME_MAX)];
+    fprintf(out, "mission %s: algorithm %s, %s, covered %u/%u targets, cost %lld\n", sva_text_escape(shown, sizeof shown, name),
             sva_algorithm_name(plan->algorithm), plan->status == SVA_PLAN_COMPLETE ? "complete" : "partial",
             (unsigned)plan->covered, (unsigned)mission->target_count, (long long)plan->cost);
     fprintf(out, "depot (%ld, %ld), ticks_per_cell %ld, hover_fuel %ld\n\n", (long)mission->depot_x,

@@ -43,6 +43,7 @@ from typing import Dict, List, Optional
 
 from . import cache, cbin, check, gen, ih, io, peer, ref
 from . import model as M
+from .text import shown
 
 PY_ALGOS = ("ih", "ref", "peer")
 DEFAULT_ALGOS = "sva,ga,hga,bfa,flow,ih,ref,peer"
@@ -389,7 +390,7 @@ def run(args) -> int:
         try:
             cbin.sva_bin()
         except cbin.CliMissing as e:
-            print(f"sva-tools: error: {e}", file=sys.stderr)
+            print(f"sva-tools: error: {shown(e)}", file=sys.stderr)
             return 2
         # A C algorithm this build of the CLI does not know (e.g. flow before it is
         # merged) is skipped with a note instead of failing every mission.
@@ -399,7 +400,7 @@ def run(args) -> int:
             if why is not None:
                 skipped.add(a)
                 notes.append(f"- {a}: skipped: {why}")
-                print(f"sva-tools bench: {a} skipped: {why}", file=sys.stderr)
+                print(f"sva-tools bench: {shown(a)} skipped: {shown(why)}", file=sys.stderr)
         algos = [a for a in algos if a not in skipped]
         salgos = [a for a in salgos if a not in skipped]
     from tqdm import tqdm

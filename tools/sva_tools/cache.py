@@ -28,7 +28,7 @@ from importlib import metadata
 from pathlib import Path
 from typing import Any, Dict, Optional
 
-from . import __version__, io
+from . import __version__, io, schema
 from . import model as M
 
 CACHED_SOLVERS = ("ih", "ref", "peer")
@@ -97,8 +97,10 @@ class Cache:
         except (OSError, ValueError):
             self.misses += 1
             return None
-        # A stored entry answers only for exactly these key fields.
-        if doc.get("key") != json.loads(canonical(fields)):
+        # A stored entry answers only for exactly these key fields, and only when it is
+        # whole (docs/schema/cache-entry.schema.json).
+        if schema.first_error(doc, "cache-entry") is not None or \
+                doc.get("key") != json.loads(canonical(fields)):
             self.misses += 1
             return None
         res = doc.get("result") or {}

@@ -58,8 +58,7 @@ def plan(mission_path: str, algo: str, trace: bool = False, timeout: float = 600
         if tfile is not None:
             recs = []
             if os.path.exists(tfile):
-                with open(tfile, encoding="utf-8") as f:
-                    recs = [json.loads(line) for line in f if line.strip()]
+                recs = io.load_trace(tfile)
         return CResult(0, p, raw, r.stderr, recs)
     finally:
         if tdir is not None:

@@ -12,6 +12,7 @@ from typing import List
 
 from . import io
 from . import model as M
+from .text import shown
 
 
 def check_plan(m: M.Mission, p: M.Plan) -> List[str]:
@@ -143,9 +144,9 @@ def run(args) -> int:
     p = io.load_plan(args.plan)
     v = check_plan(m, p)
     for msg in v:
-        print(f"{args.plan}: {msg}")
+        print(f"{shown(args.plan)}: {shown(msg)}")
     if v:
         return 1
     if not args.quiet:
-        print(f"{args.plan}: ok ({p.algorithm}, {p.status}, covered {p.covered}/{len(m.targets)}, cost {p.cost})")
+        print(f"{shown(args.plan)}: ok ({p.algorithm}, {p.status}, covered {p.covered}/{len(m.targets)}, cost {p.cost})")
     return 0

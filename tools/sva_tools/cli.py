@@ -7,17 +7,18 @@ import sys
 from typing import List, Optional
 
 from . import io
+from .text import Parser, shown
 
-SUBCOMMANDS = ("gen", "check", "ref", "ih", "peer", "bench", "plot", "sim")
+SUBCOMMANDS = ("gen", "check", "validate", "ref", "ih", "peer", "bench", "plot", "sim")
 
 
 def _lcm(argv: List[str]) -> int:
-    # `lcm` belongs to the LCM port's helper package sva_tools.lcm (issue 4); it is
+    # `lcm` belongs to the LCM port's helper package sva_tools.lcm; it is
     # dispatched when present and reported clearly when not.
     try:
         mod = importlib.import_module("sva_tools.lcm.cli")
     except ImportError as e:
-        print(f"sva-tools: error: the lcm subcommand is not available ({e}); it needs the "
+        print(f"sva-tools: error: the lcm subcommand is not available ({shown(e)}); it needs the "
               f"sva_tools.lcm package (LCM port) and the lcm Python module", file=sys.stderr)
         return 2
     return int(mod.main(argv))
@@ -27,7 +28,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv and argv[0] == "lcm":
         return _lcm(argv[1:])
-    ap = argparse.ArgumentParser(prog="sva-tools", description=__doc__)
+    ap = Parser(prog="sva-tools", description=__doc__)
     sub = ap.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
     for name in SUBCOMMANDS:

@@ -25,6 +25,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 
 from . import io
 from . import model as M
+from .text import shown
 
 RATIOS = {"low": (0.0, 0.3), "mid": (0.3, 0.7), "high": (0.7, 1.0)}
 
@@ -290,5 +291,5 @@ def run(args) -> int:
             io.write_json(doc, os.path.join(args.out, f"{mname}.json"))
         return 0
     except (ValueError, io.InputError) as e:
-        print(f"sva-tools: error: gen: {e}", file=sys.stderr)
+        print(f"sva-tools: error: gen: {shown(e)}", file=sys.stderr)
         return 2

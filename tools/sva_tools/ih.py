@@ -25,6 +25,7 @@ from typing import Dict, List, Optional, Tuple
 from . import io
 from . import model as M
 from . import solvers
+from .text import shown
 
 
 @dataclass
@@ -169,12 +170,9 @@ def verify_record(rec: dict, verdict: TraceVerdict, where: str = "") -> None:
 
 
 def read_trace(path: str) -> List[dict]:
-    out = []
-    with open(path, encoding="utf-8") as f:
-        for line in f:
-            if line.strip():
-                out.append(json.loads(line))
-    return out
+    """The records of a `--trace` file, each checked against docs/schema/trace.schema.json
+    (io.InputError naming the line otherwise)."""
+    return io.load_trace(path)
 
 
 @dataclass
@@ -267,15 +265,8 @@ def run(args) -> int:
     if args.verify_trace:
         v = TraceVerdict()
         for path in args.inputs:
-            try:
-                recs = read_trace(path)
-            except (OSError, json.JSONDecodeError, UnicodeDecodeError) as e:
-                return io.fail(path, io.InputError(f"not a JSON Lines trace: {e}"))
-            for rec in recs:
-                try:
-                    verify_record(rec, v, f"{path}: ")
-                except (KeyError, TypeError, IndexError) as e:
-                    return io.fail(path, io.InputError(f"trace record lacks a field: {e}"))
+            for rec in read_trace(path):
+                verify_record(rec, v, f"{path}: ")
         _print_trace_verdict(v)
         return 1 if v.mismatches else 0
     if args.compare:
@@ -286,7 +277,7 @@ def run(args) -> int:
             try:
                 compare_mission(m, cv)
             except cbin.CliMissing as e:
-                print(f"sva-tools: error: {e}", file=sys.stderr)
+                print(f"sva-tools: error: {shown(e)}", file=sys.stderr)
                 return 2
         _print_trace_verdict(cv.trace)
         print(f"missions: {cv.missions}; identical plans: {cv.same}; differ with the same "

@@ -1,9 +1,11 @@
 """SPEC section 3 files in, SPEC section 4 errors out.
 
-Missions and plans are parsed strictly: unknown or duplicate keys, wrong types and
-values outside their bound are errors (InputError) naming the field, the rule and the
-limit, e.g. "targets[3].need: must be >= 1, got 0". Commands turn an InputError into
-one line `sva-tools: error: FILE: MESSAGE` and exit status 2.
+Files are read as strictly as the C CLI reads them (UTF-8, no duplicate keys, no NUL)
+and checked against their JSON Schema (docs/schema, sva_tools.schema) plus the rules a
+schema cannot express. Every breach is an InputError naming the field, the rule and the
+limit in the CLI's words, e.g. "targets[3].need: must be >= 1, got 0". Commands turn an
+InputError into one line `sva-tools: error: FILE: MESSAGE` (`FILE:LINE:COLUMN: ...` for
+a syntax error) and exit status 2.
 """
 from __future__ import annotations
 
@@ -13,161 +15,161 @@ import sys
 from typing import Any, Dict, List, Optional
 
 from . import model as M
+from . import schema
+from .text import shown
 
 
 class InputError(Exception):
     """A mission or plan file breaks SPEC section 3/4. str() is the one-line message;
-    `path` names the file when it came from load_mission/load_plan."""
+    `path` names the file when it came from load_mission/load_plan; `where` is the
+    place in it (`LINE:COLUMN` of a syntax error, `LINE` of a JSON Lines record)."""
 
-    def __init__(self, message: str, path: Optional[str] = None):
+    def __init__(self, message: str, path: Optional[str] = None, where: str = ""):
         super().__init__(message)
         self.path = path
+        self.where = where
 
 
 def _no_duplicates(pairs):
     out = {}
     for k, v in pairs:
         if k in out:
-            raise InputError(f"{k}: duplicate key")
+            raise _DuplicateKey(k)
         out[k] = v
     return out
 
 
+class _DuplicateKey(Exception):
+    pass
+
+
+class _TooBig(Exception):
+    pass
+
+
+def _int64(digits: str) -> int:
+    # jansson's json_int_t, as the CLI reads it: integers beyond int64 are a syntax error.
+    v = int(digits)
+    if not -2**63 <= v < 2**63:
+        raise _TooBig(digits)
+    return v
+
+
+def _has_nul(doc: Any) -> bool:
+    todo = [doc]
+    while todo:
+        v = todo.pop()
+        if isinstance(v, str) and "\0" in v:
+            return True
+        if isinstance(v, dict):
+            todo.extend(v.keys())
+            todo.extend(v.values())
+        elif isinstance(v, list):
+            todo.extend(v)
+    return False
+
+
+def _line_col(text: str, offset: int) -> str:
+    line = text.count("\n", 0, offset) + 1
+    return f"{line}:{offset - (text.rfind(chr(10), 0, offset) + 1) + 1}"
+
+
+def parse_json(data: bytes) -> Any:
+    """One JSON document from bytes, as strictly as the CLI reads it: UTF-8, no
+    duplicate keys, no NUL, nothing after the document. InputError names the place."""
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        partial = data[:e.start].decode("utf-8", errors="replace")
+        raise InputError(f"invalid JSON: unable to decode byte 0x{data[e.start]:02x}",
+                         where=_line_col(partial, len(partial))) from None
+    if not text.strip():
+        raise InputError("empty input")
+    if "\0" in text:
+        raise InputError("invalid JSON: NUL byte in input", where=_line_col(text, text.index("\0")))
+    try:
+        doc = json.loads(text, object_pairs_hook=_no_duplicates, parse_int=_int64)
+    except json.JSONDecodeError as e:
+        raise InputError(f"invalid JSON: {e.msg}", where=f"{e.lineno}:{e.colno}") from None
+    except _DuplicateKey as e:
+        raise InputError(f"invalid JSON: duplicate object key {json.dumps(e.args[0])}") from None
+    except _TooBig as e:
+        raise InputError(f"invalid JSON: too big integer {e.args[0]}") from None
+    except RecursionError:
+        raise InputError("invalid JSON: nested too deeply") from None
+    if _has_nul(doc):
+        raise InputError("invalid JSON: \\u0000 is not allowed in a string")
+    return doc
+
+
+# The CLI's input cap (docs/SPEC.md section 4).
+MAX_INPUT_BYTES = 16 * 1024 * 1024
+
+
 def read_json(path: str) -> Any:
     try:
-        with open(path, "r", encoding="utf-8") as f:
-            text = f.read()
+        with open(path, "rb") as f:
+            data = f.read(MAX_INPUT_BYTES + 1)
     except OSError as e:
-        raise InputError(f"cannot read file: {e.strerror}") from None
-    except UnicodeDecodeError:
-        raise InputError("file is not UTF-8 text") from None
-    try:
-        return json.loads(text, object_pairs_hook=_no_duplicates)
-    except json.JSONDecodeError as e:
-        raise InputError(f"not valid JSON: {e.msg} at line {e.lineno} column {e.colno}") from None
-    except RecursionError:
-        raise InputError("not valid JSON: nested too deeply") from None
+        raise InputError(f"cannot open: {e.strerror}") from None
+    if len(data) > MAX_INPUT_BYTES:
+        raise InputError(f"input exceeds {MAX_INPUT_BYTES} bytes")
+    return parse_json(data)
 
 
-def _is_int(v: Any) -> bool:
-    return isinstance(v, int) and not isinstance(v, bool)
-
-
-def _obj(v: Any, where: str, required: List[str], optional: List[str]) -> Dict[str, Any]:
-    if not isinstance(v, dict):
-        raise InputError(f"{where or 'file'}: must be a JSON object")
-    for k in v:
-        if k not in required and k not in optional:
-            raise InputError(f"{_join(where, k)}: unknown key")
-    for k in required:
-        if k not in v:
-            raise InputError(f"{_join(where, k)}: missing key")
-    return v
-
-
-def _join(where: str, key: str) -> str:
-    return f"{where}.{key}" if where else key
-
-
-def _int(v: Any, where: str, lo: Optional[int] = None, hi: Optional[int] = None,
-         lo_name: str = "", hi_name: str = "") -> int:
-    if not _is_int(v):
-        raise InputError(f"{where}: must be an integer, got {json.dumps(v)}")
-    if lo is not None and v < lo:
-        lim = f"{lo_name} ({lo})" if lo_name else str(lo)
-        raise InputError(f"{where}: must be >= {lim}, got {v}")
-    if hi is not None and v > hi:
-        lim = f"{hi_name} ({hi})" if hi_name else str(hi)
-        raise InputError(f"{where}: must be <= {lim}, got {v}")
-    return v
-
-
-def _list(v: Any, where: str, max_len: Optional[int] = None, max_name: str = "") -> list:
-    if not isinstance(v, list):
-        raise InputError(f"{where}: must be a JSON array")
-    if max_len is not None and len(v) > max_len:
-        raise InputError(f"{where}: {len(v)} entries exceed {max_name} ({max_len})")
-    return v
-
-
-def _coord(v: Any, where: str) -> int:
-    return _int(v, where, M.SVA_COORD_MIN, M.SVA_COORD_MAX, "SVA_COORD_MIN", "SVA_COORD_MAX")
+def check(doc: Any, kind: str) -> None:
+    """Raises InputError with the first error of doc as a `kind` file (docs/schema and
+    the rules a schema cannot express, schema.first_error)."""
+    message = schema.first_error(doc, kind)
+    if message is not None:
+        raise InputError(message)
 
 
 def mission_from_json(doc: Any) -> M.Mission:
-    """Validates a SPEC 3 mission (every SPEC 4 rule, default-profile bounds)."""
-    d = _obj(doc, "", ["name", "depot", "uavs", "targets"],
-             ["ticks_per_cell", "hover_fuel", "overlap_percent", "change_penalty"])
-    if not isinstance(d["name"], str):
-        raise InputError("name: must be a string")
-    dep = _obj(d["depot"], "depot", ["x", "y"], [])
-    depot = (_coord(dep["x"], "depot.x"), _coord(dep["y"], "depot.y"))
-    tpc = _int(d.get("ticks_per_cell", M.DEFAULT_TICKS_PER_CELL), "ticks_per_cell",
-               1, M.SVA_MAX_TICKS_PER_CELL, "", "SVA_MAX_TICKS_PER_CELL")
-    hover = _int(d.get("hover_fuel", M.DEFAULT_HOVER_FUEL), "hover_fuel",
-                 0, M.SVA_MAX_HOVER_FUEL, "", "SVA_MAX_HOVER_FUEL")
-    ovl = _int(d.get("overlap_percent", M.DEFAULT_OVERLAP_PERCENT), "overlap_percent", 0, 100)
-    # SPEC 5.4: a live mission's price of a changed visit; planning ignores it.
-    penalty = _int(d.get("change_penalty", 0), "change_penalty", 0, M.SVA_MAX_CHANGE_PENALTY,
-                   "", "SVA_MAX_CHANGE_PENALTY")
-    uavs = []
-    seen: Dict[int, int] = {}
-    for i, u in enumerate(_list(d["uavs"], "uavs", M.SVA_MAX_UAVS, "SVA_MAX_UAVS")):
-        w = f"uavs[{i}]"
-        u = _obj(u, w, ["id", "x", "y", "fuel"], ["ready_at"])
-        uid = _int(u["id"], w + ".id", 1, M.SVA_MAX_ID, "", "SVA_MAX_ID")
-        if uid in seen:
-            raise InputError(f"{w}.id: duplicate id {uid} (same as uavs[{seen[uid]}])")
-        seen[uid] = i
-        uavs.append(M.Uav(uid, _coord(u["x"], w + ".x"), _coord(u["y"], w + ".y"),
-                          _int(u["fuel"], w + ".fuel", 0, M.SVA_MAX_FUEL, "", "SVA_MAX_FUEL"),
-                          _int(u.get("ready_at", 0), w + ".ready_at", 0, M.SVA_MAX_TICK,
-                               "", "SVA_MAX_TICK")))
-    targets = []
-    seen = {}
-    for i, t in enumerate(_list(d["targets"], "targets", M.SVA_MAX_TARGETS, "SVA_MAX_TARGETS")):
-        w = f"targets[{i}]"
-        t = _obj(t, w, ["id", "x", "y", "start", "end", "need"], [])
-        tid = _int(t["id"], w + ".id", 1, M.SVA_MAX_ID, "", "SVA_MAX_ID")
-        if tid in seen:
-            raise InputError(f"{w}.id: duplicate id {tid} (same as targets[{seen[tid]}])")
-        seen[tid] = i
-        x, y = _coord(t["x"], w + ".x"), _coord(t["y"], w + ".y")
-        start = _int(t["start"], w + ".start", 0, M.SVA_MAX_TICK - 1, "", "SVA_MAX_TICK - 1")
-        end = _int(t["end"], w + ".end", 1, M.SVA_MAX_TICK, "", "SVA_MAX_TICK")
-        if end <= start:
-            raise InputError(f"{w}.end: must be > start ({start}), got {end}")
-        need = _int(t["need"], w + ".need", 1, M.SVA_MAX_UAVS, "", "SVA_MAX_UAVS")
-        targets.append(M.Target(tid, x, y, start, end, need))
-    return M.Mission(d["name"], depot, uavs, targets, tpc, hover, ovl, penalty)
+    """Validates a SPEC 3 mission (the schema, every SPEC 4 rule, default-profile bounds)."""
+    check(doc, "mission")
+    uavs = [M.Uav(u["id"], u["x"], u["y"], u["fuel"], u.get("ready_at", 0)) for u in doc["uavs"]]
+    targets = [M.Target(t["id"], t["x"], t["y"], t["start"], t["end"], t["need"])
+               for t in doc["targets"]]
+    return M.Mission(doc["name"], (doc["depot"]["x"], doc["depot"]["y"]), uavs, targets,
+                     doc.get("ticks_per_cell", M.DEFAULT_TICKS_PER_CELL),
+                     doc.get("hover_fuel", M.DEFAULT_HOVER_FUEL),
+                     doc.get("overlap_percent", M.DEFAULT_OVERLAP_PERCENT),
+                     doc.get("change_penalty", 0))
 
 
 def plan_from_json(doc: Any) -> M.Plan:
-    """Validates the shape of a SPEC 3 plan (types and keys; not its figures: that is
-    the checker's job)."""
-    d = _obj(doc, "", ["mission", "algorithm", "status", "covered", "uncovered", "cost",
-                       "routes"], ["stats", "stranded"])
-    for k in ("mission", "algorithm"):
-        if not isinstance(d[k], str):
-            raise InputError(f"{k}: must be a string")
-    if d["status"] not in ("complete", "partial"):
-        raise InputError(f"status: must be \"complete\" or \"partial\", got {json.dumps(d['status'])}")
-    covered = _int(d["covered"], "covered", 0)
-    uncovered = [_int(v, f"uncovered[{i}]") for i, v in enumerate(_list(d["uncovered"], "uncovered"))]
-    cost = _int(d["cost"], "cost", 0)
-    routes = []
-    for i, r in enumerate(_list(d["routes"], "routes")):
-        w = f"routes[{i}]"
-        r = _obj(r, w, ["uav", "targets", "distance", "fuel_used"], [])
-        ts = [_int(v, f"{w}.targets[{j}]") for j, v in enumerate(_list(r["targets"], w + ".targets"))]
-        routes.append(M.Route(_int(r["uav"], w + ".uav"), ts, _int(r["distance"], w + ".distance", 0),
-                              _int(r["fuel_used"], w + ".fuel_used", 0)))
-    stats = d.get("stats")
-    if stats is not None and not isinstance(stats, dict):
-        raise InputError("stats: must be a JSON object")
-    stranded = [_int(v, f"stranded[{i}]") for i, v in enumerate(_list(d.get("stranded", []), "stranded"))]
-    return M.Plan(d["mission"], d["algorithm"], d["status"], covered, uncovered, cost, routes,
-                  stats, stranded)
+    """Validates a SPEC 3 plan against its schema (keys, types, ranges; not its figures:
+    that is the checker's job)."""
+    check(doc, "plan")
+    routes = [M.Route(r["uav"], list(r["targets"]), r["distance"], r["fuel_used"])
+              for r in doc["routes"]]
+    return M.Plan(doc["mission"], doc["algorithm"], doc["status"], doc["covered"],
+                  list(doc["uncovered"]), doc["cost"], routes, doc.get("stats"),
+                  list(doc.get("stranded", [])))
+
+
+def load_trace(path: str) -> List[dict]:
+    """The records of a JSON Lines trace (`sva plan --trace`), each checked against the
+    trace schema; InputError names the line."""
+    try:
+        with open(path, "rb") as f:
+            lines = f.read().split(b"\n")
+    except OSError as e:
+        raise InputError(f"cannot open: {e.strerror}", path) from None
+    out = []
+    for n, line in enumerate(lines, 1):
+        if not line.strip():
+            continue
+        try:
+            rec = parse_json(line)
+            check(rec, "trace")
+        except InputError as e:
+            e.path = path
+            e.where = f"{n}:{e.where}" if e.where else str(n)
+            raise
+        out.append(rec)
+    return out
 
 
 def _load(path: str, parse):
@@ -201,5 +203,6 @@ def write_json(doc: Any, path: Optional[str]) -> None:
 
 
 def fail(path: str, err: InputError) -> int:
-    print(f"sva-tools: error: {path}: {err}", file=sys.stderr)
+    where = f"{path}:{err.where}" if err.where else path
+    print(f"sva-tools: error: {shown(where)}: {shown(err)}", file=sys.stderr)
     return 2

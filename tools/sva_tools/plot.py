@@ -12,6 +12,7 @@ import argparse
 
 from . import io
 from . import model as M
+from .text import shown
 
 
 def pyplot():
@@ -136,5 +137,5 @@ def run(args) -> int:
     p = io.load_plan(args.plan)
     out = args.out or (args.plan[:-5] if args.plan.endswith(".json") else args.plan) + ".png"
     render(m, p, out)
-    print(out)
+    print(shown(out))
     return 0

@@ -93,7 +93,8 @@ def parse_scenario(doc) -> Tuple[M.Mission, List[dict], Optional[int]]:
     try:
         mission = io.mission_from_json(mdoc)
     except io.InputError as e:
-        raise io.InputError(f"mission.{e}") from None
+        msg = str(e)
+        raise io.InputError(msg if msg.startswith("mission") else f"mission.{msg}") from None
     penalty = doc.get("change_penalty")
     if penalty is not None and (not isinstance(penalty, int) or isinstance(penalty, bool)
                                 or penalty < 0):

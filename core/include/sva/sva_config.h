@@ -88,6 +88,9 @@
 // Exhaustive search (bfa, and hga's per-problem enumeration).
 
 /// bfa refuses missions with more targets than this (SVA_ERR_LIMIT, diag names it).
+/// The size bounds alone do not bound the search: a mission within both can still be
+/// refused once its search passes SVA_BFA_MAX_NODES (measured with the defaults: some
+/// 8 UAV x 12 target missions with chained windows and need >= 2 do; docs/cli.md).
 #ifndef SVA_BFA_MAX_TARGETS
 #define SVA_BFA_MAX_TARGETS 12
 #endif

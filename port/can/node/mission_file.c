@@ -1,10 +1,10 @@
 // Mission file for the CAN node (see mission_file.h): one JSON reader for the whole
-// project, the CLI's, then the limits the CAN wire format adds.
+// project, sva::json's, then the limits the CAN wire format adds.
 #include "mission_file.h"
 
 #include <stdio.h>
 
-#include "mission_json.h"
+#include "sva/sva_json.h"
 #include "sva/sva_can.h"
 
 int sva_can_mission_load(const char* path, sva_mission_t* m, char* name, size_t name_size, char* err,

@@ -1,5 +1,5 @@
-// Reads a SPEC section 3 mission file for the CAN node: the CLI's JSON layer
-// (tools/cli, sva_json_load_mission) plus the CAN wire limits (sva_can_mission_check).
+// Reads a SPEC section 3 mission file for the CAN node: the JSON layer
+// (port/json, sva_json_load_mission) plus the CAN wire limits (sva_can_mission_check).
 #ifndef SVA_CAN_MISSION_FILE_H
 #define SVA_CAN_MISSION_FILE_H
 

@@ -21,6 +21,11 @@
 #include "plan_print.h"
 #include "sva/sva.h"
 #include "sva/sva_can.h"
+#include "sva/sva_text.h"
+
+// Room for a user-supplied string (option, file or mission name) as logs show it:
+// escaped with sva_text_escape(), cut if longer.
+#define SHOWN_SIZE 256
 
 static volatile sig_atomic_t g_stop = 0;
 
@@ -71,7 +76,9 @@ static int parse_u32(const char* s, const char* opt, uint32_t* out)
     errno = 0;
     v = strtoul(s, &end, 10);
     if ((errno != 0) || (end == s) || (*end != '\0') || (v > 0x7FFFFFFFul) || (s[0] == '-')) {
-        fprintf(stderr, "sva_can_node: %s: must be an integer in [0, 2147483647], got \"%s\"\n", opt, s);
+        char shown[SHOWN_SIZE];
+        fprintf(stderr, "sva_can_node: %s: must be an integer in [0, 2147483647], got \"%s\"\n", opt,
+                sva_text_escape(shown, sizeof shown, s));
         return -1;
     }
     *out = (uint32_t)v;
@@ -180,6 +187,8 @@ int main(int argc, char** argv)
     int i;
     char err[256];
     char name[128];
+    char shown_name[SVA_TEXT_ESCAPED_SIZE(sizeof name)];
+    char shown_arg[SHOWN_SIZE];
     sva_can_socketcan_t sock;
     sva_can_transport_t tp;
     sva_can_status_t cst;
@@ -203,6 +212,7 @@ int main(int argc, char** argv)
 
     for (i = 1; i < argc; ++i) {
         const char* a = argv[i];
+        char shown[SHOWN_SIZE];
         const char* v = (i + 1 < argc) ? argv[i + 1] : NULL;
         if (strcmp(a, "--print-plans") == 0) {
             print = 1;
@@ -213,7 +223,7 @@ int main(int argc, char** argv)
             return 0;
         }
         if (v == NULL) {
-            fprintf(stderr, "sva_can_node: %s: missing value\n", a);
+            fprintf(stderr, "sva_can_node: %s: missing value\n", sva_text_escape(shown, sizeof shown, a));
             usage();
             return 2;
         }
@@ -231,7 +241,7 @@ int main(int argc, char** argv)
         } else if (strcmp(a, "--max-runtime-ms") == 0) {
             if (parse_u32(v, a, &max_runtime_ms) != 0) return 2;
         } else {
-            fprintf(stderr, "sva_can_node: unknown option %s\n", a);
+            fprintf(stderr, "sva_can_node: unknown option %s\n", sva_text_escape(shown, sizeof shown, a));
             usage();
             return 2;
         }
@@ -242,11 +252,12 @@ int main(int argc, char** argv)
         return 2;
     }
     if (sva_algorithm_from_name(algo_name, &algo) != SVA_OK) {
-        fprintf(stderr, "sva_can_node: --algorithm: unknown algorithm \"%s\" (sva, ga, hga, bfa, flow)\n", algo_name);
+        fprintf(stderr, "sva_can_node: --algorithm: unknown algorithm \"%s\" (sva, ga, hga, bfa, flow)\n",
+                sva_text_escape(shown_arg, sizeof shown_arg, algo_name));
         return 2;
     }
     if (sva_can_mission_load(mission_path, &g_mission, name, sizeof name, err, sizeof err) != 0) {
-        fprintf(stderr, "sva_can_node: %s: %s\n", mission_path, err);
+        fprintf(stderr, "sva_can_node: %s: %s\n", sva_text_escape(shown_arg, sizeof shown_arg, mission_path), err);
         return 1;
     }
     for (i = 0; i < (int)g_mission.uav_count; ++i) {
@@ -258,7 +269,7 @@ int main(int argc, char** argv)
     }
     cst = sva_can_socketcan_open(&sock, iface);
     if (cst != SVA_CAN_OK) {
-        fprintf(stderr, "sva_can_node: --iface %s: %s%s%s\n", iface,
+        fprintf(stderr, "sva_can_node: --iface %s: %s%s%s\n", sva_text_escape(shown_arg, sizeof shown_arg, iface),
                 (cst == SVA_CAN_ERR_NAME) ? "interface name empty or longer than IFNAMSIZ - 1 (15)" : "cannot open",
                 (sock.last_errno != 0) ? ": " : "", (sock.last_errno != 0) ? strerror(sock.last_errno) : "");
         return 1;
@@ -275,8 +286,9 @@ int main(int argc, char** argv)
         sva_can_socketcan_close(&sock);
         return 1;
     }
-    fprintf(stderr, "sva_can_node: mission \"%s\" (%u UAVs, %u targets) on %s, algorithm %s\n", name,
-            g_mission.uav_count, g_mission.target_count, iface, sva_algorithm_name(algo));
+    fprintf(stderr, "sva_can_node: mission \"%s\" (%u UAVs, %u targets) on %s, algorithm %s\n",
+            sva_text_escape(shown_name, sizeof shown_name, name), g_mission.uav_count, g_mission.target_count,
+            sva_text_escape(shown_arg, sizeof shown_arg, iface), sva_algorithm_name(algo));
 
     t0 = now_ms();
     last_hb = t0 - SVA_CAN_HEARTBEAT_PERIOD_MS;  // first heartbeat at once

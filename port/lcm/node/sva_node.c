@@ -11,6 +11,7 @@
 #include <time.h>
 
 #include "sva/sva_lcm.h"
+#include "sva/sva_text.h"
 
 #define DEFAULT_URL "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
 #define DEFAULT_PREFIX "SVA_"
@@ -19,6 +20,9 @@
 /// net.core.rmem_max (docs/lcm.md).
 #define RECV_BUF_BYTES 4194304
 #define URL_SIZE 512
+/// Room for a user-supplied string (an option value, the URL, a channel name, an
+/// adapter log line) as the node prints it: escaped with sva_text_escape().
+#define SHOWN_SIZE SVA_TEXT_ESCAPED_SIZE(URL_SIZE)
 
 static volatile sig_atomic_t stop_requested = 0;
 
@@ -31,7 +35,9 @@ static void on_signal(int sig)
 static void log_stderr(void* user, const char* line)
 {
     (void)user;
-    fprintf(stderr, "sva_node: %s\n", line);
+    // Adapter lines name channels, which come from --prefix.
+    char shown[SHOWN_SIZE];
+    fprintf(stderr, "sva_node: %s\n", sva_text_escape(shown, sizeof shown, line));
 }
 
 static int64_t realtime_us(void)
@@ -109,7 +115,9 @@ static bool integer_option(const char* name, const char* text, long lo, long hi,
     errno = 0;
     const long v = strtol(text, &end, 10);
     if ((errno != 0) || (end == text) || (*end != '\0') || (v < lo) || (v > hi)) {
-        fprintf(stderr, "sva_node: %s: must be an integer in [%ld, %ld], got '%s'\n", name, lo, hi, text);
+        char shown[SHOWN_SIZE];
+        fprintf(stderr, "sva_node: %s: must be an integer in [%ld, %ld], got '%s'\n", name, lo, hi,
+                sva_text_escape(shown, sizeof shown, text));
         return false;
     }
     *out = v;
@@ -158,7 +166,8 @@ int main(int argc, char** argv)
         } else if ((strcmp(a, "-e") == 0) || (strcmp(a, "--exit-on-eof") == 0)) {
             exit_on_eof = 1;
         } else {
-            fprintf(stderr, "sva_node: unknown or incomplete option '%s'\n", a);
+            char shown[SHOWN_SIZE];
+            fprintf(stderr, "sva_node: unknown or incomplete option '%s'\n", sva_text_escape(shown, sizeof shown, a));
             usage(stderr);
             return 2;
         }
@@ -166,7 +175,9 @@ int main(int argc, char** argv)
 
     sva_algorithm_t algorithm = SVA_ALGO_SVA;
     if (sva_algorithm_from_name(algo_name, &algorithm) != SVA_OK) {
-        fprintf(stderr, "sva_node: --algorithm: unknown name '%s' (sva, ga, hga, bfa, flow)\n", algo_name);
+        char shown[SHOWN_SIZE];
+        fprintf(stderr, "sva_node: --algorithm: unknown name '%s' (sva, ga, hga, bfa, flow)\n",
+                sva_text_escape(shown, sizeof shown, algo_name));
         return 2;
     }
     if (strlen(prefix) > SVA_LCM_PREFIX_MAX) {
@@ -185,14 +196,18 @@ int main(int argc, char** argv)
     }
     lcm_t* lcm = lcm_create(url);
     if (lcm == NULL) {
+        char shown[SHOWN_SIZE];
         fprintf(stderr, "sva_node: lcm_create(\"%s\") failed (for udpm: is there a multicast route?)\n",
-                url);
+                sva_text_escape(shown, sizeof shown, url));
         return 1;
     }
     if ((sva_lcm_node_init(&node, lcm, prefix, algorithm) != SVA_OK) ||
         (sva_lcm_node_subscribe(&node) != SVA_OK)) {
-        fprintf(stderr, "sva_node: cannot subscribe to %s and %s\n", node.channel_fleet,
-                node.channel_mission);
+        char shown_fleet[SHOWN_SIZE];
+        char shown_mission[SHOWN_SIZE];
+        fprintf(stderr, "sva_node: cannot subscribe to %s and %s\n",
+                sva_text_escape(shown_fleet, sizeof shown_fleet, node.channel_fleet),
+                sva_text_escape(shown_mission, sizeof shown_mission, node.channel_mission));
         lcm_destroy(lcm);
         return 1;
     }
@@ -205,10 +220,12 @@ int main(int argc, char** argv)
     (void)sigaction(SIGINT, &sa, NULL);
     (void)sigaction(SIGTERM, &sa, NULL);
 
-    fprintf(stderr, "sva_node: in %s %s, out %s %s; algorithm %s; %s%s%s\n", node.channel_fleet,
-            node.channel_mission, node.channel_plan, node.channel_status,
-            sva_algorithm_name(algorithm), url, (rt_priority > 0) ? "; SCHED_FIFO" : "",
-            lock_memory ? "; memory locked" : "");
+    char started[SHOWN_SIZE];
+    (void)snprintf(started, sizeof started, "in %s %s, out %s %s; algorithm %s; %s%s%s", node.channel_fleet,
+                   node.channel_mission, node.channel_plan, node.channel_status,
+                   sva_algorithm_name(algorithm), url, (rt_priority > 0) ? "; SCHED_FIFO" : "",
+                   lock_memory ? "; memory locked" : "");
+    log_stderr(NULL, started);  // escapes channel names and URL
     send_status();
     int64_t next_status = monotonic_ms() + status_ms;
     int rc = 0;

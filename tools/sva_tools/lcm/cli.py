@@ -11,13 +11,14 @@ import sys
 import time
 
 from . import wire
+from ..text import Parser, shown
 
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0"
 DEFAULT_PREFIX = "SVA_"
 
 
 def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="sva-tools lcm", description=__doc__.splitlines()[0])
+    p = Parser(prog="sva-tools lcm", description=__doc__.splitlines()[0])
     sub = p.add_subparsers(dest="command", required=True)
 
     s = sub.add_parser("send", help="publish a mission and its fleet, print the plan")
@@ -49,13 +50,13 @@ def _send(args) -> int:
         with open(args.mission, encoding="utf-8") as f:
             doc = json.load(f)
     except (OSError, json.JSONDecodeError) as e:
-        print(f"sva-tools lcm send: {args.mission}: {e}", file=sys.stderr)
+        print(f"sva-tools lcm send: {shown(args.mission)}: {shown(e)}", file=sys.stderr)
         return 2
     rev = args.revision if args.revision is not None else time.time_ns() // 1000
     try:
         name, fleet, mission = wire.mission_messages(doc, rev, rev)
     except wire.InputError as e:
-        print(f"sva-tools lcm send: {args.mission}: {e}", file=sys.stderr)
+        print(f"sva-tools lcm send: {shown(args.mission)}: {shown(e)}", file=sys.stderr)
         return 2
     t = wire.types()
     lc = lcm.LCM(args.url)
@@ -77,8 +78,8 @@ def _send(args) -> int:
     while not answer:
         left = deadline - time.monotonic()
         if left <= 0:
-            print(f"sva-tools lcm send: no plan on {args.prefix}PLAN for revision {rev} "
-                  f"within {args.timeout} s (is sva_node running on {args.url}?)", file=sys.stderr)
+            print(shown(f"sva-tools lcm send: no plan on {args.prefix}PLAN for revision {rev} "
+                        f"within {args.timeout} s (is sva_node running on {args.url}?)"), file=sys.stderr)
             return 3
         lc.handle_timeout(max(1, int(left * 1000)))
     plan = answer[0]
@@ -88,7 +89,7 @@ def _send(args) -> int:
                 plan.STATUS_TOO_LARGE: "made a plan larger than MAX_ROUTE_ITEMS"}.get(
                     plan.status, f"answered status {plan.status}")
         detail = "" if plan.status == plan.STATUS_TOO_LARGE else ": " + wire.diag_text(plan)
-        print(f"sva-tools lcm send: the node {what}{detail}", file=sys.stderr)
+        print(shown(f"sva-tools lcm send: the node {what}{detail}"), file=sys.stderr)
         return 1
     text = json.dumps(wire.plan_document(plan, name), indent=2) + "\n"
     if args.output:
@@ -109,7 +110,7 @@ def _run(argv: list[str]) -> int:
     try:
         proc = subprocess.Popen(argv)
     except OSError as e:
-        print(f"sva-tools lcm: {argv[0]}: {e}", file=sys.stderr)
+        print(f"sva-tools lcm: {shown(argv[0])}: {shown(e)}", file=sys.stderr)
         return 4
     stopped = []
 

@@ -1,5 +1,5 @@
-// plan_json.c -- SPEC section 3 plan JSON (see plan_json.h).
-#include "plan_json.h"
+// plan_json.c -- SPEC section 3 plan JSON (see sva/sva_json.h).
+#include <sva/sva_json.h>
 
 #include <stdbool.h>
 

@@ -1,5 +1,5 @@
-// trace_json.c -- transportation problems as JSON Lines (see trace_json.h).
-#include "trace_json.h"
+// trace_json.c -- transportation problems as JSON Lines (see sva/sva_json.h).
+#include <sva/sva_json.h>
 
 #include <stddef.h>
 

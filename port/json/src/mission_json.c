@@ -1,5 +1,5 @@
-// mission_json.c -- SPEC section 3 mission JSON into sva_mission_t (see mission_json.h).
-#include "mission_json.h"
+// mission_json.c -- SPEC section 3 mission JSON into sva_mission_t (see sva/sva_json.h).
+#include <sva/sva_json.h>
 
 #include <stdarg.h>
 #include <stdbool.h>
@@ -52,13 +52,11 @@ static bool fail(const sink_t* err, const char* fmt, ...) {
     va_list args;
     va_start(args, fmt);
     if (err->size > 0) {
-        vsnprintf(err->text, err->size, fmt, args);
-        // One line whatever the input holds (jansson quotes raw input bytes).
-        for (char* c = err->text; *c != '\0'; ++c) {
-            if ((unsigned char)*c < 0x20 || *c == 0x7f) {
-                *c = '?';
-            }
-        }
+        // One printable line whatever the input holds (jansson quotes raw input
+        // bytes, a path may hold anything).
+        char raw[SVA_JSON_ERROR_SIZE];
+        vsnprintf(raw, sizeof raw, fmt, args);
+        (void)sva_text_escape(err->text, err->size, raw);
     }
     va_end(args);
     return false;
@@ -344,6 +342,7 @@ sva_json_result_t sva_json_load_mission(const char* path,
     sva_diag_t diag;
     sva_diag_clear(&diag);
     if (sva_mission_validate(mission, &diag) != SVA_OK) {
+        // The core's message names a field, a rule and numbers: nothing to escape.
         (void)sva_diag_format(&diag, err, err_size);
         return SVA_JSON_BAD_INPUT;
     }

@@ -60,18 +60,21 @@ sva_json_result_t sva_json_read_input(const char* path, char** text, size_t* len
     if (strcmp(path, "-") == 0) {
         return read_stream(stdin, SVA_JSON_STDIN_NAME, text, len, err, err_size);
     }
+    // The path as messages show it: one printable line whatever it holds.
+    char shown[SVA_JSON_ERROR_SIZE];
+    (void)sva_text_escape(shown, sizeof shown, path);
     FILE* in = fopen(path, "rb");
     if (in == NULL) {
-        snprintf(err, err_size, "%s: cannot open: %s", path, strerror(errno));
+        snprintf(err, err_size, "%s: cannot open: %s", shown, strerror(errno));
         return SVA_JSON_BAD_INPUT;
     }
     struct stat st;
     if (fstat(fileno(in), &st) == 0 && S_ISDIR(st.st_mode)) {
         fclose(in);
-        snprintf(err, err_size, "%s: cannot open: %s", path, strerror(EISDIR));
+        snprintf(err, err_size, "%s: cannot open: %s", shown, strerror(EISDIR));
         return SVA_JSON_BAD_INPUT;
     }
-    sva_json_result_t result = read_stream(in, path, text, len, err, err_size);
+    sva_json_result_t result = read_stream(in, shown, text, len, err, err_size);
     fclose(in);
     return result;
 }

@@ -1,28 +1,17 @@
-/// input.h -- read a whole mission document from a file or standard input.
-#ifndef SVA_INPUT_H
-#define SVA_INPUT_H
+// input.h -- read a whole mission document from a file or standard input (private).
+#ifndef SVA_JSON_INPUT_H
+#define SVA_JSON_INPUT_H
 
 #include <stddef.h>
 
-#include "mission_json.h"
-
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include <sva/sva_json.h>
 
 /// Reads all of `path` ("-" for standard input) into a new NUL-terminated buffer
 /// (*text, to be freed with free(); *len excludes the NUL). At most
 /// SVA_JSON_MAX_INPUT_BYTES are accepted.
 /// Returns SVA_JSON_OK; SVA_JSON_BAD_INPUT when the path cannot be opened, is a
 /// directory or holds too much; SVA_JSON_IO_ERROR when reading fails or memory runs
-/// out. On error *text is NULL and err holds one line naming the path.
+/// out. On error *text is NULL and err holds one printable line naming the path.
 sva_json_result_t sva_json_read_input(const char* path, char** text, size_t* len, char* err, size_t err_size);
 
-/// How input read from standard input is named in messages.
-#define SVA_JSON_STDIN_NAME "<stdin>"
-
-#ifdef __cplusplus
-}
-#endif
-
-#endif  // SVA_INPUT_H
+#endif  // SVA_JSON_INPUT_H

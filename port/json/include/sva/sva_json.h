@@ -1,0 +1,122 @@
+/// sva_json.h -- the JSON layer of sva (host only, jansson): SPEC section 3 missions
+/// in, plans and transportation traces out. Used by the sva CLI, the CAN node and the
+/// golden-plan runner; CMake target sva_json (alias sva::json).
+///
+/// Missions: the layer checks the shape of the document (object, keys, types, list
+/// lengths, int32 range); every value rule (ranges, ids, windows) is the core's, so
+/// callers run sva_mission_validate() afterwards (sva_json_load_mission() does).
+/// Messages follow SPEC section 4: "<json path>: <rule>", e.g.
+///   targets[0]: missing key "need"
+///   targets[0].need: must be an integer, got string
+///   uavs: 65 entries exceed SVA_MAX_UAVS (64)     (formatted by sva_diag_format)
+/// Every message is one printable line: user-supplied text in it (a path, a key) is
+/// escaped with sva_text_escape() (sva/sva_text.h).
+///
+/// Memory: the mission reader allocates the document on the heap (at most
+/// SVA_JSON_MAX_INPUT_BYTES) and frees it before returning; the mission itself lives
+/// in the caller's sva_mission_t. Not thread-safe where it reads standard input.
+#ifndef SVA_JSON_H
+#define SVA_JSON_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include <jansson.h>
+#include <sva/sva.h>
+#include <sva/sva_text.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// Longest mission name in bytes (UTF-8, without the NUL).
+#define SVA_JSON_NAME_MAX 63
+/// Room for any message this layer writes.
+#define SVA_JSON_ERROR_SIZE 512
+/// Largest mission document read (bigger input is rejected as bad input).
+#define SVA_JSON_MAX_INPUT_BYTES (16L * 1024L * 1024L)
+
+typedef enum {
+    SVA_JSON_OK = 0,
+    SVA_JSON_BAD_INPUT = 2,  ///< the document or the mission is wrong (CLI exit 2)
+    SVA_JSON_IO_ERROR = 1,   ///< the input could not be read (CLI exit 1)
+} sva_json_result_t;
+
+/// Parses `len` bytes of JSON text into *mission (reset with sva_mission_init first)
+/// and its name. The name is copied as the document gives it and may hold any
+/// character JSON allows (control characters too): pass it through sva_text_escape()
+/// before printing it outside JSON. `source` names the input in syntax-error messages
+/// ("<source>:<line>:<column>: invalid JSON: ..."). Checks the document's shape only,
+/// not the core's value rules. On error writes one line (no "sva: error: " prefix, no
+/// newline) into err and returns SVA_JSON_BAD_INPUT.
+sva_json_result_t sva_json_parse_mission(const char* text,
+                                         size_t len,
+                                         const char* source,
+                                         sva_mission_t* mission,
+                                         char name[SVA_JSON_NAME_MAX + 1],
+                                         char* err,
+                                         size_t err_size);
+
+/// Reads the mission at `path` ("-" for standard input), parses it and runs
+/// sva_mission_validate(). Returns SVA_JSON_OK, SVA_JSON_BAD_INPUT (unreadable
+/// path, empty or oversized input, malformed document, broken rule) or
+/// SVA_JSON_IO_ERROR (a read failing after the file was opened), with a message in err.
+sva_json_result_t sva_json_load_mission(const char* path,
+                                        sva_mission_t* mission,
+                                        char name[SVA_JSON_NAME_MAX + 1],
+                                        char* err,
+                                        size_t err_size);
+
+/// How input read from standard input is named in messages.
+#define SVA_JSON_STDIN_NAME "<stdin>"
+
+// ---------------------------------------------------------------------------------
+// Plans out.
+
+/// Builds the plan document of a successful sva_plan() (status complete or partial):
+/// keys in SPEC order -- mission, algorithm, status, covered, uncovered (target ids,
+/// mission order), cost, routes ({uav, targets (ids, visit order), distance,
+/// fuel_used}, one per UAV in mission order), stranded (UAV ids), stats (solve_us,
+/// then every sva_stats_t counter under its own name).
+/// Returns a new reference (json_decref it), or NULL when memory runs out.
+json_t* sva_json_plan(const sva_mission_t* mission, const char* name, const sva_plan_t* plan, int64_t solve_us);
+
+/// Writes `plan` indented by 2, keys in insertion order, and a final newline.
+/// Returns 0, or -1 when writing fails (errno tells why).
+int sva_json_write_plan(FILE* out, const json_t* plan);
+
+// ---------------------------------------------------------------------------------
+// Transportation problems as JSON Lines (sva plan --trace FILE).
+//
+// One compact JSON object per problem, in solving order:
+//   {"algorithm":"sva","source_uavs":[..],"supply":[..],"sink_targets":[..],
+//    "demand":[..],"dropped":[..],"cost":[[..]],"flow":[[..]],
+//    "cost_total":N,"covered":K,"pivots":P}
+// source_uavs holds the id of the first (lowest-index) UAV of each source group,
+// sink_targets the target ids; cost and flow are source-major matrices with null
+// for a pair that is no arc (SVA_TP_NO_ARC).
+
+/// State of one trace: where lines go and the mission that maps indices to ids.
+typedef struct {
+    FILE* out;
+    const sva_mission_t* mission;
+    unsigned long problems;  ///< lines written
+    bool failed;             ///< a write or an allocation failed; later lines are skipped
+} sva_trace_t;
+
+/// The problem as a JSON object (new reference), or NULL when memory runs out.
+json_t* sva_json_transport(const sva_mission_t* mission, const sva_tp_view_t* problem);
+
+/// An sva_tp_observer_t: `user` is an sva_trace_t. Writes one line per problem.
+void sva_trace_observer(void* user, const sva_tp_view_t* problem);
+
+/// Points planner->on_transport at sva_trace_observer with *trace.
+void sva_trace_attach(sva_trace_t* trace, sva_planner_t* planner, FILE* out, const sva_mission_t* mission);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif  // SVA_JSON_H

@@ -1,0 +1,209 @@
+#!/usr/bin/env bash
+# Packaging tests (ctest label package; tests/package/CMakeLists.txt sets the variables):
+#   package_test.sh install    cmake --install into one prefix; the expected files are there
+#   package_test.sh cmake      find_package(sva) consumers and the README example, built and run
+#   package_test.sh pkgconfig  the same consumers with pkg-config only (make)
+#   package_test.sh subdir     add_subdirectory() of the source tree
+#   package_test.sh units      systemd-analyze verify of the installed units
+#   package_test.sh deb        cpack's .deb: fields, dpkg into a throw-away root, the
+#                              installed programs run, the node answers over LCM
+# Environment: SVA_SOURCE_DIR SVA_BUILD_DIR SVA_WORK SVA_COMPONENTS (e.g. "can lcm json")
+# SVA_PYTHON SVA_LCM_PYTHON_DIR SVA_NETNS_RUN.
+set -euo pipefail
+step=${1:?usage: package_test.sh install|cmake|pkgconfig|subdir|units|deb}
+src=${SVA_SOURCE_DIR:?}
+build=${SVA_BUILD_DIR:?}
+work=${SVA_WORK:?}
+prefix="$work/prefix"
+components=${SVA_COMPONENTS:-}
+here="$src/tests/package"
+version=$(sed -n 's/^#define SVA_VERSION_\(MAJOR\|MINOR\|PATCH\) \([0-9]*\)$/\2/p' \
+          "$src/core/include/sva/sva.h" | paste -sd.)
+
+fail() { echo "package_test $step: FAIL: $*" >&2; exit 1; }
+has() { [[ " $components " == *" $1 "* ]]; }
+run() { echo "+ $*" >&2; "$@"; }
+
+# The README's embedding example: the first ```c block after "## Embedding the core".
+readme_example() {
+    local out="$1"
+    awk '/^## Embedding the core/ {s=1; next}
+         s && /^## / {exit}
+         s && /^```c$/ {c=1; next}
+         c && /^```$/ {exit}
+         c {print}' "$src/README.md" > "$out"
+    grep -q 'int main(void)' "$out" || fail "README.md: no complete C program (int main) in '## Embedding the core'"
+}
+
+expect_files() {
+    local root="$1"; shift
+    local f missing=0
+    for f in "$@"; do
+        if [ ! -e "$root/$f" ]; then echo "missing: $root/$f" >&2; missing=1; fi
+    done
+    [ $missing -eq 0 ] || fail "files missing from the installed tree"
+}
+
+installed_files() {  # the files every install must have, relative to the prefix
+    local lib=$1
+    echo "bin/sva include/sva/sva.h include/sva/sva_config.h include/sva_build_config.h"
+    echo "$lib/libsva_core.a $lib/cmake/sva/svaConfig.cmake $lib/cmake/sva/svaConfigVersion.cmake"
+    echo "$lib/cmake/sva/svaTargets.cmake $lib/pkgconfig/sva.pc share/doc/sva/copyright"
+    if has can; then
+        echo "bin/sva_can_node include/sva/sva_can.h $lib/libsva_can.a $lib/pkgconfig/sva-can.pc"
+        echo "$lib/cmake/sva/sva_canTargets.cmake share/sva/sva.dbc lib/systemd/system/sva-can-node.service"
+    fi
+    if has lcm; then
+        echo "bin/sva_node include/sva/sva_lcm.h include/sva/sva_lcm_plan_t.h $lib/libsva_lcm.a"
+        echo "$lib/libsva_lcm_types.a $lib/pkgconfig/sva-lcm.pc $lib/cmake/sva/sva_lcmTargets.cmake"
+        echo "share/sva/lcm/mission_t.lcm share/sva/lcm/fleet_state_t.lcm share/sva/lcm/plan_t.lcm"
+        echo "share/sva/lcm/node_status_t.lcm lib/systemd/system/sva-node.service"
+    fi
+}
+
+run_consumers() {  # runs every consumer program built in $1
+    local dir="$1" p n=0
+    for p in consumer_core consumer_can consumer_lcm readme_example; do
+        if [ -x "$dir/$p" ]; then run "$dir/$p" || fail "$p exited $?"; n=$((n + 1)); fi
+    done
+    local want=2  # core and the README example, and one per port
+    for p in $components; do [ "$p" = json ] || want=$((want + 1)); done
+    [ $n -eq "$want" ] || fail "$n consumer programs built in $dir, expected $want"
+}
+
+verify_unit() {  # verify_unit UNIT_FILE [--root=DIR]
+    local out
+    # --man=no: no man pages to look up; SYSTEMD_LOG_LEVEL: warnings are findings too.
+    if ! out=$(systemd-analyze verify --man=no "${@:2}" "$1" 2>&1) || [ -n "$out" ]; then
+        echo "$out" >&2
+        return 1
+    fi
+}
+
+case "$step" in
+install)
+    rm -rf "$prefix"
+    run cmake --install "$build" --prefix "$prefix" >/dev/null
+    # shellcheck disable=SC2046
+    expect_files "$prefix" $(installed_files lib)
+    grep -q "SVA_VERSION_MINOR" "$prefix/include/sva/sva.h" || fail "installed sva.h"
+    grep -q "^Version: $version$" "$prefix/lib/pkgconfig/sva.pc" || fail "sva.pc: Version is not $version"
+    ;;
+cmake)
+    [ -f "$prefix/lib/cmake/sva/svaConfig.cmake" ] || fail "no install in $prefix (package_install)"
+    d="$work/consumer_cmake"
+    rm -rf "$d" && mkdir -p "$d"
+    readme_example "$d/readme_example.c"
+    run cmake -S "$here/consumer" -B "$d" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" \
+        -DSVA_COMPONENTS="${components// /;}" -DREADME_EXAMPLE="$d/readme_example.c" >/dev/null
+    run cmake --build "$d" >/dev/null
+    run_consumers "$d"
+    # Exactly as the README says: find_package(sva) with no component, then sva::core.
+    d1="$work/consumer_cmake_plain"
+    rm -rf "$d1" && mkdir -p "$d1"
+    run cmake -S "$here/consumer" -B "$d1" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" \
+        -DREADME_EXAMPLE="$d/readme_example.c" >/dev/null
+    run cmake --build "$d1" >/dev/null
+    components="" run_consumers "$d1"
+    # A component that is not installed is an error naming it, not a silent success.
+    d2="$work/consumer_cmake_missing"
+    rm -rf "$d2" && mkdir -p "$d2"
+    if cmake -S "$here/consumer" -B "$d2" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" \
+            -DSVA_COMPONENTS="nosuch" > "$d2/log" 2>&1; then
+        fail "find_package(sva COMPONENTS nosuch) succeeded"
+    fi
+    grep -q "sva component 'nosuch' is not installed (installed: core $components" "$d2/log" || { cat "$d2/log" >&2; fail "no message naming the component"; }
+    ;;
+pkgconfig)
+    [ -f "$prefix/lib/pkgconfig/sva.pc" ] || fail "no install in $prefix (package_install)"
+    d="$work/consumer_pkgconfig"
+    rm -rf "$d" && mkdir -p "$d"
+    export PKG_CONFIG_PATH="$prefix/lib/pkgconfig"
+    cflags=$(pkg-config --cflags sva)
+    [[ "$cflags" == *'-DSVA_CONFIG_HEADER=\"sva_build_config.h\"'* ]] || fail "pkg-config --cflags sva: no SVA_CONFIG_HEADER ($cflags)"
+    [ "$(pkg-config --modversion sva)" = "$version" ] || fail "pkg-config --modversion sva"
+    readme_example "$d/readme_example.c"
+    ports=$(for p in $components; do [ "$p" = json ] || printf '%s ' "$p"; done)
+    run make -s -f "$here/consumer/Makefile" O="$d" PORTS="$ports" README_EXAMPLE="$d/readme_example.c"
+    run_consumers "$d"
+    # docs/packaging.md's shell recipe: eval reads the quoted definition.
+    # shellcheck disable=SC2046
+    eval cc -std=c99 -Wall -Wextra -Werror "$d/readme_example.c" -o "$d/readme_eval" $(pkg-config --cflags --libs sva)
+    run "$d/readme_eval" || fail "the README example built with eval and pkg-config exited $?"
+    ;;
+subdir)
+    d="$work/consumer_subdir"
+    rm -rf "$d" && mkdir -p "$d"
+    readme_example "$d/readme_example.c"
+    run cmake -S "$here/consumer" -B "$d" -G Ninja -DSVA_SOURCE_DIR="$src" \
+        -DREADME_EXAMPLE="$d/readme_example.c" >/dev/null
+    run cmake --build "$d" >/dev/null
+    components="" run_consumers "$d"
+    ;;
+units)
+    n=0
+    for u in "$prefix"/lib/systemd/system/*.service; do
+        [ -e "$u" ] || fail "no unit installed in $prefix/lib/systemd/system"
+        grep -q "^ExecStart=$prefix/bin/" "$u" || fail "$u: ExecStart= is not under $prefix/bin"
+        run verify_unit "$u" || fail "systemd-analyze verify $u"
+        n=$((n + 1))
+    done
+    # The check can fail: a unit whose program does not exist is a finding.
+    bad="$work/sva-broken.service"
+    sed "s|^ExecStart=[^ ]*|ExecStart=$prefix/bin/no_such_program|" "$u" > "$bad"
+    if verify_unit "$bad" 2>/dev/null; then fail "systemd-analyze verify accepted $bad"; fi
+    echo "package_test units: $n units verified" >&2
+    ;;
+deb)
+    d="$work/deb"
+    rm -rf "$d" && mkdir -p "$d"
+    run cpack --config "$build/CPackConfig.cmake" -B "$d" >/dev/null
+    deb=$(ls "$d"/sva_"$version"_*.deb) || fail "cpack made no sva_${version}_*.deb"
+    [ "$(dpkg-deb -f "$deb" Version)" = "$version" ] || fail "Version field"
+    depends=$(dpkg-deb -f "$deb" Depends)
+    echo "Depends: $depends" >&2
+    for p in libc6 libjansson4 $(has lcm && echo libglib2.0-0); do
+        [[ ", $depends" == *", $p "* || ", $depends," == *", $p,"* ]] || fail "Depends lacks $p"
+    done
+    [ -n "$(dpkg-deb -f "$deb" Maintainer)" ] || fail "no Maintainer"
+    # A fresh dpkg database in a throw-away root. --force-depends: that database knows
+    # none of the host's packages (libc6, libjansson4, ...), which the programs then use
+    # from the host; nothing else is forced. --log keeps the host's dpkg.log untouched.
+    root="$d/root"
+    mkdir -p "$root/var/lib/dpkg/info" "$root/var/lib/dpkg/updates" "$root/var/log"
+    : > "$root/var/lib/dpkg/status"
+    run dpkg --root="$root" --log="$root/var/log/dpkg.log" --force-depends -i "$deb" >/dev/null
+    dpkg --root="$root" -s sva | grep -q '^Status: install ok installed' || fail "dpkg -s sva in $root"
+    # shellcheck disable=SC2046
+    expect_files "$root/usr" $(installed_files lib)
+    out=$("$root/usr/bin/sva" --version) || fail "installed sva --version"
+    [[ "$out" == "sva $version "* ]] || fail "sva --version says '$out'"
+    "$root/usr/bin/sva" plan --algo sva "$src/fixtures/missions/hand_5_3.json" > "$d/plan.json" || fail "installed sva plan"
+    grep -q '"status": *"complete"' "$d/plan.json" || { cat "$d/plan.json" >&2; fail "installed sva: plan not complete"; }
+    for u in "$root"/usr/lib/systemd/system/*.service; do
+        grep -q "^ExecStart=/usr/bin/" "$u" || fail "$u: ExecStart= is not /usr/bin/..."
+        # Verified against the host's systemd units (a throw-away root has none), the
+        # program path mapped into the root.
+        mapped="$d/$(basename "$u")"
+        sed "s|^ExecStart=/usr/bin/|ExecStart=$root/usr/bin/|" "$u" > "$mapped"
+        run verify_unit "$mapped" || fail "systemd-analyze verify $u (as $mapped)"
+    done
+    if has can; then
+        "$root/usr/bin/sva_can_node" --help 2>&1 | grep -q '^usage: sva_can_node --mission' || fail "sva_can_node --help"
+        "$root/usr/bin/sva_can_node" --iface vcan0 >/dev/null 2>&1 && fail "sva_can_node without --mission succeeded"
+    fi
+    if has lcm; then
+        "$root/usr/bin/sva_node" --help | grep -q '^usage: sva_node' || fail "sva_node --help"
+        # A real start: the installed node in a network namespace must publish its status.
+        rc=0
+        run "$SVA_NETNS_RUN" env PYTHONPATH="$SVA_LCM_PYTHON_DIR" "$SVA_PYTHON" \
+            "$here/node_answers.py" "$root/usr/bin/sva_node" || rc=$?
+        [ $rc -ne 77 ] || { echo "package_test deb: no network namespace (needs root): node start skipped" >&2; exit 77; }
+        [ $rc -eq 0 ] || fail "the installed sva_node did not answer"
+    fi
+    ;;
+*)
+    fail "unknown step"
+    ;;
+esac
+echo "package_test $step: ok" >&2
