@@ -66,6 +66,7 @@ static void print_usage(FILE* out) {
     fprintf(out,
             "usage: sva plan [--algo NAME] [--flow-work N] [--repeat N] [--schedule] [--trace FILE] MISSION.json|-\n"
             "       sva validate MISSION.json|-\n"
+            "       sva replan [--algo NAME] [--flow-work N] [--residual FILE] LIVE.json|-\n"
             "       sva --help | --version\n"
             "\n"
             "plan       plan the mission and print the plan JSON (SPEC section 3)\n"
@@ -75,6 +76,9 @@ static void print_usage(FILE* out) {
             "  --schedule     print a readable schedule instead of JSON\n"
             "  --trace FILE   write each transportation problem to FILE as JSON Lines\n"
             "validate   check the mission only; prints \"ok: NAME: N UAVs, M targets\"\n"
+            "replan     replay a live mission (mission, plan in force, events) and print the\n"
+            "           last replan: the plan of the residual mission with its changes\n"
+            "  --residual FILE  write the residual mission the plan is for to FILE\n"
             "\n"
             "exit status: 0 planned or valid, 2 bad input (mission or usage), 1 other errors\n",
             algos, (unsigned long)SVA_FLOW_MAX_WORK, REPEAT_MAX);
@@ -96,6 +100,7 @@ typedef struct {
     const char* mission;
     const char* algo;
     const char* trace;
+    const char* residual;
     long flow_work;  // 0: the planner's default
     long repeat;     // runs of sva_plan(); 1 unless --repeat
     bool schedule;
@@ -116,7 +121,16 @@ static bool long_in(const char* value, long lo, long hi, long* out) {
 }
 
 // getopt_long codes of the options; -h is the one short option.
-enum { OPT_MISSION = 1, OPT_HELP = 'h', OPT_ALGO = 256, OPT_FLOW_WORK, OPT_REPEAT, OPT_SCHEDULE, OPT_TRACE };
+enum {
+    OPT_MISSION = 1,
+    OPT_HELP = 'h',
+    OPT_ALGO = 256,
+    OPT_FLOW_WORK,
+    OPT_REPEAT,
+    OPT_SCHEDULE,
+    OPT_TRACE,
+    OPT_RESIDUAL
+};
 
 static const struct option PLAN_OPTIONS[] = {
     {"algo", required_argument, NULL, OPT_ALGO},
@@ -124,6 +138,13 @@ static const struct option PLAN_OPTIONS[] = {
     {"repeat", required_argument, NULL, OPT_REPEAT},
     {"schedule", no_argument, NULL, OPT_SCHEDULE},
     {"trace", required_argument, NULL, OPT_TRACE},
+    {"help", no_argument, NULL, OPT_HELP},
+    {NULL, 0, NULL, 0},
+};
+static const struct option REPLAN_OPTIONS[] = {
+    {"algo", required_argument, NULL, OPT_ALGO},
+    {"flow-work", required_argument, NULL, OPT_FLOW_WORK},
+    {"residual", required_argument, NULL, OPT_RESIDUAL},
     {"help", no_argument, NULL, OPT_HELP},
     {NULL, 0, NULL, 0},
 };
@@ -137,6 +158,7 @@ static int bad_value(const char* command, int code) {
     switch (code) {
         case OPT_ALGO: return error_exit(EXIT_BAD_INPUT, "%s: --algo needs a value", command);
         case OPT_TRACE: return error_exit(EXIT_BAD_INPUT, "%s: --trace needs a file name", command);
+        case OPT_RESIDUAL: return error_exit(EXIT_BAD_INPUT, "%s: --residual needs a file name", command);
         case OPT_FLOW_WORK:
             return error_exit(EXIT_BAD_INPUT, "%s: --flow-work: must be an integer in [1000, %ld] (SVA_FLOW_MAX_WORK)",
                               command, (long)SVA_FLOW_MAX_WORK);
@@ -157,9 +179,9 @@ static int unknown_option(const char* command, char** argv) {
 
 // Parses the arguments after the command with getopt_long: options and the mission in
 // any order, "--" ends the options, long options as "--name VALUE" or "--name=VALUE"
-// (or a unique prefix of the name). `full` allows the plan-only options.
-// argv[0] is the command.
-static int parse_options(const char* command, bool full, int argc, char** argv, options_t* opt) {
+// (or a unique prefix of the name), from the command's table. argv[0] is the command.
+static int parse_options(const char* command, const struct option* options, int argc, char** argv,
+                         options_t* opt) {
     memset(opt, 0, sizeof *opt);
     opt->algo = "sva";
     opt->repeat = 1;
@@ -167,7 +189,7 @@ static int parse_options(const char* command, bool full, int argc, char** argv, 
     optind = 1;
     // "-": non-options come back in order as OPT_MISSION; ":": a missing value is ':'.
     int code;
-    while ((code = getopt_long(argc, argv, "-:h", full ? PLAN_OPTIONS : VALIDATE_OPTIONS, NULL)) != -1) {
+    while ((code = getopt_long(argc, argv, "-:h", options, NULL)) != -1) {
         switch (code) {
             case OPT_MISSION:
                 if (opt->mission != NULL) {
@@ -195,6 +217,12 @@ static int parse_options(const char* command, bool full, int argc, char** argv, 
                 }
                 opt->trace = optarg;
                 break;
+            case OPT_RESIDUAL:
+                if (optarg[0] == '\0') {
+                    return bad_value(command, code);
+                }
+                opt->residual = optarg;
+                break;
             case ':': return bad_value(command, optopt);
             default: return unknown_option(command, argv);
         }
@@ -207,7 +235,8 @@ static int parse_options(const char* command, bool full, int argc, char** argv, 
         opt->mission = argv[optind];
     }
     if (!opt->help && opt->mission == NULL) {
-        return error_exit(EXIT_BAD_INPUT, "%s: missing MISSION.json (or - for standard input)", command);
+        return error_exit(EXIT_BAD_INPUT, "%s: missing %s (or - for standard input)", command,
+                          strcmp(command, "replan") == 0 ? "LIVE.json" : "MISSION.json");
     }
     return EXIT_PLANNED;
 }
@@ -223,7 +252,7 @@ static int load(const char* path, char name[SVA_JSON_NAME_MAX + 1]) {
 
 static int cmd_validate(int argc, char** argv) {
     options_t opt;
-    int code = parse_options("validate", false, argc, argv, &opt);
+    int code = parse_options("validate", VALIDATE_OPTIONS, argc, argv, &opt);
     if (code != EXIT_PLANNED || opt.help) {
         if (opt.help) {
             print_usage(stdout);
@@ -297,7 +326,7 @@ static int print_plan(const options_t* opt, const char* name, int64_t solve_us) 
 
 static int cmd_plan(int argc, char** argv) {
     options_t opt;
-    int code = parse_options("plan", true, argc, argv, &opt);
+    int code = parse_options("plan", PLAN_OPTIONS, argc, argv, &opt);
     if (code != EXIT_PLANNED || opt.help) {
         if (opt.help) {
             print_usage(stdout);
@@ -355,6 +384,136 @@ static int cmd_plan(int argc, char** argv) {
     return print_plan(&opt, name, fastest);
 }
 
+// ---------------------------------------------------------------------------------
+// sva replan: a live mission replayed as the on-board node flies it (docs/SPEC.md,
+// live missions): the events in order, a replan after the last event of each tick,
+// then the clock to `now` and a last replan, which is printed.
+
+static sva_live_t g_live;
+static sva_json_live_t g_doc;
+
+// One replan of g_live into *result (its wall time into *solve_us).
+static sva_status_t timed_replan(sva_algorithm_t algorithm, sva_live_result_t* result, sva_diag_t* diag,
+                                 int64_t* solve_us) {
+    struct timespec before, after;
+    clock_gettime(CLOCK_MONOTONIC, &before);
+    const sva_status_t status = sva_live_replan(&g_live, &g_planner, algorithm, result, diag);
+    clock_gettime(CLOCK_MONOTONIC, &after);
+    *solve_us = elapsed_us(&before, &after);
+    return status;
+}
+
+static int write_residual(const char* path, const sva_mission_t* residual, const char* name) {
+    json_t* doc = sva_json_mission(residual, name);
+    FILE* out = doc != NULL ? fopen(path, "w") : NULL;
+    if (out == NULL) {
+        json_decref(doc);
+        return error_exit(EXIT_FAILED, "%s: cannot open for writing: %s", path, strerror(errno));
+    }
+    const int written = sva_json_write_plan(out, doc);  // any document: indented, newline-terminated
+    json_decref(doc);
+    if (fclose(out) != 0 || written != 0) {
+        return error_exit(EXIT_FAILED, "%s: cannot write the residual mission", path);
+    }
+    return EXIT_PLANNED;
+}
+
+static int replay(const options_t* opt, sva_algorithm_t algorithm) {
+    sva_diag_t diag;
+    sva_diag_clear(&diag);
+    if (!g_doc.has_plan) {
+        const sva_status_t status = sva_plan(&g_planner, &g_doc.mission, algorithm, &g_doc.plan, &diag);
+        if (status != SVA_OK) {
+            return plan_failed(status, &diag);
+        }
+    }
+    if (sva_live_init(&g_live, &g_doc.mission, &g_doc.plan, &diag) != SVA_OK) {
+        return plan_failed(SVA_ERR_INVALID, &diag);
+    }
+    sva_live_result_t result;
+    bool replanned = false;
+    int64_t solve_us = 0;
+    for (size_t i = 0; i < g_doc.event_count; ++i) {
+        if (sva_live_apply(&g_live, &g_doc.events[i], &diag) != SVA_OK) {
+            char message[SVA_JSON_ERROR_SIZE];
+            (void)sva_diag_format(&diag, message, sizeof message);
+            return error_exit(EXIT_BAD_INPUT, "events[%zu]: %s", i, message);
+        }
+        const bool last_of_tick =
+            i + 1 == g_doc.event_count || g_doc.events[i + 1].at_ticks != g_doc.events[i].at_ticks;
+        if (last_of_tick) {
+            const sva_status_t status = timed_replan(algorithm, &result, &diag, &solve_us);
+            if (status != SVA_OK) {
+                return plan_failed(status, &diag);
+            }
+            replanned = true;
+        }
+    }
+    if (!replanned || g_doc.now_ticks > g_live.now_ticks) {
+        const sva_event_t clock = {.type = SVA_EVENT_CLOCK, .at_ticks = g_doc.now_ticks};
+        if (sva_live_apply(&g_live, &clock, &diag) != SVA_OK) {
+            char message[SVA_JSON_ERROR_SIZE];
+            (void)sva_diag_format(&diag, message, sizeof message);
+            return error_exit(EXIT_BAD_INPUT, "now: %s", message);
+        }
+        const sva_status_t status = timed_replan(algorithm, &result, &diag, &solve_us);
+        if (status != SVA_OK) {
+            return plan_failed(status, &diag);
+        }
+    } else if (g_doc.has_now && g_doc.now_ticks < g_live.now_ticks) {
+        return error_exit(EXIT_BAD_INPUT, "now: %ld is before the last event (%ld)", (long)g_doc.now_ticks,
+                          (long)g_live.now_ticks);
+    }
+    if (opt->residual != NULL) {
+        const int code = write_residual(opt->residual, result.residual, g_doc.name);
+        if (code != EXIT_PLANNED) {
+            return code;
+        }
+    }
+    json_t* doc = sva_json_replan(&g_live, &result, g_doc.name, solve_us);
+    if (doc == NULL) {
+        return error_exit(EXIT_FAILED, "building the plan JSON: out of memory");
+    }
+    const int written = sva_json_write_plan(stdout, doc);
+    json_decref(doc);
+    if (written != 0) {
+        return error_exit(EXIT_FAILED, "writing the plan: %s", strerror(errno));
+    }
+    return EXIT_PLANNED;
+}
+
+static int cmd_replan(int argc, char** argv) {
+    options_t opt;
+    int code = parse_options("replan", REPLAN_OPTIONS, argc, argv, &opt);
+    if (code != EXIT_PLANNED || opt.help) {
+        if (opt.help) {
+            print_usage(stdout);
+        }
+        return code;
+    }
+    sva_algorithm_t algorithm;
+    if (sva_algorithm_from_name(opt.algo, &algorithm) != SVA_OK) {
+        char algos[128];
+        list_algorithms(algos, sizeof algos);
+        return error_exit(EXIT_BAD_INPUT, "replan: --algo: unknown algorithm \"%s\" (known: %s)", opt.algo, algos);
+    }
+    char err[SVA_JSON_ERROR_SIZE];
+    const sva_json_result_t loaded = sva_json_load_live(opt.mission, &g_doc, err, sizeof err);
+    if (loaded != SVA_JSON_OK) {
+        return error_exit(loaded == SVA_JSON_BAD_INPUT ? EXIT_BAD_INPUT : EXIT_FAILED, "%s", err);
+    }
+    if (sva_planner_init(&g_planner) != SVA_OK) {
+        sva_json_live_free(&g_doc);
+        return error_exit(EXIT_FAILED, "planner initialisation failed");
+    }
+    if (opt.flow_work > 0) {
+        g_planner.flow_max_work = (uint32_t)opt.flow_work;
+    }
+    code = replay(&opt, algorithm);
+    sva_json_live_free(&g_doc);
+    return code;
+}
+
 int main(int argc, char** argv) {
     if (argc < 2) {
         return error_exit(EXIT_BAD_INPUT, "missing command (try 'sva --help')");
@@ -373,6 +532,9 @@ int main(int argc, char** argv) {
     }
     if (strcmp(command, "validate") == 0) {
         return cmd_validate(argc - 1, argv + 1);
+    }
+    if (strcmp(command, "replan") == 0) {
+        return cmd_replan(argc - 1, argv + 1);
     }
     return error_exit(EXIT_BAD_INPUT, "unknown command \"%s\" (try 'sva --help')", command);
 }

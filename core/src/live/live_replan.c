@@ -17,6 +17,7 @@ static void build_residual(sva_live_t* self)
     r->ticks_per_cell = m->ticks_per_cell;
     r->hover_fuel = m->hover_fuel;
     r->overlap_percent = m->overlap_percent;
+    r->change_penalty = m->change_penalty;
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         if (self->uavs[u].lost) {
             continue;

@@ -26,6 +26,7 @@ static const key_spec_t MISSION_KEYS[] = {
     {"ticks_per_cell", true, 1},
     {"hover_fuel", true, 0},
     {"overlap_percent", true, 70},
+    {"change_penalty", true, 0},
     {"uavs", false, 0},
     {"targets", false, 0},
     {NULL, false, 0},
@@ -267,6 +268,7 @@ static bool parse_root(const json_t* root, sva_mission_t* mission, char name[SVA
            get_int(root, "", MISSION_KEYS, "ticks_per_cell", &mission->ticks_per_cell, err) &&
            get_int(root, "", MISSION_KEYS, "hover_fuel", &mission->hover_fuel, err) &&
            get_int(root, "", MISSION_KEYS, "overlap_percent", &mission->overlap_percent, err) &&
+           get_int(root, "", MISSION_KEYS, "change_penalty", &mission->change_penalty, err) &&
            parse_uavs(root, mission, err) && parse_targets(root, mission, err);
 }
 
@@ -347,4 +349,80 @@ sva_json_result_t sva_json_load_mission(const char* path,
         return SVA_JSON_BAD_INPUT;
     }
     return SVA_JSON_OK;
+}
+
+sva_json_result_t sva_json_mission_from(const json_t* root,
+                                        sva_mission_t* mission,
+                                        char name[SVA_JSON_NAME_MAX + 1],
+                                        char* err,
+                                        size_t err_size) {
+    const sink_t sink = {err, err_size};
+    sva_mission_init(mission);
+    name[0] = '\0';
+    if (!parse_root(root, mission, name, &sink)) {
+        sva_mission_init(mission);
+        name[0] = '\0';
+        return SVA_JSON_BAD_INPUT;
+    }
+    return SVA_JSON_OK;
+}
+
+bool sva_json_target_from(const json_t* object, const char* prefix, sva_target_t* target, char* err,
+                          size_t err_size) {
+    const sink_t sink = {err, err_size};
+    if (!json_is_object(object)) {
+        return fail(&sink, "%s: must be an object, got %s", prefix, type_name(object));
+    }
+    return check_keys(object, prefix, TARGET_KEYS, &sink) &&
+           get_int(object, prefix, TARGET_KEYS, "id", &target->id, &sink) &&
+           get_int(object, prefix, TARGET_KEYS, "x", &target->x, &sink) &&
+           get_int(object, prefix, TARGET_KEYS, "y", &target->y, &sink) &&
+           get_int(object, prefix, TARGET_KEYS, "start", &target->start_ticks, &sink) &&
+           get_int(object, prefix, TARGET_KEYS, "end", &target->end_ticks, &sink) &&
+           get_int(object, prefix, TARGET_KEYS, "need", &target->need, &sink);
+}
+
+json_t* sva_json_target(const sva_target_t* t) {
+    return json_pack("{s:i, s:i, s:i, s:i, s:i, s:i}", "id", (json_int_t)t->id, "x", (json_int_t)t->x, "y",
+                     (json_int_t)t->y, "start", (json_int_t)t->start_ticks, "end", (json_int_t)t->end_ticks, "need",
+                     (json_int_t)t->need);
+}
+
+json_t* sva_json_mission(const sva_mission_t* m, const char* name) {
+    json_t* doc = json_pack("{s:s, s:{s:i, s:i}, s:i, s:i, s:i}", "name", name, "depot", "x", (json_int_t)m->depot_x,
+                            "y", (json_int_t)m->depot_y, "ticks_per_cell", (json_int_t)m->ticks_per_cell,
+                            "hover_fuel", (json_int_t)m->hover_fuel, "overlap_percent",
+                            (json_int_t)m->overlap_percent);
+    json_t* uavs = json_array();
+    json_t* targets = json_array();
+    bool ok = doc != NULL && uavs != NULL && targets != NULL;
+    // change_penalty only where it is set, so plain missions read as before.
+    if (ok && m->change_penalty != 0) {
+        ok = json_object_set_new(doc, "change_penalty", json_integer(m->change_penalty)) == 0;
+    }
+    for (uint16_t u = 0; ok && u < m->uav_count; ++u) {
+        const sva_uav_t* v = &m->uavs[u];
+        ok = json_array_append_new(uavs, json_pack("{s:i, s:i, s:i, s:i, s:i}", "id", (json_int_t)v->id, "x",
+                                                   (json_int_t)v->x, "y", (json_int_t)v->y, "fuel",
+                                                   (json_int_t)v->fuel, "ready_at",
+                                                   (json_int_t)v->ready_at_ticks)) == 0;
+    }
+    for (uint16_t t = 0; ok && t < m->target_count; ++t) {
+        ok = json_array_append_new(targets, sva_json_target(&m->targets[t])) == 0;
+    }
+    if (ok) {
+        ok = json_object_set_new(doc, "uavs", uavs) == 0;
+        uavs = NULL;
+    }
+    if (ok) {
+        ok = json_object_set_new(doc, "targets", targets) == 0;
+        targets = NULL;
+    }
+    json_decref(uavs);
+    json_decref(targets);
+    if (!ok) {
+        json_decref(doc);
+        return NULL;
+    }
+    return doc;
 }

@@ -59,6 +59,27 @@ sva_json_result_t sva_json_parse_mission(const char* text,
                                          char* err,
                                          size_t err_size);
 
+/// The mission object `root` (an already parsed document) into *mission and its name,
+/// as sva_json_parse_mission() does for text; the core's value rules are not checked.
+sva_json_result_t sva_json_mission_from(const json_t* root,
+                                        sva_mission_t* mission,
+                                        char name[SVA_JSON_NAME_MAX + 1],
+                                        char* err,
+                                        size_t err_size);
+
+/// One target object (SPEC section 3 keys) into *target; `prefix` names it in messages
+/// ("events[2].target"). False with one line in err when the shape is wrong.
+bool sva_json_target_from(const json_t* object, const char* prefix, sva_target_t* target, char* err,
+                          size_t err_size);
+
+/// A target as its SPEC section 3 object. New reference, or NULL when memory runs out.
+json_t* sva_json_target(const sva_target_t* target);
+
+/// A mission as its SPEC section 3 document (change_penalty only when not 0), for
+/// missions the tools make, such as a live mission's residual mission. New reference,
+/// or NULL when memory runs out.
+json_t* sva_json_mission(const sva_mission_t* mission, const char* name);
+
 /// Reads the mission at `path` ("-" for standard input), parses it and runs
 /// sva_mission_validate(). Returns SVA_JSON_OK, SVA_JSON_BAD_INPUT (unreadable
 /// path, empty or oversized input, malformed document, broken rule) or
@@ -114,6 +135,41 @@ void sva_trace_observer(void* user, const sva_tp_view_t* problem);
 
 /// Points planner->on_transport at sva_trace_observer with *trace.
 void sva_trace_attach(sva_trace_t* trace, sva_planner_t* planner, FILE* out, const sva_mission_t* mission);
+
+// ---------------------------------------------------------------------------------
+// Live missions (docs/SPEC.md, live missions)
+
+/// Most events a LIVE.json document may hold.
+#define SVA_JSON_MAX_EVENTS 100000L
+
+/// A LIVE.json document: the mission as planned at tick 0, the plan in force then (when
+/// has_plan), the events in order (heap: sva_json_live_free() releases them) and the
+/// tick to replan at (the last event's when the document gives none).
+typedef struct {
+    sva_mission_t mission;
+    char name[SVA_JSON_NAME_MAX + 1];
+    bool has_plan;
+    sva_plan_t plan;
+    sva_event_t* events;
+    size_t event_count;
+    int32_t now_ticks;
+    bool has_now;
+} sva_json_live_t;
+
+/// Reads and checks the shape of a LIVE.json document at `path` ("-": standard input);
+/// the mission is also checked against the core's rules. Event rules (ids, ticks) are
+/// the core's, checked when sva_live_apply() takes each event. Returns SVA_JSON_OK, or
+/// SVA_JSON_BAD_INPUT / SVA_JSON_IO_ERROR with one line in err (nothing to free then).
+sva_json_result_t sva_json_load_live(const char* path, sva_json_live_t* live, char* err, size_t err_size);
+
+/// Frees the events of a loaded live document.
+void sva_json_live_free(sva_json_live_t* live);
+
+/// The plan document of a replan (sva_json_plan() over the residual mission) with two
+/// more keys: "changes" ({dropped, added: [[uav id, target id], ...], count, penalty})
+/// and "live" ({now, revision, kept, covered, under_way: [target ids], targets: [{id,
+/// state}]}). New reference, or NULL when memory runs out.
+json_t* sva_json_replan(const sva_live_t* live, const sva_live_result_t* result, const char* name, int64_t solve_us);
 
 #ifdef __cplusplus
 }

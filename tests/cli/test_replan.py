@@ -1,0 +1,141 @@
+"""`sva replan LIVE.json` (docs/cli.md, docs/SPEC.md live missions): a live mission
+replayed as the on-board node flies it, the last replan printed with its changes.
+
+Each printed plan is checked here against its residual mission (written with
+--residual) by the same independent checks as `sva plan`'s plans (test_cli.check_plan).
+"""
+import json
+
+import pytest
+
+from test_cli import ALGORITHMS, assert_one_error_line, check_plan, run
+
+pytestmark = pytest.mark.sanitize  # cheap: also run against the ASan/UBSan build
+
+# Two UAVs at the depot; target 1 needs both at (5, 0) in [10, 20]; targets 2 (5, 5)
+# and 3 (1, 6) in [30, 40] need one each.
+MISSION = {
+    "name": "hand_live",
+    "depot": {"x": 0, "y": 0},
+    "uavs": [{"id": 1, "x": 0, "y": 0, "fuel": 100}, {"id": 2, "x": 0, "y": 0, "fuel": 100}],
+    "targets": [{"id": 1, "x": 5, "y": 0, "start": 10, "end": 20, "need": 2},
+                {"id": 2, "x": 5, "y": 5, "start": 30, "end": 40, "need": 1},
+                {"id": 3, "x": 1, "y": 6, "start": 30, "end": 40, "need": 1}],
+}
+# UAV 1: targets 1 then 2; UAV 2: targets 1 then 3.
+PLAN = {"routes": [{"uav": 1, "targets": [1, 2]}, {"uav": 2, "targets": [1, 3]}]}
+
+
+def replan(tmp_path, doc, *options):
+    live = tmp_path / "live.json"
+    residual = tmp_path / "residual.json"
+    live.write_text(json.dumps(doc))
+    result = run(["replan", *options, "--residual", str(residual), str(live)])
+    assert result.returncode == 0, result.stderr
+    plan = json.loads(result.stdout)
+    mission = json.loads(residual.read_text())
+    check_plan(mission, {k: v for k, v in plan.items() if k not in ("changes", "live")}, plan["algorithm"])
+    return mission, plan
+
+
+def states(plan):
+    return {t["id"]: t["state"] for t in plan["live"]["targets"]}
+
+
+@pytest.mark.parametrize("algo", ALGORITHMS)
+def test_lost_uav_mid_visit(tmp_path, algo):
+    doc = {"mission": MISSION, "plan": PLAN, "events": [{"at": 15, "type": "uav_lost", "uav": 1}]}
+    mission, plan = replan(tmp_path, doc, "--algo", algo)
+    # Target 1 was under way with UAV 1: lost; UAV 2 is free at once, at (5, 0).
+    assert states(plan)[1] == "lost"
+    assert [u["id"] for u in mission["uavs"]] == [2]
+    assert (mission["uavs"][0]["x"], mission["uavs"][0]["ready_at"]) == (5, 15)
+    assert sorted(t["id"] for t in mission["targets"]) == [2, 3]
+    assert plan["covered"] == 1 and plan["live"]["covered"] == 1 and plan["live"]["now"] == 15
+    # Change penalty 0: target 2 (5 + 10 cells) beats keeping target 3 (10 + 7).
+    assert plan["cost"] == 15 and not plan["live"]["kept"]
+    assert plan["changes"] == {"dropped": [[2, 3]], "added": [[2, 2]], "count": 2, "penalty": 0}
+
+
+def test_change_penalty_keeps_the_standing_visit(tmp_path):
+    doc = {"mission": {**MISSION, "change_penalty": 10}, "plan": PLAN,
+           "events": [{"at": 15, "type": "uav_lost", "uav": 1}]}
+    mission, plan = replan(tmp_path, doc, "--algo", "flow")
+    assert mission["change_penalty"] == 10
+    assert plan["live"]["kept"] and plan["cost"] == 17
+    assert plan["routes"] == [{"uav": 2, "targets": [3], "distance": 17, "fuel_used": 17}]
+    assert plan["changes"]["count"] == 0
+
+
+def test_every_event_type(tmp_path):
+    doc = {"mission": MISSION, "plan": PLAN, "events": [
+        {"at": 2, "type": "uav_lost", "uav": 2},
+        {"at": 3, "type": "uav_back", "uav": 2, "x": 4, "y": 0, "fuel": 60},
+        {"at": 4, "type": "fuel", "uav": 1, "fuel": 90},
+        {"at": 5, "type": "target_added", "target": {"id": 9, "x": 2, "y": 2, "start": 50, "end": 60, "need": 1}},
+        {"at": 6, "type": "target_changed", "target": {"id": 3, "x": 2, "y": 7, "start": 33, "end": 40, "need": 1}},
+        {"at": 7, "type": "target_cancelled", "target": 2},
+        {"at": 8, "type": "clock"}]}
+    mission, plan = replan(tmp_path, doc, "--algo", "flow")
+    assert plan["live"]["revision"] == 7 and plan["live"]["now"] == 8
+    assert states(plan) == {1: "waiting", 2: "cancelled", 3: "waiting", 9: "waiting"}
+    assert sorted(t["id"] for t in mission["targets"]) == [1, 3, 9]
+    assert next(t for t in mission["targets"] if t["id"] == 3)["x"] == 2
+    assert plan["covered"] == 3
+
+
+def test_now_moves_the_clock_and_visits_get_under_way(tmp_path):
+    mission, plan = replan(tmp_path, {"mission": MISSION, "plan": PLAN, "now": 12}, "--algo", "sva")
+    assert plan["live"]["under_way"] == [1] and plan["live"]["covered"] == 3
+    assert all((u["x"], u["ready_at"]) == (5, 20) for u in mission["uavs"])
+    assert plan["live"]["kept"] and plan["changes"]["count"] == 0
+
+
+def test_without_a_plan_the_mission_is_planned_first(tmp_path):
+    _, plan = replan(tmp_path, {"mission": MISSION}, "--algo", "flow")
+    assert plan["covered"] == 3 and plan["live"]["now"] == 0 and plan["live"]["kept"]
+
+
+@pytest.mark.parametrize("events, message", [
+    ([{"at": 15, "type": "uav_lost", "uav": 9}], "events[0]: event.uav: unknown id 9"),
+    ([{"at": 15, "type": "clock"}, {"at": 11, "type": "clock"}], "events[1]: event.at: 11 is before now (15)"),
+    ([{"at": 31, "type": "target_changed",
+       "target": {"id": 2, "x": 1, "y": 1, "start": 50, "end": 60, "need": 1}}],
+     "events[0]: event.target: its window started at 30 (now 31): only a target not yet started may change"),
+    ([{"at": 5, "type": "target_added", "target": {"id": 3, "x": 1, "y": 1, "start": 50, "end": 60, "need": 1}}],
+     "events[0]: event.target: duplicate id 3 (first at index 2)"),
+    ([{"at": 5, "type": "uav_back", "uav": 1, "x": 0, "y": 0, "fuel": 5}],
+     "events[0]: event.uav: the UAV is in service"),
+    ([{"at": 5, "type": "teleport", "uav": 1}],
+     "events[0].type: must be one of clock, uav_lost, uav_back, fuel, target_added, target_cancelled, "
+     "target_changed"),
+    ([{"at": 5, "type": "uav_lost", "uav": 1, "x": 3}], 'events[0]: unknown key "x"'),
+    ([{"at": 5, "type": "fuel", "uav": 1}], 'events[0]: missing key "fuel"'),
+])
+def test_rejected_events(tmp_path, events, message):
+    live = tmp_path / "live.json"
+    live.write_text(json.dumps({"mission": MISSION, "plan": PLAN, "events": events}))
+    assert assert_one_error_line(run(["replan", str(live)]), 2) == message
+
+
+@pytest.mark.parametrize("doc, message", [
+    ({"mission": MISSION, "colour": 1}, 'live mission: unknown key "colour"'),
+    ({"plan": PLAN}, 'live mission: missing key "mission"'),
+    ({"mission": {**MISSION, "change_penalty": -1}}, "mission.change_penalty: must be >= 0, got -1"),
+    ({"mission": MISSION, "plan": {"routes": [{"uav": 1, "targets": [7]}]}},
+     "plan.routes[0].targets[0]: not a target id of the mission"),
+    ({"mission": MISSION, "plan": {"routes": [{"uav": 2, "targets": []}, {"uav": 1, "targets": []}]}},
+     "routes[0].uav: must follow the mission's UAVs (1), got 2"),
+    ({"mission": MISSION, "events": [{"at": 15, "type": "clock"}], "now": 10},
+     "now: 10 is before the last event (15)"),
+])
+def test_rejected_documents(tmp_path, doc, message):
+    live = tmp_path / "live.json"
+    live.write_text(json.dumps(doc))
+    assert assert_one_error_line(run(["replan", str(live)]), 2) == message
+
+
+def test_usage(tmp_path):
+    assert assert_one_error_line(run(["replan"]), 2) == "replan: missing LIVE.json (or - for standard input)"
+    assert assert_one_error_line(run(["replan", "--residual="]), 2) == "replan: --residual needs a file name"
+    assert "sva replan" in run(["--help"]).stdout.decode()
