@@ -8,7 +8,7 @@ scenario stored in the log (the mission and the events) and the SPEC text, and j
   it starts where the mission (or its uav_back event) puts it.
 - movement: between consecutive ticks a UAV moves 0 or 1 cell (Manhattan), and two
   moves within one stretch in service are at least ticks_per_cell ticks apart (the first
-  at least ticks_per_cell after the stretch starts).
+  at least ticks_per_cell after the stretch starts, or after the mission's ready_at).
 - visits: a visit's UAV stands on the target's cell from `arrived` to `left`, arrived by
   the start, and leaves at the end, or earlier only when the target was cancelled or
   lost or the UAV itself was lost then.
@@ -65,6 +65,10 @@ def _service(uav0: dict, events: List[dict], end: int) -> Tuple[Set[int], Dict[i
     if on:
         ticks.update(range(since, end + 1))
     return ticks, starts
+
+
+def uav0_ready(u0: dict) -> int:
+    return u0.get("ready_at", 0)
 
 
 def carried_covered(prev_plan: dict, residual: dict, backs: Set[int]) -> int:
@@ -207,7 +211,8 @@ def check_flight(log: dict) -> List[str]:
                 sx, sy, sf = starts[t]
                 if (x, y) != (sx, sy):
                     v.append(f"{w}: at {(x, y)} at tick {t}, must start at {(sx, sy)}")
-                last_move = t - tpc  # the first step may start at t
+                # The first step may start at t (at tick 0: at the UAV's ready_at).
+                last_move = (uav0_ready(u0) if t == 0 else t) - tpc
                 prev_fuel = sf
             else:
                 d = _dist(p[t - 1], (x, y))

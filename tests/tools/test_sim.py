@@ -102,6 +102,14 @@ def test_physics_late_arrival_does_not_stop_and_loss_vanishes_until_back():
     assert target(log, 1)["covered"] is False
 
 
+def test_physics_a_uav_leaves_no_earlier_than_its_ready_at():
+    m = mission([(1, 0, 0, 50, 4)], [(1, 2, 0, 10, 14, 1)])
+    log = sim.simulate(m, [], None, "sva", fake_planner(lambda now: {1: [1]}))
+    track = {e[0]: e[1:] for e in uav(log, 1)["track"]}
+    assert [track[t] for t in (0, 3, 4, 5, 6)] == [[0, 0, 50], [0, 0, 50], [0, 0, 49],
+                                                   [1, 0, 48], [2, 0, 48]]
+
+
 # --- the checker must be able to fail --------------------------------------------------
 
 HAND_POPUP = scenario([(1, 0, 0, 100), (2, 0, 0, 100)], [(1, 3, 3, 10, 20, 1)],
@@ -138,6 +146,15 @@ def test_checker_catches_false_coverage(popup_log):
     t = log["targets"][0]
     t["served_by"] = t["served_by"] + [99]
     assert any(f"target {t['id']}: served_by" in m for m in check_flight(log))
+
+
+def test_checker_catches_a_start_before_ready_at(sva_bin):
+    log = ok(fly(json.loads((REPO / "fixtures" / "scenarios" / "penalty_keeps.json").read_text())))
+    log = copy.deepcopy(log)
+    tr = uav(log, 2)["track"]           # uav 2 may leave at 25
+    tr[1][1] -= 1
+    tr[1][3] -= 1
+    assert any("less than ticks_per_cell" in m for m in check_flight(log))
 
 
 def test_checker_catches_a_bad_replan(popup_log):

@@ -62,6 +62,7 @@ class Craft:
     step_to: Optional[Tuple[int, int]] = None
     step_end: int = 0
     hover: Optional[int] = None       # target id it hovers over until the window ends
+    free_at: int = 0                  # it may not leave before (the mission's ready_at)
     arrived: int = 0                  # tick it reached its current cell
     out: List[list] = field(default_factory=list)
     track: List[list] = field(default_factory=list)
@@ -164,7 +165,7 @@ class Flight:
         self.penalty = penalty
         self.algo = algo
         self.planner = planner
-        self.crafts = [Craft(u.id, u.x, u.y, u.fuel, arrived=0) for u in mission.uavs]
+        self.crafts = [Craft(u.id, u.x, u.y, u.fuel, free_at=u.ready_at) for u in mission.uavs]
         self.by_id = {c.id: c for c in self.crafts}
         self.targets: Dict[int, M.Target] = {t.id: t for t in mission.targets}
         self.order = [t.id for t in mission.targets]   # first appearance
@@ -197,7 +198,7 @@ class Flight:
             self._maybe_hover(c, t)
 
     def _maybe_hover(self, c: Craft, t: int) -> None:
-        if c.step_to is not None or c.hover is not None or not c.orders:
+        if c.step_to is not None or c.hover is not None or not c.orders or t < c.free_at:
             return
         tg = self.targets[c.orders[0]]
         if (c.x, c.y) == (tg.x, tg.y) and t == tg.start:
@@ -233,7 +234,7 @@ class Flight:
             c = self.by_id[e["uav"]]
             c.in_service = True
             c.x, c.y, c.fuel = e["x"], e["y"], e["fuel"]
-            c.orders, c.step_to, c.hover, c.arrived = [], None, None, t
+            c.orders, c.step_to, c.hover, c.arrived, c.free_at = [], None, None, t, t
             c.out[-1][1] = t
         elif kind == "fuel":
             self.by_id[e["uav"]].fuel = e["fuel"]
@@ -246,8 +247,8 @@ class Flight:
             self._free_target(e["target"], t, "cancelled")
 
     def _step(self, c: Craft, t: int, dest: Tuple[int, int]) -> None:
-        if c.fuel < 1:
-            return  # an empty tank: it stays where it is
+        if c.fuel < 1 or t < c.free_at:
+            return  # an empty tank, or not ready yet: it stays where it is
         c.fuel -= 1
         c.step_to = _toward(c.x, c.y, *dest)
         c.step_end = t + self.tpc
