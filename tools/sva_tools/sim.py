@@ -440,7 +440,8 @@ def timeline(log: dict) -> str:
     by_tick: Dict[int, List[dict]] = {}
     for e in log["scenario"]["events"]:
         by_tick.setdefault(e["at"], []).append(e)
-    lines = [f"{'tick':>6}  {'cause':<28} {'covered':>7} {'cost':>6} {'changes':>7} "
+    w = max([len(r["cause"]) for r in log["replans"]] + [5])
+    lines = [f"{'tick':>6}  {'cause':<{w}} {'covered':>7} {'cost':>6} {'changes':>7} "
              f"{'kept':>5} {'solve_us':>9}"]
     for r in log["replans"]:
         for e in by_tick.get(r["at"], []):
@@ -450,7 +451,7 @@ def timeline(log: dict) -> str:
         covered = done + int(live.get("covered", r["plan"].get("covered", 0)))
         ch = r.get("changes") or {}
         kept = live.get("kept")
-        lines.append(f"{r['at']:>6}  {r['cause'][:28]:<28} {covered:>7} {r['plan']['cost']:>6} "
+        lines.append(f"{r['at']:>6}  {r['cause']:<{w}} {covered:>7} {r['plan']['cost']:>6} "
                      f"{ch.get('count', 0):>7} {('-' if kept is None else str(kept).lower()):>5} "
                      f"{r['solve_us'] if r['solve_us'] is not None else '-':>9}")
     s = log["summary"]

@@ -41,7 +41,9 @@ def render_flight(log: dict, path: str) -> None:
                for t in log["targets"]}
     uavs = log["uavs"]
     cmap = plt.get_cmap("tab10" if len(uavs) <= 10 else "tab20")
-    fig, (ax, gx) = plt.subplots(1, 2, figsize=(17, 7.5), gridspec_kw={"width_ratios": [1, 1.5]})
+    rows_n = len(tmap) + len(uavs) + 1
+    fig, (ax, gx) = plt.subplots(1, 2, figsize=(17, max(7.5, 0.28 * rows_n)),
+                                 gridspec_kw={"width_ratios": [1, 1.5]})
 
     # --- map
     plot.draw_depot(ax, depot)
