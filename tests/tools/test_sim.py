@@ -253,7 +253,20 @@ def test_a_rejected_event_stops_the_sim_with_exit_2(sva_bin, tmp_path):
                    [{"at": 4, "type": "uav_back", "uav": 1, "x": 1, "y": 1, "fuel": 9}])
     r = sva_tools("sim", write(tmp_path, "s.json", doc))
     assert r.returncode == 2 and r.stdout == ""
-    assert "tick 4" in r.stderr and "event" in r.stderr, r.stderr
+    assert r.stderr.startswith("sva-tools: error: ") and len(r.stderr.splitlines()) == 1
+    assert "tick 4: sva replan: events[0]: event.uav:" in r.stderr, r.stderr
+
+
+def test_timeline_shows_every_event_and_replan(sva_bin, tmp_path):
+    r = sva_tools("sim", "--timeline", write(tmp_path, "s.json", HAND_POPUP))
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    assert lines[0].split() == ["tick", "cause", "covered", "cost", "changes", "kept", "solve_us"]
+    assert lines[1].split()[:3] == ["0", "start", "1"]
+    assert lines[2].split() == ["5", "-", "target", "2", "added", "at", "(8,", "2)", "[25,",
+                                "35)", "need", "1"]
+    assert lines[3].split()[:3] == ["5", "target_added", "2"]
+    assert lines[4].startswith("flown to tick ") and "covered 2 of 2 coverable" in lines[4]
 
 
 def test_via_lcm_is_not_available_yet(tmp_path):

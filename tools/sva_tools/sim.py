@@ -140,7 +140,9 @@ def replan(mission_doc: dict, events: List[dict], now: int, algo: str,
         if r.returncode != 0:
             lines = [ln for ln in r.stderr.strip().splitlines() if ln.strip()]
             msg = lines[-1] if lines else f"exit {r.returncode}"
-            raise SimError(f"tick {now}: sva replan rejected the history: {msg}",
+            if msg.startswith("sva: error: "):
+                msg = msg[len("sva: error: "):]
+            raise SimError(f"tick {now}: sva replan: {msg}",
                            2 if r.returncode == 2 else 1)
         out = json.loads(r.stdout)
         with open(res, encoding="utf-8") as f:
