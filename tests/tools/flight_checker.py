@@ -258,7 +258,8 @@ def check_flight(log: dict) -> List[str]:
                      f"({len(there)} of {t.need} UAVs for the whole window"
                      f"{', cancelled' if t.id in cancelled else ''})")
         if sorted(lt["served_by"]) != there:
-            v.append(f"target {t.id}: served_by is {sorted(lt['served_by'])}, the tracks say {there}")
+            v.append(f"target {t.id}: served_by is {sorted(lt['served_by'])}, "
+                     f"the tracks say {there}")
         outcome = lt.get("outcome")
         if outcome == "cancelled" and t.id not in cancelled:
             v.append(f"target {t.id}: outcome cancelled, but no event cancels it")

@@ -15,7 +15,7 @@ import pytest
 
 from conftest import REPO, mission, sva_tools, write
 from flight_checker import carried_covered, check_flight
-from sva_tools import gen, io, sim
+from sva_tools import gen, sim
 
 ALGOS = ("sva", "ga", "hga", "flow")
 
