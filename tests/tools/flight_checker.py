@@ -15,7 +15,8 @@ scenario stored in the log (the mission and the events) and the SPEC text, and j
 - fuel: never negative; from one tick to the next it drops by exactly 1 for each step
   that starts then (a step started at t shows as a move at t + ticks_per_cell; a step cut
   short by the UAV's loss may be paid without a move) plus hover_fuel for each visit
-  whose window starts then; a fuel event sets the reading before the tick's payments.
+  whose window starts then; a fuel event sets the reading before the tick's steps (it
+  may count the hover fuel of a window starting then: that is paid before events).
 - coverage: a target is covered iff it was not cancelled and exactly `need` UAVs stand in
   service on its cell for every tick of [start, end); `served_by` lists the UAVs there
   for the whole window; the summary counts agree.
@@ -232,7 +233,12 @@ def check_flight(log: dict) -> List[str]:
                           p[later] != p[later - 1]) else 0
             want = moves + hover * hover_ticks.get(t, 0)
             paid = prev_fuel - f
-            if paid != want and not (cut and paid == want + 1):
+            ok = {want, want + 1} if cut else {want}
+            if (uid, t) in fuel_at:
+                # A reading at the start of a window the UAV already hovers over counts
+                # the hover fuel paid then (it is paid before the tick's events).
+                ok |= {x - hover * hover_ticks.get(t, 0) for x in ok}
+            if paid not in ok:
                 v.append(f"{w}: fuel drops by {paid} at tick {t}, the flight pays {want} "
                          f"({moves} step(s), {hover_ticks.get(t, 0)} window(s) starting)")
             prev_fuel = f
