@@ -4,6 +4,12 @@ The paper's six parameters: number of targets, number of UAVs, time-window width
 window intersection ratio, largest coordinate, need per target; plus fuel, hover fuel
 and ticks per cell. Same seed and parameters give the same missions, byte for byte.
 
+With --events N it writes a live-mission scenario instead (docs/live.md):
+{"mission", "events", "change_penalty"}, with N events at random ticks inside the
+mission's horizon drawn from --kinds (default all six): uav_lost, uav_back, fuel,
+target_added, target_cancelled, target_changed. Every event is valid when applied in
+order (see generate_events).
+
 Intersection ratio of a mission (model.intersection_ratio): targets sorted by
 (start, end, id); the mean over consecutive pairs of |A n B| / min(|A|, |B|), SPEC 2's
 overlap measure. Categories: low [0, 0.3), mid [0.3, 0.7), high [0.7, 1.0].
@@ -15,7 +21,7 @@ import math
 import os
 import random
 import sys
-from typing import Optional, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple
 
 from . import io
 from . import model as M
@@ -90,6 +96,139 @@ def generate(targets: int, uavs: int, *, width=(20, 40), ratio: str = "any",
     raise RuntimeError(f"could not hit intersection category {ratio!r} in 1000 attempts")
 
 
+EVENT_KINDS = ("uav_lost", "uav_back", "fuel", "target_added", "target_cancelled",
+               "target_changed")
+
+
+def parse_kinds(text: str) -> Tuple[str, ...]:
+    kinds = tuple(k.strip() for k in text.split(",") if k.strip())
+    for k in kinds:
+        if k not in EVENT_KINDS:
+            raise argparse.ArgumentTypeError(f"unknown event kind {k!r} (kinds: "
+                                             f"{', '.join(EVENT_KINDS)})")
+    if not kinds:
+        raise argparse.ArgumentTypeError("--kinds: name at least one kind")
+    return kinds
+
+
+def _target_json(t: M.Target) -> dict:
+    return {"id": t.id, "x": t.x, "y": t.y, "start": t.start, "end": t.end, "need": t.need}
+
+
+def generate_events(m: M.Mission, count: int, *, kinds: Sequence[str] = EVENT_KINDS,
+                    max_coord: int = 20, width=(20, 40), need=(2, 2), seed: int = 0,
+                    index: int = 0) -> Tuple[M.Mission, List[dict]]:
+    """`count` events at random ticks in [1, the mission's last window end), drawn from
+    `kinds`, valid when applied in order (SPEC 5.3): a UAV is lost only while in
+    service and comes back only after it was lost (at a later tick); fuel readings go to
+    UAVs in service; targets are cancelled or changed only before their window starts
+    (so never done, lost or under way) and never after a cancellation; a pop-up or a
+    changed window starts after the event. Fuel readings and fuel on return are at least
+    the longest flight home from the grid, so no UAV is stranded by them.
+
+    Targets (the mission's too: they are moved when needed, so it returns the mission)
+    stand on distinct cells, none at the depot, and a UAV comes back on no target's cell:
+    a UAV waiting at one target or at home never stands on another one's cell.
+    Deterministic in (mission, parameters, seed, index)."""
+    rng = random.Random(f"sva-gen-events:{seed}:{index}")
+    dx, dy = m.depot
+    far = max(abs(dx - cx) + abs(dy - cy) for cx in (0, max_coord) for cy in (0, max_coord))
+    lead = far * m.ticks_per_cell
+    full_fuel = max([u.fuel for u in m.uavs] + [2 * far])
+    used = {m.depot}
+
+    def fresh_cell() -> Tuple[int, int]:
+        for _ in range(10000):
+            c = (rng.randint(0, max_coord), rng.randint(0, max_coord))
+            if c not in used:
+                used.add(c)
+                return c
+        raise ValueError(f"no free cell left on the {max_coord + 1}-cell-wide grid")
+
+    targets: List[M.Target] = []
+    for t in m.targets:
+        x, y = (t.x, t.y) if (t.x, t.y) not in used else fresh_cell()
+        used.add((x, y))
+        targets.append(M.Target(t.id, x, y, t.start, t.end, t.need))
+    m = M.Mission(m.name, m.depot, list(m.uavs), targets, m.ticks_per_cell, m.hover_fuel,
+                  m.overlap_percent)
+    horizon = max([t.end for t in targets] + [2])
+    times = sorted(rng.randint(1, horizon - 1) for _ in range(count))
+    in_service = {u.id: True for u in m.uavs}
+    lost_at: Dict[int, int] = {}
+    current = {t.id: t for t in targets}
+    cancelled = set()
+    next_id = max([t.id for t in targets] + [0]) + 1
+    need_hi = max(1, min(need[1], len(m.uavs)))
+    need_lo = min(need[0], need_hi)
+
+    def window(at: int) -> Tuple[int, int]:
+        start = at + rng.randint(max(1, lead // 2), lead + width[1])
+        return start, start + rng.randint(width[0], width[1])
+
+    events: List[dict] = []
+    for at in times:
+        up = [u for u, ok in in_service.items() if ok]
+        back = [u for u, t in lost_at.items() if t < at]
+        ahead = [t for t in current.values() if t.start > at and t.id not in cancelled]
+        can = {"uav_lost": bool(up), "uav_back": bool(back), "fuel": bool(up),
+               "target_added": len(current) < M.SVA_MAX_TARGETS,
+               "target_cancelled": bool(ahead), "target_changed": bool(ahead)}
+        choice = [k for k in kinds if can[k]]
+        if not choice:
+            continue
+        kind = rng.choice(choice)
+        if kind == "uav_lost":
+            u = rng.choice(up)
+            in_service[u] = False
+            lost_at[u] = at
+            events.append({"at": at, "type": kind, "uav": u})
+        elif kind == "uav_back":
+            u = rng.choice(back)
+            del lost_at[u]
+            in_service[u] = True
+            x, y = fresh_cell()
+            events.append({"at": at, "type": kind, "uav": u, "x": x, "y": y,
+                           "fuel": rng.randint(2 * far, max(2 * far, full_fuel))})
+        elif kind == "fuel":
+            events.append({"at": at, "type": kind, "uav": rng.choice(up),
+                           "fuel": rng.randint(far, max(far, full_fuel * 3 // 4))})
+        elif kind == "target_added":
+            x, y = fresh_cell()
+            start, end = window(at)
+            t = M.Target(next_id, x, y, start, end, rng.randint(need_lo, need_hi))
+            next_id += 1
+            current[t.id] = t
+            events.append({"at": at, "type": kind, "target": _target_json(t)})
+        elif kind == "target_cancelled":
+            t = rng.choice(ahead)
+            cancelled.add(t.id)
+            events.append({"at": at, "type": kind, "target": t.id})
+        else:
+            old = rng.choice(ahead)
+            x, y = fresh_cell()
+            start, end = window(at)
+            t = M.Target(old.id, x, y, start, end, rng.randint(need_lo, need_hi))
+            current[t.id] = t
+            events.append({"at": at, "type": kind, "target": _target_json(t)})
+    return m, events
+
+
+def generate_scenario(targets: int, uavs: int, events: int, *, kinds=EVENT_KINDS,
+                      change_penalty: Optional[int] = None, seed: int = 0, index: int = 0,
+                      **kw) -> dict:
+    """A live-mission scenario: generate()'s mission with generate_events()' events."""
+    m = generate(targets, uavs, seed=seed, index=index, **kw)
+    m, evs = generate_events(m, events, kinds=kinds, max_coord=kw.get("max_coord", 20),
+                             width=kw.get("width", (20, 40)), need=kw.get("need", (2, 2)),
+                             seed=seed, index=index)
+    io.mission_from_json(m.to_json())
+    doc = {"mission": m.to_json(), "events": evs}
+    if change_penalty is not None:
+        doc["change_penalty"] = change_penalty
+    return doc
+
+
 def add_parser(sub) -> None:
     ap = sub.add_parser("gen", help="generate random missions (paper section 5.1)",
                         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -109,6 +248,13 @@ def add_parser(sub) -> None:
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--count", type=int, default=1, help="missions to write (default 1)")
     ap.add_argument("--name", help="mission name (with --count > 1: prefix)")
+    ap.add_argument("--events", type=int, metavar="N",
+                    help="write a live-mission scenario with N random events (docs/live.md)")
+    ap.add_argument("--kinds", type=parse_kinds, default=EVENT_KINDS,
+                    help="with --events: comma-separated event kinds to draw from "
+                         f"(default all: {','.join(EVENT_KINDS)})")
+    ap.add_argument("--change-penalty", type=int, metavar="P",
+                    help="with --events: the scenario's change_penalty (default: none)")
     ap.add_argument("-o", "--out", default="-",
                     help="output file ('-': stdout); with --count > 1 a directory")
     ap.set_defaults(func=run)
@@ -118,10 +264,22 @@ def run(args) -> int:
     kw = dict(width=args.width, ratio=args.ratio, max_coord=args.max_coord, need=args.need,
               fuel=args.fuel, hover=args.hover, ticks_per_cell=args.ticks_per_cell,
               overlap_percent=args.overlap_percent, seed=args.seed)
+    if args.events is not None and args.events < 0:
+        print("sva-tools: error: gen: --events must be >= 0", file=sys.stderr)
+        return 2
+
+    def one(index: int, name: Optional[str]):
+        if args.events is None:
+            m = generate(args.targets, args.uavs, index=index, name=name, **kw)
+            return m.name, m.to_json()
+        doc = generate_scenario(args.targets, args.uavs, args.events, kinds=args.kinds,
+                                change_penalty=args.change_penalty, index=index, name=name,
+                                **kw)
+        return doc["mission"]["name"], doc
+
     try:
         if args.count == 1:
-            m = generate(args.targets, args.uavs, name=args.name, **kw)
-            io.write_json(m.to_json(), args.out)
+            io.write_json(one(0, args.name)[1], args.out)
             return 0
         if args.out == "-":
             print("sva-tools: error: --count > 1 needs --out DIRECTORY", file=sys.stderr)
@@ -129,8 +287,8 @@ def run(args) -> int:
         os.makedirs(args.out, exist_ok=True)
         for i in range(args.count):
             name = f"{args.name}_{i:04d}" if args.name else None
-            m = generate(args.targets, args.uavs, index=i, name=name, **kw)
-            io.write_json(m.to_json(), os.path.join(args.out, f"{m.name}.json"))
+            mname, doc = one(i, name)
+            io.write_json(doc, os.path.join(args.out, f"{mname}.json"))
         return 0
     except (ValueError, io.InputError) as e:
         print(f"sva-tools: error: gen: {shown(e)}", file=sys.stderr)

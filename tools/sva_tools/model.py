@@ -21,6 +21,7 @@ SVA_MAX_HOVER_FUEL = 1_000_000
 SVA_MAX_ID = 2_147_483_647
 SVA_MAX_TP_SOURCES = 24
 SVA_MAX_TP_SINKS = 48
+SVA_MAX_CHANGE_PENALTY = 1_000_000
 
 DEFAULT_TICKS_PER_CELL = 1
 DEFAULT_HOVER_FUEL = 0
@@ -55,12 +56,13 @@ class Mission:
     ticks_per_cell: int = DEFAULT_TICKS_PER_CELL
     hover_fuel: int = DEFAULT_HOVER_FUEL
     overlap_percent: int = DEFAULT_OVERLAP_PERCENT
+    change_penalty: int = 0   # live missions only (SPEC 5.4); written when not 0
 
     def target_by_id(self) -> Dict[int, Target]:
         return {t.id: t for t in self.targets}
 
     def to_json(self) -> dict:
-        return {
+        out = {
             "name": self.name,
             "depot": {"x": self.depot[0], "y": self.depot[1]},
             "ticks_per_cell": self.ticks_per_cell,
@@ -71,6 +73,9 @@ class Mission:
             "targets": [{"id": t.id, "x": t.x, "y": t.y, "start": t.start,
                          "end": t.end, "need": t.need} for t in self.targets],
         }
+        if self.change_penalty:
+            out["change_penalty"] = self.change_penalty
+        return out
 
 
 @dataclass

@@ -15,10 +15,28 @@ from . import model as M
 from .text import shown
 
 
-def render(m: M.Mission, p: M.Plan, path: str) -> None:
+def pyplot():
+    """matplotlib.pyplot on the file-only Agg backend."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    return plt
+
+
+def draw_depot(ax, depot) -> None:
+    ax.plot(*depot, marker="s", color="black", markersize=12, zorder=5)
+    ax.annotate("depot", depot, textcoords="offset points", xytext=(6, -12), fontsize=9)
+
+
+def draw_target(ax, t: M.Target, colour: str) -> None:
+    """A target on the map: a circle in `colour`, labelled "T<id> n<need> [start,end]"."""
+    ax.plot(t.x, t.y, "o", color=colour, markersize=10, zorder=4, alpha=0.8)
+    ax.annotate(f"T{t.id} n{t.need} [{t.start},{t.end}]", (t.x, t.y),
+                textcoords="offset points", xytext=(6, 6), fontsize=8)
+
+
+def render(m: M.Mission, p: M.Plan, path: str) -> None:
+    plt = pyplot()
 
     tmap = m.target_by_id()
     served = {t.id: 0 for t in m.targets}
@@ -30,14 +48,9 @@ def render(m: M.Mission, p: M.Plan, path: str) -> None:
     fig, (ax, gx) = plt.subplots(1, 2, figsize=(16, 7), gridspec_kw={"width_ratios": [1, 1.4]})
 
     # --- map
-    ax.plot(*m.depot, marker="s", color="black", markersize=12, zorder=5)
-    ax.annotate("depot", m.depot, textcoords="offset points", xytext=(6, -12), fontsize=9)
+    draw_depot(ax, m.depot)
     for t in m.targets:
-        ok = served[t.id] == t.need
-        ax.plot(t.x, t.y, "o", color="tab:green" if ok else "tab:red", markersize=10, zorder=4,
-                alpha=0.8)
-        ax.annotate(f"T{t.id} n{t.need} [{t.start},{t.end}]", (t.x, t.y),
-                    textcoords="offset points", xytext=(6, 6), fontsize=8)
+        draw_target(ax, t, "tab:green" if served[t.id] == t.need else "tab:red")
     for i, r in enumerate(p.routes):
         u = next((x for x in m.uavs if x.id == r.uav), None)
         if u is None:

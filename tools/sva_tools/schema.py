@@ -33,7 +33,8 @@ ROOT_NAMES = {"mission": "mission", "plan": "plan", "trace": "record", "bound": 
 
 # Document order of keys (SPEC section 3 order): one ranking serves every object.
 _KEY_ORDER = ("name", "mission", "algorithm", "status", "covered", "uncovered", "cost",
-              "depot", "ticks_per_cell", "hover_fuel", "overlap_percent", "uavs", "id", "uav",
+              "depot", "ticks_per_cell", "hover_fuel", "overlap_percent", "change_penalty",
+              "uavs", "id", "uav",
               "x", "y", "fuel", "ready_at", "targets", "start", "end", "need", "distance",
               "fuel_used", "routes", "stranded", "stats")
 _KEY_RANK = {k: i for i, k in enumerate(_KEY_ORDER)}
