@@ -5,8 +5,13 @@ Each printed plan is checked here against its residual mission (written with
 --residual) by the same independent checks as `sva plan`'s plans (test_cli.check_plan).
 """
 import json
+import sys
+from pathlib import Path
 
 import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
+from sva_tools import schema  # noqa: E402  (the schemas of docs/schema)
 
 from test_cli import ALGORITHMS, assert_one_error_line, check_plan, run
 
@@ -35,6 +40,7 @@ def replan(tmp_path, doc, *options):
     plan = json.loads(result.stdout)
     mission = json.loads(residual.read_text())
     check_plan(mission, {k: v for k, v in plan.items() if k not in ("changes", "live")}, plan["algorithm"])
+    assert schema.errors(plan, "plan") == [] and schema.errors(mission, "mission") == []
     return mission, plan
 
 
@@ -139,3 +145,13 @@ def test_usage(tmp_path):
     assert assert_one_error_line(run(["replan"]), 2) == "replan: missing LIVE.json (or - for standard input)"
     assert assert_one_error_line(run(["replan", "--residual="]), 2) == "replan: --residual needs a file name"
     assert "sva replan" in run(["--help"]).stdout.decode()
+
+
+def test_the_spec_example(tmp_path):
+    """docs/SPEC.md section 12.5's LIVE.json replays: UAV 1 lost mid-visit at 15, now 20."""
+    import re
+    spec = (Path(__file__).resolve().parents[2] / "docs" / "SPEC.md").read_text()
+    doc = json.loads(re.findall(r"```json\n(.*?)```", spec, re.S)[3])
+    mission, plan = replan(tmp_path, doc, "--algo", "flow")
+    assert plan["live"]["now"] == 20 and plan["live"]["revision"] == 2
+    assert states(plan) == {1: "lost", 2: "waiting"} and plan["covered"] == 1

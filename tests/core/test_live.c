@@ -1,4 +1,4 @@
-// test_live.c -- the live-mission module (docs/SPEC.md section 5): the clock and the
+// test_live.c -- the live-mission module (docs/SPEC.md section 12): the clock and the
 // visit states, the flight model, every event and every rejected event (the live state
 // byte for byte unchanged), and the replan's candidates and objective. Random live
 // missions check every replan's plan with the independent SPEC checker.

@@ -363,7 +363,8 @@ def test_spec_examples_match_the_schemas():
     from sva_tools import check
 
     blocks = re.findall(r"```json\n(.*?)```", (REPO / "docs" / "SPEC.md").read_text(), re.S)
-    mission, plan, record = (json.loads(b.replace("\n ", " ")) for b in blocks)
+    mission, plan, record, live = (json.loads(b.replace("\n ", " ")) for b in blocks)
     assert schema.errors(mission, "mission") == [] and schema.errors(plan, "plan") == []
+    assert schema.errors(live["mission"], "mission") == []  # the live mission's (section 12.5)
     assert schema.errors(record, "trace") == []
     assert check.check_plan(io.mission_from_json(mission), io.plan_from_json(plan)) == []

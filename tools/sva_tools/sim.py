@@ -2,7 +2,7 @@
 mission flown tick by tick as ground truth, steered by the on-board planner.
 
 The scenario is `{"mission": MISSION, "events": [EVENT, ...], "change_penalty": N}`
-(the last optional). This module flies its own physics (SPEC section 5.2): a UAV flies
+(the last optional). This module flies its own physics (SPEC section 12.2): a UAV flies
 each leg x first, then y, one cell per ticks_per_cell ticks, paying 1 fuel when a cell's
 step starts; it waits at a target until its start, pays hover_fuel at the start and
 leaves at the end; arriving after a start it does not stop; a step in progress is

@@ -66,7 +66,7 @@ extern "C" {
 #define SVA_VERSION_MINOR 2
 #define SVA_VERSION_PATCH 0
 /// Version of the mission and plan JSON schema (SPEC.md section 3).
-#define SVA_SCHEMA_VERSION 1
+#define SVA_SCHEMA_VERSION 2
 
 #if defined(__GNUC__) || defined(__clang__)
 #define SVA_NODISCARD __attribute__((warn_unused_result))
@@ -206,7 +206,7 @@ typedef struct {
     int32_t ticks_per_cell;   ///< travel ticks per cell, [1, SVA_MAX_TICKS_PER_CELL]
     int32_t hover_fuel;       ///< fuel per served window, [0, SVA_MAX_HOVER_FUEL]
     int32_t overlap_percent;  ///< clustering threshold, [0, 100]
-    /// Live missions only (SPEC section 5.4): cells a replan pays per changed visit,
+    /// Live missions only (SPEC section 12.4): cells a replan pays per changed visit,
     /// [0, SVA_MAX_CHANGE_PENALTY]; sva_plan() ignores it.
     int32_t change_penalty;
     uint16_t uav_count;       ///< [0, SVA_MAX_UAVS]
@@ -414,7 +414,7 @@ SVA_NODISCARD sva_status_t sva_plan(sva_planner_t* self,
                                     sva_diag_t* diag);
 
 // =================================================================================
-// Live missions (docs/SPEC.md section 5)
+// Live missions (docs/SPEC.md section 12)
 //
 // A live mission is a mission under way: a clock, the plan in force, every target's
 // state, and events that change the mission (UAVs lost or back, fuel readings, targets
@@ -439,7 +439,7 @@ typedef enum {
 /// "cancelled", "lost"), or "" when out of range. Never NULL.
 const char* sva_target_state_name(sva_target_state_t state);
 
-/// What an event does (SPEC section 5.3).
+/// What an event does (SPEC section 12.3).
 typedef enum {
     SVA_EVENT_CLOCK = 0,         ///< time passes: now becomes at_ticks
     SVA_EVENT_UAV_LOST,          ///< uav_id leaves service
@@ -520,7 +520,7 @@ SVA_NODISCARD sva_status_t sva_live_init(sva_live_t* self, const sva_mission_t* 
                                          const sva_plan_t* plan, sva_diag_t* diag);
 
 /// Applies one event: first the clock moves to event->at_ticks (visits start, end or
-/// expire on the way), then the event acts (SPEC section 5.3). Returns SVA_OK, or
+/// expire on the way), then the event acts (SPEC section 12.3). Returns SVA_OK, or
 /// SVA_ERR_INVALID with diag naming the field and rule: an event before now, an unknown
 /// UAV or target, a duplicate target id, target_changed at or after its start, a fuel
 /// reading of a UAV out of service, uav_back of a UAV in service, a cancelled target
@@ -532,7 +532,7 @@ SVA_NODISCARD sva_status_t sva_live_apply(sva_live_t* self, const sva_event_t* e
 
 /// Plans the residual mission with `algorithm` and makes the better of that plan and the
 /// plan in force (less what no longer fits) the new plan in force: more targets covered
-/// first, then the smaller cost + change_penalty * changed visits (SPEC section 5.4).
+/// first, then the smaller cost + change_penalty * changed visits (SPEC section 12.4).
 /// Returns SVA_OK with *result filled; otherwise sva_plan()'s status and diag, and the
 /// plan in force stays as it was. Allocates nothing; sva_plan()'s complexity plus
 /// O(U * R * T).
@@ -540,7 +540,7 @@ SVA_NODISCARD sva_status_t sva_live_replan(sva_live_t* self, sva_planner_t* plan
                                            sva_algorithm_t algorithm,
                                            sva_live_result_t* result, sva_diag_t* diag);
 
-/// Where a UAV is at `at_ticks` (>= now) by the flight model of SPEC section 5.2, with
+/// Where a UAV is at `at_ticks` (>= now) by the flight model of SPEC section 12.2, with
 /// its fuel and the tick from which it can take new work (later than at_ticks while
 /// it finishes a cell step or a visit under way). False for an unknown index or a UAV
 /// out of service. Allocates nothing; O(R).
@@ -569,6 +569,7 @@ typedef struct {
     uint32_t mission_bytes;  ///< sizeof(sva_mission_t)
     uint32_t plan_bytes;     ///< sizeof(sva_plan_t)
     uint32_t planner_bytes;  ///< sizeof(sva_planner_t)
+    uint32_t live_bytes;     ///< sizeof(sva_live_t)
 } sva_limits_t;
 
 /// Returns the compiled limits. Allocates nothing; O(1).

@@ -138,7 +138,7 @@ sva_status_t sva_live_init(sva_live_t* self, const sva_mission_t* mission, const
     return SVA_OK;
 }
 
-// Every rule of SPEC section 5.3 against the live mission as it will be at event->at.
+// Every rule of SPEC section 12.3 against the live mission as it will be at event->at.
 static bool event_ok(const sva_live_t* self, const sva_event_t* e, sva_diag_t* diag)
 {
     if ((unsigned)e->type >= (unsigned)SVA_EVENT_COUNT_) {

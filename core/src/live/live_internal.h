@@ -1,12 +1,12 @@
 // live_internal.h -- private interfaces of the live-mission module (core/src/live/).
 // The module runs on top of the public planner API: it builds a residual mission,
-// calls sva_plan(), and keeps the plan in force. docs/SPEC.md section 5 is its contract.
+// calls sva_plan(), and keeps the plan in force. docs/SPEC.md section 12 is its contract.
 #ifndef SVA_LIVE_INTERNAL_H
 #define SVA_LIVE_INTERNAL_H
 
 #include "../model/model.h"
 
-/// Where the flight model (SPEC section 5.2) puts a UAV at a tick.
+/// Where the flight model (SPEC section 12.2) puts a UAV at a tick.
 typedef struct {
     int32_t x;          ///< the cell it stands on, or the next cell of the step in progress
     int32_t y;
@@ -25,7 +25,7 @@ typedef struct {
 /// route position, *arrival gets the tick the UAV reaches it (SVA_LIVE_NEVER if never).
 void sva_live_walk(const sva_live_t* self, uint16_t u, int64_t at, sva_live_pos_t* out,
                    int32_t probe, int64_t* arrival);
-/// Makes UAV u's route start at tick `at` (SPEC section 5.2): the visits behind it are
+/// Makes UAV u's route start at tick `at` (SPEC section 12.2): the visits behind it are
 /// dropped, a visit under way becomes busy_with, a step in progress is finished first.
 void sva_live_rebase(sva_live_t* self, uint16_t u, int64_t at);
 /// Takes target i off UAV u's route (wherever it stands).
@@ -47,7 +47,7 @@ int32_t sva_live_find_target(const sva_live_t* self, int32_t id);
 
 // live_carry.c: the plan in force carried over to the residual mission.
 /// Prunes the routes of *plan over `mission` until every visit fits (time, fuel, whole
-/// needs) and fills its figures, as sva_plan() would (SPEC section 5.4). `served` is
+/// needs) and fills its figures, as sva_plan() would (SPEC section 12.4). `served` is
 /// scratch for SVA_MAX_TARGETS counts.
 void sva_live_carry(const sva_mission_t* mission, sva_plan_t* plan, sva_algorithm_t algorithm,
                     uint16_t* served);

@@ -1,4 +1,4 @@
-// live_replan.c -- a live mission's replan (SPEC section 5.4): the residual mission,
+// live_replan.c -- a live mission's replan (SPEC section 12.4): the residual mission,
 // two candidates (the planner's plan of it, the plan in force carried over), the better
 // by coverage, then cost + change_penalty * changed visits, made the plan in force.
 #include "live_internal.h"

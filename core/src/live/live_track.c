@@ -1,4 +1,4 @@
-// live_track.c -- the flight model of a live mission (SPEC section 5.2): where each
+// live_track.c -- the flight model of a live mission (SPEC section 12.2): where each
 // UAV is at a tick, the visits it has made, and every target's state as time passes.
 #include "live_internal.h"
 

@@ -21,5 +21,6 @@ sva_limits_t sva_limits(void)
     limits.mission_bytes = (uint32_t)sizeof(sva_mission_t);
     limits.plan_bytes = (uint32_t)sizeof(sva_plan_t);
     limits.planner_bytes = (uint32_t)sizeof(sva_planner_t);
+    limits.live_bytes = (uint32_t)sizeof(sva_live_t);
     return limits;
 }
