@@ -69,7 +69,11 @@ def main(argv):
     os.makedirs(folder, exist_ok=True)
     subprocess.run([TOOLS, "gen", "--targets", str(targets), "--uavs", str(uavs), "--count", str(count),
                     "--seed", "7", "-o", folder] + gen_args, check=True, capture_output=True)
-    missions = sorted(f for f in os.listdir(folder) if f.endswith(".json") and not f.endswith(".ref.json"))
+    # The first COUNT missions of the seed (gen names them ..._s7_<index>.json); the folder
+    # may hold more from an earlier run with a larger COUNT.
+    index = re.compile(r"_s7_(\d+)\.json$")
+    missions = sorted(f for f in os.listdir(folder)
+                      if not f.endswith(".ref.json") and index.search(f) and int(index.search(f).group(1)) < count)
 
     def run(name):
         path = os.path.join(folder, name)
