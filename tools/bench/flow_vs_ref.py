@@ -60,6 +60,7 @@ def fuel_free(path):
 
 def main(argv):
     write_results = "--results" in argv
+    load_start = " ".join(f"{x:.2f}" for x in os.getloadavg())
     argv = [a for a in argv if a != "--results"]
     if len(argv) < 3:
         sys.exit(__doc__)
@@ -122,7 +123,7 @@ def main(argv):
     print(f"  bounds above a proven optimum: {bad}")
     if write_results:
         sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-        import results  # tools/bench/results.py
+        import results as page  # tools/bench/results.py
         env = " ".join(f"{k}={os.environ[k]}" for k in ("FLOW_WORK", "FLOW_REPEAT", "REF_DET") if os.environ.get(k))
         cmd = " ".join(([env] if env else []) + [".venv/bin/python tools/bench/flow_vs_ref.py --results",
                                                  str(targets), str(uavs), str(count)] + gen_args)
@@ -151,7 +152,7 @@ def main(argv):
         title = f"{count} missions, {targets} targets x {uavs} UAVs, " + (" ".join(gen_args) or "gen defaults")
         part = re.sub(r"[^A-Za-z0-9_-]+", "_", f"{tag}_n{count}" + (f"_repeat{repeat}" if repeat else "")
                       + (f"_work{os.environ['FLOW_WORK']}" if os.environ.get("FLOW_WORK") else ""))
-        results.write(results.ROOT, f"flow_vs_ref.{part}", cmd, body, title=title)
+        page.write(page.ROOT, f"flow_vs_ref.{part}", cmd, body, title=title, load_start=load_start)
     return 1 if bad else 0
 
 
