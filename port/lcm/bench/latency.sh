@@ -45,7 +45,7 @@ ip netns exec "$ns" "${ground[@]}" env PYTHONPATH="$root/tools" SVA_LCM_PYTHON_T
 [ -n "$results" ] || exit 0
 
 env_prefix="${NODE_OPTS:+NODE_OPTS=\"$NODE_OPTS\" }${GROUND_RT:+GROUND_RT=$GROUND_RT }"
-part=$(printf 'node_%s_ground_%s' "${NODE_OPTS:-default}" "${GROUND_RT:-default}" | tr -c 'A-Za-z0-9_\n' '_')
+part=$(printf 'node_%s_ground_%s' "${NODE_OPTS:-default}" "${GROUND_RT:-default}" | tr -cs 'A-Za-z0-9' '_')
 {
     sed -n '1s/^mission \(.*\), status.*$/Mission \1, algorithm '"$algo"'. Node options: '"${NODE_OPTS:-none}"'; ground process: '"${GROUND_RT:+SCHED_FIFO }${GROUND_RT:-default scheduling}"'./p' "$out"
     echo
