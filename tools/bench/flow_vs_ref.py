@@ -149,7 +149,9 @@ def main(argv):
             f"largest {max(gaps) if gaps else 0.0:.2f} % | {gap} | {cert} | {proven}/{len(results)} | "
             f"{med:.2f} ms | {p95:.2f} ms |", "",
             f"Bounds above a proven optimum: {len(bad)} (must be 0)."])
-        title = f"{count} missions, {targets} targets x {uavs} UAVs, " + (" ".join(gen_args) or "gen defaults")
+        title = (f"{count} missions, {targets} targets x {uavs} UAVs, " + (" ".join(gen_args) or "gen defaults")
+                 + (f", warm (fastest of {repeat})" if repeat else "")
+                 + (f", work budget {os.environ['FLOW_WORK']}" if os.environ.get("FLOW_WORK") else ""))
         part = re.sub(r"[^A-Za-z0-9_-]+", "_", f"{tag}_n{count}" + (f"_repeat{repeat}" if repeat else "")
                       + (f"_work{os.environ['FLOW_WORK']}" if os.environ.get("FLOW_WORK") else ""))
         page.write(page.ROOT, f"flow_vs_ref.{part}", cmd, body, title=title, load_start=load_start)
