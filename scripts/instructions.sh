@@ -5,7 +5,8 @@
 # Cortex-M4. A figure printer, not a test. Counts are exact and repeatable for a
 # given binary; the Cortex-M4 time is an estimate (see the CPI note it prints).
 #
-# Usage: scripts/instructions.sh [MISSIONS_PER_SIZE]     (default 5)
+# Usage: scripts/instructions.sh [--results] [MISSIONS_PER_SIZE]     (default 5)
+#   --results  also write its section of docs/results.md (docs/results/instructions.md)
 # Environment:
 #   SVA_ALGOS   algorithms, as the CLI's --algo names (default: sva ga hga bfa flow)
 #   SVA_CPI     cycles per instruction assumed on the Cortex-M4 (default 1.5)
@@ -15,6 +16,9 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 
+results=""
+if [ "${1:-}" = "--results" ]; then results=1; shift; fi
+load_start=$(cut -d' ' -f1-3 /proc/loadavg)
 per_size=${1:-5}
 algos=${SVA_ALGOS:-sva ga hga bfa flow}
 cpi=${SVA_CPI:-1.5}
@@ -75,9 +79,15 @@ echo "M4 ms = ${base_arch} mean * CPI $cpi / $mhz MHz"
 printf '\n%-6s %-5s' size algo
 for a in $archs; do printf ' %24s' "$a"; done
 printf ' %10s\n' "M4 ms"
+md_head="| size (targets x UAVs) | algorithm |"
+md_rule="|---|---|"
+for a in $archs; do md_head+=" $a mean (max) |"; md_rule+="---|"; done
+md_rows=()
+commas() { sed ':a;s/\B[0-9]\{3\}\>/,&/;ta' <<<"$1"; }
 for size in $sizes; do
     for algo in $algos; do
         printf '%-6s %-5s' "$size" "$algo"
+        md="| ${size/x/ x } | $algo |"
         base_mean=""
         for arch in $archs; do
             vals=()
@@ -89,17 +99,23 @@ for size in $sizes; do
                 END { if (bad || !n) print "-"; else printf "%.0f %d\n", s / n, mx }')
             if [ "$stats" = "-" ]; then
                 printf ' %24s' "-"
+                md+=" - |"
             else
                 read -r mean max <<<"$stats"
                 printf ' %24s' "$mean ($max)"
+                md+=" $(commas "$mean") ($(commas "$max")) |"
                 if [ "$arch" = "$base_arch" ]; then base_mean=$mean; fi
             fi
         done
         if [ -n "$base_mean" ]; then
-            awk -v n="$base_mean" -v c="$cpi" -v f="$mhz" 'BEGIN { printf " %10.3f\n", n * c / (f * 1000) }'
+            m4=$(awk -v n="$base_mean" -v c="$cpi" -v f="$mhz" 'BEGIN { printf "%.3f", n * c / (f * 1000) }')
+            printf ' %10s\n' "$m4"
+            md+=" $m4 |"
         else
             printf ' %10s\n' "-"
+            md+=" - |"
         fi
+        md_rows+=("$md")
     done
 done
 cat <<EOF
@@ -113,3 +129,27 @@ about as many instructions as i686 for this integer code. Both are assumptions: 
 the firmware on the part for a real figure.
 Callgrind output: $out/callgrind/ (callgrind_annotate FILE shows where they go).
 EOF
+[ -n "$results" ] || exit 0
+
+{
+    echo "Instructions executed inside \`sva_plan()\` (callgrind \`--toggle-collect=sva_plan\`: no process"
+    echo "start-up, no JSON), one plan per mission, mean over $per_size missions per size (largest in"
+    echo "brackets); missions from \`sva-tools gen --need 1 --hover 2 --width 10:20 --max-coord 20 --seed $seed\`"
+    echo "(fuel 150: fuel rarely binds). $(valgrind --version). Builds: x86-64 \`-O2\` (the host build)"
+    if [ "$base_arch" = i686 ]; then
+        echo "and a static 32-bit i686 \`-O2\` build ($(i686-linux-gnu-gcc --version | head -1)), the basis of the estimate."
+    else
+        echo "only (no i686 build here), the basis of the estimate."
+    fi
+    echo
+    echo "$md_head M4 ms (est.) |"
+    echo "$md_rule---|"
+    printf '%s\n' "${md_rows[@]}"
+    echo
+    echo "\"-\": bfa refuses missions over its limits (SVA_BFA_MAX_TARGETS/UAVS). M4 ms is an"
+    echo "estimate, not a measurement: ${base_arch} instructions x CPI $cpi / $mhz MHz, assuming one cycle for"
+    echo "most instructions, two for loads, two to four for taken branches, flash wait states"
+    echo "hidden by the STM32F4's ART accelerator, and about as many Thumb-2 instructions as"
+    echo "i686 ones. Counts are exact and repeatable for a given binary."
+} | python3 tools/bench/results.py write instructions \
+      --command "scripts/instructions.sh --results $per_size" --load-start "$load_start"

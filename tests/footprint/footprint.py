@@ -13,6 +13,11 @@
       functions are outside the graph (libgcc's 64-bit division is not even a call
       there): --leaf-allowance adds their measured stack to every path.
 
+  footprint.py results --builddir BUILD [--budget FILE] [--nm NM] [--size SIZE]
+      after `ctest -L footprint` built the images: every build's sizes and worst stack
+      path as docs/results.md's footprint section (docs/results/footprint.md,
+      tools/bench/results.py); prints the same table.
+
 The budget file (tests/footprint/budget.txt) has one line per build:
   NAME CPU PROFILE FLASH RAM PLANNER STACK
 sizes in bytes ("-" for no budget). FLASH is text + data (the image in flash), RAM is
@@ -21,6 +26,9 @@ the worst call path of sva_plan.
 """
 
 import argparse
+import contextlib
+import io
+import os
 import re
 import subprocess
 import sys
@@ -272,6 +280,80 @@ def cmd_stack(args):
     return 1 if failures else 0
 
 
+# ---------------------------------------------------------------------------------
+# results
+
+LEAF_ALLOWANCE = 64  # tests/footprint/CMakeLists.txt, SVA_FOOTPRINT_LEAF_ALLOWANCE
+
+
+def _stack_report(objdir, budget, build):
+    """(bytes, [(frame bytes, function)]) of the worst path from sva_plan, via cmd_stack."""
+    ns = argparse.Namespace(objdir=objdir, root=["sva_plan"], budget=budget, build=build, top=0,
+                            leaf_allowance=LEAF_ALLOWANCE, report=None)
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        cmd_stack(ns)
+    lines = buf.getvalue().splitlines()
+    total, path = None, []
+    for i, line in enumerate(lines):
+        m = re.match(r"worst call path from sva_plan: (\d+) B", line)
+        if m:
+            total = int(m.group(1))
+            for nxt in lines[i + 1:]:
+                f = re.match(r"^\s+(\d+) B  (\S+)$", nxt)
+                if not f:
+                    break
+                path.append((int(f.group(1)), f.group(2)))
+    return total, path
+
+
+def cmd_results(args):
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "bench"))
+    import results  # tools/bench/results.py
+    rows, paths = [], []
+    n = lambda v: "-" if v is None else f"{v:,}"
+    for raw in Path(args.budget).read_text().splitlines():
+        line = raw.split("#", 1)[0].split()
+        if not line:
+            continue
+        build = line[0]
+        budget = read_budget(args.budget, build)
+        fwdir = Path(args.builddir) / "footprint" / build
+        elf = fwdir / "sva_fw.elf"
+        if not elf.exists():
+            sys.exit(f"{elf}: missing; build and run `ctest --test-dir {args.builddir} -L footprint` first")
+        sec = section_sizes(args.size, str(elf))
+        planner = symbols(args.nm, str(elf)).get("planner")
+        text = sec.get(".isr_vector", 0) + sec.get(".text", 0) + sec.get(".ARM.exidx", 0)
+        data, bss, stack = sec.get(".data", 0), sec.get(".bss", 0), sec.get(".stack", 0)
+        worst, path = _stack_report(str(fwdir), args.budget, build)
+        lim = "{} / {} / {} / {}".format(*(n(budget[k]) for k in ("flash", "ram", "planner", "stack")))
+        rows.append(f"| {build} | {budget['profile']} | {n(text)} | {n(data)} | {n(bss)} | {n(stack)} | "
+                    f"{n(text + data)} | {n(data + bss + stack)} | {n(planner)} | {n(worst)} | {lim} |")
+        paths.append(f"- {build}: " + " -> ".join(f"{fn} {b} B" for b, fn in path)
+                     + f", plus {LEAF_ALLOWANCE} B for library leaf functions")
+    gcc = subprocess.run([args.gcc, "--version"], capture_output=True, text=True).stdout.splitlines()[0]
+    body = "\n".join([
+        "The example image `examples/cortex-m/` (a static planner, the mission in flash, one "
+        "`sva_plan()` call), `-Os`, newlib-nano, built from `tests/footprint/budget.txt`'s lines; "
+        "bytes. flash = text + data, RAM = data + bss + the 4 KiB main stack the example reserves, "
+        "`planner` = sizeof the static `sva_planner_t`; stack = the worst call path of `sva_plan` "
+        "(`-fstack-usage` and `-fcallgraph-info=su`, with a 64 B allowance for C library and libgcc "
+        "leaf functions). Budgets: flash / RAM / planner / stack (`-`: none).", "",
+        "| build | profile | text | data | bss | stack reserved | flash | RAM | `planner` | stack of `sva_plan` | budget |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+        *rows, "",
+        "Worst call paths of `sva_plan` (frame sizes):", "", *paths, "",
+        "The test (`ctest -L footprint`) fails over a budget, on a call cycle, on a frame that is "
+        "not static, or when the image links a heap function, a syscall stub, stdio or a "
+        "floating-point helper; sizes do not depend on the machine's load."])
+    print("\n".join(rows + paths))
+    results.write(results.ROOT, "footprint",
+                  f"ctest --test-dir {args.builddir} -L footprint && .venv/bin/python tests/footprint/footprint.py "
+                  f"results --builddir {args.builddir}", body, compiler=gcc)
+    return 0
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest="cmd", required=True)
@@ -291,7 +373,15 @@ def main():
                    help="bytes added to every path for C library / libgcc leaf functions, which "
                         "GCC's call graph does not show (64-bit division helpers, memset)")
     k.add_argument("--report", help="write the worst path's bytes of the first root here")
+    r = sub.add_parser("results")
+    r.add_argument("--builddir", default="build")
+    r.add_argument("--budget", default=str(Path(__file__).with_name("budget.txt")))
+    r.add_argument("--nm", default="arm-none-eabi-nm")
+    r.add_argument("--size", default="arm-none-eabi-size")
+    r.add_argument("--gcc", default="arm-none-eabi-gcc")
     args = ap.parse_args()
+    if args.cmd == "results":
+        return cmd_results(args)
     return cmd_size(args) if args.cmd == "size" else cmd_stack(args)
 
 

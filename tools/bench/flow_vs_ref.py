@@ -2,9 +2,10 @@
 """flow against the exact optimum (sva-tools ref) on generated missions.
 
 Usage (from the repository root, after scripts/setup.sh and scripts/build.sh):
-    .venv/bin/python tools/bench/flow_vs_ref.py TARGETS UAVS COUNT [sva-tools gen options]
+    .venv/bin/python tools/bench/flow_vs_ref.py [--results] TARGETS UAVS COUNT [sva-tools gen options]
     e.g. .venv/bin/python tools/bench/flow_vs_ref.py 25 5 30 --width 10:20 --need 1 --hover 2 --fuel 120
-Environment: FLOW_WORK=N passes --flow-work N to the planner; FLOW_REPEAT=N passes
+--results also writes the set's part of docs/results.md (docs/results/flow_vs_ref.<set>.md,
+tools/bench/results.py). Environment: FLOW_WORK=N passes --flow-work N to the planner; FLOW_REPEAT=N passes
 --repeat N (flow's time is then its fastest of N runs in one process, memory warm); REF_DET (default 10) is
 ref's deterministic limit (load-independent; docs/tools.md). Missions and ref plans are
 cached under build/flow_vs_ref/ (delete a folder to recompute its ref plans).
@@ -12,12 +13,13 @@ Prints: missions where flow's coverage equals, is below or above ref's; the mean
 largest cost gap at equal coverage; how many flow plans are proven optimal; flow's
 median and p95 solve time; the gap to the proven optima alone; flow's own certified
 gap; on how many proven optima fuel matters (flow's optimum of the same mission with
-fuel no route can use up differs from ref's; issue 6 calibrates its protocol by it:
-about a third); and any bound above a proven optimum (must be none).
+fuel no route can use up differs from ref's: the protocol's fuel is calibrated by it,
+about a third at fuel 105); and any bound above a proven optimum (must be none).
 """
 import concurrent.futures
 import json
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -57,6 +59,9 @@ def fuel_free(path):
 
 
 def main(argv):
+    write_results = "--results" in argv
+    load_start = " ".join(f"{x:.2f}" for x in os.getloadavg())
+    argv = [a for a in argv if a != "--results"]
     if len(argv) < 3:
         sys.exit(__doc__)
     targets, uavs, count, gen_args = int(argv[0]), int(argv[1]), int(argv[2]), argv[3:]
@@ -65,7 +70,11 @@ def main(argv):
     os.makedirs(folder, exist_ok=True)
     subprocess.run([TOOLS, "gen", "--targets", str(targets), "--uavs", str(uavs), "--count", str(count),
                     "--seed", "7", "-o", folder] + gen_args, check=True, capture_output=True)
-    missions = sorted(f for f in os.listdir(folder) if f.endswith(".json") and not f.endswith(".ref.json"))
+    # The first COUNT missions of the seed (gen names them ..._s7_<index>.json); the folder
+    # may hold more from an earlier run with a larger COUNT.
+    index = re.compile(r"_s7_(\d+)\.json$")
+    missions = sorted(f for f in os.listdir(folder)
+                      if not f.endswith(".ref.json") and index.search(f) and int(index.search(f).group(1)) < count)
 
     def run(name):
         path = os.path.join(folder, name)
@@ -112,6 +121,40 @@ def main(argv):
     print(f"  fuel matters (the optimum without it differs) on {fuel_matters} of the {len(exact)} proven optima"
           f" ({sum(1 for f in free if f is None)} fuel-free plans unproven)")
     print(f"  bounds above a proven optimum: {bad}")
+    if write_results:
+        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+        import results as page  # tools/bench/results.py
+        env = " ".join(f"{k}={os.environ[k]}" for k in ("FLOW_WORK", "FLOW_REPEAT", "REF_DET") if os.environ.get(k))
+        cmd = " ".join(([env] if env else []) + [".venv/bin/python tools/bench/flow_vs_ref.py --results",
+                                                 str(targets), str(uavs), str(count)] + gen_args)
+        n_exact = len(exact)
+        cov = (f"equal on {len(equal)}/{len(results)}" + (f", more on {len(above)} (ref unproven)" if above else "")
+               + (f", fewer on {len(below)}" if below else ", never fewer"))
+        gap = (f"mean {statistics.mean(exact_gaps):.3f} %, largest {max(exact_gaps):.2f} % ({n_exact} proven, "
+               f"{sum(1 for g in exact_gaps if g == 0)} equal)" if exact_gaps else f"– ({n_exact} proven)")
+        cert = (f"mean {statistics.mean(certified):.2f} %, largest {max(certified):.2f} %" if certified else "–")
+        med = times[len(times) // 2] / 1000
+        p95 = times[min(len(times) - 1, int(len(times) * 0.95))] / 1000
+        repeat = os.environ.get("FLOW_REPEAT")
+        timing = f"fastest of {repeat} in one process (warm)" if repeat else "one plan per process"
+        body = "\n".join([
+            f"{len(results)} missions `sva-tools gen --targets {targets} --uavs {uavs} --count {count} --seed 7 "
+            f"{' '.join(gen_args)}`; flow work budget {os.environ.get('FLOW_WORK', 'default')}; "
+            f"ref with deterministic limit {os.environ.get('REF_DET', '10')}, one worker. "
+            f"Time: `stats.solve_us`, {timing}; the script plans two missions at once.", "",
+            "| fuel matters on | coverage vs ref | cost gap at equal coverage | cost gap to the proven optima "
+            "| certified gap | proven optimal | median | p95 |",
+            "|---|---|---|---|---|---|---|---|",
+            f"| {fuel_matters} of {n_exact} | {cov} | mean {statistics.mean(gaps) if gaps else 0.0:.3f} %, "
+            f"largest {max(gaps) if gaps else 0.0:.2f} % | {gap} | {cert} | {proven}/{len(results)} | "
+            f"{med:.2f} ms | {p95:.2f} ms |", "",
+            f"Bounds above a proven optimum: {len(bad)} (must be 0)."])
+        title = (f"{count} missions, {targets} targets x {uavs} UAVs, " + (" ".join(gen_args) or "gen defaults")
+                 + (f", warm (fastest of {repeat})" if repeat else "")
+                 + (f", work budget {os.environ['FLOW_WORK']}" if os.environ.get("FLOW_WORK") else ""))
+        part = re.sub(r"[^A-Za-z0-9_-]+", "_", f"{tag}_n{count}" + (f"_repeat{repeat}" if repeat else "")
+                      + (f"_work{os.environ['FLOW_WORK']}" if os.environ.get("FLOW_WORK") else ""))
+        page.write(page.ROOT, f"flow_vs_ref.{part}", cmd, body, title=title, load_start=load_start)
     return 1 if bad else 0
 
 

@@ -378,6 +378,8 @@ def add_parser(sub) -> None:
                          "taken MIN minutes no further round starts (the paper sets always run "
                          "in full, and at least one scaling round; the report says how many ran)")
     ap.add_argument("--log", metavar="FILE", help="append one progress line per mission to FILE")
+    ap.add_argument("--results", action="store_true",
+                    help="also write the headline as docs/results.md's section (docs/results/paper.md)")
     ap.add_argument("--keep-missions", metavar="DIR", help="also write the missions there")
     ap.set_defaults(func=run)
 
@@ -535,4 +537,32 @@ def run(args) -> int:
     with open(os.path.join(args.out, "README.md"), "w", encoding="utf-8") as f:
         f.write("\n".join(md))
     print("\n".join(md))
+    if args.results and size_sets:
+        write_results(args, cmd, size_sets, algos, load_start, elapsed, st)
     return 1 if viol else 0
+
+
+def write_results(args, cmd, size_sets, algos, load_start, elapsed, st) -> None:
+    """docs/results.md's section of the bench (docs/results/paper.md): the headline table,
+    with a link to the full report."""
+    import importlib.util
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    spec = importlib.util.spec_from_file_location("sva_results", os.path.join(root, "tools", "bench", "results.py"))
+    results = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(results)
+    report = os.path.relpath(os.path.join(args.out, "README.md"), os.path.join(results.ROOT, "docs"))
+    cached = (f" {st.hits} results came from the cache (`--cache`): those rows keep the solve times "
+              "measured when they were computed, under that run's load; the report's last table says "
+              "when and under what load." if st is not None and st.hits else "")
+    body = "\n".join([
+        f"{args.missions} random missions per size (need 2, fuel 150, windows 20 to 40 ticks, 20x20 grid, "
+        f"seed {args.seed}). Each cell: complete plans % / mean gap to the optimum % over missions where the "
+        "plan covers as many targets as the optimum ('k fewer': plans covering fewer) / median solve time "
+        "(C planners: `sva_plan()` alone; ih, ref, peer: the Python solve). Optimum: ref (CP-SAT, one worker, "
+        f"deterministic limit {args.ref_det_limit:g}) when proven, else bfa. ref's and peer's limits do not "
+        f"depend on the load, their times do. Wall time {elapsed / 60:.1f} min.{cached}", "",
+        headline(size_sets, algos), "",
+        f"The full report, with the intersection categories, the scaling sets to 200 targets / 40 UAVs, "
+        f"figures and where each figure comes from: [{report}]({report}); protocol: [tools.md](tools.md)."])
+    results.write(results.ROOT, "paper", cmd, body,
+                  load_start=" ".join(f"{x:.2f}" for x in load_start))
