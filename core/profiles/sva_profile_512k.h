@@ -9,9 +9,9 @@
 // prices come from subgradient steps alone.
 #ifndef SVA_PROFILE_512K_H
 #define SVA_PROFILE_512K_H
-#define SVA_FLOW_MAX_ARCS 28672L
-#define SVA_FLOW_LABELS 4
+#define SVA_FLOW_MAX_ARCS  28672L
+#define SVA_FLOW_LABELS    4
 #define SVA_FLOW_MAX_DEPTH 16
-#define SVA_FLOW_LP_ROWS 1
-#define SVA_FLOW_LP_COLS 1
+#define SVA_FLOW_LP_ROWS   1
+#define SVA_FLOW_LP_COLS   1
 #endif

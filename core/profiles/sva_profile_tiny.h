@@ -2,12 +2,12 @@
 // (the Lagrangian's LP prices) off.
 #ifndef SVA_PROFILE_TINY_H
 #define SVA_PROFILE_TINY_H
-#define SVA_MAX_UAVS 8
-#define SVA_MAX_TARGETS 16
-#define SVA_MAX_TP_SOURCES 8
-#define SVA_MAX_TP_SINKS 16
+#define SVA_MAX_UAVS        8
+#define SVA_MAX_TARGETS     16
+#define SVA_MAX_TP_SOURCES  8
+#define SVA_MAX_TP_SINKS    16
 #define SVA_BFA_MAX_TARGETS 8
-#define SVA_BFA_MAX_UAVS 4
-#define SVA_FLOW_LP_ROWS 1
-#define SVA_FLOW_LP_COLS 1
+#define SVA_BFA_MAX_UAVS    4
+#define SVA_FLOW_LP_ROWS    1
+#define SVA_FLOW_LP_COLS    1
 #endif

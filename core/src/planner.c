@@ -28,8 +28,8 @@ static void plan_clear(sva_plan_t* plan, sva_algorithm_t algorithm)
     (void)memset(&plan->stats, 0, sizeof(plan->stats));
 }
 
-sva_status_t sva_plan(sva_planner_t* self, const sva_mission_t* mission,
-                      sva_algorithm_t algorithm, sva_plan_t* plan, sva_diag_t* diag)
+sva_status_t sva_plan(sva_planner_t* self, const sva_mission_t* mission, sva_algorithm_t algorithm,
+                      sva_plan_t* plan, sva_diag_t* diag)
 {
     SVA_ASSERT((self != NULL) && (mission != NULL) && (plan != NULL));
     SVA_ASSERT((unsigned)algorithm < (unsigned)SVA_ALGO_COUNT_);

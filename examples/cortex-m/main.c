@@ -10,10 +10,10 @@
 
 #include "sva/sva.h"
 #ifndef SVA_FW_SEMIHOSTING
-#define SVA_FW_SEMIHOSTING 0
+#    define SVA_FW_SEMIHOSTING 0
 #endif
 #if SVA_FW_SEMIHOSTING
-#include "semihost.h"
+#    include "semihost.h"
 #endif
 
 extern const sva_mission_t fw_mission;  // mission.c: in flash (.rodata)
@@ -85,7 +85,8 @@ int main(void)
     sva_diag_t diag;
     uint32_t failures = 0u;
     sva_status_t status = sva_planner_init(&planner);
-    for (uint32_t i = 0u; (status == SVA_OK) && (i < sizeof(algorithms) / sizeof(algorithms[0])); i++) {
+    for (uint32_t i = 0u; (status == SVA_OK) && (i < sizeof(algorithms) / sizeof(algorithms[0]));
+         i++) {
         const sva_status_t st = sva_plan(&planner, &fw_mission, algorithms[i], &plan, &diag);
         report(algorithms[i], st);
         failures += (st == SVA_OK) ? 0u : 1u;

@@ -5,7 +5,7 @@
 
 int main(void);
 
-extern uint32_t __sva_fw_stack_top;       // initial main stack pointer
+extern uint32_t __sva_fw_stack_top;  // initial main stack pointer
 extern uint32_t __data_load, __data_start, __data_end;
 extern uint32_t __bss_start, __bss_end;
 
@@ -41,8 +41,7 @@ void Reset_Handler(void)
 // The first 16 entries of every Cortex-M vector table; device interrupts follow on a
 // real part. Entry 0 is the initial stack pointer, not a function.
 typedef void (*fw_vector_t)(void);
-__attribute__((section(".isr_vector"), used))
-const fw_vector_t fw_vectors[16] = {
+__attribute__((section(".isr_vector"), used)) const fw_vector_t fw_vectors[16] = {
     (fw_vector_t)(uintptr_t)&__sva_fw_stack_top,
     Reset_Handler,
     Default_Handler,  // NMI
@@ -50,7 +49,10 @@ const fw_vector_t fw_vectors[16] = {
     Default_Handler,  // MemManage
     Default_Handler,  // BusFault
     Default_Handler,  // UsageFault
-    0, 0, 0, 0,       // reserved
+    0,
+    0,
+    0,
+    0,                // reserved
     Default_Handler,  // SVCall
     Default_Handler,  // DebugMonitor
     0,                // reserved

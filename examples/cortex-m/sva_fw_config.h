@@ -5,7 +5,7 @@
 
 // Bounds: one of core/profiles (CMake passes the name), or define SVA_MAX_* yourself.
 #ifdef SVA_FW_PROFILE_HEADER
-#include SVA_FW_PROFILE_HEADER
+#    include SVA_FW_PROFILE_HEADER
 #endif
 
 // API-misuse checks stay on, but go to the firmware's fault handler instead of the C

@@ -37,9 +37,16 @@ static long long get(const char* key)
     return 0;
 }
 
-static const char* const names[SVA_CAN_MSG_COUNT_] = {
-    "", "SVA_HEARTBEAT", "SVA_PLAN_BEGIN", "SVA_PLAN_ITEM", "SVA_PLAN_ITEM_TIME", "SVA_PLAN_COMMIT",
-    "SVA_PLAN_ABORT", "SVA_PLAN_ACK", "SVA_VEHICLE_STATUS", "SVA_VEHICLE_FUEL"};
+static const char* const names[SVA_CAN_MSG_COUNT_] = {"",
+                                                      "SVA_HEARTBEAT",
+                                                      "SVA_PLAN_BEGIN",
+                                                      "SVA_PLAN_ITEM",
+                                                      "SVA_PLAN_ITEM_TIME",
+                                                      "SVA_PLAN_COMMIT",
+                                                      "SVA_PLAN_ABORT",
+                                                      "SVA_PLAN_ACK",
+                                                      "SVA_VEHICLE_STATUS",
+                                                      "SVA_VEHICLE_FUEL"};
 
 static void do_encode(char* rest)
 {
@@ -75,9 +82,10 @@ static void do_encode(char* rest)
         m.u.heartbeat.uav_count = (uint8_t)get("uav_count");
         m.u.heartbeat.target_count = (uint8_t)get("target_count");
         m.u.heartbeat.covered_count = (uint8_t)get("covered_count");
-        m.u.heartbeat.faults = (uint8_t)(get("fault_mission_invalid") | (get("fault_plan_failed") << 1) |
-                                         (get("fault_transfer_failed") << 2) | (get("fault_rx_errors") << 3) |
-                                         (get("fault_tx_errors") << 4));
+        m.u.heartbeat.faults =
+            (uint8_t)(get("fault_mission_invalid") | (get("fault_plan_failed") << 1) |
+                      (get("fault_transfer_failed") << 2) | (get("fault_rx_errors") << 3) |
+                      (get("fault_tx_errors") << 4));
         break;
     case SVA_CAN_MSG_PLAN_BEGIN:
         m.u.begin.version = (uint8_t)get("version");
@@ -173,23 +181,28 @@ static void do_decode(const char* text)
     printf("%s counter=%u", names[m.kind], m.counter);
     switch (m.kind) {
     case SVA_CAN_MSG_HEARTBEAT:
-        printf(" state=%u active_plan_id=%u uav_count=%u target_count=%u covered_count=%u fault_mission_invalid=%u "
-               "fault_plan_failed=%u fault_transfer_failed=%u fault_rx_errors=%u fault_tx_errors=%u",
-               m.u.heartbeat.state, m.u.heartbeat.active_plan_id, m.u.heartbeat.uav_count, m.u.heartbeat.target_count,
-               m.u.heartbeat.covered_count, m.u.heartbeat.faults & 1u, (m.u.heartbeat.faults >> 1) & 1u,
-               (m.u.heartbeat.faults >> 2) & 1u, (m.u.heartbeat.faults >> 3) & 1u, (m.u.heartbeat.faults >> 4) & 1u);
+        printf(
+            " state=%u active_plan_id=%u uav_count=%u target_count=%u covered_count=%u "
+            "fault_mission_invalid=%u "
+            "fault_plan_failed=%u fault_transfer_failed=%u fault_rx_errors=%u fault_tx_errors=%u",
+            m.u.heartbeat.state, m.u.heartbeat.active_plan_id, m.u.heartbeat.uav_count,
+            m.u.heartbeat.target_count, m.u.heartbeat.covered_count, m.u.heartbeat.faults & 1u,
+            (m.u.heartbeat.faults >> 1) & 1u, (m.u.heartbeat.faults >> 2) & 1u,
+            (m.u.heartbeat.faults >> 3) & 1u, (m.u.heartbeat.faults >> 4) & 1u);
         break;
     case SVA_CAN_MSG_PLAN_BEGIN:
-        printf(" version=%u plan_id=%u item_count=%u algorithm=%u plan_status=%u route_count=%u", m.u.begin.version,
-               m.u.begin.plan_id, m.u.begin.item_count, m.u.begin.algorithm, m.u.begin.plan_status,
-               m.u.begin.route_count);
+        printf(" version=%u plan_id=%u item_count=%u algorithm=%u plan_status=%u route_count=%u",
+               m.u.begin.version, m.u.begin.plan_id, m.u.begin.item_count, m.u.begin.algorithm,
+               m.u.begin.plan_status, m.u.begin.route_count);
         break;
     case SVA_CAN_MSG_PLAN_ITEM:
-        printf(" uav_id=%u target_id=%u x=%d y=%d", m.u.item.uav_id, m.u.item.target_id, m.u.item.x, m.u.item.y);
+        printf(" uav_id=%u target_id=%u x=%d y=%d", m.u.item.uav_id, m.u.item.target_id, m.u.item.x,
+               m.u.item.y);
         break;
     case SVA_CAN_MSG_PLAN_ITEM_TIME:
         printf(" item_seq=%u arrive_by=%lu hold_until=%lu", m.u.item_time.item_seq,
-               (unsigned long)m.u.item_time.arrive_by_ticks, (unsigned long)m.u.item_time.hold_until_ticks);
+               (unsigned long)m.u.item_time.arrive_by_ticks,
+               (unsigned long)m.u.item_time.hold_until_ticks);
         break;
     case SVA_CAN_MSG_PLAN_COMMIT:
         printf(" plan_id=%u plan_crc=%lu", m.u.commit.plan_id, (unsigned long)m.u.commit.plan_crc);
@@ -198,10 +211,12 @@ static void do_decode(const char* text)
         printf(" reason=%u plan_id=%u", m.u.abort_.reason, m.u.abort_.plan_id);
         break;
     case SVA_CAN_MSG_PLAN_ACK:
-        printf(" result=%u plan_id=%u items_received=%u", m.u.ack.result, m.u.ack.plan_id, m.u.ack.items_received);
+        printf(" result=%u plan_id=%u items_received=%u", m.u.ack.result, m.u.ack.plan_id,
+               m.u.ack.items_received);
         break;
     case SVA_CAN_MSG_VEHICLE_STATUS:
-        printf(" state=%u uav_id=%u x=%d y=%d", m.u.vehicle.state, m.u.vehicle.uav_id, m.u.vehicle.x, m.u.vehicle.y);
+        printf(" state=%u uav_id=%u x=%d y=%d", m.u.vehicle.state, m.u.vehicle.uav_id,
+               m.u.vehicle.x, m.u.vehicle.y);
         break;
     case SVA_CAN_MSG_VEHICLE_FUEL:
         printf(" uav_id=%u fuel=%lu", m.u.fuel.uav_id, (unsigned long)m.u.fuel.fuel);
@@ -243,26 +258,30 @@ static int do_plan(const char* path, const char* algo_name, const char* id_text)
         fprintf(stderr, "unknown algorithm %s\n", algo_name);
         return 2;
     }
-    if ((sva_planner_init(&planner) != SVA_OK) || (sva_plan(&planner, &mission, algo, &plan, &diag) != SVA_OK) ||
+    if ((sva_planner_init(&planner) != SVA_OK) ||
+        (sva_plan(&planner, &mission, algo, &plan, &diag) != SVA_OK) ||
         (sva_can_plan_from_core(&wire, &mission, &plan, (uint16_t)plan_id) != SVA_CAN_OK)) {
         fprintf(stderr, "planning failed\n");
         return 1;
     }
     sva_can_loopback_init(&bus);
-    if ((sva_can_loopback_transport(&bus, 0, &tp) != SVA_CAN_OK) || (sva_can_sender_init(&sender, &tp, NULL) != SVA_CAN_OK) ||
+    if ((sva_can_loopback_transport(&bus, 0, &tp) != SVA_CAN_OK) ||
+        (sva_can_sender_init(&sender, &tp, NULL) != SVA_CAN_OK) ||
         (sva_can_sender_start(&sender, &wire, 0) != SVA_CAN_OK)) {
         fprintf(stderr, "sending failed\n");
         return 1;
     }
-    printf("{\"plan_id\": %u, \"algorithm\": %u, \"plan_status\": %u, \"route_count\": %u, \"covered\": %u, "
+    printf("{\"plan_id\": %u, \"algorithm\": %u, \"plan_status\": %u, \"route_count\": %u, "
+           "\"covered\": %u, "
            "\"cost\": %lld, \"plan_crc\": %lu, \"items\": [",
-           wire.plan_id, wire.algorithm, wire.plan_status, wire.route_count, plan.covered, (long long)plan.cost,
-           (unsigned long)sva_can_plan_crc(&wire));
+           wire.plan_id, wire.algorithm, wire.plan_status, wire.route_count, plan.covered,
+           (long long)plan.cost, (unsigned long)sva_can_plan_crc(&wire));
     for (i = 0; i < wire.item_count; ++i) {
         const sva_can_item_t* it = &wire.items[i];
-        printf("%s{\"uav\": %u, \"target\": %u, \"x\": %d, \"y\": %d, \"arrive_by\": %lu, \"hold_until\": %lu}",
-               (i == 0) ? "" : ", ", it->uav_id, it->target_id, it->x, it->y, (unsigned long)it->arrive_by_ticks,
-               (unsigned long)it->hold_until_ticks);
+        printf("%s{\"uav\": %u, \"target\": %u, \"x\": %d, \"y\": %d, \"arrive_by\": %lu, "
+               "\"hold_until\": %lu}",
+               (i == 0) ? "" : ", ", it->uav_id, it->target_id, it->x, it->y,
+               (unsigned long)it->arrive_by_ticks, (unsigned long)it->hold_until_ticks);
     }
     printf("], \"frames\": [");
     while (sva_can_loopback_take(&bus, 1, &f) == SVA_CAN_OK) {

@@ -37,7 +37,7 @@ static void test_crc_check_values(void** state)
 {
     const uint8_t check[] = "123456789";
     (void)state;
-    assert_int_equal(sva_can_crc8(check, 9), 0x4B);  // CRC-8/SAE-J1850 catalogue value
+    assert_int_equal(sva_can_crc8(check, 9), 0x4B);              // CRC-8/SAE-J1850 catalogue value
     assert_int_equal(sva_can_crc32(0u, check, 9), 0xCBF43926u);  // CRC-32/ISO-HDLC
     assert_int_equal(sva_can_crc32(sva_can_crc32(0u, check, 4), check + 4, 5), 0xCBF43926u);
     assert_int_equal(sva_can_crc8(NULL, 3), 0);
@@ -61,7 +61,8 @@ static void test_item_packing_by_bytes(void** state)
     assert_memory_equal(f.data, want, 7);
     {
         const uint8_t crcin[9] = {0x02, 0x01, 0xB5, 0x3A, 0x12, 0xFE, 0xFF, 0x34, 0x12};
-        assert_int_equal(f.data[7], sva_can_crc8(crcin, 9));  // id low byte, id high byte, data 0..6
+        assert_int_equal(f.data[7],
+                         sva_can_crc8(crcin, 9));  // id low byte, id high byte, data 0..6
     }
 }
 

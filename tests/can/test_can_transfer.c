@@ -128,14 +128,14 @@ static void test_clean_transfer(void** state)
 }
 
 typedef enum {
-    CORRUPT_CRC,          // one bit flipped in an ITEM
-    CORRUPT_DROP,         // one ITEM lost: counter jump
-    CORRUPT_SHORT_DLC,    // an ITEM_TIME with DLC 5
-    CORRUPT_SWAP,         // ITEM_TIME before its ITEM (counters re-stamped: order is the only fault)
-    CORRUPT_MISSING,      // a whole item pair left out (counters re-stamped): COMMIT too early
-    CORRUPT_TAMPER,       // a coordinate changed with a valid CRC-8 and counter: CRC-32 catches it
-    CORRUPT_DUP_ITEM,     // an ITEM repeated (re-stamped)
-    CORRUPT_BAD_VALUE,    // arrive_by >= hold_until with valid CRC-8
+    CORRUPT_CRC,        // one bit flipped in an ITEM
+    CORRUPT_DROP,       // one ITEM lost: counter jump
+    CORRUPT_SHORT_DLC,  // an ITEM_TIME with DLC 5
+    CORRUPT_SWAP,       // ITEM_TIME before its ITEM (counters re-stamped: order is the only fault)
+    CORRUPT_MISSING,    // a whole item pair left out (counters re-stamped): COMMIT too early
+    CORRUPT_TAMPER,     // a coordinate changed with a valid CRC-8 and counter: CRC-32 catches it
+    CORRUPT_DUP_ITEM,   // an ITEM repeated (re-stamped)
+    CORRUPT_BAD_VALUE,  // arrive_by >= hold_until with valid CRC-8
 } corruption_t;
 
 static void restamp(sva_can_frame_t* f, uint8_t counter)

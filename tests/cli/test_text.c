@@ -9,7 +9,8 @@
 #include <cmocka.h>
 #include <sva/sva_text.h>
 
-static void expect(const char* in, const char* want) {
+static void expect(const char* in, const char* want)
+{
     char out[256];
     assert_ptr_equal(sva_text_escape(out, sizeof out, in), out);
     assert_string_equal(out, want);
@@ -18,41 +19,49 @@ static void expect(const char* in, const char* want) {
     assert_string_equal(sva_text_escape(again, sizeof again, out), want);
 }
 
-static void printable_ascii_and_utf8_are_kept(void** state) {
+static void printable_ascii_and_utf8_are_kept(void** state)
+{
     (void)state;
     expect("plain name 42 \\ \"q\" ~", "plain name 42 \\ \"q\" ~");
-    expect("\xc3\xa9t\xc3\xa9 \xe2\x82\xac \xf0\x9f\x9b\xb8", "\xc3\xa9t\xc3\xa9 \xe2\x82\xac \xf0\x9f\x9b\xb8");
+    expect("\xc3\xa9t\xc3\xa9 \xe2\x82\xac \xf0\x9f\x9b\xb8",
+           "\xc3\xa9t\xc3\xa9 \xe2\x82\xac \xf0\x9f\x9b\xb8");
     expect("\xc2\xa0", "\xc2\xa0");  // U+00A0, the first code point kept
     expect("", "");
 }
 
-static void controls_are_escaped(void** state) {
+static void controls_are_escaped(void** state)
+{
     (void)state;
     expect("a\nb\rc\td", "a\\nb\\rc\\td");
     expect("\x1b[2J\x1b]0;title\x07", "\\x1b[2J\\x1b]0;title\\x07");
     expect("\x01\x1f\x7f", "\\x01\\x1f\\x7f");
-    expect("\xc2\x9b" "31m", "\\xc2\\x9b31m");  // C1 CSI (U+009B)
-    expect("\xc2\x85", "\\xc2\\x85");          // C1 NEL
+    expect("\xc2\x9b"
+           "31m",
+           "\\xc2\\x9b31m");           // C1 CSI (U+009B)
+    expect("\xc2\x85", "\\xc2\\x85");  // C1 NEL
 }
 
-static void malformed_utf8_is_escaped_byte_by_byte(void** state) {
+static void malformed_utf8_is_escaped_byte_by_byte(void** state)
+{
     (void)state;
-    expect("\xc0\x80", "\\xc0\\x80");              // overlong NUL
-    expect("\xe0\x80\xaf", "\\xe0\\x80\\xaf");     // overlong '/'
-    expect("\xed\xa0\x80", "\\xed\\xa0\\x80");     // surrogate U+D800
+    expect("\xc0\x80", "\\xc0\\x80");                    // overlong NUL
+    expect("\xe0\x80\xaf", "\\xe0\\x80\\xaf");           // overlong '/'
+    expect("\xed\xa0\x80", "\\xed\\xa0\\x80");           // surrogate U+D800
     expect("\xf4\x90\x80\x80", "\\xf4\\x90\\x80\\x80");  // above U+10FFFF
     expect("\xf5\xff\x80", "\\xf5\\xff\\x80");
-    expect("a\xc3", "a\\xc3");                     // truncated at the end
-    expect("\xe2\x82z", "\\xe2\\x82z");            // truncated before ASCII
+    expect("a\xc3", "a\\xc3");           // truncated at the end
+    expect("\xe2\x82z", "\\xe2\\x82z");  // truncated before ASCII
 }
 
-static void null_text_is_empty(void** state) {
+static void null_text_is_empty(void** state)
+{
     (void)state;
     char out[4] = "xyz";
     assert_string_equal(sva_text_escape(out, sizeof out, NULL), "");
 }
 
-static void cuts_never_split_an_escape_or_a_character(void** state) {
+static void cuts_never_split_an_escape_or_a_character(void** state)
+{
     (void)state;
     char out[8];
     // "ab" + "\x1b" (4) = 6 chars fits in 8 with the NUL; the next escape does not
@@ -67,7 +76,8 @@ static void cuts_never_split_an_escape_or_a_character(void** state) {
     assert_string_equal(sva_text_escape(fits, sizeof fits, worst), "\\x01\\x02\\x03");
 }
 
-int main(void) {
+int main(void)
+{
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(printable_ascii_and_utf8_are_kept),
         cmocka_unit_test(controls_are_escaped),

@@ -9,8 +9,8 @@
 #include "sva/sva.h"
 
 /// Plans with checked_plan (flow or a rival); fails the test when that does.
-void must_plan_checked(sva_planner_t* planner, const sva_mission_t* mission, sva_algorithm_t algorithm,
-                       sva_plan_t* out, uint64_t seed, int round);
+void must_plan_checked(sva_planner_t* planner, const sva_mission_t* mission,
+                       sva_algorithm_t algorithm, sva_plan_t* out, uint64_t seed, int round);
 
 /// The bound is in [0, cost], and equals the cost when the plan claims optimality.
 void check_certificate(const sva_plan_t* p, uint64_t seed, int round);
@@ -18,6 +18,7 @@ void check_certificate(const sva_plan_t* p, uint64_t seed, int round);
 /// Against the brute-force optimum: a checked certificate, never better than the
 /// optimum, "optimal" only when it is, and a bound at most the optimum's cost when the
 /// plan covers no more targets than the optimum.
-void check_against_optimum(const sva_plan_t* p, const brute_result_t* best, uint64_t seed, int round);
+void check_against_optimum(const sva_plan_t* p, const brute_result_t* best, uint64_t seed,
+                           int round);
 
 #endif

@@ -18,9 +18,11 @@ static sva_uav_t uav(int32_t id, int32_t x, int32_t y, int32_t fuel)
     return (sva_uav_t){.id = id, .x = x, .y = y, .fuel = fuel, .ready_at_ticks = 0};
 }
 
-static sva_target_t target(int32_t id, int32_t x, int32_t y, int32_t start, int32_t end, int32_t need)
+static sva_target_t target(int32_t id, int32_t x, int32_t y, int32_t start, int32_t end,
+                           int32_t need)
 {
-    return (sva_target_t){.id = id, .x = x, .y = y, .start_ticks = start, .end_ticks = end, .need = need};
+    return (sva_target_t){
+        .id = id, .x = x, .y = y, .start_ticks = start, .end_ticks = end, .need = need};
 }
 
 static void run(sva_algorithm_t algorithm)

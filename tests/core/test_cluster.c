@@ -13,15 +13,16 @@ static sva_mission_t mission;
 
 static sva_target_t window(int32_t id, int32_t start, int32_t end)
 {
-    return (sva_target_t){.id = id, .x = 0, .y = 0, .start_ticks = start, .end_ticks = end, .need = 1};
+    return (sva_target_t){
+        .id = id, .x = 0, .y = 0, .start_ticks = start, .end_ticks = end, .need = 1};
 }
 
 static void test_overlap_rule_exact_threshold(void** state)
 {
     (void)state;
     const sva_target_t a = window(1, 0, 10);
-    const sva_target_t b = window(2, 3, 13);   // overlap 7 of 10: exactly 70 %
-    const sva_target_t c = window(3, 4, 14);   // overlap 6 of 10
+    const sva_target_t b = window(2, 3, 13);  // overlap 7 of 10: exactly 70 %
+    const sva_target_t c = window(3, 4, 14);  // overlap 6 of 10
     assert_true(sva_windows_overlap(&a, &b, 70));
     assert_false(sva_windows_overlap(&a, &c, 70));
     assert_true(sva_windows_overlap(&a, &c, 60));

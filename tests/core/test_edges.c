@@ -59,7 +59,8 @@ static void test_cluster_larger_than_the_tableau_is_chunked(void** state)
     const int n = SVA_MAX_TP_SINKS + 1;
     sva_mission_init(&mission);
     for (int i = 0; i < n; i++) {
-        mission.uavs[i] = (sva_uav_t){.id = i + 1, .x = 0, .y = 0, .fuel = 1000, .ready_at_ticks = 0};
+        mission.uavs[i] =
+            (sva_uav_t){.id = i + 1, .x = 0, .y = 0, .fuel = 1000, .ready_at_ticks = 0};
         mission.targets[i] = (sva_target_t){
             .id = i + 1, .x = i % 7, .y = i / 7, .start_ticks = 50, .end_ticks = 60, .need = 1};
     }
@@ -96,12 +97,16 @@ static void test_needs_lcm_overflow_falls_back(void** state)
     const int uavs = 221;
     sva_mission_init(&mission);
     for (int i = 0; i < uavs; i++) {
-        mission.uavs[i] = (sva_uav_t){.id = i + 1, .x = (i % 2) * 5, .y = 0, .fuel = 10000,
-                                      .ready_at_ticks = 0};
+        mission.uavs[i] =
+            (sva_uav_t){.id = i + 1, .x = (i % 2) * 5, .y = 0, .fuel = 10000, .ready_at_ticks = 0};
     }
     for (int k = 0; k < 9; k++) {
-        mission.targets[k] = (sva_target_t){.id = k + 1, .x = 1000 + k, .y = 1000, .start_ticks = 3000,
-                                            .end_ticks = 3010, .need = needs[k]};
+        mission.targets[k] = (sva_target_t){.id = k + 1,
+                                            .x = 1000 + k,
+                                            .y = 1000,
+                                            .start_ticks = 3000,
+                                            .end_ticks = 3010,
+                                            .need = needs[k]};
     }
     mission.uav_count = (uint16_t)uavs;
     mission.target_count = 9;

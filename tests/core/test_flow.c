@@ -39,10 +39,19 @@ static void test_tiny_missions_equal_brute_force(void** state)
     int fuel_bound = 0;
     const int rounds = 500;
     for (int round = 0; round < rounds; round++) {
-        const test_gen_params_t p = {
-            test_rng_range(&rng, 1, 6), test_rng_range(&rng, 1, 4), test_rng_range(&rng, 4, 20),
-            2, 15, 40, 2, test_rng_range(&rng, 5, 40), 80, test_rng_range(&rng, 0, 3),
-            test_rng_range(&rng, 1, 2), test_rng_range(&rng, 0, 1), 0};
+        const test_gen_params_t p = {test_rng_range(&rng, 1, 6),
+                                     test_rng_range(&rng, 1, 4),
+                                     test_rng_range(&rng, 4, 20),
+                                     2,
+                                     15,
+                                     40,
+                                     2,
+                                     test_rng_range(&rng, 5, 40),
+                                     80,
+                                     test_rng_range(&rng, 0, 3),
+                                     test_rng_range(&rng, 1, 2),
+                                     test_rng_range(&rng, 0, 1),
+                                     0};
         test_gen_mission(&rng, &p, &mission);
         const brute_result_t best = brute_force_optimum(&mission);
         must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
@@ -52,8 +61,9 @@ static void test_tiny_missions_equal_brute_force(void** state)
         for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
             must_plan_checked(&planner, &mission, (sva_algorithm_t)a, &other, seed, round);
             if (other.covered > plan.covered) {
-                fail_msg("seed %llu round %d: %s covers %d, flow %d", (unsigned long long)seed, round,
-                         sva_algorithm_name((sva_algorithm_t)a), other.covered, plan.covered);
+                fail_msg("seed %llu round %d: %s covers %d, flow %d", (unsigned long long)seed,
+                         round, sva_algorithm_name((sva_algorithm_t)a), other.covered,
+                         plan.covered);
             }
         }
     }
@@ -71,10 +81,20 @@ static void test_without_fuel_limit_root_is_optimal(void** state)
     test_rng_seed(&rng, seed);
     for (int round = 0; round < 300; round++) {
         // Fuel far above any route, need 1: the relaxation is the problem itself.
-        const test_gen_params_t p = {test_rng_range(&rng, 1, SVA_BFA_MAX_TARGETS < 10 ? SVA_BFA_MAX_TARGETS : 10),
-                                     test_rng_range(&rng, 1, SVA_BFA_MAX_UAVS < 5 ? SVA_BFA_MAX_UAVS : 5), 20,
-                                     5, 20, 60, 1, 100000, 100000, test_rng_range(&rng, 0, 3),
-                                     1, test_rng_range(&rng, 0, 1), 0};
+        const test_gen_params_t p = {
+            test_rng_range(&rng, 1, SVA_BFA_MAX_TARGETS < 10 ? SVA_BFA_MAX_TARGETS : 10),
+            test_rng_range(&rng, 1, SVA_BFA_MAX_UAVS < 5 ? SVA_BFA_MAX_UAVS : 5),
+            20,
+            5,
+            20,
+            60,
+            1,
+            100000,
+            100000,
+            test_rng_range(&rng, 0, 3),
+            1,
+            test_rng_range(&rng, 0, 1),
+            0};
         test_gen_mission(&rng, &p, &mission);
         must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
         check_certificate(&plan, seed, round);
@@ -84,8 +104,9 @@ static void test_without_fuel_limit_root_is_optimal(void** state)
         }
         must_plan_checked(&planner, &mission, SVA_ALGO_BFA, &other, seed, round);
         if (other.covered != plan.covered || other.cost != plan.cost) {
-            fail_msg("seed %llu round %d: flow (%d, %lld), bfa (%d, %lld)", (unsigned long long)seed,
-                     round, plan.covered, (long long)plan.cost, other.covered, (long long)other.cost);
+            fail_msg("seed %llu round %d: flow (%d, %lld), bfa (%d, %lld)",
+                     (unsigned long long)seed, round, plan.covered, (long long)plan.cost,
+                     other.covered, (long long)other.cost);
         }
     }
 }
@@ -103,9 +124,19 @@ static void test_paper_sizes_never_worse_than_the_paper(void** state)
             continue;
         }
         for (int round = 0; round < 40; round++) {
-            const test_gen_params_t p = {sizes[size][0], sizes[size][1], 20, 10, 20,
-                                         4 * sizes[size][0], test_rng_range(&rng, 1, 2),
-                                         test_rng_range(&rng, 40, 120), 160, 2, 1, 0, 0};
+            const test_gen_params_t p = {sizes[size][0],
+                                         sizes[size][1],
+                                         20,
+                                         10,
+                                         20,
+                                         4 * sizes[size][0],
+                                         test_rng_range(&rng, 1, 2),
+                                         test_rng_range(&rng, 40, 120),
+                                         160,
+                                         2,
+                                         1,
+                                         0,
+                                         0};
             test_gen_mission(&rng, &p, &mission);
             must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
             check_certificate(&plan, seed, round);
@@ -117,11 +148,12 @@ static void test_paper_sizes_never_worse_than_the_paper(void** state)
                     fail_msg("seed %llu round %d: %s covers %d, flow %d", (unsigned long long)seed,
                              round, sva_algorithm_name(rivals[r]), other.covered, plan.covered);
                 }
-                if (rivals[r] != SVA_ALGO_HGA && spec_better(other.covered, other.cost, plan.covered,
-                                                              plan.cost)) {
+                if (rivals[r] != SVA_ALGO_HGA &&
+                    spec_better(other.covered, other.cost, plan.covered, plan.cost)) {
                     fail_msg("seed %llu round %d: %s (%d, %lld) beats flow (%d, %lld)",
                              (unsigned long long)seed, round, sva_algorithm_name(rivals[r]),
-                             other.covered, (long long)other.cost, plan.covered, (long long)plan.cost);
+                             other.covered, (long long)other.cost, plan.covered,
+                             (long long)plan.cost);
                 }
                 better_than_all = better_than_all &&
                                   spec_better(plan.covered, plan.cost, other.covered, other.cost);
@@ -143,8 +175,18 @@ static void test_small_budget_gives_a_checked_unproven_plan(void** state)
     planner.flow_max_work = 1000U;
     for (int round = 0; round < 30; round++) {
         const test_gen_params_t p = {SVA_MAX_TARGETS < 25 ? SVA_MAX_TARGETS : 25,
-                                     SVA_MAX_UAVS < 5 ? SVA_MAX_UAVS : 5, 20, 10, 20, 100, 2, 60,
-                                     100, 2, 1, 0, 0};
+                                     SVA_MAX_UAVS < 5 ? SVA_MAX_UAVS : 5,
+                                     20,
+                                     10,
+                                     20,
+                                     100,
+                                     2,
+                                     60,
+                                     100,
+                                     2,
+                                     1,
+                                     0,
+                                     0};
         test_gen_mission(&rng, &p, &mission);
         must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
         check_certificate(&plan, seed, round);
@@ -178,10 +220,19 @@ static phase_counts_t against_brute_force(uint64_t seed_default, int rounds, uin
     phase_counts_t counts = {0, 0, 0, 0};
     planner.flow_max_work = budget;
     for (int round = 0; round < rounds; round++) {
-        const test_gen_params_t p = {
-            test_rng_range(&rng, min_targets, 6), test_rng_range(&rng, 2, 4),
-            20, 4, 15, 60, test_rng_range(&rng, 1, 2), test_rng_range(&rng, 30, 60), 70, 2, 1,
-            test_rng_range(&rng, 0, 1), 0};
+        const test_gen_params_t p = {test_rng_range(&rng, min_targets, 6),
+                                     test_rng_range(&rng, 2, 4),
+                                     20,
+                                     4,
+                                     15,
+                                     60,
+                                     test_rng_range(&rng, 1, 2),
+                                     test_rng_range(&rng, 30, 60),
+                                     70,
+                                     2,
+                                     1,
+                                     test_rng_range(&rng, 0, 1),
+                                     0};
         test_gen_mission(&rng, &p, &mission);
         const brute_result_t best = brute_force_optimum(&mission);
         must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
@@ -189,7 +240,8 @@ static phase_counts_t against_brute_force(uint64_t seed_default, int rounds, uin
         if (ran(&plan)) {
             counts.ran++;
             counts.proven += plan.stats.optimal ? 1 : 0;
-            counts.tight += (plan.covered == best.covered && plan.stats.lower_bound == best.cost) ? 1 : 0;
+            counts.tight +=
+                (plan.covered == best.covered && plan.stats.lower_bound == best.cost) ? 1 : 0;
             counts.best += (plan.covered == best.covered && plan.cost == best.cost) ? 1 : 0;
         }
     }
@@ -224,8 +276,9 @@ static void test_lagrangian_phase_bound_and_claims_hold(void** state)
     (void)state;
     const int rounds = 400;
     const phase_counts_t c = against_brute_force(0x1A6EULL, rounds, 1000U, 4, lagrangian_phase_ran);
-    printf("# %d missions: Lagrangian phase ran on %d, proved %d, bound equal to the optimum on %d\n",
-           rounds, c.ran, c.proven, c.tight);
+    printf(
+        "# %d missions: Lagrangian phase ran on %d, proved %d, bound equal to the optimum on %d\n",
+        rounds, c.ran, c.proven, c.tight);
     assert_true(c.ran >= rounds / 10);
     assert_true(c.tight > 0);
 }
@@ -239,8 +292,9 @@ static void test_route_master_bound_and_claims_hold(void** state)
     (void)state;
     const int rounds = 300;
     const phase_counts_t c = against_brute_force(0x10C0ULL, rounds, 6000U, 5, route_master_ran);
-    printf("# %d missions: the route master ran on %d, proved %d, bound equal to the optimum on %d\n",
-           rounds, c.ran, c.proven, c.tight);
+    printf(
+        "# %d missions: the route master ran on %d, proved %d, bound equal to the optimum on %d\n",
+        rounds, c.ran, c.proven, c.tight);
 #if SVA_FLOW_LP_ROWS >= 2
     assert_true(c.ran >= rounds / 10);
     assert_true(c.tight >= c.ran / 4);
@@ -257,7 +311,8 @@ static void test_route_master_dive_plans_hold(void** state)
     (void)state;
     const int rounds = 300;
     const phase_counts_t c = against_brute_force(0xD17EULL, rounds, 6000U, 5, dive_ran);
-    printf("# %d missions: the dive ran on %d; flow's plan optimal on %d of them\n", rounds, c.ran, c.best);
+    printf("# %d missions: the dive ran on %d; flow's plan optimal on %d of them\n", rounds, c.ran,
+           c.best);
 #if SVA_FLOW_LP_ROWS >= 2
     assert_true(c.ran >= rounds / 10);
     assert_true(c.best >= c.ran / 2);
@@ -269,7 +324,8 @@ static void test_route_master_dive_plans_hold(void** state)
 #if SVA_FLOW_LP_ROWS >= 2
 static bool column_has_row(const sva_flow_lp_t* lp, uint16_t col, uint16_t row)
 {
-    return ((lp->col_rows[((size_t)col * SVA_FLOW_LP_WORDS) + (row / 32U)] >> (row % 32U)) & 1U) != 0U;
+    return ((lp->col_rows[((size_t)col * SVA_FLOW_LP_WORDS) + (row / 32U)] >> (row % 32U)) & 1U) !=
+           0U;
 }
 
 static int64_t cells_between(int32_t ax, int32_t ay, int32_t bx, int32_t by)
@@ -332,13 +388,24 @@ static void test_route_master_holds_only_real_routes(void** state)
     int columns = 0;
     for (int round = 0; round < 12; round++) {
         const test_gen_params_t p = {SVA_MAX_TARGETS < 25 ? SVA_MAX_TARGETS : 25,
-                                     SVA_MAX_UAVS < 5 ? SVA_MAX_UAVS : 5, 20, 10, 20, 375, 1, 80,
-                                     80, 2, 1, 0, 0};
+                                     SVA_MAX_UAVS < 5 ? SVA_MAX_UAVS : 5,
+                                     20,
+                                     10,
+                                     20,
+                                     375,
+                                     1,
+                                     80,
+                                     80,
+                                     2,
+                                     1,
+                                     0,
+                                     0};
         test_gen_mission(&rng, &p, &mission);
         must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
 #if SVA_FLOW_LP_ROWS >= 2
         const sva_flow_lp_t* lp = &planner.priv.flow.lp;
-        const uint16_t cols = (plan.stats.flow_lp_columns > 0U) ? lp->cols : 0U;  // else another mission's
+        const uint16_t cols =
+            (plan.stats.flow_lp_columns > 0U) ? lp->cols : 0U;  // else another mission's
         for (uint16_t col = 0U; col < cols; col++) {
             if (lp->col_deficit[col] != 0U) {
                 continue;  // a dive's deficit: a copy of a fixed column, checked there
@@ -370,8 +437,8 @@ static void test_ruin_and_recreate_plans_hold(void** state)
     (void)state;
     const int rounds = 300;
     const phase_counts_t c = against_brute_force(0x2E1ULL, rounds, 6000U, 5, ruin_ran);
-    printf("# %d missions: ruin and recreate ran on %d; flow's plan optimal on %d of them\n", rounds, c.ran,
-           c.best);
+    printf("# %d missions: ruin and recreate ran on %d; flow's plan optimal on %d of them\n",
+           rounds, c.ran, c.best);
     assert_true(c.ran >= rounds / 10);
     assert_true(c.best >= c.ran / 2);
 }
@@ -388,8 +455,18 @@ static void test_plans_do_not_depend_on_the_planners_history(void** state)
     test_rng_seed(&rng, seed);
     for (int round = 0; round < 40; round++) {
         const test_gen_params_t p = {SVA_MAX_TARGETS < 20 ? SVA_MAX_TARGETS : 20,
-                                     SVA_MAX_UAVS < 4 ? SVA_MAX_UAVS : 4, 20, 10, 20, 100,
-                                     test_rng_range(&rng, 1, 2), 60, 100, 2, 1, 0, 0};
+                                     SVA_MAX_UAVS < 4 ? SVA_MAX_UAVS : 4,
+                                     20,
+                                     10,
+                                     20,
+                                     100,
+                                     test_rng_range(&rng, 1, 2),
+                                     60,
+                                     100,
+                                     2,
+                                     1,
+                                     0,
+                                     0};
         test_gen_mission(&rng, &p, &mission);
         test_gen_mission(&rng, &p, &second);
         assert_int_equal(sva_planner_init(&planner), SVA_OK);
@@ -448,7 +525,8 @@ static void test_dense_graph_past_the_arc_bound_falls_back(void** state)
     for (int32_t t = 0; t < SVA_MAX_TARGETS; t++) {
         mission.targets[t] = (sva_target_t){t + 1, t % 7, t % 5, 100 + 20 * t, 105 + 20 * t, 1};
     }
-    const long arcs = (long)SVA_MAX_UAVS * SVA_MAX_TARGETS + ((long)SVA_MAX_TARGETS * (SVA_MAX_TARGETS - 1)) / 2;
+    const long arcs =
+        (long)SVA_MAX_UAVS * SVA_MAX_TARGETS + ((long)SVA_MAX_TARGETS * (SVA_MAX_TARGETS - 1)) / 2;
     if (arcs <= (long)SVA_FLOW_MAX_ARCS) {
         skip();  // this profile's arc bound holds the dense graph
     }

@@ -88,7 +88,8 @@ static void test_needs_past_exact_rewards_are_reported(void** state)
     }
     build_prime_needs(false);
     must_plan(SVA_ALGO_FLOW, &plan);
-    assert_int_equal(plan.stats.flow_incomplete, SVA_FLOW_INCOMPLETE_REWARD);  // needs' lcm too large
+    assert_int_equal(plan.stats.flow_incomplete,
+                     SVA_FLOW_INCOMPLETE_REWARD);  // needs' lcm too large
     assert_false(plan.stats.optimal);
     assert_true(plan.stats.has_bound);
     assert_true(plan.stats.lower_bound >= 0);
@@ -123,7 +124,8 @@ static void test_needs_past_the_copy_bound_fall_back(void** state)
         mission.targets[t] = (sva_target_t){t + 1, 2, 3, (100 * t) + 10, (100 * t) + 20, need};
     }
     must_plan(SVA_ALGO_FLOW, &plan);
-    assert_int_equal(plan.stats.flow_incomplete, SVA_FLOW_OVER_COPIES);  // needs summed above the bound
+    assert_int_equal(plan.stats.flow_incomplete,
+                     SVA_FLOW_OVER_COPIES);  // needs summed above the bound
     assert_false(plan.stats.optimal);
     assert_int_equal(plan.stats.lower_bound, 0);
     assert_int_equal(plan.stats.flow_graph_arcs, 0);  // no graph was built

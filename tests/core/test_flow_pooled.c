@@ -35,9 +35,19 @@ static sva_plan_t other;
 // and shrinks the grid, so more windows chain (more arcs).
 static void next_mission(test_rng_t* rng, int targets_min, int targets_max, bool spread)
 {
-    const test_gen_params_t p = {test_rng_range(rng, targets_min, targets_max), test_rng_range(rng, 2, 3),
-                                 spread ? 10 : 20, 4, 15, spread ? 120 : 60, 2, test_rng_range(rng, 30, spread ? 90 : 60),
-                                 spread ? 120 : 70, 2, 1, test_rng_range(rng, 0, 1), 0};
+    const test_gen_params_t p = {test_rng_range(rng, targets_min, targets_max),
+                                 test_rng_range(rng, 2, 3),
+                                 spread ? 10 : 20,
+                                 4,
+                                 15,
+                                 spread ? 120 : 60,
+                                 2,
+                                 test_rng_range(rng, 30, spread ? 90 : 60),
+                                 spread ? 120 : 70,
+                                 2,
+                                 1,
+                                 test_rng_range(rng, 0, 1),
+                                 0};
     test_gen_mission(rng, &p, &mission);
 }
 
@@ -62,8 +72,8 @@ static void test_pooled_relaxation_equals_the_copies(void** state)
         assert_true(plan.stats.flow_graph_arcs <= copy_arcs);
         assert_true(sva_flow_solve(&priv->flow, &plan.stats));
         if (priv->flow.value != copies_value) {
-            fail_msg("seed %llu round %d: pooled value %lld, copies %lld", (unsigned long long)seed, round,
-                     (long long)priv->flow.value, (long long)copies_value);
+            fail_msg("seed %llu round %d: pooled value %lld, copies %lld", (unsigned long long)seed,
+                     round, (long long)priv->flow.value, (long long)copies_value);
         }
         compared++;
     }
@@ -87,20 +97,22 @@ static void test_pooled_bounds_and_plans_against_brute_force(void** state)
         const brute_result_t best = brute_force_optimum(&mission);
         must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
         check_against_optimum(&plan, &best, seed, round);
-        if ((plan.stats.flow_graph_arcs <= (uint32_t)SVA_FLOW_MAX_ARCS) && (plan.stats.search_nodes == 0U)) {
+        if ((plan.stats.flow_graph_arcs <= (uint32_t)SVA_FLOW_MAX_ARCS) &&
+            (plan.stats.search_nodes == 0U)) {
             assert_true(plan.stats.optimal);  // and check_against_optimum held it to that
             taken++;
         }
         if (plan.stats.flow_graph_arcs > (uint32_t)SVA_FLOW_MAX_ARCS) {
-            assert_int_equal(plan.stats.flow_incomplete, plan.stats.optimal ? SVA_FLOW_COMPLETE : SVA_FLOW_OVER_ARCS);
+            assert_int_equal(plan.stats.flow_incomplete,
+                             plan.stats.optimal ? SVA_FLOW_COMPLETE : SVA_FLOW_OVER_ARCS);
             // The pooled routes come first; ga and sva seed it unless they are proven.
             for (int a = 0; a < 2; a++) {
                 const sva_algorithm_t rival = (a == 0) ? SVA_ALGO_SVA : SVA_ALGO_GA;
                 must_plan_checked(&planner, &mission, rival, &other, seed, round);
                 if (spec_better(other.covered, other.cost, plan.covered, plan.cost)) {
-                    fail_msg("seed %llu round %d: flow (%d, %lld) behind %s (%d, %lld)", (unsigned long long)seed,
-                             round, plan.covered, (long long)plan.cost, (a == 0) ? "sva" : "ga", other.covered,
-                             (long long)other.cost);
+                    fail_msg("seed %llu round %d: flow (%d, %lld) behind %s (%d, %lld)",
+                             (unsigned long long)seed, round, plan.covered, (long long)plan.cost,
+                             (a == 0) ? "sva" : "ga", other.covered, (long long)other.cost);
                 }
             }
             past++;
@@ -115,8 +127,10 @@ static void test_pooled_bounds_and_plans_against_brute_force(void** state)
             }
         }
     }
-    printf("# 400 missions: %d past the arc bound, %d of them covering every target, %d with a bound, %d "
-           "proven optimal; under it, the pooled root taken on %d\n", past, full, bounded, proven, taken);
+    printf("# 400 missions: %d past the arc bound, %d of them covering every target, %d with a "
+           "bound, %d "
+           "proven optimal; under it, the pooled root taken on %d\n",
+           past, full, bounded, proven, taken);
     assert_true(taken > 0);
     assert_true(past >= 100);
     assert_true(full >= 15);

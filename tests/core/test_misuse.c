@@ -13,7 +13,7 @@
 #include "sva/sva.h"
 
 #if SVA_ENABLE_ASSERT != 0 || SVA_BFA_MAX_NODES != 1000 || SVA_MAX_PIVOTS != 16
-#error "test_misuse.c needs the sva_core_misuse build of the core"
+#    error "test_misuse.c needs the sva_core_misuse build of the core"
 #endif
 
 static sva_planner_t planner;
@@ -32,7 +32,8 @@ static void test_null_and_enum_misuse_is_an_argument_error(void** state)
     assert_int_equal(sva_plan(&planner, NULL, SVA_ALGO_SVA, &plan, &d), SVA_ERR_ARGUMENT);
     assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_SVA, NULL, &d), SVA_ERR_ARGUMENT);
     assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_COUNT_, &plan, &d), SVA_ERR_ARGUMENT);
-    assert_int_equal(sva_plan(&planner, &mission, (sva_algorithm_t)-1, &plan, &d), SVA_ERR_ARGUMENT);
+    assert_int_equal(sva_plan(&planner, &mission, (sva_algorithm_t)-1, &plan, &d),
+                     SVA_ERR_ARGUMENT);
     sva_algorithm_t algo = SVA_ALGO_HGA;
     assert_int_equal(sva_algorithm_from_name(NULL, &algo), SVA_ERR_ARGUMENT);
     assert_int_equal(sva_algorithm_from_name("sva", NULL), SVA_ERR_ARGUMENT);
@@ -51,11 +52,15 @@ static void test_bfa_node_budget_is_a_limit_error(void** state)
     (void)state;
     sva_mission_init(&mission);
     for (int i = 0; i < 5; i++) {
-        mission.uavs[i] = (sva_uav_t){.id = i + 1, .x = 0, .y = 0, .fuel = 100000, .ready_at_ticks = 0};
+        mission.uavs[i] =
+            (sva_uav_t){.id = i + 1, .x = 0, .y = 0, .fuel = 100000, .ready_at_ticks = 0};
     }
     for (int i = 0; i < 10; i++) {
-        mission.targets[i] = (sva_target_t){.id = i + 1, .x = 3 * (i % 4), .y = 2 * (i % 3),
-                                            .start_ticks = 20 + 30 * i, .end_ticks = 40 + 30 * i,
+        mission.targets[i] = (sva_target_t){.id = i + 1,
+                                            .x = 3 * (i % 4),
+                                            .y = 2 * (i % 3),
+                                            .start_ticks = 20 + 30 * i,
+                                            .end_ticks = 40 + 30 * i,
                                             .need = 1 + (i % 2)};
     }
     mission.uav_count = 5;
@@ -80,9 +85,10 @@ static void test_pivot_budget_is_a_solver_error(void** state)
     sva_mission_init(&mission);
     const int n = (SVA_MAX_UAVS < 20) ? SVA_MAX_UAVS : 20;
     for (int i = 0; i < n; i++) {
-        mission.uavs[i] = (sva_uav_t){.id = i + 1, .x = i, .y = 0, .fuel = 100000, .ready_at_ticks = 0};
-        mission.targets[i] = (sva_target_t){.id = i + 1, .x = i, .y = 5, .start_ticks = 100,
-                                            .end_ticks = 110, .need = 1};
+        mission.uavs[i] =
+            (sva_uav_t){.id = i + 1, .x = i, .y = 0, .fuel = 100000, .ready_at_ticks = 0};
+        mission.targets[i] = (sva_target_t){
+            .id = i + 1, .x = i, .y = 5, .start_ticks = 100, .end_ticks = 110, .need = 1};
     }
     mission.uav_count = (uint16_t)n;
     mission.target_count = (uint16_t)n;

@@ -43,9 +43,17 @@ static void test_tiny_missions_bfa_is_optimal_and_never_beaten(void** state)
         const test_gen_params_t p = {
             test_rng_range(&rng, 1, SVA_BFA_MAX_TARGETS < 6 ? SVA_BFA_MAX_TARGETS : 6),
             test_rng_range(&rng, 1, SVA_BFA_MAX_UAVS < 4 ? SVA_BFA_MAX_UAVS : 4),
-            test_rng_range(&rng, 4, 20), 2, 15, 40, 2,
-            test_rng_range(&rng, 5, 40), 80, test_rng_range(&rng, 0, 3),
-            test_rng_range(&rng, 1, 2), test_rng_range(&rng, 0, 1), 0};
+            test_rng_range(&rng, 4, 20),
+            2,
+            15,
+            40,
+            2,
+            test_rng_range(&rng, 5, 40),
+            80,
+            test_rng_range(&rng, 0, 3),
+            test_rng_range(&rng, 1, 2),
+            test_rng_range(&rng, 0, 1),
+            0};
         test_gen_mission(&rng, &p, &mission);
         const brute_result_t best = brute_force_optimum(&mission);
         plan_ok(SVA_ALGO_BFA, seed, round);
@@ -60,7 +68,8 @@ static void test_tiny_missions_bfa_is_optimal_and_never_beaten(void** state)
                 fail_msg("seed %llu round %d: %s beats the optimum", (unsigned long long)seed,
                          round, sva_algorithm_name((sva_algorithm_t)a));
             }
-            if (a == SVA_ALGO_SVA && spec_better(best.covered, best.cost, plan.covered, plan.cost)) {
+            if (a == SVA_ALGO_SVA &&
+                spec_better(best.covered, best.cost, plan.covered, plan.cost)) {
                 bfa_better_than_sva++;
             }
         }
@@ -149,21 +158,32 @@ static void test_paper_sizes_feasible_and_problems_optimal(void** state)
             continue;
         }
         for (int round = 0; round < 150; round++) {
-            const test_gen_params_t p = {sizes[size][0], sizes[size][1], 20, 10, 20,
-                                         4 * sizes[size][0], test_rng_range(&rng, 1, 2),
-                                         test_rng_range(&rng, 20, 60), 200, 2, 1,
-                                         test_rng_range(&rng, 0, 1), 0};
+            const test_gen_params_t p = {sizes[size][0],
+                                         sizes[size][1],
+                                         20,
+                                         10,
+                                         20,
+                                         4 * sizes[size][0],
+                                         test_rng_range(&rng, 1, 2),
+                                         test_rng_range(&rng, 20, 60),
+                                         200,
+                                         2,
+                                         1,
+                                         test_rng_range(&rng, 0, 1),
+                                         0};
             test_gen_mission(&rng, &p, &mission);
             for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
-                if (a == SVA_ALGO_BFA && (mission.target_count > 10 || mission.target_count > SVA_BFA_MAX_TARGETS ||
-                                          mission.uav_count > SVA_BFA_MAX_UAVS)) {
+                if (a == SVA_ALGO_BFA &&
+                    (mission.target_count > 10 || mission.target_count > SVA_BFA_MAX_TARGETS ||
+                     mission.uav_count > SVA_BFA_MAX_UAVS)) {
                     continue;
                 }
                 plan_ok((sva_algorithm_t)a, seed, round);
                 planned++;
                 // Determinism: the same mission plans to the same plan.
                 sva_diag_t diag;
-                assert_int_equal(sva_plan(&planner, &mission, (sva_algorithm_t)a, &again, &diag), SVA_OK);
+                assert_int_equal(sva_plan(&planner, &mission, (sva_algorithm_t)a, &again, &diag),
+                                 SVA_OK);
                 assert_int_equal(again.cost, plan.cost);
                 assert_int_equal(again.covered, plan.covered);
                 for (int u = 0; u < mission.uav_count; u++) {

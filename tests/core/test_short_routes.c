@@ -34,9 +34,9 @@ static void must_plan(sva_algorithm_t algorithm, uint64_t seed, int round)
     }
     for (uint16_t u = 0U; u < plan.route_count; u++) {
         if (plan.routes[u].target_count > 2U) {
-            fail_msg("seed %llu round %d %s: route of UAV %d has %u targets", (unsigned long long)seed,
-                     round, sva_algorithm_name(algorithm), (int)plan.routes[u].uav_id,
-                     (unsigned)plan.routes[u].target_count);
+            fail_msg("seed %llu round %d %s: route of UAV %d has %u targets",
+                     (unsigned long long)seed, round, sva_algorithm_name(algorithm),
+                     (int)plan.routes[u].uav_id, (unsigned)plan.routes[u].target_count);
         }
     }
 }

@@ -139,7 +139,8 @@ static void enumerate(const sva_tp_t* tp, int cell, int32_t* left, int32_t* got,
     for (int32_t x = 0; x <= most; x++) {
         left[s] -= x;
         got[k] += x;
-        enumerate(tp, cell + 1, left, got, u + x, c + (long long)x * (x ? tp->cost[cell] : 0), best_u, best_c);
+        enumerate(tp, cell + 1, left, got, u + x, c + (long long)x * (x ? tp->cost[cell] : 0),
+                  best_u, best_c);
         left[s] += x;
         got[k] -= x;
     }

@@ -23,8 +23,10 @@ static void small_mission(sva_mission_t* m)
     m->uavs[0] = (sva_uav_t){.id = 1, .x = 0, .y = 0, .fuel = 60, .ready_at_ticks = 0};
     m->uavs[1] = (sva_uav_t){.id = 2, .x = 0, .y = 0, .fuel = 60, .ready_at_ticks = 0};
     m->target_count = 2;
-    m->targets[0] = (sva_target_t){.id = 1, .x = 5, .y = 7, .start_ticks = 12, .end_ticks = 20, .need = 2};
-    m->targets[1] = (sva_target_t){.id = 2, .x = 3, .y = 1, .start_ticks = 30, .end_ticks = 40, .need = 1};
+    m->targets[0] =
+        (sva_target_t){.id = 1, .x = 5, .y = 7, .start_ticks = 12, .end_ticks = 20, .need = 2};
+    m->targets[1] =
+        (sva_target_t){.id = 2, .x = 3, .y = 1, .start_ticks = 30, .end_ticks = 40, .need = 1};
 }
 
 // Validates and checks status and the formatted message.
@@ -121,8 +123,8 @@ static void test_first_error_wins(void** state)
 {
     (void)state;
     small_mission(&mission);
-    mission.targets[0].need = 0;   // later in field order
-    mission.uavs[1].fuel = -3;     // earlier: UAVs before targets
+    mission.targets[0].need = 0;  // later in field order
+    mission.uavs[1].fuel = -3;    // earlier: UAVs before targets
     expect_invalid(&mission, "uavs[1].fuel: must be >= 0, got -3");
 }
 
@@ -133,8 +135,8 @@ static void test_count_bounds(void** state)
     char expect[160];
     test_rng_t rng;
     test_rng_seed(&rng, 7);
-    const test_gen_params_t params = {SVA_MAX_TARGETS, SVA_MAX_UAVS, 200, 10, 20, 4 * SVA_MAX_TARGETS,
-                                      2, 200, 2000, 2, 1, 0, 0};
+    const test_gen_params_t params = {
+        SVA_MAX_TARGETS, SVA_MAX_UAVS, 200, 10, 20, 4 * SVA_MAX_TARGETS, 2, 200, 2000, 2, 1, 0, 0};
     test_gen_mission(&rng, &params, &mission);
     for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
         if (a == SVA_ALGO_BFA) {
@@ -195,7 +197,8 @@ static void test_bfa_limits_are_errors_not_hours(void** state)
     sva_diag_t diag;
     test_rng_t rng;
     test_rng_seed(&rng, 11);
-    const test_gen_params_t params = {SVA_BFA_MAX_TARGETS + 1, 2, 20, 10, 20, 100, 1, 100, 200, 0, 1, 0, 0};
+    const test_gen_params_t params = {
+        SVA_BFA_MAX_TARGETS + 1, 2, 20, 10, 20, 100, 1, 100, 200, 0, 1, 0, 0};
     test_gen_mission(&rng, &params, &mission);
     assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_BFA, &plan, &diag), SVA_ERR_LIMIT);
     assert_int_equal(plan.status, SVA_PLAN_NONE);
@@ -204,7 +207,8 @@ static void test_bfa_limits_are_errors_not_hours(void** state)
              SVA_BFA_MAX_TARGETS + 1, SVA_BFA_MAX_TARGETS);
     assert_string_equal(buf, expect);
 
-    const test_gen_params_t wide = {2, SVA_BFA_MAX_UAVS + 1, 20, 10, 20, 100, 1, 100, 200, 0, 1, 0, 0};
+    const test_gen_params_t wide = {2, SVA_BFA_MAX_UAVS + 1, 20, 10, 20, 100, 1, 100, 200, 0, 1, 0,
+                                    0};
     test_gen_mission(&rng, &wide, &mission);
     assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_BFA, &plan, &diag), SVA_ERR_LIMIT);
     assert_string_equal(diag.limit_name, "SVA_BFA_MAX_UAVS");
@@ -229,7 +233,8 @@ static void test_diag_format_truncates_like_snprintf(void** state)
     diag.value = INT64_MIN;
     diag.limit = INT64_MAX;
     (void)sva_diag_format(&diag, full, sizeof(full));
-    assert_string_equal(full, "targets[1].need: must be >= 9223372036854775807, got -9223372036854775808");
+    assert_string_equal(
+        full, "targets[1].need: must be >= 9223372036854775807, got -9223372036854775808");
 }
 
 static void test_algorithm_names(void** state)
@@ -237,7 +242,8 @@ static void test_algorithm_names(void** state)
     (void)state;
     for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
         sva_algorithm_t back;
-        assert_int_equal(sva_algorithm_from_name(sva_algorithm_name((sva_algorithm_t)a), &back), SVA_OK);
+        assert_int_equal(sva_algorithm_from_name(sva_algorithm_name((sva_algorithm_t)a), &back),
+                         SVA_OK);
         assert_int_equal(back, a);
     }
     sva_algorithm_t out = SVA_ALGO_GA;

@@ -31,8 +31,8 @@ static sva_can_sender_t tx;
 static sva_can_plan_t small_plan;
 
 static const uint32_t ids[9] = {
-    SVA_CAN_ID_PLAN_ABORT,     SVA_CAN_ID_PLAN_BEGIN, SVA_CAN_ID_PLAN_ITEM,
-    SVA_CAN_ID_PLAN_ITEM_TIME, SVA_CAN_ID_PLAN_COMMIT, SVA_CAN_ID_PLAN_ACK,
+    SVA_CAN_ID_PLAN_ABORT,     SVA_CAN_ID_PLAN_BEGIN,     SVA_CAN_ID_PLAN_ITEM,
+    SVA_CAN_ID_PLAN_ITEM_TIME, SVA_CAN_ID_PLAN_COMMIT,    SVA_CAN_ID_PLAN_ACK,
     SVA_CAN_ID_HEARTBEAT,      SVA_CAN_ID_VEHICLE_STATUS, SVA_CAN_ID_VEHICLE_FUEL,
 };
 
@@ -70,7 +70,8 @@ static void check_active(uint32_t commit_crc)
     for (uint16_t i = 0; i < rx.active.item_count; i++) {
         const sva_can_item_t* it = &rx.active.items[i];
         if (it->uav_id == 0U || it->target_id == 0U || it->target_id > SVA_CAN_MAX_TARGET_ID ||
-            it->arrive_by_ticks >= it->hold_until_ticks || it->hold_until_ticks > SVA_CAN_MAX_TICK) {
+            it->arrive_by_ticks >= it->hold_until_ticks ||
+            it->hold_until_ticks > SVA_CAN_MAX_TICK) {
             fail("applied plan holds an item outside the wire's ranges");
         }
     }

@@ -26,7 +26,7 @@ static sva_lcm_node_t node;
 static sva_lcm_plan_t decoded;
 static sva_mission_t before;
 static uint8_t message[SVA_LCM_MISSION_BYTES > SVA_LCM_FLEET_BYTES ? SVA_LCM_MISSION_BYTES
-                                                                    : SVA_LCM_FLEET_BYTES];
+                                                                   : SVA_LCM_FLEET_BYTES];
 static unsigned published;
 
 static void fail(const char* what)
@@ -42,8 +42,7 @@ static int capture(void* user, const char* channel, const void* bytes, unsigned 
         return 0;
     }
     published++;
-    if (n != SVA_LCM_PLAN_BYTES ||
-        sva_lcm_plan_t_decode(bytes, 0, (int)n, &decoded) != (int)n) {
+    if (n != SVA_LCM_PLAN_BYTES || sva_lcm_plan_t_decode(bytes, 0, (int)n, &decoded) != (int)n) {
         fail("published plan does not decode to its fixed size");
     }
     if (decoded.status == SVA_LCM_PLAN_T_STATUS_COMPLETE ||
@@ -57,21 +56,26 @@ static int capture(void* user, const char* channel, const void* bytes, unsigned 
             fail("plan does not have one route per UAV");
         }
         const sva_stats_t* st = &node.priv.plan.stats;
-        if (st->has_bound != (node.algorithm == SVA_ALGO_FLOW) || decoded.has_bound != (st->has_bound ? 1 : 0)) {
+        if (st->has_bound != (node.algorithm == SVA_ALGO_FLOW) ||
+            decoded.has_bound != (st->has_bound ? 1 : 0)) {
             fail("has_bound is not set exactly for flow plans");
         }
         if (st->has_bound &&
             (decoded.lower_bound != st->lower_bound || decoded.optimal != (st->optimal ? 1 : 0) ||
              decoded.flow_incomplete != (int8_t)st->flow_incomplete || decoded.lower_bound < 0 ||
-             decoded.lower_bound > decoded.cost || (decoded.optimal == 1 && decoded.lower_bound != decoded.cost))) {
+             decoded.lower_bound > decoded.cost ||
+             (decoded.optimal == 1 && decoded.lower_bound != decoded.cost))) {
             fail("flow's certificate on the wire differs from the core's or contradicts the cost");
         }
     }
-    if (decoded.status != SVA_LCM_PLAN_T_STATUS_COMPLETE && decoded.status != SVA_LCM_PLAN_T_STATUS_PARTIAL &&
-        (decoded.has_bound != 0 || decoded.lower_bound != 0 || decoded.optimal != 0 || decoded.flow_incomplete != 0)) {
+    if (decoded.status != SVA_LCM_PLAN_T_STATUS_COMPLETE &&
+        decoded.status != SVA_LCM_PLAN_T_STATUS_PARTIAL &&
+        (decoded.has_bound != 0 || decoded.lower_bound != 0 || decoded.optimal != 0 ||
+         decoded.flow_incomplete != 0)) {
         fail("a plan without routes carries a certificate");
     }
-    if (!decoded.has_bound && (decoded.lower_bound != 0 || decoded.optimal != 0 || decoded.flow_incomplete != 0)) {
+    if (!decoded.has_bound &&
+        (decoded.lower_bound != 0 || decoded.optimal != 0 || decoded.flow_incomplete != 0)) {
         fail("certificate fields set without has_bound");
     }
     return 0;
@@ -121,7 +125,8 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
                 published != published_before) {
                 fail("a refused or unchanged message changed the node's inputs");
             }
-        } else if (node.priv.have_fleet && node.priv.have_mission && published != published_before + 1U) {
+        } else if (node.priv.have_fleet && node.priv.have_mission &&
+                   published != published_before + 1U) {
             fail("an accepted change with both inputs present published no plan");
         }
     }

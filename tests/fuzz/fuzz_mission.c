@@ -71,7 +71,8 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
         }
         if (st == SVA_ERR_LIMIT && (algo == SVA_ALGO_BFA || algo == SVA_ALGO_FLOW)) {
             if (pd.limit_name == NULL || plan.status != SVA_PLAN_NONE) {
-                fail("algorithm limit without a named limit or with a plan", sva_algorithm_name(algo));
+                fail("algorithm limit without a named limit or with a plan",
+                     sva_algorithm_name(algo));
             }
             continue;
         }

@@ -23,7 +23,7 @@
 #include <sva/sva_json.h>
 
 #define MAX_MISSIONS 256
-#define PATH_SIZE 1024
+#define PATH_SIZE    1024
 
 typedef struct {
     char mission[128];
@@ -34,17 +34,20 @@ static sva_mission_t g_mission;
 static sva_plan_t g_plan;
 static sva_planner_t g_planner;
 
-static int is_file(const char* path) {
+static int is_file(const char* path)
+{
     struct stat st;
     return stat(path, &st) == 0 && S_ISREG(st.st_mode);
 }
 
 // Mission names (file stems) of a directory's *.json files, sorted.
-static int cmp_names(const void* a, const void* b) {
+static int cmp_names(const void* a, const void* b)
+{
     return strcmp((const char*)a, (const char*)b);
 }
 
-static size_t list_json(const char* dir, char names[][128], size_t max) {
+static size_t list_json(const char* dir, char names[][128], size_t max)
+{
     size_t count = 0;
     DIR* d = opendir(dir);
     if (d == NULL) {
@@ -64,13 +67,16 @@ static size_t list_json(const char* dir, char names[][128], size_t max) {
     return count;
 }
 
-static void test_golden_plan(void** state) {
+static void test_golden_plan(void** state)
+{
     const golden_case_t* c = *state;
     const char* algo = sva_algorithm_name(c->algorithm);
     char mission_path[PATH_SIZE];
     char golden_path[PATH_SIZE];
-    snprintf(mission_path, sizeof mission_path, "%s/missions/%s.json", SVA_FIXTURES_DIR, c->mission);
-    snprintf(golden_path, sizeof golden_path, "%s/golden/%s/%s.json", SVA_FIXTURES_DIR, algo, c->mission);
+    snprintf(mission_path, sizeof mission_path, "%s/missions/%s.json", SVA_FIXTURES_DIR,
+             c->mission);
+    snprintf(golden_path, sizeof golden_path, "%s/golden/%s/%s.json", SVA_FIXTURES_DIR, algo,
+             c->mission);
 
     char name[SVA_JSON_NAME_MAX + 1];
     char err[SVA_JSON_ERROR_SIZE];
@@ -85,10 +91,12 @@ static void test_golden_plan(void** state) {
         if (c->algorithm == SVA_ALGO_BFA && status == SVA_ERR_LIMIT) {
             return;  // bfa refuses the mission: no golden plan expected
         }
-        fail_msg("%s: missing golden plan (run tools/regen-golden.sh), sva_plan status %d", golden_path, (int)status);
+        fail_msg("%s: missing golden plan (run tools/regen-golden.sh), sva_plan status %d",
+                 golden_path, (int)status);
     }
     if (status != SVA_OK) {
-        fail_msg("%s with %s: sva_plan status %d, but %s exists", c->mission, algo, (int)status, golden_path);
+        fail_msg("%s with %s: sva_plan status %d, but %s exists", c->mission, algo, (int)status,
+                 golden_path);
     }
     json_error_t error;
     json_t* golden = json_load_file(golden_path, JSON_REJECT_DUPLICATES, &error);
@@ -114,7 +122,8 @@ static void test_golden_plan(void** state) {
 }
 
 // A golden file whose mission no longer exists is stale.
-static void test_no_stale_golden_files(void** state) {
+static void test_no_stale_golden_files(void** state)
+{
     (void)state;
     static char missions[MAX_MISSIONS][128];
     static char goldens[MAX_MISSIONS][128];
@@ -123,17 +132,20 @@ static void test_no_stale_golden_files(void** state) {
     size_t mission_count = list_json(dir, missions, MAX_MISSIONS);
     assert_true(mission_count > 0);
     for (int a = 0; a < (int)SVA_ALGO_COUNT_; ++a) {
-        snprintf(dir, sizeof dir, "%s/golden/%s", SVA_FIXTURES_DIR, sva_algorithm_name((sva_algorithm_t)a));
+        snprintf(dir, sizeof dir, "%s/golden/%s", SVA_FIXTURES_DIR,
+                 sva_algorithm_name((sva_algorithm_t)a));
         size_t golden_count = list_json(dir, goldens, MAX_MISSIONS);
         for (size_t g = 0; g < golden_count; ++g) {
-            if (bsearch(goldens[g], missions, mission_count, sizeof missions[0], cmp_names) == NULL) {
+            if (bsearch(goldens[g], missions, mission_count, sizeof missions[0], cmp_names) ==
+                NULL) {
                 fail_msg("%s/%s.json: no mission of that name", dir, goldens[g]);
             }
         }
     }
 }
 
-int main(void) {
+int main(void)
+{
     static char missions[MAX_MISSIONS][128];
     static golden_case_t cases[MAX_MISSIONS * SVA_ALGO_COUNT_];
     static char names[MAX_MISSIONS * SVA_ALGO_COUNT_][160];
@@ -142,13 +154,15 @@ int main(void) {
     snprintf(dir, sizeof dir, "%s/missions", SVA_FIXTURES_DIR);
     size_t mission_count = list_json(dir, missions, MAX_MISSIONS);
     size_t n = 0;
-    tests[n++] = (struct CMUnitTest){"no_stale_golden_files", test_no_stale_golden_files, NULL, NULL, NULL};
+    tests[n++] =
+        (struct CMUnitTest){"no_stale_golden_files", test_no_stale_golden_files, NULL, NULL, NULL};
     for (size_t m = 0; m < mission_count; ++m) {
         for (int a = 0; a < (int)SVA_ALGO_COUNT_; ++a) {
             golden_case_t* c = &cases[n - 1];
             snprintf(c->mission, sizeof c->mission, "%.127s", missions[m]);
             c->algorithm = (sva_algorithm_t)a;
-            snprintf(names[n - 1], sizeof names[0], "%.8s/%.127s", sva_algorithm_name(c->algorithm), missions[m]);
+            snprintf(names[n - 1], sizeof names[0], "%.8s/%.127s", sva_algorithm_name(c->algorithm),
+                     missions[m]);
             tests[n] = (struct CMUnitTest){names[n - 1], test_golden_plan, NULL, NULL, c};
             ++n;
         }

@@ -28,7 +28,7 @@ extern void* __libc_realloc(void* p, size_t size);
 extern void* __libc_memalign(size_t align, size_t size);
 
 #define SVA_ALLOC_MAGIC 0x5356414c4c4f4331ULL  // "SVALLOC1"
-#define SVA_ALLOC_RING 256
+#define SVA_ALLOC_RING  256
 
 enum { K_MALLOC, K_CALLOC, K_REALLOC, K_MEMALIGN, K_COUNT };
 

@@ -117,7 +117,7 @@ static void make_inputs(int64_t revision)
     mission.hover_fuel = 2;
     mission.overlap_percent = 70;
     mission.target_count = 6;
-    const int32_t t[6][6] = {{1, 5, 7, 12, 20, 2},  {2, -4, 3, 10, 18, 1}, {3, 6, -2, 14, 22, 1},
+    const int32_t t[6][6] = {{1, 5, 7, 12, 20, 2},   {2, -4, 3, 10, 18, 1},  {3, 6, -2, 14, 22, 1},
                              {4, 10, 10, 40, 50, 2}, {5, -8, -6, 35, 45, 1}, {6, 90, 90, 5, 9, 1}};
     for (int i = 0; i < 6; ++i) {
         sva_lcm_target_t* g = &mission.targets[i];
@@ -376,7 +376,8 @@ static void test_flow_certificate(void** state)
     node_setup(SVA_ALGO_FLOW);
     make_inputs(50);
     assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
     decode_last_plan();
     assert_plan_matches_core(&got_plan, SVA_ALGO_FLOW);
     // 6 targets, 5 UAVs: flow's search finishes and proves its plan optimal.
@@ -387,7 +388,8 @@ static void test_flow_certificate(void** state)
 
     // the core rejects the next mission: the REJECTED plan has no certificate
     mission.targets[3].id = mission.targets[1].id;
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
     decode_last_plan();
     assert_int_equal(got_plan.status, SVA_LCM_PLAN_T_STATUS_REJECTED);
     assert_int_equal(got_plan.has_bound, 0);
@@ -405,7 +407,8 @@ static void test_flow_certificate(void** state)
     }
     assert_true(13 * 40 > SVA_FLOW_MAX_COPIES);
     assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
     decode_last_plan();
     assert_plan_matches_core(&got_plan, SVA_ALGO_FLOW);
     assert_int_equal(got_plan.has_bound, 1);
@@ -422,7 +425,8 @@ static void test_flow_certificate(void** state)
         mission.targets[i] = (sva_lcm_target_t){i + 1, 0, 0, 10 * i + 1, 10 * i + 5, SVA_MAX_UAVS};
     }
     assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
     decode_last_plan();
     assert_int_equal(got_plan.status, SVA_LCM_PLAN_T_STATUS_TOO_LARGE);
     assert_true(node.priv.plan.stats.has_bound);
@@ -437,11 +441,13 @@ static void test_unchanged_and_replan(void** state)
     (void)state;
     node_setup(SVA_ALGO_SVA);
     make_inputs(1);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
     assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
     assert_int_equal(plans_seen, 1);
     assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_UNCHANGED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_UNCHANGED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_UNCHANGED);
     assert_int_equal(node.counters.unchanged, 2);
     assert_int_equal(plans_seen, 1);
     // same revision, different content: still a change
@@ -462,7 +468,8 @@ static void test_unavailable_uav_gets_nothing(void** state)
         fleet.uavs[i].health = SVA_LCM_UAV_STATE_T_HEALTH_UNAVAILABLE;
     }
     assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
     decode_last_plan();
     assert_int_equal(got_plan.route_count, 5);
     assert_true(got_plan.routes[0].target_count >= 1);
@@ -480,8 +487,8 @@ static void expect_reject(bool is_fleet, const uint8_t* data, size_t size, sva_l
     const int plans = plans_seen;
     const int64_t fr = node.priv.fleet_revision;
     const int64_t mr = node.priv.mission_revision;
-    const sva_lcm_verdict_t v = is_fleet ? sva_lcm_on_fleet(&node, data, size)
-                                         : sva_lcm_on_mission(&node, data, size);
+    const sva_lcm_verdict_t v =
+        is_fleet ? sva_lcm_on_fleet(&node, data, size) : sva_lcm_on_mission(&node, data, size);
     assert_int_equal(v, SVA_LCM_REJECTED);
     assert_int_equal(node.last_reject, why);
     assert_int_equal(node.counters.rejected[why], before + 1U);
@@ -496,7 +503,8 @@ static void test_rejections_frame(void** state)
     node_setup(SVA_ALGO_SVA);
     make_inputs(5);
     assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
     fleet.revision = 6;
     mission.revision = 6;
     const size_t nf = (size_t)enc_fleet();
@@ -527,7 +535,8 @@ static void test_rejections_counts_and_values(void** state)
     node_setup(SVA_ALGO_SVA);
     make_inputs(5);
     assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
 
     static const int16_t bad_counts[] = {SVA_MAX_UAVS + 1, -1, INT16_MAX, INT16_MIN};
     for (size_t i = 0; i < sizeof bad_counts / sizeof bad_counts[0]; ++i) {
@@ -537,8 +546,8 @@ static void test_rejections_counts_and_values(void** state)
         assert_int_equal(node.last_diag.field, SVA_FIELD_UAVS);
         assert_string_equal(node.last_diag.limit_name, "SVA_MAX_UAVS");
         make_inputs(9);
-        mission.target_count = (int16_t)(bad_counts[i] == SVA_MAX_UAVS + 1 ? SVA_MAX_TARGETS + 1
-                                                                          : bad_counts[i]);
+        mission.target_count =
+            (int16_t)(bad_counts[i] == SVA_MAX_UAVS + 1 ? SVA_MAX_TARGETS + 1 : bad_counts[i]);
         expect_reject(false, mission_buf, (size_t)enc_mission(), SVA_LCM_REJECT_COUNT);
         assert_int_equal(node.last_diag.field, SVA_FIELD_TARGETS);
     }
@@ -557,33 +566,67 @@ static void test_rejections_counts_and_values(void** state)
         sva_field_t field;
         int64_t value;
     } cases[] = {
-        {0, 2, SVA_FIELD_UAV_X, 32768},       {0, 0, SVA_FIELD_UAV_Y, -32769},
-        {0, 4, SVA_FIELD_UAV_FUEL, -1},       {0, 1, SVA_FIELD_UAV_ID, 0},
-        {0, 3, SVA_FIELD_UAV_READY_AT, -5},   {1, -1, SVA_FIELD_TICKS_PER_CELL, 0},
-        {1, -1, SVA_FIELD_OVERLAP_PERCENT, 101}, {1, -1, SVA_FIELD_HOVER_FUEL, -1},
-        {1, -1, SVA_FIELD_DEPOT_X, 40000},    {1, 5, SVA_FIELD_TARGET_NEED, 0},
-        {1, 5, SVA_FIELD_TARGET_NEED, SVA_MAX_UAVS + 1}, {1, 2, SVA_FIELD_TARGET_START, -1},
-        {1, 0, SVA_FIELD_TARGET_END, SVA_MAX_TICK + 1},  {1, 3, SVA_FIELD_TARGET_ID, -7},
+        {0, 2, SVA_FIELD_UAV_X, 32768},
+        {0, 0, SVA_FIELD_UAV_Y, -32769},
+        {0, 4, SVA_FIELD_UAV_FUEL, -1},
+        {0, 1, SVA_FIELD_UAV_ID, 0},
+        {0, 3, SVA_FIELD_UAV_READY_AT, -5},
+        {1, -1, SVA_FIELD_TICKS_PER_CELL, 0},
+        {1, -1, SVA_FIELD_OVERLAP_PERCENT, 101},
+        {1, -1, SVA_FIELD_HOVER_FUEL, -1},
+        {1, -1, SVA_FIELD_DEPOT_X, 40000},
+        {1, 5, SVA_FIELD_TARGET_NEED, 0},
+        {1, 5, SVA_FIELD_TARGET_NEED, SVA_MAX_UAVS + 1},
+        {1, 2, SVA_FIELD_TARGET_START, -1},
+        {1, 0, SVA_FIELD_TARGET_END, SVA_MAX_TICK + 1},
+        {1, 3, SVA_FIELD_TARGET_ID, -7},
     };
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
         make_inputs(11);
         const int32_t v = (int32_t)cases[c].value;
         const int i = cases[c].idx;
         switch (cases[c].field) {
-            case SVA_FIELD_UAV_X: fleet.uavs[i].x = v; break;
-            case SVA_FIELD_UAV_Y: fleet.uavs[i].y = v; break;
-            case SVA_FIELD_UAV_FUEL: fleet.uavs[i].fuel = v; break;
-            case SVA_FIELD_UAV_ID: fleet.uavs[i].id = v; break;
-            case SVA_FIELD_UAV_READY_AT: fleet.uavs[i].ready_at_ticks = v; break;
-            case SVA_FIELD_TICKS_PER_CELL: mission.ticks_per_cell = v; break;
-            case SVA_FIELD_OVERLAP_PERCENT: mission.overlap_percent = v; break;
-            case SVA_FIELD_HOVER_FUEL: mission.hover_fuel = v; break;
-            case SVA_FIELD_DEPOT_X: mission.depot_x = v; break;
-            case SVA_FIELD_TARGET_NEED: mission.targets[i].need = v; break;
-            case SVA_FIELD_TARGET_START: mission.targets[i].start_ticks = v; break;
-            case SVA_FIELD_TARGET_END: mission.targets[i].end_ticks = v; break;
-            case SVA_FIELD_TARGET_ID: mission.targets[i].id = v; break;
-            default: fail();
+        case SVA_FIELD_UAV_X:
+            fleet.uavs[i].x = v;
+            break;
+        case SVA_FIELD_UAV_Y:
+            fleet.uavs[i].y = v;
+            break;
+        case SVA_FIELD_UAV_FUEL:
+            fleet.uavs[i].fuel = v;
+            break;
+        case SVA_FIELD_UAV_ID:
+            fleet.uavs[i].id = v;
+            break;
+        case SVA_FIELD_UAV_READY_AT:
+            fleet.uavs[i].ready_at_ticks = v;
+            break;
+        case SVA_FIELD_TICKS_PER_CELL:
+            mission.ticks_per_cell = v;
+            break;
+        case SVA_FIELD_OVERLAP_PERCENT:
+            mission.overlap_percent = v;
+            break;
+        case SVA_FIELD_HOVER_FUEL:
+            mission.hover_fuel = v;
+            break;
+        case SVA_FIELD_DEPOT_X:
+            mission.depot_x = v;
+            break;
+        case SVA_FIELD_TARGET_NEED:
+            mission.targets[i].need = v;
+            break;
+        case SVA_FIELD_TARGET_START:
+            mission.targets[i].start_ticks = v;
+            break;
+        case SVA_FIELD_TARGET_END:
+            mission.targets[i].end_ticks = v;
+            break;
+        case SVA_FIELD_TARGET_ID:
+            mission.targets[i].id = v;
+            break;
+        default:
+            fail();
         }
         if (cases[c].which == 0) {
             expect_reject(true, fleet_buf, (size_t)enc_fleet(), SVA_LCM_REJECT_VALUE);
@@ -608,7 +651,8 @@ static void test_core_rejection_and_planner_limit(void** state)
     make_inputs(20);
     mission.targets[3].id = mission.targets[1].id;  // duplicate: only the core sees it
     assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
     assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_INVALID], 1);
     assert_int_equal(plans_seen, 1);
     decode_last_plan();
@@ -622,7 +666,8 @@ static void test_core_rejection_and_planner_limit(void** state)
     // window end before start: the core's rule too
     make_inputs(21);
     mission.targets[2].end_ticks = mission.targets[2].start_ticks;
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
     decode_last_plan();
     assert_int_equal(got_plan.status, SVA_LCM_PLAN_T_STATUS_REJECTED);
     assert_int_equal(got_plan.diag_rule, SVA_RULE_AFTER);
@@ -635,7 +680,8 @@ static void test_core_rejection_and_planner_limit(void** state)
         mission.targets[i] = (sva_lcm_target_t){i + 1, i, 1, 100 * i + 10, 100 * i + 20, 1};
     }
     assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
     decode_last_plan();
     assert_int_equal(got_plan.status, SVA_LCM_PLAN_T_STATUS_FAILED);
     assert_int_equal(got_plan.error_code, SVA_ERR_LIMIT);
@@ -654,7 +700,8 @@ static void test_plan_too_large(void** state)
         mission.targets[i] = (sva_lcm_target_t){i + 1, 0, 0, 10 * i + 1, 10 * i + 5, 17};
     }
     assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
     decode_last_plan();
     assert_int_equal(got_plan.status, SVA_LCM_PLAN_T_STATUS_TOO_LARGE);
     assert_int_equal(got_plan.route_count, 0);
@@ -664,7 +711,8 @@ static void test_plan_too_large(void** state)
     for (int i = 0; i < SVA_MAX_TARGETS; ++i) {
         mission.targets[i].need = 15;
     }
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
     decode_last_plan();
     assert_int_equal(got_plan.status, SVA_LCM_PLAN_T_STATUS_COMPLETE);
     assert_int_equal(got_plan.item_count, 15 * SVA_MAX_TARGETS);
@@ -681,10 +729,12 @@ static void test_status(void** state)
     assert_int_equal(status_seen, 1);
     assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, 3), SVA_LCM_REJECTED);
     assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
     assert_int_equal(sva_lcm_publish_status(&node, 456), SVA_OK);
-    assert_int_equal(sva_lcm_node_status_t_decode(node.priv.status_buf, 0, SVA_LCM_STATUS_BYTES, &s),
-                     SVA_LCM_STATUS_BYTES);
+    assert_int_equal(
+        sva_lcm_node_status_t_decode(node.priv.status_buf, 0, SVA_LCM_STATUS_BYTES, &s),
+        SVA_LCM_STATUS_BYTES);
     assert_int_equal(s.utime, 456);
     assert_int_equal(s.seq, 2);
     assert_int_equal(s.state, SVA_LCM_NODE_STATUS_T_STATE_READY);
@@ -704,7 +754,8 @@ static void test_zero_allocations_per_message(void** state)
     node_setup(SVA_ALGO_SVA);
     make_inputs(100);
     assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
     // warm every logging path once
     (void)sva_lcm_on_fleet(&node, fleet_buf, 5);
     const int plans_before = plans_seen;

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 
 #define BF_MAX_TARGETS 6
-#define BF_MAX_UAVS 4
+#define BF_MAX_UAVS    4
 
 static long long dist(long long ax, long long ay, long long bx, long long by)
 {
@@ -49,7 +49,8 @@ static long long route_cost(const sva_mission_t* m, int u, unsigned mask)
     return d;
 }
 
-static void search(const sva_mission_t* m, int t, unsigned* per_uav, int covered, brute_result_t* best)
+static void search(const sva_mission_t* m, int t, unsigned* per_uav, int covered,
+                   brute_result_t* best)
 {
     if (t == m->target_count) {
         long long cost = 0;

@@ -18,17 +18,17 @@ int32_t test_rng_range(test_rng_t* rng, int32_t lo, int32_t hi);
 typedef struct {
     int targets;
     int uavs;
-    int grid;          ///< coordinates in [0, grid]
+    int grid;  ///< coordinates in [0, grid]
     int window_min;
     int window_max;
-    int horizon;       ///< window starts in [0, horizon]
+    int horizon;  ///< window starts in [0, horizon]
     int need_max;
     int fuel_min;
     int fuel_max;
     int hover_fuel;
     int ticks_per_cell;
-    int scattered;     ///< 1: UAVs start anywhere with ready_at > 0 (replanning)
-    int start_min;     ///< earliest window start (0 when left out)
+    int scattered;  ///< 1: UAVs start anywhere with ready_at > 0 (replanning)
+    int start_min;  ///< earliest window start (0 when left out)
 } test_gen_params_t;
 
 /// Fills *m with a valid random mission.

@@ -52,12 +52,14 @@ int spec_check_plan(const sva_mission_t* m, const sva_plan_t* p, char* msg, size
         const sva_uav_t* uav = &m->uavs[u];
         const sva_route_t* route = &p->routes[u];
         if (route->uav_id != uav->id) {
-            fail(&r, "route %d is for UAV %d, expected %d (mission order)", u, route->uav_id, uav->id);
+            fail(&r, "route %d is for UAV %d, expected %d (mission order)", u, route->uav_id,
+                 uav->id);
         }
         const long long home = manhattan(uav->x, uav->y, m->depot_x, m->depot_y);
         const int must_strand = uav->fuel < home;
         if (route->stranded != must_strand) {
-            fail(&r, "UAV %d stranded=%d, fuel %d home %lld", uav->id, route->stranded, uav->fuel, home);
+            fail(&r, "UAV %d stranded=%d, fuel %d home %lld", uav->id, route->stranded, uav->fuel,
+                 home);
         }
         if (route->stranded) {
             stranded++;
@@ -93,10 +95,12 @@ int spec_check_plan(const sva_mission_t* m, const sva_plan_t* p, char* msg, size
         dist += manhattan(x, y, m->depot_x, m->depot_y);
         const long long fuel = dist + (long long)m->hover_fuel * route->target_count;
         if (dist != route->distance_cells) {
-            fail(&r, "UAV %d distance %lld, recomputed %lld", uav->id, (long long)route->distance_cells, dist);
+            fail(&r, "UAV %d distance %lld, recomputed %lld", uav->id,
+                 (long long)route->distance_cells, dist);
         }
         if (fuel != route->fuel_used) {
-            fail(&r, "UAV %d fuel_used %lld, recomputed %lld", uav->id, (long long)route->fuel_used, fuel);
+            fail(&r, "UAV %d fuel_used %lld, recomputed %lld", uav->id, (long long)route->fuel_used,
+                 fuel);
         }
         if (fuel > uav->fuel) {
             fail(&r, "UAV %d uses %lld fuel of %d", uav->id, fuel, uav->fuel);
@@ -109,7 +113,8 @@ int spec_check_plan(const sva_mission_t* m, const sva_plan_t* p, char* msg, size
     int covered = 0, listed = 0;
     for (int t = 0; t < m->target_count; t++) {
         if (served[t] != 0 && served[t] != m->targets[t].need) {
-            fail(&r, "target %d half-covered: %d of %d UAVs", m->targets[t].id, served[t], m->targets[t].need);
+            fail(&r, "target %d half-covered: %d of %d UAVs", m->targets[t].id, served[t],
+                 m->targets[t].need);
         }
         if (served[t] == m->targets[t].need) {
             covered++;
@@ -129,7 +134,8 @@ int spec_check_plan(const sva_mission_t* m, const sva_plan_t* p, char* msg, size
     if (cost != p->cost) {
         fail(&r, "cost %lld, recomputed %lld", (long long)p->cost, cost);
     }
-    const sva_plan_status_t status = covered == m->target_count ? SVA_PLAN_COMPLETE : SVA_PLAN_PARTIAL;
+    const sva_plan_status_t status =
+        covered == m->target_count ? SVA_PLAN_COMPLETE : SVA_PLAN_PARTIAL;
     if (status != p->status) {
         fail(&r, "status %d, expected %d", (int)p->status, (int)status);
     }

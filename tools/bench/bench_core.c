@@ -57,7 +57,9 @@ int main(int argc, char** argv)
         const int t = sizes[s][0], u = sizes[s][1];
         for (int i = 0; i < count; i++) {
             // Windows start once any UAV can reach any cell (40 cells away at most).
-            const test_gen_params_t p = {t, u, 20, 10, 20, 60 * t / u, 1, 40 + 12 * t / u * 3, 60 + 12 * t / u * 3, 2, 1, 0, 40};
+            const test_gen_params_t p = {
+                t, u, 20, 10, 20, 60 * t / u, 1, 40 + 12 * t / u * 3, 60 + 12 * t / u * 3,
+                2, 1, 0,  40};
             test_gen_mission(&rng, &p, &missions[i]);
         }
         for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
@@ -69,8 +71,10 @@ int main(int argc, char** argv)
             for (int i = 0; i < count; i++) {
                 const double t0 = now_us();
                 for (int r = 0; r < repeats; r++) {
-                    if (sva_plan(&planner, &missions[i], (sva_algorithm_t)a, &plan, NULL) != SVA_OK) {
-                        fprintf(stderr, "plan failed: size %d algo %s\n", t, sva_algorithm_name((sva_algorithm_t)a));
+                    if (sva_plan(&planner, &missions[i], (sva_algorithm_t)a, &plan, NULL) !=
+                        SVA_OK) {
+                        fprintf(stderr, "plan failed: size %d algo %s\n", t,
+                                sva_algorithm_name((sva_algorithm_t)a));
                         return 1;
                     }
                 }
@@ -83,7 +87,8 @@ int main(int argc, char** argv)
             qsort(per_mission, (size_t)count, sizeof(double), by_value);
             printf("%-8d %-5s %12.0f %10.2f %10.2f %9.1f%% %8.1f%%\n", t,
                    sva_algorithm_name((sva_algorithm_t)a), 1e6 * count / total,
-                   per_mission[count / 2], per_mission[(count * 95) / 100 < count ? (count * 95) / 100 : count - 1],
+                   per_mission[count / 2],
+                   per_mission[(count * 95) / 100 < count ? (count * 95) / 100 : count - 1],
                    100.0 * covered / targets, 100.0 * complete / count);
         }
     }

@@ -35,7 +35,9 @@ static sva_planner_t g_planner;
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((format(printf, 2, 3)))
 #endif
-static int error_exit(int code, const char* fmt, ...) {
+static int
+error_exit(int code, const char* fmt, ...)
+{
     char message[SVA_JSON_ERROR_SIZE];
     va_list args;
     va_start(args, fmt);
@@ -48,11 +50,13 @@ static int error_exit(int code, const char* fmt, ...) {
     return code;
 }
 
-static void list_algorithms(char* out, size_t size) {
+static void list_algorithms(char* out, size_t size)
+{
     size_t used = 0;
     out[0] = '\0';
     for (int a = 0; a < (int)SVA_ALGO_COUNT_; ++a) {
-        int n = snprintf(out + used, size - used, "%s%s", a == 0 ? "" : ", ", sva_algorithm_name((sva_algorithm_t)a));
+        int n = snprintf(out + used, size - used, "%s%s", a == 0 ? "" : ", ",
+                         sva_algorithm_name((sva_algorithm_t)a));
         if (n < 0 || (size_t)n >= size - used) {
             break;
         }
@@ -60,11 +64,13 @@ static void list_algorithms(char* out, size_t size) {
     }
 }
 
-static void print_usage(FILE* out) {
+static void print_usage(FILE* out)
+{
     char algos[128];
     list_algorithms(algos, sizeof algos);
     fprintf(out,
-            "usage: sva plan [--algo NAME] [--flow-work N] [--repeat N] [--schedule] [--trace FILE] MISSION.json|-\n"
+            "usage: sva plan [--algo NAME] [--flow-work N] [--repeat N] [--schedule] [--trace "
+            "FILE] MISSION.json|-\n"
             "       sva validate MISSION.json|-\n"
             "       sva replan [--algo NAME] [--flow-work N] [--residual FILE] LIVE.json|-\n"
             "       sva --help | --version\n"
@@ -84,15 +90,19 @@ static void print_usage(FILE* out) {
             algos, (unsigned long)SVA_FLOW_MAX_WORK, REPEAT_MAX);
 }
 
-static void print_version(void) {
+static void print_version(void)
+{
     sva_limits_t limits = sva_limits();
-    printf("sva %d.%d.%d (mission/plan schema %d)\n", SVA_VERSION_MAJOR, SVA_VERSION_MINOR, SVA_VERSION_PATCH,
-           SVA_SCHEMA_VERSION);
-    printf("limits: SVA_MAX_UAVS %lu, SVA_MAX_TARGETS %lu, SVA_BFA_MAX_UAVS %lu, SVA_BFA_MAX_TARGETS %lu, "
+    printf("sva %d.%d.%d (mission/plan schema %d)\n", SVA_VERSION_MAJOR, SVA_VERSION_MINOR,
+           SVA_VERSION_PATCH, SVA_SCHEMA_VERSION);
+    printf("limits: SVA_MAX_UAVS %lu, SVA_MAX_TARGETS %lu, SVA_BFA_MAX_UAVS %lu, "
+           "SVA_BFA_MAX_TARGETS %lu, "
            "SVA_BFA_MAX_NODES %lu\n",
-           (unsigned long)limits.max_uavs, (unsigned long)limits.max_targets, (unsigned long)limits.bfa_max_uavs,
-           (unsigned long)limits.bfa_max_targets, (unsigned long)limits.bfa_max_nodes);
-    printf("bfa plans a mission within SVA_BFA_MAX_UAVS and SVA_BFA_MAX_TARGETS unless its search passes "
+           (unsigned long)limits.max_uavs, (unsigned long)limits.max_targets,
+           (unsigned long)limits.bfa_max_uavs, (unsigned long)limits.bfa_max_targets,
+           (unsigned long)limits.bfa_max_nodes);
+    printf("bfa plans a mission within SVA_BFA_MAX_UAVS and SVA_BFA_MAX_TARGETS unless its search "
+           "passes "
            "SVA_BFA_MAX_NODES nodes\n");
 }
 
@@ -109,7 +119,8 @@ typedef struct {
 
 // An option's value as a decimal integer in [lo, hi] into *out; false if it is not
 // one or out of range.
-static bool long_in(const char* value, long lo, long hi, long* out) {
+static bool long_in(const char* value, long lo, long hi, long* out)
+{
     char* end = NULL;
     errno = 0;
     const long n = strtol(value, &end, 10);
@@ -154,23 +165,31 @@ static const struct option VALIDATE_OPTIONS[] = {
 };
 
 // Error of an option whose value is missing or wrong.
-static int bad_value(const char* command, int code) {
+static int bad_value(const char* command, int code)
+{
     switch (code) {
-        case OPT_ALGO: return error_exit(EXIT_BAD_INPUT, "%s: --algo needs a value", command);
-        case OPT_TRACE: return error_exit(EXIT_BAD_INPUT, "%s: --trace needs a file name", command);
-        case OPT_RESIDUAL: return error_exit(EXIT_BAD_INPUT, "%s: --residual needs a file name", command);
-        case OPT_FLOW_WORK:
-            return error_exit(EXIT_BAD_INPUT, "%s: --flow-work: must be an integer in [1000, %ld] (SVA_FLOW_MAX_WORK)",
-                              command, (long)SVA_FLOW_MAX_WORK);
-        case OPT_REPEAT:
-        default: return error_exit(EXIT_BAD_INPUT, "%s: --repeat: must be an integer in [1, %d]", command, REPEAT_MAX);
+    case OPT_ALGO:
+        return error_exit(EXIT_BAD_INPUT, "%s: --algo needs a value", command);
+    case OPT_TRACE:
+        return error_exit(EXIT_BAD_INPUT, "%s: --trace needs a file name", command);
+    case OPT_RESIDUAL:
+        return error_exit(EXIT_BAD_INPUT, "%s: --residual needs a file name", command);
+    case OPT_FLOW_WORK:
+        return error_exit(EXIT_BAD_INPUT,
+                          "%s: --flow-work: must be an integer in [1000, %ld] (SVA_FLOW_MAX_WORK)",
+                          command, (long)SVA_FLOW_MAX_WORK);
+    case OPT_REPEAT:
+    default:
+        return error_exit(EXIT_BAD_INPUT, "%s: --repeat: must be an integer in [1, %d]", command,
+                          REPEAT_MAX);
     }
 }
 
 // Error of an option getopt_long did not accept: unknown, ambiguous, or given a value
 // it does not take. `argv[optind - 1]` is the argument for a long option; a short
 // one is named by optopt.
-static int unknown_option(const char* command, char** argv) {
+static int unknown_option(const char* command, char** argv)
+{
     char short_form[3] = {'-', (char)optopt, '\0'};
     const bool is_long = optopt == 0 || optopt == OPT_HELP || optopt >= OPT_ALGO;
     return error_exit(EXIT_BAD_INPUT, "%s: unknown option \"%s\" (try 'sva --help')", command,
@@ -181,7 +200,8 @@ static int unknown_option(const char* command, char** argv) {
 // any order, "--" ends the options, long options as "--name VALUE" or "--name=VALUE"
 // (or a unique prefix of the name), from the command's table. argv[0] is the command.
 static int parse_options(const char* command, const struct option* options, int argc, char** argv,
-                         options_t* opt) {
+                         options_t* opt)
+{
     memset(opt, 0, sizeof *opt);
     opt->algo = "sva";
     opt->repeat = 1;
@@ -191,46 +211,54 @@ static int parse_options(const char* command, const struct option* options, int 
     int code;
     while ((code = getopt_long(argc, argv, "-:h", options, NULL)) != -1) {
         switch (code) {
-            case OPT_MISSION:
-                if (opt->mission != NULL) {
-                    return error_exit(EXIT_BAD_INPUT, "%s: one mission expected, got \"%s\" and \"%s\"", command,
-                                      opt->mission, optarg);
-                }
-                opt->mission = optarg;
-                break;
-            case OPT_HELP: opt->help = true; break;
-            case OPT_SCHEDULE: opt->schedule = true; break;
-            case OPT_ALGO: opt->algo = optarg; break;
-            case OPT_FLOW_WORK:
-                if (!long_in(optarg, 1000, (long)SVA_FLOW_MAX_WORK, &opt->flow_work)) {
-                    return bad_value(command, code);
-                }
-                break;
-            case OPT_REPEAT:
-                if (!long_in(optarg, 1, REPEAT_MAX, &opt->repeat)) {
-                    return bad_value(command, code);
-                }
-                break;
-            case OPT_TRACE:
-                if (optarg[0] == '\0') {
-                    return bad_value(command, code);
-                }
-                opt->trace = optarg;
-                break;
-            case OPT_RESIDUAL:
-                if (optarg[0] == '\0') {
-                    return bad_value(command, code);
-                }
-                opt->residual = optarg;
-                break;
-            case ':': return bad_value(command, optopt);
-            default: return unknown_option(command, argv);
+        case OPT_MISSION:
+            if (opt->mission != NULL) {
+                return error_exit(EXIT_BAD_INPUT, "%s: one mission expected, got \"%s\" and \"%s\"",
+                                  command, opt->mission, optarg);
+            }
+            opt->mission = optarg;
+            break;
+        case OPT_HELP:
+            opt->help = true;
+            break;
+        case OPT_SCHEDULE:
+            opt->schedule = true;
+            break;
+        case OPT_ALGO:
+            opt->algo = optarg;
+            break;
+        case OPT_FLOW_WORK:
+            if (!long_in(optarg, 1000, (long)SVA_FLOW_MAX_WORK, &opt->flow_work)) {
+                return bad_value(command, code);
+            }
+            break;
+        case OPT_REPEAT:
+            if (!long_in(optarg, 1, REPEAT_MAX, &opt->repeat)) {
+                return bad_value(command, code);
+            }
+            break;
+        case OPT_TRACE:
+            if (optarg[0] == '\0') {
+                return bad_value(command, code);
+            }
+            opt->trace = optarg;
+            break;
+        case OPT_RESIDUAL:
+            if (optarg[0] == '\0') {
+                return bad_value(command, code);
+            }
+            opt->residual = optarg;
+            break;
+        case ':':
+            return bad_value(command, optopt);
+        default:
+            return unknown_option(command, argv);
         }
     }
     for (; optind < argc; ++optind) {  // after "--"
         if (opt->mission != NULL) {
-            return error_exit(EXIT_BAD_INPUT, "%s: one mission expected, got \"%s\" and \"%s\"", command,
-                              opt->mission, argv[optind]);
+            return error_exit(EXIT_BAD_INPUT, "%s: one mission expected, got \"%s\" and \"%s\"",
+                              command, opt->mission, argv[optind]);
         }
         opt->mission = argv[optind];
     }
@@ -241,7 +269,8 @@ static int parse_options(const char* command, const struct option* options, int 
     return EXIT_PLANNED;
 }
 
-static int load(const char* path, char name[SVA_JSON_NAME_MAX + 1]) {
+static int load(const char* path, char name[SVA_JSON_NAME_MAX + 1])
+{
     char err[SVA_JSON_ERROR_SIZE];
     sva_json_result_t result = sva_json_load_mission(path, &g_mission, name, err, sizeof err);
     if (result != SVA_JSON_OK) {
@@ -250,7 +279,8 @@ static int load(const char* path, char name[SVA_JSON_NAME_MAX + 1]) {
     return EXIT_PLANNED;
 }
 
-static int cmd_validate(int argc, char** argv) {
+static int cmd_validate(int argc, char** argv)
+{
     options_t opt;
     int code = parse_options("validate", VALIDATE_OPTIONS, argc, argv, &opt);
     if (code != EXIT_PLANNED || opt.help) {
@@ -265,20 +295,22 @@ static int cmd_validate(int argc, char** argv) {
         return code;
     }
     char shown[SVA_TEXT_ESCAPED_SIZE(SVA_JSON_NAME_MAX)];
-    printf("ok: %s: %u UAVs, %u targets\n", sva_text_escape(shown, sizeof shown, name), (unsigned)g_mission.uav_count,
-           (unsigned)g_mission.target_count);
+    printf("ok: %s: %u UAVs, %u targets\n", sva_text_escape(shown, sizeof shown, name),
+           (unsigned)g_mission.uav_count, (unsigned)g_mission.target_count);
     if (fflush(stdout) != 0) {
         return error_exit(EXIT_FAILED, "writing to standard output: %s", strerror(errno));
     }
     return EXIT_PLANNED;
 }
 
-static int64_t elapsed_us(const struct timespec* a, const struct timespec* b) {
+static int64_t elapsed_us(const struct timespec* a, const struct timespec* b)
+{
     return (int64_t)(b->tv_sec - a->tv_sec) * 1000000 + (int64_t)(b->tv_nsec - a->tv_nsec) / 1000;
 }
 
 // One sva_plan() call into g_plan; *fastest_us becomes its wall time if that is less.
-static sva_status_t timed_plan(sva_algorithm_t algorithm, sva_diag_t* diag, int64_t* fastest_us) {
+static sva_status_t timed_plan(sva_algorithm_t algorithm, sva_diag_t* diag, int64_t* fastest_us)
+{
     struct timespec before, after;
     clock_gettime(CLOCK_MONOTONIC, &before);
     const sva_status_t status = sva_plan(&g_planner, &g_mission, algorithm, &g_plan, diag);
@@ -289,23 +321,29 @@ static sva_status_t timed_plan(sva_algorithm_t algorithm, sva_diag_t* diag, int6
 }
 
 // Maps a failed sva_plan() to its message and exit code.
-static int plan_failed(sva_status_t status, const sva_diag_t* diag) {
+static int plan_failed(sva_status_t status, const sva_diag_t* diag)
+{
     char message[SVA_JSON_ERROR_SIZE];
     (void)sva_diag_format(diag, message, sizeof message);
     switch (status) {
-        case SVA_ERR_INVALID: return error_exit(EXIT_BAD_INPUT, "%s", message);
-        case SVA_ERR_LIMIT: return error_exit(EXIT_FAILED, "%s", message);
-        case SVA_ERR_SOLVER:
-            return error_exit(EXIT_FAILED, "planner failed: simplex pivot budget SVA_MAX_PIVOTS (%ld) exceeded or "
-                                           "non-unit pivot (SVA_ERR_SOLVER)",
-                              (long)SVA_MAX_PIVOTS);
-        case SVA_ERR_ARGUMENT:
-        case SVA_OK: break;
+    case SVA_ERR_INVALID:
+        return error_exit(EXIT_BAD_INPUT, "%s", message);
+    case SVA_ERR_LIMIT:
+        return error_exit(EXIT_FAILED, "%s", message);
+    case SVA_ERR_SOLVER:
+        return error_exit(EXIT_FAILED,
+                          "planner failed: simplex pivot budget SVA_MAX_PIVOTS (%ld) exceeded or "
+                          "non-unit pivot (SVA_ERR_SOLVER)",
+                          (long)SVA_MAX_PIVOTS);
+    case SVA_ERR_ARGUMENT:
+    case SVA_OK:
+        break;
     }
     return error_exit(EXIT_FAILED, "planner failed with status %d", (int)status);
 }
 
-static int print_plan(const options_t* opt, const char* name, int64_t solve_us) {
+static int print_plan(const options_t* opt, const char* name, int64_t solve_us)
+{
     if (opt->schedule) {
         if (sva_write_schedule(stdout, &g_mission, name, &g_plan) != 0) {
             return error_exit(EXIT_FAILED, "writing the schedule: %s", strerror(errno));
@@ -324,7 +362,8 @@ static int print_plan(const options_t* opt, const char* name, int64_t solve_us) 
     return EXIT_PLANNED;
 }
 
-static int cmd_plan(int argc, char** argv) {
+static int cmd_plan(int argc, char** argv)
+{
     options_t opt;
     int code = parse_options("plan", PLAN_OPTIONS, argc, argv, &opt);
     if (code != EXIT_PLANNED || opt.help) {
@@ -337,7 +376,8 @@ static int cmd_plan(int argc, char** argv) {
     if (sva_algorithm_from_name(opt.algo, &algorithm) != SVA_OK) {
         char algos[128];
         list_algorithms(algos, sizeof algos);
-        return error_exit(EXIT_BAD_INPUT, "plan: --algo: unknown algorithm \"%s\" (known: %s)", opt.algo, algos);
+        return error_exit(EXIT_BAD_INPUT, "plan: --algo: unknown algorithm \"%s\" (known: %s)",
+                          opt.algo, algos);
     }
     char name[SVA_JSON_NAME_MAX + 1];
     code = load(opt.mission, name);
@@ -367,7 +407,8 @@ static int cmd_plan(int argc, char** argv) {
     if (opt.trace != NULL) {
         trace_file = fopen(opt.trace, "w");
         if (trace_file == NULL) {
-            return error_exit(EXIT_FAILED, "%s: cannot open for writing: %s", opt.trace, strerror(errno));
+            return error_exit(EXIT_FAILED, "%s: cannot open for writing: %s", opt.trace,
+                              strerror(errno));
         }
         sva_trace_attach(&trace, &g_planner, trace_file, &g_mission);
     }
@@ -393,8 +434,9 @@ static sva_live_t g_live;
 static sva_json_live_t g_doc;
 
 // One replan of g_live into *result (its wall time into *solve_us).
-static sva_status_t timed_replan(sva_algorithm_t algorithm, sva_live_result_t* result, sva_diag_t* diag,
-                                 int64_t* solve_us) {
+static sva_status_t timed_replan(sva_algorithm_t algorithm, sva_live_result_t* result,
+                                 sva_diag_t* diag, int64_t* solve_us)
+{
     struct timespec before, after;
     clock_gettime(CLOCK_MONOTONIC, &before);
     const sva_status_t status = sva_live_replan(&g_live, &g_planner, algorithm, result, diag);
@@ -403,14 +445,16 @@ static sva_status_t timed_replan(sva_algorithm_t algorithm, sva_live_result_t* r
     return status;
 }
 
-static int write_residual(const char* path, const sva_mission_t* residual, const char* name) {
+static int write_residual(const char* path, const sva_mission_t* residual, const char* name)
+{
     json_t* doc = sva_json_mission(residual, name);
     FILE* out = doc != NULL ? fopen(path, "w") : NULL;
     if (out == NULL) {
         json_decref(doc);
         return error_exit(EXIT_FAILED, "%s: cannot open for writing: %s", path, strerror(errno));
     }
-    const int written = sva_json_write_plan(out, doc);  // any document: indented, newline-terminated
+    const int written =
+        sva_json_write_plan(out, doc);  // any document: indented, newline-terminated
     json_decref(doc);
     if (fclose(out) != 0 || written != 0) {
         return error_exit(EXIT_FAILED, "%s: cannot write the residual mission", path);
@@ -418,11 +462,13 @@ static int write_residual(const char* path, const sva_mission_t* residual, const
     return EXIT_PLANNED;
 }
 
-static int replay(const options_t* opt, sva_algorithm_t algorithm) {
+static int replay(const options_t* opt, sva_algorithm_t algorithm)
+{
     sva_diag_t diag;
     sva_diag_clear(&diag);
     if (!g_doc.has_plan) {
-        const sva_status_t status = sva_plan(&g_planner, &g_doc.mission, algorithm, &g_doc.plan, &diag);
+        const sva_status_t status =
+            sva_plan(&g_planner, &g_doc.mission, algorithm, &g_doc.plan, &diag);
         if (status != SVA_OK) {
             return plan_failed(status, &diag);
         }
@@ -461,8 +507,8 @@ static int replay(const options_t* opt, sva_algorithm_t algorithm) {
             return plan_failed(status, &diag);
         }
     } else if (g_doc.has_now && g_doc.now_ticks < g_live.now_ticks) {
-        return error_exit(EXIT_BAD_INPUT, "now: %ld is before the last event (%ld)", (long)g_doc.now_ticks,
-                          (long)g_live.now_ticks);
+        return error_exit(EXIT_BAD_INPUT, "now: %ld is before the last event (%ld)",
+                          (long)g_doc.now_ticks, (long)g_live.now_ticks);
     }
     if (opt->residual != NULL) {
         const int code = write_residual(opt->residual, result.residual, g_doc.name);
@@ -482,7 +528,8 @@ static int replay(const options_t* opt, sva_algorithm_t algorithm) {
     return EXIT_PLANNED;
 }
 
-static int cmd_replan(int argc, char** argv) {
+static int cmd_replan(int argc, char** argv)
+{
     options_t opt;
     int code = parse_options("replan", REPLAN_OPTIONS, argc, argv, &opt);
     if (code != EXIT_PLANNED || opt.help) {
@@ -495,7 +542,8 @@ static int cmd_replan(int argc, char** argv) {
     if (sva_algorithm_from_name(opt.algo, &algorithm) != SVA_OK) {
         char algos[128];
         list_algorithms(algos, sizeof algos);
-        return error_exit(EXIT_BAD_INPUT, "replan: --algo: unknown algorithm \"%s\" (known: %s)", opt.algo, algos);
+        return error_exit(EXIT_BAD_INPUT, "replan: --algo: unknown algorithm \"%s\" (known: %s)",
+                          opt.algo, algos);
     }
     char err[SVA_JSON_ERROR_SIZE];
     const sva_json_result_t loaded = sva_json_load_live(opt.mission, &g_doc, err, sizeof err);
@@ -514,12 +562,14 @@ static int cmd_replan(int argc, char** argv) {
     return code;
 }
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv)
+{
     if (argc < 2) {
         return error_exit(EXIT_BAD_INPUT, "missing command (try 'sva --help')");
     }
     const char* command = argv[1];
-    if (strcmp(command, "--help") == 0 || strcmp(command, "-h") == 0 || strcmp(command, "help") == 0) {
+    if (strcmp(command, "--help") == 0 || strcmp(command, "-h") == 0 ||
+        strcmp(command, "help") == 0) {
         print_usage(stdout);
         return EXIT_PLANNED;
     }

@@ -69,9 +69,9 @@ extern "C" {
 #define SVA_SCHEMA_VERSION 2
 
 #if defined(__GNUC__) || defined(__clang__)
-#define SVA_NODISCARD __attribute__((warn_unused_result))
+#    define SVA_NODISCARD __attribute__((warn_unused_result))
 #else
-#define SVA_NODISCARD
+#    define SVA_NODISCARD
 #endif
 
 // =================================================================================
@@ -123,7 +123,7 @@ typedef enum {
     SVA_FIELD_EVENT_TYPE,
     SVA_FIELD_EVENT_AT,
     SVA_FIELD_EVENT_UAV,
-    SVA_FIELD_EVENT_TARGET,    ///< the id an event names
+    SVA_FIELD_EVENT_TARGET,  ///< the id an event names
     SVA_FIELD_EVENT_X,
     SVA_FIELD_EVENT_Y,
     SVA_FIELD_EVENT_FUEL,
@@ -133,18 +133,19 @@ typedef enum {
 /// Which rule was broken.
 typedef enum {
     SVA_RULE_NONE = 0,
-    SVA_RULE_MIN,        ///< value < limit
-    SVA_RULE_MAX,        ///< value > limit (limit_name names the bound, if any)
-    SVA_RULE_COUNT,      ///< list longer than limit (limit_name names the bound)
-    SVA_RULE_DUPLICATE,  ///< id equal to the one at index `limit` of the same list
-    SVA_RULE_AFTER,      ///< end <= start: value is end, limit is start
-    SVA_RULE_ALGO_LIMIT, ///< an algorithm limit (limit_name names it)
-    SVA_RULE_UNKNOWN,    ///< no UAV or target has the id `value`
-    SVA_RULE_PAST,       ///< the tick `value` is before the live mission's now (`limit`)
-    SVA_RULE_STARTED,    ///< the target's window started at `value`; now is `limit`
-    SVA_RULE_STATE,      ///< the UAV or target is in a state (`value`) the event needs otherwise
-    SVA_RULE_ROUTE,      ///< a plan in force's route names the target `value` twice or a UAV out of order
-    SVA_RULE_COUNT_      ///< number of rules (not a rule)
+    SVA_RULE_MIN,         ///< value < limit
+    SVA_RULE_MAX,         ///< value > limit (limit_name names the bound, if any)
+    SVA_RULE_COUNT,       ///< list longer than limit (limit_name names the bound)
+    SVA_RULE_DUPLICATE,   ///< id equal to the one at index `limit` of the same list
+    SVA_RULE_AFTER,       ///< end <= start: value is end, limit is start
+    SVA_RULE_ALGO_LIMIT,  ///< an algorithm limit (limit_name names it)
+    SVA_RULE_UNKNOWN,     ///< no UAV or target has the id `value`
+    SVA_RULE_PAST,        ///< the tick `value` is before the live mission's now (`limit`)
+    SVA_RULE_STARTED,     ///< the target's window started at `value`; now is `limit`
+    SVA_RULE_STATE,       ///< the UAV or target is in a state (`value`) the event needs otherwise
+    SVA_RULE_ROUTE,  ///< a plan in force's route names the target `value` twice or a UAV out of
+                     ///< order
+    SVA_RULE_COUNT_  ///< number of rules (not a rule)
 } sva_rule_t;
 
 /// A diagnostic: the first error found wins. index is the list position (-1 when the
@@ -182,21 +183,21 @@ const char* sva_field_name(sva_field_t field);
 
 /// One UAV of the fleet state. Units: cells, fuel units, ticks.
 typedef struct {
-    int32_t id;            ///< positive, unique in the mission
-    int32_t x;             ///< [SVA_COORD_MIN, SVA_COORD_MAX]
-    int32_t y;             ///< [SVA_COORD_MIN, SVA_COORD_MAX]
-    int32_t fuel;          ///< remaining fuel, [0, SVA_MAX_FUEL]
-    int32_t ready_at_ticks;///< free to fly from this tick, [0, SVA_MAX_TICK]
+    int32_t id;              ///< positive, unique in the mission
+    int32_t x;               ///< [SVA_COORD_MIN, SVA_COORD_MAX]
+    int32_t y;               ///< [SVA_COORD_MIN, SVA_COORD_MAX]
+    int32_t fuel;            ///< remaining fuel, [0, SVA_MAX_FUEL]
+    int32_t ready_at_ticks;  ///< free to fly from this tick, [0, SVA_MAX_TICK]
 } sva_uav_t;
 
 /// One target area.
 typedef struct {
-    int32_t id;            ///< positive, unique in the mission
+    int32_t id;  ///< positive, unique in the mission
     int32_t x;
     int32_t y;
-    int32_t start_ticks;   ///< window start, [0, SVA_MAX_TICK)
-    int32_t end_ticks;     ///< window end, (start, SVA_MAX_TICK]
-    int32_t need;          ///< UAVs required for the whole window, [1, SVA_MAX_UAVS]
+    int32_t start_ticks;  ///< window start, [0, SVA_MAX_TICK)
+    int32_t end_ticks;    ///< window end, (start, SVA_MAX_TICK]
+    int32_t need;         ///< UAVs required for the whole window, [1, SVA_MAX_UAVS]
 } sva_target_t;
 
 /// A whole planning problem: the instance constants, the fleet and the targets.
@@ -209,8 +210,8 @@ typedef struct {
     /// Live missions only (SPEC section 12.4): cells a replan pays per changed visit,
     /// [0, SVA_MAX_CHANGE_PENALTY]; sva_plan() ignores it.
     int32_t change_penalty;
-    uint16_t uav_count;       ///< [0, SVA_MAX_UAVS]
-    uint16_t target_count;    ///< [0, SVA_MAX_TARGETS]
+    uint16_t uav_count;     ///< [0, SVA_MAX_UAVS]
+    uint16_t target_count;  ///< [0, SVA_MAX_TARGETS]
     sva_uav_t uavs[SVA_MAX_UAVS];
     sva_target_t targets[SVA_MAX_TARGETS];
 } sva_mission_t;
@@ -294,30 +295,30 @@ typedef enum {
 
 /// Counters of one planning run (peaks let integrators shrink bounds to measurements).
 typedef struct {
-    uint32_t clusters;              ///< clusters formed (sva, hga)
-    uint32_t largest_cluster;       ///< most targets in one cluster
-    uint32_t transport_problems;    ///< problems solved (chunks included)
-    uint32_t largest_sources;       ///< most source groups in one problem
-    uint32_t largest_sinks;         ///< most sinks in one problem
-    uint32_t largest_tableau_cells; ///< most tableau cells used (sva)
-    uint32_t pivots;                ///< simplex pivots, all problems (sva)
-    uint32_t max_pivots;            ///< most pivots in one problem (sva)
-    uint32_t dropped_sources;       ///< source groups left out by SVA_MAX_TP_SOURCES
-    uint32_t chunked_clusters;      ///< clusters split by SVA_MAX_TP_SINKS
-    uint64_t search_nodes;          ///< nodes visited (hga, bfa, flow)
-    uint32_t truncated_searches;    ///< hga problems cut at SVA_HGA_MAX_NODES
+    uint32_t clusters;               ///< clusters formed (sva, hga)
+    uint32_t largest_cluster;        ///< most targets in one cluster
+    uint32_t transport_problems;     ///< problems solved (chunks included)
+    uint32_t largest_sources;        ///< most source groups in one problem
+    uint32_t largest_sinks;          ///< most sinks in one problem
+    uint32_t largest_tableau_cells;  ///< most tableau cells used (sva)
+    uint32_t pivots;                 ///< simplex pivots, all problems (sva)
+    uint32_t max_pivots;             ///< most pivots in one problem (sva)
+    uint32_t dropped_sources;        ///< source groups left out by SVA_MAX_TP_SOURCES
+    uint32_t chunked_clusters;       ///< clusters split by SVA_MAX_TP_SINKS
+    uint64_t search_nodes;           ///< nodes visited (hga, bfa, flow)
+    uint32_t truncated_searches;     ///< hga problems cut at SVA_HGA_MAX_NODES
     // flow only (has_bound false for the other algorithms):
-    bool has_bound;                 ///< lower_bound and optimal are set
+    bool has_bound;  ///< lower_bound and optimal are set
     /// No plan covering as many targets as this one costs less than lower_bound.
     int64_t lower_bound;
     /// The plan is proven optimal under SPEC section 1 (lower_bound == cost).
     bool optimal;
-    uint32_t flow_solves;           ///< min-cost flow relaxations solved
-    uint32_t flow_augmentations;    ///< shortest augmenting paths, all solves
-    uint64_t flow_work;             ///< arc scans, against SVA_FLOW_MAX_WORK
-    uint32_t flow_graph_arcs;       ///< arcs of the time-feasibility graph
-    uint32_t flow_max_depth;        ///< deepest branch-and-bound node
-    uint32_t flow_lagrange_iters;   ///< subgradient iterations (0: the search sufficed)
+    uint32_t flow_solves;          ///< min-cost flow relaxations solved
+    uint32_t flow_augmentations;   ///< shortest augmenting paths, all solves
+    uint64_t flow_work;            ///< arc scans, against SVA_FLOW_MAX_WORK
+    uint32_t flow_graph_arcs;      ///< arcs of the time-feasibility graph
+    uint32_t flow_max_depth;       ///< deepest branch-and-bound node
+    uint32_t flow_lagrange_iters;  ///< subgradient iterations (0: the search sufficed)
     /// Routes in the route master when it gave the Lagrangian its prices (0: it did not
     /// run, or stopped on a bound or the work budget).
     uint16_t flow_lp_columns;
@@ -336,11 +337,11 @@ typedef struct {
 typedef struct {
     sva_algorithm_t algorithm;
     sva_plan_status_t status;
-    uint16_t covered;               ///< targets covered
+    uint16_t covered;  ///< targets covered
     uint16_t uncovered_count;
     uint16_t uncovered[SVA_MAX_TARGETS];  ///< indices into mission targets, mission order
-    int64_t cost;                   ///< sum of route distances
-    uint16_t route_count;           ///< == mission uav_count
+    int64_t cost;                         ///< sum of route distances
+    uint16_t route_count;                 ///< == mission uav_count
     uint16_t stranded_count;
     sva_route_t routes[SVA_MAX_UAVS];  ///< one per UAV, in mission order
     sva_stats_t stats;
@@ -357,19 +358,19 @@ typedef struct {
     sva_algorithm_t algorithm;
     uint16_t source_count;
     uint16_t sink_count;
-    const int32_t* supply;        ///< [source_count] UAVs per group
-    const int32_t* demand;        ///< [sink_count] need per target
+    const int32_t* supply;  ///< [source_count] UAVs per group
+    const int32_t* demand;  ///< [sink_count] need per target
     /// [sink_count] true for a sink left out because the problem could not cover every
     /// target (SPEC section 2); the flow into dropped sinks is 0, and the other sinks'
     /// demand is met in full: the flow is an optimum of the problem without them.
     const bool* sink_dropped;
-    const int32_t* cost;          ///< [source_count * sink_count] cells or SVA_TP_NO_ARC
-    const int32_t* flow;          ///< [source_count * sink_count] UAVs sent
-    const uint16_t* sink_targets; ///< [sink_count] target index of each sink
+    const int32_t* cost;               ///< [source_count * sink_count] cells or SVA_TP_NO_ARC
+    const int32_t* flow;               ///< [source_count * sink_count] UAVs sent
+    const uint16_t* sink_targets;      ///< [sink_count] target index of each sink
     const uint16_t* source_first_uav;  ///< [source_count] lowest UAV index of each group
-    int64_t cost_total;           ///< sum of cost * flow
-    uint16_t covered;             ///< sinks whose demand is met in full
-    uint32_t pivots;              ///< simplex pivots for this problem (0 for hga)
+    int64_t cost_total;                ///< sum of cost * flow
+    uint16_t covered;                  ///< sinks whose demand is met in full
+    uint32_t pivots;                   ///< simplex pivots for this problem (0 for hga)
 } sva_tp_view_t;
 
 typedef void (*sva_tp_observer_t)(void* user, const sva_tp_view_t* problem);
@@ -407,11 +408,8 @@ SVA_NODISCARD sva_status_t sva_planner_init(sva_planner_t* self);
 /// SVA_PLAN_NONE with no routes. Deterministic: the same mission gives the same plan
 /// on every platform (ties broken by ids). diag may be NULL.
 /// Allocates nothing; stack bounded (DESIGN.md section 6); complexity above.
-SVA_NODISCARD sva_status_t sva_plan(sva_planner_t* self,
-                                    const sva_mission_t* mission,
-                                    sva_algorithm_t algorithm,
-                                    sva_plan_t* plan,
-                                    sva_diag_t* diag);
+SVA_NODISCARD sva_status_t sva_plan(sva_planner_t* self, const sva_mission_t* mission,
+                                    sva_algorithm_t algorithm, sva_plan_t* plan, sva_diag_t* diag);
 
 // =================================================================================
 // Live missions (docs/SPEC.md section 12)
@@ -482,12 +480,12 @@ typedef struct {
     /// (UAV, target) pair in one of `previous` and `plan` but not in the other.
     const sva_plan_t* previous;
     int32_t now_ticks;
-    uint32_t revision;        ///< events applied so far (the clock's included)
-    uint16_t under_way;       ///< targets under way with their UAVs (covered, not replanned)
-    uint16_t covered;         ///< under_way + plan->covered
-    uint32_t dropped;         ///< pairs of `previous` that `plan` drops
-    uint32_t added;           ///< pairs of `plan` that `previous` lacks
-    int64_t objective;        ///< plan->cost + change_penalty * (dropped + added)
+    uint32_t revision;   ///< events applied so far (the clock's included)
+    uint16_t under_way;  ///< targets under way with their UAVs (covered, not replanned)
+    uint16_t covered;    ///< under_way + plan->covered
+    uint32_t dropped;    ///< pairs of `previous` that `plan` drops
+    uint32_t added;      ///< pairs of `plan` that `previous` lacks
+    int64_t objective;   ///< plan->cost + change_penalty * (dropped + added)
     /// The plan in force, less what no longer fits, won (ties go to it); false: the
     /// planner's plan of the residual mission won.
     bool kept;
@@ -537,15 +535,15 @@ SVA_NODISCARD sva_status_t sva_live_apply(sva_live_t* self, const sva_event_t* e
 /// plan in force stays as it was. Allocates nothing; sva_plan()'s complexity plus
 /// O(U * R * T).
 SVA_NODISCARD sva_status_t sva_live_replan(sva_live_t* self, sva_planner_t* planner,
-                                           sva_algorithm_t algorithm,
-                                           sva_live_result_t* result, sva_diag_t* diag);
+                                           sva_algorithm_t algorithm, sva_live_result_t* result,
+                                           sva_diag_t* diag);
 
 /// Where a UAV is at `at_ticks` (>= now) by the flight model of SPEC section 12.2, with
 /// its fuel and the tick from which it can take new work (later than at_ticks while
 /// it finishes a cell step or a visit under way). False for an unknown index or a UAV
 /// out of service. Allocates nothing; O(R).
-bool sva_live_uav_at(const sva_live_t* self, uint16_t uav, int32_t at_ticks, int32_t* x,
-                     int32_t* y, int32_t* fuel, int32_t* ready_ticks);
+bool sva_live_uav_at(const sva_live_t* self, uint16_t uav, int32_t at_ticks, int32_t* x, int32_t* y,
+                     int32_t* fuel, int32_t* ready_ticks);
 
 // =================================================================================
 // Compiled limits

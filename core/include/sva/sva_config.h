@@ -24,7 +24,7 @@
 #define SVA_CONFIG_H
 
 #ifdef SVA_CONFIG_HEADER
-#include SVA_CONFIG_HEADER
+#    include SVA_CONFIG_HEADER
 #endif
 
 // ---------------------------------------------------------------------------------
@@ -33,27 +33,27 @@
 /// Largest fleet. Cost: ~ 20 B in the mission, ~ 24 B + route in the plan, ~ 40 B of
 /// planner state per UAV.
 #ifndef SVA_MAX_UAVS
-#define SVA_MAX_UAVS 64
+#    define SVA_MAX_UAVS 64
 #endif
 #if (SVA_MAX_UAVS < 1) || (SVA_MAX_UAVS > 1024)
-#error "SVA_MAX_UAVS must be in [1, 1024]"
+#    error "SVA_MAX_UAVS must be in [1, 1024]"
 #endif
 
 /// Most targets in one mission. Cost: 24 B in the mission, ~ 16 B of planner state.
 #ifndef SVA_MAX_TARGETS
-#define SVA_MAX_TARGETS 256
+#    define SVA_MAX_TARGETS 256
 #endif
 #if (SVA_MAX_TARGETS < 1) || (SVA_MAX_TARGETS > 4096)
-#error "SVA_MAX_TARGETS must be in [1, 4096]"
+#    error "SVA_MAX_TARGETS must be in [1, 4096]"
 #endif
 
 /// Most targets one UAV may serve in a plan. A UAV whose route is full is no longer
 /// ready for further targets. Cost: 2 B per UAV per slot in the plan.
 #ifndef SVA_MAX_ROUTE_TARGETS
-#define SVA_MAX_ROUTE_TARGETS SVA_MAX_TARGETS
+#    define SVA_MAX_ROUTE_TARGETS SVA_MAX_TARGETS
 #endif
 #if (SVA_MAX_ROUTE_TARGETS < 1) || (SVA_MAX_ROUTE_TARGETS > SVA_MAX_TARGETS)
-#error "SVA_MAX_ROUTE_TARGETS must be in [1, SVA_MAX_TARGETS]"
+#    error "SVA_MAX_ROUTE_TARGETS must be in [1, SVA_MAX_TARGETS]"
 #endif
 
 // ---------------------------------------------------------------------------------
@@ -64,32 +64,32 @@
 
 /// Most source groups (UAVs grouped by position and reachable targets) per problem.
 #ifndef SVA_MAX_TP_SOURCES
-#define SVA_MAX_TP_SOURCES 24
+#    define SVA_MAX_TP_SOURCES 24
 #endif
 #if (SVA_MAX_TP_SOURCES < 1) || (SVA_MAX_TP_SOURCES > 255)
-#error "SVA_MAX_TP_SOURCES must be in [1, 255]"
+#    error "SVA_MAX_TP_SOURCES must be in [1, 255]"
 #endif
 
 /// Most targets (sinks) per transportation problem.
 #ifndef SVA_MAX_TP_SINKS
-#define SVA_MAX_TP_SINKS 48
+#    define SVA_MAX_TP_SINKS 48
 #endif
 #if (SVA_MAX_TP_SINKS < 1) || (SVA_MAX_TP_SINKS > 255)
-#error "SVA_MAX_TP_SINKS must be in [1, 255]"
+#    error "SVA_MAX_TP_SINKS must be in [1, 255]"
 #endif
 
 /// Pivot budget per transportation problem; exceeding it is SVA_ERR_SOLVER.
 #ifndef SVA_MAX_PIVOTS
-#define SVA_MAX_PIVOTS 20000
+#    define SVA_MAX_PIVOTS 20000
 #endif
 #if (SVA_MAX_PIVOTS < 16) || (SVA_MAX_PIVOTS > 100000000)
-#error "SVA_MAX_PIVOTS must be in [16, 100000000]"
+#    error "SVA_MAX_PIVOTS must be in [16, 100000000]"
 #endif
 
 /// Derived tableau shape: one row per source and per sink; one column per arc, per
 /// unmet-demand slack and per surplus slack. Cost: 1 B per cell, ~ 22 B per column.
-#define SVA_TABLEAU_ROWS (SVA_MAX_TP_SOURCES + SVA_MAX_TP_SINKS)
-#define SVA_TABLEAU_COLS ((SVA_MAX_TP_SOURCES * SVA_MAX_TP_SINKS) + SVA_TABLEAU_ROWS)
+#define SVA_TABLEAU_ROWS  (SVA_MAX_TP_SOURCES + SVA_MAX_TP_SINKS)
+#define SVA_TABLEAU_COLS  ((SVA_MAX_TP_SOURCES * SVA_MAX_TP_SINKS) + SVA_TABLEAU_ROWS)
 #define SVA_TABLEAU_CELLS (SVA_TABLEAU_ROWS * SVA_TABLEAU_COLS)
 
 // ---------------------------------------------------------------------------------
@@ -100,36 +100,37 @@
 /// refused once its search passes SVA_BFA_MAX_NODES (measured with the defaults: some
 /// 8 UAV x 12 target missions with chained windows and need >= 2 do; docs/cli.md).
 #ifndef SVA_BFA_MAX_TARGETS
-#define SVA_BFA_MAX_TARGETS 12
+#    define SVA_BFA_MAX_TARGETS 12
 #endif
-#if (SVA_BFA_MAX_TARGETS < 1) || (SVA_BFA_MAX_TARGETS > 64) || (SVA_BFA_MAX_TARGETS > SVA_MAX_TARGETS)
-#error "SVA_BFA_MAX_TARGETS must be in [1, min(64, SVA_MAX_TARGETS)]"
+#if (SVA_BFA_MAX_TARGETS < 1) || (SVA_BFA_MAX_TARGETS > 64) || \
+    (SVA_BFA_MAX_TARGETS > SVA_MAX_TARGETS)
+#    error "SVA_BFA_MAX_TARGETS must be in [1, min(64, SVA_MAX_TARGETS)]"
 #endif
 
 /// bfa refuses missions with more UAVs than this.
 #ifndef SVA_BFA_MAX_UAVS
-#define SVA_BFA_MAX_UAVS 8
+#    define SVA_BFA_MAX_UAVS 8
 #endif
 #if (SVA_BFA_MAX_UAVS < 1) || (SVA_BFA_MAX_UAVS > 32) || (SVA_BFA_MAX_UAVS > SVA_MAX_UAVS)
-#error "SVA_BFA_MAX_UAVS must be in [1, min(32, SVA_MAX_UAVS)]"
+#    error "SVA_BFA_MAX_UAVS must be in [1, min(32, SVA_MAX_UAVS)]"
 #endif
 
 /// bfa gives up (SVA_ERR_LIMIT) after visiting this many search nodes: a clear error
 /// instead of hours of work. Deterministic: a node count, not a clock.
 #ifndef SVA_BFA_MAX_NODES
-#define SVA_BFA_MAX_NODES 20000000L
+#    define SVA_BFA_MAX_NODES 20000000L
 #endif
 #if (SVA_BFA_MAX_NODES < 1000L) || (SVA_BFA_MAX_NODES > 2000000000L)
-#error "SVA_BFA_MAX_NODES must be in [1000, 2000000000]"
+#    error "SVA_BFA_MAX_NODES must be in [1000, 2000000000]"
 #endif
 
 /// hga enumerates each transportation problem up to this many nodes, then keeps the
 /// best assignment found (counted in sva_stats_t.truncated_searches).
 #ifndef SVA_HGA_MAX_NODES
-#define SVA_HGA_MAX_NODES 200000L
+#    define SVA_HGA_MAX_NODES 200000L
 #endif
 #if (SVA_HGA_MAX_NODES < 100L) || (SVA_HGA_MAX_NODES > 2000000000L)
-#error "SVA_HGA_MAX_NODES must be in [100, 2000000000]"
+#    error "SVA_HGA_MAX_NODES must be in [100, 2000000000]"
 #endif
 
 // ---------------------------------------------------------------------------------
@@ -141,47 +142,48 @@
 /// Most target copies (the needs summed over the mission). Cost ~ 30 B per copy plus
 /// 2 B per copy per search level (SVA_FLOW_MAX_DEPTH).
 #ifndef SVA_FLOW_MAX_COPIES
-#define SVA_FLOW_MAX_COPIES (2L * SVA_MAX_TARGETS)
+#    define SVA_FLOW_MAX_COPIES (2L * SVA_MAX_TARGETS)
 #endif
 #if (SVA_FLOW_MAX_COPIES < 1L) || (SVA_FLOW_MAX_COPIES > 16384L)
-#error "SVA_FLOW_MAX_COPIES must be in [1, 16384]"
+#    error "SVA_FLOW_MAX_COPIES must be in [1, 16384]"
 #endif
 
 /// Arcs of the complete time-feasibility graph for the bounds above (UAV -> copy,
 /// copy -> later copy, UAV or copy -> depot); the default arc bound is this, capped.
-#define SVA_FLOW_DENSE_ARCS                                                                 \
-    ((SVA_MAX_UAVS * SVA_FLOW_MAX_COPIES) + ((SVA_FLOW_MAX_COPIES * (SVA_FLOW_MAX_COPIES - 1L)) / 2L) + \
-     SVA_MAX_UAVS + SVA_FLOW_MAX_COPIES)
+#define SVA_FLOW_DENSE_ARCS                                                     \
+    ((SVA_MAX_UAVS * SVA_FLOW_MAX_COPIES) +                                     \
+     ((SVA_FLOW_MAX_COPIES * (SVA_FLOW_MAX_COPIES - 1L)) / 2L) + SVA_MAX_UAVS + \
+     SVA_FLOW_MAX_COPIES)
 
 /// Most arcs of one mission's graph (time- and fuel-feasible pairs only). Cost ~ 8 B
 /// per arc. 200 targets x 40 UAVs with need 1 need at most ~28,500.
 #ifndef SVA_FLOW_MAX_ARCS
-#if SVA_FLOW_DENSE_ARCS < 49152L
-#define SVA_FLOW_MAX_ARCS SVA_FLOW_DENSE_ARCS
-#else
-#define SVA_FLOW_MAX_ARCS 49152L
-#endif
+#    if SVA_FLOW_DENSE_ARCS < 49152L
+#        define SVA_FLOW_MAX_ARCS SVA_FLOW_DENSE_ARCS
+#    else
+#        define SVA_FLOW_MAX_ARCS 49152L
+#    endif
 #endif
 #if (SVA_FLOW_MAX_ARCS < 1L) || (SVA_FLOW_MAX_ARCS > 4000000L)
-#error "SVA_FLOW_MAX_ARCS must be in [1, 4000000]"
+#    error "SVA_FLOW_MAX_ARCS must be in [1, 4000000]"
 #endif
 
 /// Deepest branch-and-bound path; a deeper node is not explored (the plan is then not
 /// proven optimal). Cost: 2 B * SVA_FLOW_MAX_COPIES + 24 B per level.
 #ifndef SVA_FLOW_MAX_DEPTH
-#define SVA_FLOW_MAX_DEPTH 24
+#    define SVA_FLOW_MAX_DEPTH 24
 #endif
 #if (SVA_FLOW_MAX_DEPTH < 1) || (SVA_FLOW_MAX_DEPTH > 200)
-#error "SVA_FLOW_MAX_DEPTH must be in [1, 200]"
+#    error "SVA_FLOW_MAX_DEPTH must be in [1, 200]"
 #endif
 
 /// Work budget of one flow run, in arc scans (deterministic, not a clock). When it
 /// runs out the best plan found is returned with stats.optimal false.
 #ifndef SVA_FLOW_MAX_WORK
-#define SVA_FLOW_MAX_WORK 2000000L
+#    define SVA_FLOW_MAX_WORK 2000000L
 #endif
 #if (SVA_FLOW_MAX_WORK < 1000L) || (SVA_FLOW_MAX_WORK > 2000000000L)
-#error "SVA_FLOW_MAX_WORK must be in [1000, 2000000000]"
+#    error "SVA_FLOW_MAX_WORK must be in [1000, 2000000000]"
 #endif
 
 /// Labels kept per target by the resource-constrained shortest path of flow's
@@ -189,20 +191,20 @@
 /// two labels merge into one that dominates both, which keeps the bound valid but
 /// weaker. Cost: 16 B * SVA_MAX_TARGETS per label.
 #ifndef SVA_FLOW_LABELS
-#define SVA_FLOW_LABELS 8
+#    define SVA_FLOW_LABELS 8
 #endif
 #if (SVA_FLOW_LABELS < 1) || (SVA_FLOW_LABELS > 64)
-#error "SVA_FLOW_LABELS must be in [1, 64]"
+#    error "SVA_FLOW_LABELS must be in [1, 64]"
 #endif
 
 /// Subgradient iterations of one Lagrangian phase (each one resource-constrained
 /// shortest path per distinct UAV state; their label work counts against
 /// SVA_FLOW_MAX_WORK).
 #ifndef SVA_FLOW_LAGRANGE_ITERS
-#define SVA_FLOW_LAGRANGE_ITERS 300
+#    define SVA_FLOW_LAGRANGE_ITERS 300
 #endif
 #if (SVA_FLOW_LAGRANGE_ITERS < 1) || (SVA_FLOW_LAGRANGE_ITERS > 100000)
-#error "SVA_FLOW_LAGRANGE_ITERS must be in [1, 100000]"
+#    error "SVA_FLOW_LAGRANGE_ITERS must be in [1, 100000]"
 #endif
 
 /// Rows of the route master that gives flow's Lagrangian phase its prices (flow_lp.c):
@@ -210,19 +212,19 @@
 /// more rows go without it (the prices then come from subgradient steps alone); 1
 /// turns it off. Cost: 8 B * rows^2 + 32 B * rows.
 #ifndef SVA_FLOW_LP_ROWS
-#define SVA_FLOW_LP_ROWS 64
+#    define SVA_FLOW_LP_ROWS 64
 #endif
 #if (SVA_FLOW_LP_ROWS < 1) || (SVA_FLOW_LP_ROWS > 128)
-#error "SVA_FLOW_LP_ROWS must be in [1, 128]"
+#    error "SVA_FLOW_LP_ROWS must be in [1, 128]"
 #endif
 
 /// Route columns the master keeps (generated by the labels of the Lagrangian phase).
 /// Cost: (6 + 4 * ceil(SVA_FLOW_LP_ROWS / 32)) B per column (rows, cells, flags).
 #ifndef SVA_FLOW_LP_COLS
-#define SVA_FLOW_LP_COLS 256
+#    define SVA_FLOW_LP_COLS 256
 #endif
 #if (SVA_FLOW_LP_COLS < 1) || (SVA_FLOW_LP_COLS > 4096)
-#error "SVA_FLOW_LP_COLS must be in [1, 4096]"
+#    error "SVA_FLOW_LP_COLS must be in [1, 4096]"
 #endif
 
 // ---------------------------------------------------------------------------------
@@ -235,44 +237,44 @@
 
 /// Latest tick a window or ready time may name.
 #ifndef SVA_MAX_TICK
-#define SVA_MAX_TICK 1000000000L
+#    define SVA_MAX_TICK 1000000000L
 #endif
 #if (SVA_MAX_TICK < 1L) || (SVA_MAX_TICK > 1000000000L)
-#error "SVA_MAX_TICK must be in [1, 1000000000]"
+#    error "SVA_MAX_TICK must be in [1, 1000000000]"
 #endif
 
 /// Largest ticks_per_cell (travel time of one grid cell).
 #ifndef SVA_MAX_TICKS_PER_CELL
-#define SVA_MAX_TICKS_PER_CELL 1000L
+#    define SVA_MAX_TICKS_PER_CELL 1000L
 #endif
 #if (SVA_MAX_TICKS_PER_CELL < 1L) || (SVA_MAX_TICKS_PER_CELL > 10000L)
-#error "SVA_MAX_TICKS_PER_CELL must be in [1, 10000]"
+#    error "SVA_MAX_TICKS_PER_CELL must be in [1, 10000]"
 #endif
 
 /// Largest fuel a UAV may carry.
 #ifndef SVA_MAX_FUEL
-#define SVA_MAX_FUEL 1000000000L
+#    define SVA_MAX_FUEL 1000000000L
 #endif
 #if (SVA_MAX_FUEL < 1L) || (SVA_MAX_FUEL > 2000000000L)
-#error "SVA_MAX_FUEL must be in [1, 2000000000]"
+#    error "SVA_MAX_FUEL must be in [1, 2000000000]"
 #endif
 
 /// Largest hover_fuel (fuel per served window).
 #ifndef SVA_MAX_HOVER_FUEL
-#define SVA_MAX_HOVER_FUEL 1000000L
+#    define SVA_MAX_HOVER_FUEL 1000000L
 #endif
 #if (SVA_MAX_HOVER_FUEL < 0L) || (SVA_MAX_HOVER_FUEL > 100000000L)
-#error "SVA_MAX_HOVER_FUEL must be in [0, 100000000]"
+#    error "SVA_MAX_HOVER_FUEL must be in [0, 100000000]"
 #endif
 
 /// Largest change_penalty of a live mission (cells per changed visit). The objective
 /// cost + change_penalty * changes stays far inside int64_t: changes are at most
 /// 2 * SVA_MAX_UAVS * SVA_MAX_ROUTE_TARGETS.
 #ifndef SVA_MAX_CHANGE_PENALTY
-#define SVA_MAX_CHANGE_PENALTY 1000000L
+#    define SVA_MAX_CHANGE_PENALTY 1000000L
 #endif
 #if (SVA_MAX_CHANGE_PENALTY < 0L) || (SVA_MAX_CHANGE_PENALTY > 1000000000L)
-#error "SVA_MAX_CHANGE_PENALTY must be in [0, 1000000000]"
+#    error "SVA_MAX_CHANGE_PENALTY must be in [0, 1000000000]"
 #endif
 
 /// Largest UAV or target id (ids are positive).
@@ -284,10 +286,10 @@
 /// 1: SVA_ASSERT checks API misuse (NULL pointers, bad enum values). Never used on
 /// untrusted input, which is validated and reported through sva_diag_t.
 #ifndef SVA_ENABLE_ASSERT
-#define SVA_ENABLE_ASSERT 1
+#    define SVA_ENABLE_ASSERT 1
 #endif
 #if (SVA_ENABLE_ASSERT != 0) && (SVA_ENABLE_ASSERT != 1)
-#error "SVA_ENABLE_ASSERT must be 0 or 1"
+#    error "SVA_ENABLE_ASSERT must be 0 or 1"
 #endif
 
 #endif  // SVA_CONFIG_H

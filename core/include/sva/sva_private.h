@@ -8,7 +8,7 @@
 #define SVA_PRIVATE_H
 
 #ifndef SVA_H
-#error "sva_private.h is private: include sva/sva.h"
+#    error "sva_private.h is private: include sva/sva.h"
 #endif
 
 #include <stdbool.h>
@@ -25,8 +25,8 @@ extern "C" {
 typedef struct {
     uint16_t source_count;
     uint16_t sink_count;
-    uint16_t sink_target[SVA_MAX_TP_SINKS];      ///< target index of each sink
-    bool sink_dropped[SVA_MAX_TP_SINKS];         ///< left out: not coverable in full
+    uint16_t sink_target[SVA_MAX_TP_SINKS];  ///< target index of each sink
+    bool sink_dropped[SVA_MAX_TP_SINKS];     ///< left out: not coverable in full
     uint16_t source_first_uav[SVA_MAX_TP_SOURCES];
     int32_t source_x[SVA_MAX_TP_SOURCES];
     int32_t source_y[SVA_MAX_TP_SOURCES];
@@ -35,10 +35,10 @@ typedef struct {
     int32_t cost[SVA_MAX_TP_SOURCES * SVA_MAX_TP_SINKS];  ///< or SVA_TP_NO_ARC
     int32_t flow[SVA_MAX_TP_SOURCES * SVA_MAX_TP_SINKS];
     int32_t unmet[SVA_MAX_TP_SINKS];  ///< demand the tableau's optimum leaves unmet
-    int16_t uav_group[SVA_MAX_UAVS];                      ///< source of each UAV or -1
-    int16_t uav_rep[SVA_MAX_UAVS];   ///< first UAV (index) of the same position and reach
-    int32_t rep_cost[SVA_MAX_UAVS];  ///< nearest reachable sink of a group representative
-    bool uav_reach[SVA_MAX_UAVS * SVA_MAX_TP_SINKS];      ///< UAV can serve sink
+    int16_t uav_group[SVA_MAX_UAVS];  ///< source of each UAV or -1
+    int16_t uav_rep[SVA_MAX_UAVS];    ///< first UAV (index) of the same position and reach
+    int32_t rep_cost[SVA_MAX_UAVS];   ///< nearest reachable sink of a group representative
+    bool uav_reach[SVA_MAX_UAVS * SVA_MAX_TP_SINKS];  ///< UAV can serve sink
     uint32_t pivots;
 } sva_tp_t;
 
@@ -59,17 +59,17 @@ typedef struct {
 typedef struct {
     int32_t pick[SVA_MAX_TP_SINKS * SVA_MAX_TP_SOURCES];  ///< units from each source
     int32_t best[SVA_MAX_TP_SINKS * SVA_MAX_TP_SOURCES];
-    int32_t left[SVA_MAX_TP_SOURCES];                     ///< supply not yet used
+    int32_t left[SVA_MAX_TP_SOURCES];  ///< supply not yet used
     uint8_t phase[SVA_MAX_TP_SINKS];
     int64_t cost_before[SVA_MAX_TP_SINKS];
 } sva_hga_work_t;
 
 /// bfa's explicit search stack: one frame per target, in visit-time order.
 typedef struct {
-    uint16_t cand[SVA_BFA_MAX_TARGETS][SVA_BFA_MAX_UAVS];   ///< UAVs able to serve
+    uint16_t cand[SVA_BFA_MAX_TARGETS][SVA_BFA_MAX_UAVS];  ///< UAVs able to serve
     int64_t cand_cost[SVA_BFA_MAX_TARGETS][SVA_BFA_MAX_UAVS];
     uint8_t cand_count[SVA_BFA_MAX_TARGETS];
-    uint8_t pick[SVA_BFA_MAX_TARGETS][SVA_BFA_MAX_UAVS];    ///< chosen candidate positions
+    uint8_t pick[SVA_BFA_MAX_TARGETS][SVA_BFA_MAX_UAVS];  ///< chosen candidate positions
     uint8_t phase[SVA_BFA_MAX_TARGETS];
     int32_t saved_x[SVA_BFA_MAX_TARGETS][SVA_BFA_MAX_UAVS];
     int32_t saved_y[SVA_BFA_MAX_TARGETS][SVA_BFA_MAX_UAVS];
@@ -83,13 +83,13 @@ typedef struct {
 /// flow's branch-and-bound frame: a node whose relaxation broke a rule, and the
 /// children that partition its plans (flow.c).
 typedef struct {
-    uint8_t kind;          ///< half-covered target, or a route over fuel or length
-    uint16_t subject;      ///< target index, or UAV index
-    uint16_t path_len;     ///< copies on the infeasible route
+    uint8_t kind;       ///< half-covered target, or a route over fuel or length
+    uint16_t subject;   ///< target index, or UAV index
+    uint16_t path_len;  ///< copies on the infeasible route
     uint16_t child_count;
     int16_t next_child;
-    int16_t active_child;  ///< applied to the graph now, or -1
-    int64_t bound;         ///< relaxation value of this node
+    int16_t active_child;                ///< applied to the graph now, or -1
+    int64_t bound;                       ///< relaxation value of this node
     uint16_t path[SVA_FLOW_MAX_COPIES];  ///< the infeasible route's copies, in order
 } sva_flow_frame_t;
 
@@ -109,12 +109,12 @@ typedef struct {
     int64_t grad[SVA_MAX_TARGETS];        ///< subgradient: need * y - visits
     uint16_t visits[SVA_MAX_TARGETS];     ///< UAVs whose best route serves t
     uint8_t closed[SVA_MAX_TARGETS];      ///< no route may serve t (the heuristic)
-    int64_t label_cost[SVA_MAX_TARGETS * SVA_FLOW_LABELS];  ///< reduced cost so far
-    int32_t label_fuel[SVA_MAX_TARGETS * SVA_FLOW_LABELS];  ///< fuel used so far
-    uint32_t label_pred[SVA_MAX_TARGETS * SVA_FLOW_LABELS]; ///< previous label or none
+    int64_t label_cost[SVA_MAX_TARGETS * SVA_FLOW_LABELS];   ///< reduced cost so far
+    int32_t label_fuel[SVA_MAX_TARGETS * SVA_FLOW_LABELS];   ///< fuel used so far
+    uint32_t label_pred[SVA_MAX_TARGETS * SVA_FLOW_LABELS];  ///< previous label or none
     uint8_t label_count[SVA_MAX_TARGETS];
-    uint16_t group[SVA_MAX_UAVS];         ///< first UAV in the same state (flow_graph.c)
-    uint16_t path[SVA_MAX_TARGETS];       ///< the last shortest path's targets
+    uint16_t group[SVA_MAX_UAVS];    ///< first UAV in the same state (flow_graph.c)
+    uint16_t path[SVA_MAX_TARGETS];  ///< the last shortest path's targets
     uint16_t path_len;
 } sva_flow_lagrange_t;
 
@@ -125,33 +125,34 @@ typedef struct {
 /// det(B) * B^-1 of the basis B, row-major; x, dual and alpha are scaled by det(B) too.
 typedef struct {
     int64_t adj[SVA_FLOW_LP_ROWS * SVA_FLOW_LP_ROWS];
-    int64_t x[SVA_FLOW_LP_ROWS];        ///< basic values
-    int64_t dual[SVA_FLOW_LP_ROWS];     ///< row duals
-    int64_t alpha[SVA_FLOW_LP_ROWS];    ///< the entering column in the basis
+    int64_t x[SVA_FLOW_LP_ROWS];      ///< basic values
+    int64_t dual[SVA_FLOW_LP_ROWS];   ///< row duals
+    int64_t alpha[SVA_FLOW_LP_ROWS];  ///< the entering column in the basis
     int64_t rhs[SVA_FLOW_LP_ROWS];
-    int64_t det;                        ///< det(B) up to sign, > 0
-    uint16_t basic[SVA_FLOW_LP_ROWS];   ///< column of each basic position
+    int64_t det;                       ///< det(B) up to sign, > 0
+    uint16_t basic[SVA_FLOW_LP_ROWS];  ///< column of each basic position
     uint32_t col_rows[(uint32_t)SVA_FLOW_LP_COLS * SVA_FLOW_LP_WORDS];  ///< a route's rows
-    int32_t col_cost[SVA_FLOW_LP_COLS]; ///< a route's cells
-    uint8_t col_deficit[SVA_FLOW_LP_COLS]; ///< the dive's deficit of a fixed route: -A_r, cost big_m
+    int32_t col_cost[SVA_FLOW_LP_COLS];                                 ///< a route's cells
+    uint8_t
+        col_deficit[SVA_FLOW_LP_COLS];  ///< the dive's deficit of a fixed route: -A_r, cost big_m
     uint16_t fixed[SVA_MAX_UAVS];       ///< the dive's fixed routes (columns)
     uint16_t fixed_count;
-    uint8_t forced[SVA_FLOW_LP_ROWS];   ///< the dive's targets partly served: w_t costs big_m
+    uint8_t forced[SVA_FLOW_LP_ROWS];  ///< the dive's targets partly served: w_t costs big_m
     uint8_t in_basis[SVA_FLOW_LP_ROWS + 2 + SVA_FLOW_LP_COLS];
-    uint16_t group_row[SVA_MAX_UAVS];   ///< master row of a UAV's state
-    int64_t lcm;                        ///< L: the lcm of the needs
-    int64_t big_m;                      ///< cost of the coverage row's artificial
-    int64_t cells_weight;               ///< a route's cost per cell: 1, or 0 (cover)
-    uint16_t targets;                   ///< n: rows 0..n-1 are the targets
-    uint16_t groups;                    ///< G: rows n..n+G-1; row n+G is the coverage
-    uint16_t cols;                      ///< route columns so far
+    uint16_t group_row[SVA_MAX_UAVS];  ///< master row of a UAV's state
+    int64_t lcm;                       ///< L: the lcm of the needs
+    int64_t big_m;                     ///< cost of the coverage row's artificial
+    int64_t cells_weight;              ///< a route's cost per cell: 1, or 0 (cover)
+    uint16_t targets;                  ///< n: rows 0..n-1 are the targets
+    uint16_t groups;                   ///< G: rows n..n+G-1; row n+G is the coverage
+    uint16_t cols;                     ///< route columns so far
     uint16_t rows;
 } sva_flow_lp_t;
 
 /// flow's graph, relaxation and search state (flow_graph.c, flow_ssp.c, flow.c).
 typedef struct {
-    uint16_t uavs;                         ///< U: node ids 0..U-1 are the UAVs
-    uint16_t copies;                       ///< C: copy c is in-node U+c, out-node U+C+c
+    uint16_t uavs;    ///< U: node ids 0..U-1 are the UAVs
+    uint16_t copies;  ///< C: copy c is in-node U+c, out-node U+C+c
     uint32_t arcs;
     uint16_t copy_target[SVA_FLOW_MAX_COPIES];
     uint16_t target_first_copy[SVA_MAX_TARGETS];  ///< copies of t are contiguous
@@ -160,31 +161,31 @@ typedef struct {
     bool reward_exact;                            ///< need * (W / need) == W for all
     int32_t node_x[SVA_FLOW_NODES];               ///< arc cost = Manhattan distance
     int32_t node_y[SVA_FLOW_NODES];
-    uint32_t out_start[SVA_FLOW_NODES + 1];       ///< arcs by tail (CSR)
-    uint32_t in_start[SVA_FLOW_NODES + 1];        ///< arc ids by head
+    uint32_t out_start[SVA_FLOW_NODES + 1];  ///< arcs by tail (CSR)
+    uint32_t in_start[SVA_FLOW_NODES + 1];   ///< arc ids by head
     uint16_t arc_tail[SVA_FLOW_MAX_ARCS];
     uint16_t arc_head[SVA_FLOW_MAX_ARCS];
     sva_flow_arc_t in_arc[SVA_FLOW_MAX_ARCS];
     uint8_t arc_flow[SVA_FLOW_MAX_ARCS];
-    uint8_t arc_ban[SVA_FLOW_MAX_ARCS];           ///< banning levels (0: allowed)
-    uint8_t copy_cover[SVA_FLOW_MAX_COPIES];      ///< flow on the copy's own arc
-    uint8_t copy_units[SVA_FLOW_MAX_COPIES];      ///< its capacity: 1, need when pooled
-    uint8_t copy_forced[SVA_FLOW_MAX_COPIES];     ///< forcing levels
-    uint8_t copy_banned[SVA_FLOW_MAX_COPIES];     ///< banning levels
+    uint8_t arc_ban[SVA_FLOW_MAX_ARCS];        ///< banning levels (0: allowed)
+    uint8_t copy_cover[SVA_FLOW_MAX_COPIES];   ///< flow on the copy's own arc
+    uint8_t copy_units[SVA_FLOW_MAX_COPIES];   ///< its capacity: 1, need when pooled
+    uint8_t copy_forced[SVA_FLOW_MAX_COPIES];  ///< forcing levels
+    uint8_t copy_banned[SVA_FLOW_MAX_COPIES];  ///< banning levels
     // Shortest augmenting paths (Dijkstra with potentials, static binary heap).
     int64_t pot[SVA_FLOW_NODES];
     int64_t dist[SVA_FLOW_NODES];
     int32_t pred[SVA_FLOW_NODES];
     uint16_t heap[SVA_FLOW_NODES];
     uint16_t heap_pos[SVA_FLOW_NODES];
-    uint8_t node_mark[SVA_FLOW_NODES];            ///< live / sent / settled bits
+    uint8_t node_mark[SVA_FLOW_NODES];  ///< live / sent / settled bits
     uint16_t heap_size;
-    int32_t sink_left;                            ///< units the depot still takes
-    int64_t value;                                ///< relaxation: cost - rewards
+    int32_t sink_left;  ///< units the depot still takes
+    int64_t value;      ///< relaxation: cost - rewards
     uint64_t work;
-    uint64_t local_work;                          ///< work one local search may start
+    uint64_t local_work;  ///< work one local search may start
     // Scratch of the graph builder and of the rounding heuristic (flow_repair.c).
-    int64_t target_lead[SVA_MAX_TARGETS];         ///< fuel labels (flow_graph.c)
+    int64_t target_lead[SVA_MAX_TARGETS];  ///< fuel labels (flow_graph.c)
     int64_t target_tail[SVA_MAX_TARGETS];
     uint16_t target_taken[SVA_MAX_TARGETS];
     int64_t route_cells[SVA_MAX_UAVS];
@@ -192,8 +193,8 @@ typedef struct {
     uint16_t insert_pos[SVA_MAX_UAVS];
     uint8_t uav_pick[SVA_MAX_UAVS];
     bool insert_backwards;  ///< the repair inserts in reverse window order (ruin and recreate)
-    uint16_t spare_route[SVA_MAX_ROUTE_TARGETS];  ///< a route's tail in an exchange
-    uint16_t trade_pos[SVA_MAX_UAVS];             ///< where a traded target was
+    uint16_t spare_route[SVA_MAX_ROUTE_TARGETS];       ///< a route's tail in an exchange
+    uint16_t trade_pos[SVA_MAX_UAVS];                  ///< where a traded target was
     int32_t piece_pre[2][SVA_MAX_ROUTE_TARGETS + 1];   ///< two routes' cells up to a stop
     int32_t piece_post[2][SVA_MAX_ROUTE_TARGETS + 1];  ///< and from a stop on
     uint16_t pred_node[SVA_FLOW_NODES];
@@ -204,7 +205,7 @@ typedef struct {
     int64_t inc_value;
     bool has_inc;
     uint16_t depth;
-    int64_t max_cost;                     ///< no flow or plan costs more (rewards)
+    int64_t max_cost;  ///< no flow or plan costs more (rewards)
     sva_flow_frame_t stack[SVA_FLOW_MAX_DEPTH];
     sva_flow_lagrange_t lagrange;
     sva_flow_lp_t lp;
@@ -215,12 +216,12 @@ typedef struct {
     // Planning state of each UAV (index = mission order) and target.
     int32_t uav_x[SVA_MAX_UAVS];
     int32_t uav_y[SVA_MAX_UAVS];
-    int64_t uav_free_at[SVA_MAX_UAVS];    ///< ticks
+    int64_t uav_free_at[SVA_MAX_UAVS];  ///< ticks
     int64_t uav_fuel_left[SVA_MAX_UAVS];
-    uint16_t uav_order[SVA_MAX_UAVS];     ///< UAV indices by id
+    uint16_t uav_order[SVA_MAX_UAVS];        ///< UAV indices by id
     uint16_t target_order[SVA_MAX_TARGETS];  ///< target indices by (start, end, id)
     uint16_t target_served[SVA_MAX_TARGETS];
-    uint16_t cluster_end[SVA_MAX_TARGETS];   ///< exclusive end (in target_order)
+    uint16_t cluster_end[SVA_MAX_TARGETS];  ///< exclusive end (in target_order)
     uint16_t cluster_count;
     sva_tp_t tp;
     sva_tableau_t tableau;
@@ -232,7 +233,7 @@ typedef struct {
 /// One UAV of a live mission (core/src/live/): where its route in force starts, and
 /// the route.
 typedef struct {
-    int32_t x;           ///< the route starts here,
+    int32_t x;  ///< the route starts here,
     int32_t y;
     int64_t fuel;        ///< with this much fuel,
     int64_t from_ticks;  ///< at this tick (it may leave then)

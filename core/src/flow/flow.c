@@ -27,7 +27,7 @@
 #include "../paper/paper.h"
 
 #define BRANCH_TARGET 1U
-#define BRANCH_ROUTE 2U
+#define BRANCH_ROUTE  2U
 
 static uint32_t find_arc(const sva_flow_work_t* w, uint16_t tail, uint16_t head)
 {
@@ -170,7 +170,8 @@ static int64_t min64(int64_t a, int64_t b)
 // is the optimum: it becomes the incumbent, and neither the seeds nor the search are
 // needed (most missions where fuel does not bind). Only with exact rewards, where the
 // search's own claim would hold.
-static bool root_is_plan(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, bool* solved)
+static bool root_is_plan(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                         bool* solved)
 {
     sva_flow_work_t* w = &priv->flow;
     plan->stats.search_nodes++;
@@ -259,7 +260,8 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
         if (choose_branch(priv, m, plan, &w->stack[w->depth])) {
             w->stack[w->depth].bound = w->value;
             w->depth++;
-            stats->flow_max_depth = (w->depth > stats->flow_max_depth) ? w->depth : stats->flow_max_depth;
+            stats->flow_max_depth =
+                (w->depth > stats->flow_max_depth) ? w->depth : stats->flow_max_depth;
         }
     }
     // Stopped on the budget: take back the branching rules still applied, so the
@@ -278,7 +280,8 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
 // of the ga and sva plans with the trivial bound 0, never claiming optimality. (Past
 // SVA_FLOW_MAX_ARCS the seeds are also improved by the local search and by ruin and
 // recreate: sva_run_flow.)
-static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan, sva_flow_incomplete_t why)
+static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan,
+                      sva_flow_incomplete_t why)
 {
     sva_planner_priv_t* priv = &self->priv;
     const sva_stats_t kept = plan->stats;
@@ -290,7 +293,8 @@ static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* p
     bool use_ga = !run_sva_quietly(self, m, plan);
     if (!use_ga) {
         sva_plan_finish(priv, m, plan);
-        use_ga = (ga_covered > plan->covered) || ((ga_covered == plan->covered) && (ga_cost < plan->cost));
+        use_ga = (ga_covered > plan->covered) ||
+                 ((ga_covered == plan->covered) && (ga_cost < plan->cost));
     }
     if (use_ga) {
         sva_state_reset(priv, m, plan);
@@ -331,7 +335,8 @@ static void finish(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t*
         }
     }
     const int64_t cost = w->inc_value + reward;
-    const int64_t least_whole = w->reward_exact ? w->reward_whole : (w->reward_whole - need_max + 1);
+    const int64_t least_whole =
+        w->reward_exact ? w->reward_whole : (w->reward_whole - need_max + 1);
     const int64_t floor_value = min64(w->inc_value, open);
     int64_t bound = floor_value + (covered * least_whole);
     bound = (bound < lagrange_bound) ? lagrange_bound : bound;
@@ -342,9 +347,9 @@ static void finish(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t*
         coverage_known || (floor_value > (w->max_cost - ((covered + 1) * least_whole)));
     stats->has_bound = true;
     stats->lower_bound = (bound > cost) ? cost : bound;
-    stats->optimal = w->reward_exact &&
-                     (((incomplete == SVA_FLOW_COMPLETE) && (open == INT64_MAX)) ||
-                      (coverage_proven && (bound >= cost)));
+    stats->optimal =
+        w->reward_exact && (((incomplete == SVA_FLOW_COMPLETE) && (open == INT64_MAX)) ||
+                            (coverage_proven && (bound >= cost)));
     stats->flow_incomplete = stats->optimal ? (uint8_t)SVA_FLOW_COMPLETE : (uint8_t)incomplete;
     stats->flow_work = w->work;
 }
@@ -357,8 +362,8 @@ static void finish(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t*
 // pooled value, a lower bound on cost - reward of every plan (NO_POOLED: none, when no
 // need calls for it or the pooled graph does not fit either), with the graph of copies
 // in place again; *proven: the incumbent reaches it.
-static int64_t pooled_first(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, bool past,
-                            bool* proven)
+static int64_t pooled_first(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                            bool past, bool* proven)
 {
     sva_flow_work_t* w = &priv->flow;
     *proven = false;
@@ -378,7 +383,8 @@ static int64_t pooled_first(sva_planner_priv_t* priv, const sva_mission_t* m, sv
         whole = sva_flow_pooled_routes(priv, m, plan);
     }
     const sva_flow_incomplete_t over = sva_flow_build(priv, m, plan, false, &plan->stats);
-    SVA_ASSERT(past ? (over == SVA_FLOW_OVER_ARCS) : (over == SVA_FLOW_COMPLETE));  // as before the pooled graph
+    SVA_ASSERT(past ? (over == SVA_FLOW_OVER_ARCS)
+                    : (over == SVA_FLOW_COMPLETE));  // as before the pooled graph
     if (pooled == NO_POOLED) {
         return pooled;
     }
@@ -427,7 +433,8 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
         finish(priv, m, plan, pooled, 0, false, over);
         return SVA_OK;
     }
-    const sva_flow_incomplete_t finished = w->reward_exact ? SVA_FLOW_COMPLETE : SVA_FLOW_INCOMPLETE_REWARD;
+    const sva_flow_incomplete_t finished =
+        w->reward_exact ? SVA_FLOW_COMPLETE : SVA_FLOW_INCOMPLETE_REWARD;
     sva_flow_incomplete_t incomplete = finished;
     int64_t open = INT64_MAX;
     int64_t lagrange_bound = 0;

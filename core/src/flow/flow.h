@@ -34,8 +34,8 @@ uint16_t sva_flow_route(const sva_flow_work_t* w, uint16_t u, uint16_t* out, uin
 /// Whether UAV u can fly a route of `targets` targets and `cells` cells: its fuel
 /// (hovering included) and SVA_MAX_ROUTE_TARGETS.
 bool sva_flow_fits(const sva_mission_t* m, uint16_t u, int64_t cells, uint32_t targets);
-bool sva_flow_route_fits(const sva_mission_t* m, uint16_t u, const uint16_t* copies,
-                         uint16_t n, const sva_flow_work_t* w);
+bool sva_flow_route_fits(const sva_mission_t* m, uint16_t u, const uint16_t* copies, uint16_t n,
+                         const sva_flow_work_t* w);
 /// The value of *plan (routes + priv->target_served) the incumbent is compared by: its
 /// cells less the rewards of the targets it covers.
 int64_t sva_flow_plan_value(const sva_planner_priv_t* priv, const sva_mission_t* m,
@@ -48,8 +48,8 @@ bool sva_flow_offer_plan(sva_planner_priv_t* priv, const sva_mission_t* m, const
 void sva_flow_canonical_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m);
 void sva_flow_write_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
 /// The incumbent written into *plan, with its cost in cells and the targets it covers.
-void sva_flow_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, int64_t* cost,
-                        int64_t* covered);
+void sva_flow_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                        int64_t* cost, int64_t* covered);
 
 // flow_insert.c: edits of the plan under construction in *plan (its routes,
 // priv->target_served, priv->flow.route_cells).
@@ -68,8 +68,8 @@ bool sva_flow_arrives_in_time(const sva_mission_t* m, int64_t free_at, int32_t x
                               const sva_target_t* tg);
 /// Target t flown between route u's first p targets and its stop `next`: whether both
 /// windows are met, and in *cells the detour over flying that leg directly.
-bool sva_flow_detour(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t p, uint16_t next,
-                     uint16_t t, int64_t* cells);
+bool sva_flow_detour(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t p,
+                     uint16_t next, uint16_t t, int64_t* cells);
 /// Cheapest feasible place for t in route u: sets insert_delta/insert_pos, or false.
 bool sva_flow_best_place(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
                          uint16_t u, uint16_t t);
@@ -83,7 +83,8 @@ void sva_flow_remove_at(const sva_mission_t* m, sva_flow_work_t* w, sva_route_t*
                         uint16_t k);
 /// Ejection: uncovered single-UAV target t takes the place of a single-UAV target that
 /// moves to another UAV. Covers one more target (true) or changes nothing.
-bool sva_flow_eject_for(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, uint16_t t);
+bool sva_flow_eject_for(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                        uint16_t t);
 
 // flow_round.c, flow_repair.c: rounding, and the repair (with the local search).
 /// Rounds the current relaxation into a plan (scratch: *plan) and offers it
@@ -137,9 +138,9 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
 
 // flow_lp.c, flow_simplex.c, flow_dive.c: the route master (its layout: flow_lp.h).
 typedef enum {
-    SVA_FLOW_LP_COST,    ///< a new cost master
-    SVA_FLOW_LP_COVER,   ///< a new cover master (costs left out)
-    SVA_FLOW_LP_RESUME   ///< the master as the last call (or the dive) left it
+    SVA_FLOW_LP_COST,   ///< a new cost master
+    SVA_FLOW_LP_COVER,  ///< a new cover master (costs left out)
+    SVA_FLOW_LP_RESUME  ///< the master as the last call (or the dive) left it
 } sva_flow_lp_mode_t;
 
 /// Column generation on the route master at coverage `covered`, starting from the

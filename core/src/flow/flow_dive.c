@@ -86,7 +86,8 @@ static void write_fixed(sva_planner_priv_t* priv, const sva_mission_t* m, sva_pl
             continue;  // (cannot be: a state's row caps its routes at its UAVs)
         }
         sva_route_t* r = &plan->routes[v];
-        for (uint16_t i = 0U; (i < m->target_count) && (r->target_count < (uint16_t)SVA_MAX_ROUTE_TARGETS); i++) {
+        for (uint16_t i = 0U;
+             (i < m->target_count) && (r->target_count < (uint16_t)SVA_MAX_ROUTE_TARGETS); i++) {
             const uint16_t t = priv->target_order[i];
             if (has_row(lp, col, t)) {
                 r->targets[r->target_count] = t;

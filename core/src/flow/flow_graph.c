@@ -40,8 +40,7 @@ static void set_rewards(sva_flow_work_t* w, const sva_mission_t* m, int64_t wide
         slots += m->targets[t].need;
     }
     const int64_t max_cost = ((int64_t)w->uavs + slots) * widest_leg;
-    const int64_t base =
-        max_cost + 1 + ((int64_t)m->target_count * (int64_t)need_max);
+    const int64_t base = max_cost + 1 + ((int64_t)m->target_count * (int64_t)need_max);
     const int64_t room = FLOW_INT64_LIMIT / (base * ((int64_t)m->target_count + 1));
     int64_t lcm = 1;
     bool exact = true;

@@ -9,8 +9,8 @@ bool sva_flow_fits(const sva_mission_t* m, uint16_t u, int64_t cells, uint32_t t
            ((cells + ((int64_t)m->hover_fuel * (int64_t)targets)) <= m->uavs[u].fuel);
 }
 
-bool sva_flow_route_fits(const sva_mission_t* m, uint16_t u, const uint16_t* copies,
-                         uint16_t n, const sva_flow_work_t* w)
+bool sva_flow_route_fits(const sva_mission_t* m, uint16_t u, const uint16_t* copies, uint16_t n,
+                         const sva_flow_work_t* w)
 {
     int32_t x = m->uavs[u].x;
     int32_t y = m->uavs[u].y;
@@ -83,7 +83,8 @@ static bool route_before(const sva_flow_work_t* w, uint16_t a, uint16_t b)
     }
     uint16_t ca = a;
     uint16_t cb = b;
-    while ((ca != SVA_FLOW_ROUTE_END) && (cb != SVA_FLOW_ROUTE_END) && (w->copy_target[ca] == w->copy_target[cb])) {
+    while ((ca != SVA_FLOW_ROUTE_END) && (cb != SVA_FLOW_ROUTE_END) &&
+           (w->copy_target[ca] == w->copy_target[cb])) {
         ca = w->inc_next[ca];
         cb = w->inc_next[cb];
     }
@@ -100,7 +101,8 @@ void sva_flow_canonical_incumbent(sva_planner_priv_t* priv, const sva_mission_t*
         const uint16_t a = priv->uav_order[i];
         for (uint16_t j = (uint16_t)(i + 1U); j < m->uav_count; j++) {
             const uint16_t b = priv->uav_order[j];
-            if ((w->lagrange.group[a] == w->lagrange.group[b]) && route_before(w, w->inc_first[b], w->inc_first[a])) {
+            if ((w->lagrange.group[a] == w->lagrange.group[b]) &&
+                route_before(w, w->inc_first[b], w->inc_first[a])) {
                 const uint16_t first = w->inc_first[a];
                 w->inc_first[a] = w->inc_first[b];
                 w->inc_first[b] = first;
@@ -128,8 +130,8 @@ void sva_flow_write_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, 
     }
 }
 
-void sva_flow_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, int64_t* cost,
-                        int64_t* covered)
+void sva_flow_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                        int64_t* cost, int64_t* covered)
 {
     sva_flow_write_incumbent(priv, m, plan);
     *cost = 0;

@@ -78,14 +78,15 @@ uint16_t sva_flow_costliest_stop(const sva_mission_t* m, uint16_t u, const sva_r
 bool sva_flow_arrives_in_time(const sva_mission_t* m, int64_t free_at, int32_t x, int32_t y,
                               const sva_target_t* tg)
 {
-    return (free_at + ((int64_t)sva_distance(x, y, tg->x, tg->y) * m->ticks_per_cell)) <= tg->start_ticks;
+    return (free_at + ((int64_t)sva_distance(x, y, tg->x, tg->y) * m->ticks_per_cell)) <=
+           tg->start_ticks;
 }
 
 // Target t flown between where route u is after its first p targets and its stop
 // `next` (the depot when next is its length): whether both windows are still met in
 // time, and in *cells how much longer the route gets than flying that leg directly.
-bool sva_flow_detour(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t p, uint16_t next,
-                     uint16_t t, int64_t* cells)
+bool sva_flow_detour(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t p,
+                     uint16_t next, uint16_t t, int64_t* cells)
 {
     int32_t px = 0;
     int32_t py = 0;
@@ -191,7 +192,8 @@ static int32_t cheapest_taker(sva_flow_work_t* w, const sva_mission_t* m, const 
 {
     int32_t pick = -1;
     for (uint16_t v = 0U; v < m->uav_count; v++) {
-        if (((int32_t)v != skip) && !plan->routes[v].stranded && sva_flow_best_place(w, m, plan, v, t) &&
+        if (((int32_t)v != skip) && !plan->routes[v].stranded &&
+            sva_flow_best_place(w, m, plan, v, t) &&
             ((pick < 0) || (w->insert_delta[v] < w->insert_delta[pick]))) {
             pick = (int32_t)v;
         }
@@ -201,7 +203,8 @@ static int32_t cheapest_taker(sva_flow_work_t* w, const sva_mission_t* m, const 
 
 // Ejection: an uncovered single-UAV target t takes the place of a single-UAV target s
 // in some route, and s moves to another UAV. Covers one more target or changes nothing.
-bool sva_flow_eject_for(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, uint16_t t)
+bool sva_flow_eject_for(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                        uint16_t t)
 {
     sva_flow_work_t* w = &priv->flow;
     for (uint16_t u = 0U; u < m->uav_count; u++) {

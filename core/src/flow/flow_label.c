@@ -28,7 +28,8 @@ static inline bool dominated(const sva_flow_lagrange_t* lg, uint16_t t, int64_t 
 }
 
 // Adds label (cost, fuel, pred) to target t's Pareto set, which none dominates.
-static void add_label(sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t fuel, uint32_t pred)
+static void add_label(sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t fuel,
+                      uint32_t pred)
 {
     const uint32_t base = (uint32_t)t * (uint32_t)SVA_FLOW_LABELS;
     uint32_t n = lg->label_count[t];
@@ -142,7 +143,8 @@ int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t
             if (h >= out_base) {
                 break;  // the depot
             }
-            SVA_ASSERT(first_copy(w, (uint16_t)(h - w->uavs)) && (w->copy_units[h - w->uavs] == 1U));
+            SVA_ASSERT(first_copy(w, (uint16_t)(h - w->uavs)) &&
+                       (w->copy_units[h - w->uavs] == 1U));
             const uint16_t b = w->copy_target[h - w->uavs];
             e += (uint32_t)m->targets[b].need;
             w->work += lg->label_count[t];

@@ -24,22 +24,22 @@
 // them, a dive on the master (flow_lp.c) offers one more plan.
 #include "flow.h"
 
-#define THETA_ONE 1024
-#define THETA_START (2 * THETA_ONE)
-#define THETA_MIN 4
-#define STALL_STEPS 20
+#define THETA_ONE       1024
+#define THETA_START     (2 * THETA_ONE)
+#define THETA_MIN       4
+#define STALL_STEPS     20
 #define HEURISTIC_EVERY 4
-#define GAP_CAP INT64_C(68719476736)  // 2^36: keeps theta * gap * grad within int64
-#define NO_BOUND (-INT64_MAX)
+#define GAP_CAP         INT64_C(68719476736)  // 2^36: keeps theta * gap * grad within int64
+#define NO_BOUND        (-INT64_MAX)
 
 typedef struct {
-    int64_t alpha;     // S in the cost phase, 0 in the coverage phase
-    int64_t mu;        // reward of a taken target (prices' units)
-    int64_t covered;   // c: the incumbent's coverage
-    int64_t best;      // best bound found (prices' units)
-    int64_t target;    // Polyak's target value
-    int32_t theta;     // step factor, THETA_ONE = 1
-    int32_t stall;     // steps since the bound last improved
+    int64_t alpha;    // S in the cost phase, 0 in the coverage phase
+    int64_t mu;       // reward of a taken target (prices' units)
+    int64_t covered;  // c: the incumbent's coverage
+    int64_t best;     // best bound found (prices' units)
+    int64_t target;   // Polyak's target value
+    int32_t theta;    // step factor, THETA_ONE = 1
+    int32_t stall;    // steps since the bound last improved
     uint32_t iters;
 } phase_t;
 
@@ -127,7 +127,8 @@ static void fly_on_prices(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
         (void)sva_flow_best_route(w, m, u, SVA_FLOW_PRICE_SCALE);
         // A path longer than SVA_MAX_ROUTE_TARGETS keeps its head (still a route).
         r->target_count = 0U;
-        while ((r->target_count < lg->path_len) && (r->target_count < (uint16_t)SVA_MAX_ROUTE_TARGETS)) {
+        while ((r->target_count < lg->path_len) &&
+               (r->target_count < (uint16_t)SVA_MAX_ROUTE_TARGETS)) {
             const uint16_t t = lg->path[r->target_count];
             r->targets[r->target_count] = t;
             priv->target_served[t]++;

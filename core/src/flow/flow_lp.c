@@ -26,10 +26,10 @@
 
 #if SVA_FLOW_LP_ROWS >= 2
 
-#define COST_MAX (INT64_C(1) << 24)    // cells of a route, and M
-#define LCM_MAX INT64_C(64)
-#define ENTER_PER_STATE 8U  // columns one pricing round may add per UAV state
-#define PICKS_PER_STATE 32U // labels one pricing round may read back per UAV state
+#    define COST_MAX        (INT64_C(1) << 24)  // cells of a route, and M
+#    define LCM_MAX         INT64_C(64)
+#    define ENTER_PER_STATE 8U   // columns one pricing round may add per UAV state
+#    define PICKS_PER_STATE 32U  // labels one pricing round may read back per UAV state
 
 // Adds UAV u's route over path[0..len-1] as a column; false if the master is full.
 static bool add_column(sva_flow_lp_t* lp, const sva_mission_t* m, uint16_t u, const uint16_t* path,
@@ -56,8 +56,8 @@ static bool add_column(sva_flow_lp_t* lp, const sva_mission_t* m, uint16_t u, co
 
 // Rows, groups and the all-slack basis (D = 1) at coverage c; false if the master
 // does not fit its bounds. cover: routes cost nothing and a costs 1.
-static bool start(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan, int64_t covered,
-                  bool cover)
+static bool start(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
+                  int64_t covered, bool cover)
 {
     sva_flow_lp_t* lp = &w->lp;
     const sva_flow_lagrange_t* lg = &w->lagrange;
@@ -79,7 +79,8 @@ static bool start(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* 
         }
     }
     const uint32_t rows = (uint32_t)m->target_count + groups + 1U;
-    if ((m->target_count == 0U) || (rows > (uint32_t)SVA_FLOW_LP_ROWS) || (w->max_cost >= COST_MAX)) {
+    if ((m->target_count == 0U) || (rows > (uint32_t)SVA_FLOW_LP_ROWS) ||
+        (w->max_cost >= COST_MAX)) {
         return false;
     }
     lp->targets = m->target_count;
@@ -148,7 +149,8 @@ static int64_t label_rc(const sva_flow_work_t* w, const sva_mission_t* m, uint16
     if (((int64_t)lg->label_fuel[l] + home) > m->uavs[u].fuel) {
         return 0;
     }
-    return (lg->label_cost[l] + (w->lp.det * w->lp.cells_weight * home)) - w->lp.dual[w->lp.group_row[u]];
+    return (lg->label_cost[l] + (w->lp.det * w->lp.cells_weight * home)) -
+           w->lp.dual[w->lp.group_row[u]];
 }
 
 // Pricing: for each UAV state, the labels of its best routes under the duals, most

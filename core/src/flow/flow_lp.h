@@ -13,7 +13,7 @@
 
 #if SVA_FLOW_LP_ROWS >= 2
 
-#define NO_COLUMN 0xFFFFU
+#    define NO_COLUMN 0xFFFFU
 
 static inline uint16_t slack_cover(const sva_flow_lp_t* lp)
 {

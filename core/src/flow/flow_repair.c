@@ -43,7 +43,8 @@ static void put_back(const sva_mission_t* m, sva_flow_work_t* w, sva_route_t* r,
 }
 
 // Moves the k-th visit of route a to another UAV when that saves cells.
-static bool relocate(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, uint16_t a, uint16_t k)
+static bool relocate(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, uint16_t a,
+                     uint16_t k)
 {
     sva_route_t* ra = &plan->routes[a];
     const uint16_t t = ra->targets[k];
@@ -64,8 +65,8 @@ static bool relocate(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* pla
 
 // Whether target t fits the slot of route u's k-th target in time; *delta gets the
 // cells the route grows by with t in that slot.
-static bool slot_delta(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t k, uint16_t t,
-                       int64_t* delta)
+static bool slot_delta(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t k,
+                       uint16_t t, int64_t* delta)
 {
     int64_t cells = 0;
     if (!sva_flow_detour(m, u, r, k, (uint16_t)(k + 1U), t, &cells)) {
@@ -77,7 +78,8 @@ static bool slot_delta(const sva_mission_t* m, uint16_t u, const sva_route_t* r,
 
 // Swaps the k-th visit of route a with a visit of a later route, each taking the
 // other's slot, when that saves cells.
-static bool swap(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, uint16_t a, uint16_t k)
+static bool swap(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, uint16_t a,
+                 uint16_t k)
 {
     sva_route_t* ra = &plan->routes[a];
     const uint16_t s = ra->targets[k];
@@ -91,7 +93,8 @@ static bool swap(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, u
             w->work++;
             int64_t da = 0;
             int64_t db = 0;
-            if (!slot_delta(m, a, ra, k, t, &da) || !slot_delta(m, b, rb, j, s, &db) || ((da + db) >= 0) ||
+            if (!slot_delta(m, a, ra, k, t, &da) || !slot_delta(m, b, rb, j, s, &db) ||
+                ((da + db) >= 0) ||
                 !sva_flow_fits(m, a, w->route_cells[a] + da, ra->target_count) ||
                 !sva_flow_fits(m, b, w->route_cells[b] + db, rb->target_count) || serves(ra, t) ||
                 serves(rb, s)) {
@@ -181,7 +184,8 @@ static void piece_cells(const sva_mission_t* m, uint16_t u, const sva_route_t* r
 // The route UAV u would fly taking ra's first i targets, then rb's from j on (pieces'
 // cells from piece_cells): its cells, or -1 if the joint breaks time.
 static int64_t spliced_cells(const sva_mission_t* m, uint16_t u, const sva_route_t* ra, uint16_t i,
-                             const int32_t* pre_a, const sva_route_t* rb, uint16_t j, const int32_t* post_b)
+                             const int32_t* pre_a, const sva_route_t* rb, uint16_t j,
+                             const int32_t* post_b)
 {
     int32_t x = 0;
     int32_t y = 0;
@@ -199,9 +203,10 @@ static int64_t spliced_cells(const sva_mission_t* m, uint16_t u, const sva_route
     }
     // pre_a[i] counts from ra's first target; the UAV's first leg is in the joint
     // when i == 0, else it is leg 0 of ra.
-    const int64_t first = (i == 0U) ? 0
-                                    : sva_distance(m->uavs[u].x, m->uavs[u].y, m->targets[ra->targets[0]].x,
-                                                   m->targets[ra->targets[0]].y);
+    const int64_t first =
+        (i == 0U) ? 0
+                  : sva_distance(m->uavs[u].x, m->uavs[u].y, m->targets[ra->targets[0]].x,
+                                 m->targets[ra->targets[0]].y);
     return first + pre_a[i] + sva_distance(x, y, nx, ny) + post_b[j];
 }
 
@@ -235,7 +240,9 @@ static bool exchange_tails(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_
             const uint16_t na = (uint16_t)(i + (rb->target_count - j));
             const uint16_t nb = (uint16_t)(j + (ra->target_count - i));
             const int64_t ca = spliced_cells(m, a, ra, i, w->piece_pre[0], rb, j, w->piece_post[1]);
-            const int64_t cb = (ca < 0) ? -1 : spliced_cells(m, b, rb, j, w->piece_pre[1], ra, i, w->piece_post[0]);
+            const int64_t cb =
+                (ca < 0) ? -1
+                         : spliced_cells(m, b, rb, j, w->piece_pre[1], ra, i, w->piece_post[0]);
             if ((cb < 0) || ((ca + cb) >= before) || !sva_flow_fits(m, a, ca, na) ||
                 !sva_flow_fits(m, b, cb, nb) || !splice_distinct(ra, i, rb, j) ||
                 !splice_distinct(rb, j, ra, i)) {
@@ -274,28 +281,32 @@ static void local_search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_p
                     better = true;
                 }
             }
-            for (uint16_t b = (uint16_t)(a + 1U); (b < m->uav_count) && !plan->routes[a].stranded; b++) {
+            for (uint16_t b = (uint16_t)(a + 1U); (b < m->uav_count) && !plan->routes[a].stranded;
+                 b++) {
                 if (!plan->routes[b].stranded && exchange_tails(w, m, plan, a, b)) {
                     better = true;
                 }
             }
         }
         for (uint16_t s = 0U; s < m->target_count; s++) {
-            if (((int32_t)priv->target_served[s] == m->targets[s].need) && trade(priv, m, plan, s)) {
+            if (((int32_t)priv->target_served[s] == m->targets[s].need) &&
+                trade(priv, m, plan, s)) {
                 better = true;
             }
         }
     }
 }
 
-void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, bool polish)
+void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                     bool polish)
 {
     sva_flow_work_t* w = &priv->flow;
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         w->route_cells[u] = sva_route_cells(m, u, &plan->routes[u]);
     }
     for (uint16_t t = 0U; t < m->target_count; t++) {
-        if ((priv->target_served[t] > 0U) && ((int32_t)priv->target_served[t] < m->targets[t].need)) {
+        if ((priv->target_served[t] > 0U) &&
+            ((int32_t)priv->target_served[t] < m->targets[t].need)) {
             sva_flow_remove_target(priv, m, plan, t);
         }
     }
@@ -306,7 +317,8 @@ void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_
         }
     }
     for (uint16_t i = 0U; i < m->target_count; i++) {
-        const uint16_t t = priv->target_order[w->insert_backwards ? ((m->target_count - 1U) - i) : i];
+        const uint16_t t =
+            priv->target_order[w->insert_backwards ? ((m->target_count - 1U) - i) : i];
         if (priv->target_served[t] == 0U) {
             sva_flow_try_insert(priv, m, plan, t);
         }

@@ -16,7 +16,8 @@ static int64_t relatedness(const sva_mission_t* m, uint16_t a, uint16_t b)
     const sva_target_t* ta = &m->targets[a];
     const sva_target_t* tb = &m->targets[b];
     const int64_t ticks = (int64_t)ta->start_ticks - (int64_t)tb->start_ticks;
-    return sva_distance(ta->x, ta->y, tb->x, tb->y) + (((ticks < 0) ? -ticks : ticks) / m->ticks_per_cell);
+    return sva_distance(ta->x, ta->y, tb->x, tb->y) +
+           (((ticks < 0) ? -ticks : ticks) / m->ticks_per_cell);
 }
 
 // The incumbent without s and the size - 1 covered targets most related to it.
@@ -60,7 +61,8 @@ bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     const bool near = (proven_bound >= 0) && ((cost - proven_bound) <= (cost / 64));
     const uint64_t rest = ((end > w->work) && !near) ? (end - w->work) : 0U;
     const uint64_t budget = w->work + (rest - (rest / 4U));
-    const uint64_t round_units = (uint64_t)m->target_count * (uint64_t)m->uav_count * RUIN_ROUND_UNITS;
+    const uint64_t round_units =
+        (uint64_t)m->target_count * (uint64_t)m->uav_count * RUIN_ROUND_UNITS;
     // *plan holds the incumbent whenever a round is chosen (sva_flow_incumbent above,
     // then a write after each round).
     for (size_t i = 0U; i < (sizeof(ruin_sizes) / sizeof(ruin_sizes[0])); i++) {
@@ -82,7 +84,8 @@ bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     // order rarely change which.
     for (uint16_t c = 0U; (c < m->target_count) && (w->work < budget); c++) {
         for (uint16_t t = 0U; (t < m->target_count) && (w->work < budget); t++) {
-            if (((int32_t)priv->target_served[c] == m->targets[c].need) && (priv->target_served[t] == 0U)) {
+            if (((int32_t)priv->target_served[c] == m->targets[c].need) &&
+                (priv->target_served[t] == 0U)) {
                 ruin(priv, m, plan, c, 1U);
                 sva_flow_try_insert(priv, m, plan, t);
                 if (priv->target_served[t] != 0U) {

@@ -10,9 +10,9 @@
 
 #if SVA_FLOW_LP_ROWS >= 2
 
-#define ENTRY_MAX (INT64_C(1) << 26)   // adj, x, alpha, D
-#define DUAL_MAX (INT64_C(1) << 50)    // D * dual: labels stay within int64
-#define DEGENERATE_RUN 8U
+#    define ENTRY_MAX      (INT64_C(1) << 26)  // adj, x, alpha, D
+#    define DUAL_MAX       (INT64_C(1) << 50)  // D * dual: labels stay within int64
+#    define DEGENERATE_RUN 8U
 
 static int64_t abs64(int64_t v)
 {
@@ -201,7 +201,8 @@ bool sva_flow_master_solve(sva_flow_work_t* w, const sva_mission_t* m, uint64_t 
         }
         const uint16_t r = lp_leaving(lp, m, j);
         if (r == NO_COLUMN) {
-            return false;  // a guard, or unbounded (cannot be: every column has a cost >= 0 or is bounded by a row)
+            return false;  // a guard, or unbounded (cannot be: every column has a cost >= 0 or is
+                           // bounded by a row)
         }
         if (lp->x[r] == 0) {
             degenerate++;

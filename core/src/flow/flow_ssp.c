@@ -17,9 +17,9 @@
 #define FLOW_INF (INT64_MAX / 2)
 
 // node_mark[] bits (unsigned constants: they are masked into a uint8_t).
-#define MARK_LIVE 1U     // reachable from a supply: may ever carry flow
-#define MARK_SUPPLY 2U   // a supply node whose unit has not left yet
-#define MARK_DONE 4U     // settled in the current Dijkstra run
+#define MARK_LIVE    1U  // reachable from a supply: may ever carry flow
+#define MARK_SUPPLY  2U  // a supply node whose unit has not left yet
+#define MARK_DONE    4U  // settled in the current Dijkstra run
 #define MARK_DEFICIT 8U  // a forced copy's in-node still waiting for its unit
 
 // pred[] codes: arc e forward, arc e backward, a copy's own arc forward or backward,
@@ -27,9 +27,9 @@
 #define PRED_START (-1)
 
 typedef struct {
-    uint16_t u;      // UAVs
-    uint16_t c;      // copies
-    uint32_t a;      // arcs
+    uint16_t u;  // UAVs
+    uint16_t c;  // copies
+    uint32_t a;  // arcs
     uint16_t depot;
     uint16_t sink;
 } flow_shape_t;
@@ -37,7 +37,7 @@ typedef struct {
 static flow_shape_t shape_of(const sva_flow_work_t* w)
 {
     const flow_shape_t s = {w->uavs, w->copies, w->arcs, (uint16_t)(w->uavs + (2U * w->copies)),
-                       (uint16_t)(w->uavs + (2U * w->copies) + 1U)};
+                            (uint16_t)(w->uavs + (2U * w->copies) + 1U)};
     return s;
 }
 
@@ -50,7 +50,8 @@ static bool copy_usable(const sva_flow_work_t* w, uint16_t c)
 // out-node (tested once per node).
 static bool tail_usable(const sva_flow_work_t* w, const flow_shape_t* s, uint16_t v)
 {
-    return (v < (uint16_t)(s->u + s->c)) || (v >= s->depot) || copy_usable(w, (uint16_t)(v - s->u - s->c));
+    return (v < (uint16_t)(s->u + s->c)) || (v >= s->depot) ||
+           copy_usable(w, (uint16_t)(v - s->u - s->c));
 }
 
 // Whether explicit arc e out of a usable tail may be used under the current branching
@@ -195,7 +196,8 @@ static void scan(sva_flow_work_t* w, const flow_shape_t* s, uint16_t v)
     w->work += (uint64_t)in_end - (uint64_t)w->in_start[v];
     if ((v >= s->u) && (v < (uint16_t)(s->u + s->c))) {
         const uint16_t c = (uint16_t)(v - s->u);
-        if ((w->copy_forced[c] == 0U) && (w->copy_cover[c] < w->copy_units[c]) && copy_usable(w, c)) {
+        if ((w->copy_forced[c] == 0U) && (w->copy_cover[c] < w->copy_units[c]) &&
+            copy_usable(w, c)) {
             offer(w, v, (uint16_t)(v + s->c), own_cost(w, c), (2 * a) + (int32_t)c);
         }
     } else if ((v >= (uint16_t)(s->u + s->c)) && (v < s->depot)) {

@@ -90,8 +90,7 @@ void sva_live_finish(const sva_mission_t* m, sva_plan_t* plan, uint16_t* served)
         sva_route_t* route = &plan->routes[r];
         const sva_uav_t* uav = &m->uavs[r];
         route->uav_id = uav->id;
-        route->stranded =
-            (int64_t)uav->fuel < sva_distance(uav->x, uav->y, m->depot_x, m->depot_y);
+        route->stranded = (int64_t)uav->fuel < sva_distance(uav->x, uav->y, m->depot_x, m->depot_y);
         plan->stranded_count = (uint16_t)(plan->stranded_count + (route->stranded ? 1U : 0U));
         if (route->stranded) {
             route->target_count = 0U;

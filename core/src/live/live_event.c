@@ -49,8 +49,7 @@ bool sva_live_target_ok(const sva_target_t* t, int32_t index, int64_t now, sva_d
         return false;
     }
     if (t->start_ticks < now) {
-        sva_diag_set(diag, SVA_FIELD_TARGET_START, SVA_RULE_PAST, index, t->start_ticks, now,
-                     NULL);
+        sva_diag_set(diag, SVA_FIELD_TARGET_START, SVA_RULE_PAST, index, t->start_ticks, now, NULL);
         return false;
     }
     if (t->end_ticks <= t->start_ticks) {
@@ -80,14 +79,14 @@ static bool plan_ok(const sva_mission_t* m, const sva_plan_t* plan, sva_diag_t* 
             return false;
         }
         if (r->target_count > SVA_MAX_ROUTE_TARGETS) {
-            sva_diag_set(diag, SVA_FIELD_ROUTE_TARGETS, SVA_RULE_COUNT, (int32_t)u,
-                         r->target_count, SVA_MAX_ROUTE_TARGETS, "SVA_MAX_ROUTE_TARGETS");
+            sva_diag_set(diag, SVA_FIELD_ROUTE_TARGETS, SVA_RULE_COUNT, (int32_t)u, r->target_count,
+                         SVA_MAX_ROUTE_TARGETS, "SVA_MAX_ROUTE_TARGETS");
             return false;
         }
         for (uint16_t k = 0U; k < r->target_count; k++) {
             if (r->targets[k] >= m->target_count) {
-                sva_diag_set(diag, SVA_FIELD_ROUTE_TARGETS, SVA_RULE_MAX, (int32_t)u,
-                             r->targets[k], (int64_t)m->target_count - 1, NULL);
+                sva_diag_set(diag, SVA_FIELD_ROUTE_TARGETS, SVA_RULE_MAX, (int32_t)u, r->targets[k],
+                             (int64_t)m->target_count - 1, NULL);
                 return false;
             }
             for (uint16_t j = 0U; j < k; j++) {
@@ -185,8 +184,8 @@ static bool event_ok(const sva_live_t* self, const sva_event_t* e, sva_diag_t* d
             return false;
         }
         if (m->target_count >= SVA_MAX_TARGETS) {
-            sva_diag_set(diag, SVA_FIELD_TARGETS, SVA_RULE_COUNT, -1,
-                         (int64_t)m->target_count + 1, SVA_MAX_TARGETS, "SVA_MAX_TARGETS");
+            sva_diag_set(diag, SVA_FIELD_TARGETS, SVA_RULE_COUNT, -1, (int64_t)m->target_count + 1,
+                         SVA_MAX_TARGETS, "SVA_MAX_TARGETS");
             return false;
         }
         return sva_live_target_ok(&e->target, (int32_t)m->target_count, e->at_ticks, diag);
@@ -195,8 +194,7 @@ static bool event_ok(const sva_live_t* self, const sva_event_t* e, sva_diag_t* d
     case SVA_EVENT_TARGET_CHANGED: {
         const int32_t i = sva_live_find_target(self, e->target.id);
         if (i < 0) {
-            sva_diag_set(diag, SVA_FIELD_EVENT_TARGET, SVA_RULE_UNKNOWN, -1, e->target.id, 0,
-                         NULL);
+            sva_diag_set(diag, SVA_FIELD_EVENT_TARGET, SVA_RULE_UNKNOWN, -1, e->target.id, 0, NULL);
             return false;
         }
         const sva_target_state_t state = sva_live_state_at(self, (uint16_t)i, e->at_ticks, false);
@@ -318,8 +316,8 @@ sva_status_t sva_live_apply(sva_live_t* self, const sva_event_t* event, sva_diag
     return SVA_OK;
 }
 
-bool sva_live_uav_at(const sva_live_t* self, uint16_t uav, int32_t at_ticks, int32_t* x,
-                     int32_t* y, int32_t* fuel, int32_t* ready_ticks)
+bool sva_live_uav_at(const sva_live_t* self, uint16_t uav, int32_t at_ticks, int32_t* x, int32_t* y,
+                     int32_t* fuel, int32_t* ready_ticks)
 {
     SVA_ASSERT((self != NULL) && (x != NULL) && (y != NULL) && (fuel != NULL) &&
                (ready_ticks != NULL));

@@ -8,7 +8,7 @@
 
 /// Where the flight model (SPEC section 12.2) puts a UAV at a tick.
 typedef struct {
-    int32_t x;          ///< the cell it stands on, or the next cell of the step in progress
+    int32_t x;  ///< the cell it stands on, or the next cell of the step in progress
     int32_t y;
     int64_t fuel_now;   ///< fuel at the tick (cells completed, windows started)
     int64_t fuel;       ///< fuel once at (x, y)
@@ -32,15 +32,13 @@ void sva_live_rebase(sva_live_t* self, uint16_t u, int64_t at);
 void sva_live_route_remove(sva_live_uav_t* uav, uint16_t target);
 /// The state target i has at tick `at` (>= now) if nothing but time happens;
 /// `reach` also tells waiting from expired for windows still ahead (O(U * R)).
-sva_target_state_t sva_live_state_at(const sva_live_t* self, uint16_t i, int64_t at,
-                                     bool reach);
+sva_target_state_t sva_live_state_at(const sva_live_t* self, uint16_t i, int64_t at, bool reach);
 /// Moves every target's state to tick `at` and makes it now.
 void sva_live_advance(sva_live_t* self, int64_t at);
 
 // live_event.c: the checks events, targets and plans in force must pass.
 /// SPEC section 1 bounds of one target (id excepted) as target `index`; false with diag.
-bool sva_live_target_ok(const sva_target_t* target, int32_t index, int64_t now,
-                        sva_diag_t* diag);
+bool sva_live_target_ok(const sva_target_t* target, int32_t index, int64_t now, sva_diag_t* diag);
 /// The mission index of the UAV or target with `id`, or -1.
 int32_t sva_live_find_uav(const sva_live_t* self, int32_t id);
 int32_t sva_live_find_target(const sva_live_t* self, int32_t id);

@@ -92,8 +92,7 @@ static uint32_t missing_in(const sva_plan_t* a, const sva_plan_t* b)
 
 static int64_t objective(const sva_live_t* self, const sva_plan_t* plan)
 {
-    const uint32_t changes = missing_in(&self->previous, plan) +
-                             missing_in(plan, &self->previous);
+    const uint32_t changes = missing_in(&self->previous, plan) + missing_in(plan, &self->previous);
     return plan->cost + ((int64_t)self->mission.change_penalty * (int64_t)changes);
 }
 
@@ -127,8 +126,7 @@ sva_status_t sva_live_replan(sva_live_t* self, sva_planner_t* planner, sva_algor
         return SVA_ERR_ARGUMENT;
     }
     build_residual(self);
-    const sva_status_t status =
-        sva_plan(planner, &self->residual, algorithm, &self->plan, diag);
+    const sva_status_t status = sva_plan(planner, &self->residual, algorithm, &self->plan, diag);
     if (status != SVA_OK) {
         return status;
     }

@@ -11,8 +11,7 @@ const char* sva_target_state_name(sva_target_state_t state)
 }
 
 static const char* const event_names[SVA_EVENT_COUNT_] = {
-    "clock",        "uav_lost",         "uav_back",       "fuel",
-    "target_added", "target_cancelled", "target_changed",
+    "clock", "uav_lost", "uav_back", "fuel", "target_added", "target_cancelled", "target_changed",
 };
 
 const char* sva_event_type_name(sva_event_type_t type)

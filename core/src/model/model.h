@@ -13,12 +13,12 @@
 // anywhere in C); SVA_ENABLE_ASSERT=0 compiles them out; firmware may define
 // SVA_ASSERT(x) to its own handler. Disabled, the expression is still type-checked.
 #ifndef SVA_ASSERT
-#if SVA_ENABLE_ASSERT && !defined(NDEBUG)
-#include <assert.h>
-#define SVA_ASSERT(x) assert(x)
-#else
-#define SVA_ASSERT(x) ((void)sizeof((x) ? 1 : 0))
-#endif
+#    if SVA_ENABLE_ASSERT && !defined(NDEBUG)
+#        include <assert.h>
+#        define SVA_ASSERT(x) assert(x)
+#    else
+#        define SVA_ASSERT(x) ((void)sizeof((x) ? 1 : 0))
+#    endif
 #endif
 
 // C99 static assertion (negative array size on failure).
@@ -28,7 +28,7 @@
 // leg, supply, demand and index fits the types that hold it.
 #define SVA_MAX_LEG_CELLS (2L * (SVA_COORD_MAX - SVA_COORD_MIN))
 SVA_STATIC_ASSERT(SVA_MAX_LEG_CELLS <= 2147483647L, leg_fits_int32);
-SVA_STATIC_ASSERT(SVA_MAX_LEG_CELLS * SVA_MAX_TICKS_PER_CELL + SVA_MAX_TICK <= 2147483647L,
+SVA_STATIC_ASSERT(SVA_MAX_LEG_CELLS* SVA_MAX_TICKS_PER_CELL + SVA_MAX_TICK <= 2147483647L,
                   arrival_fits_int32);
 SVA_STATIC_ASSERT(SVA_MAX_TARGETS <= 65535L && SVA_MAX_UAVS <= 65535L, indices_fit_uint16);
 
@@ -40,7 +40,8 @@ static inline int32_t sva_distance(int32_t ax, int32_t ay, int32_t bx, int32_t b
     return dx + dy;
 }
 
-/// Greatest common divisor (gcd(a, 0) = a), for the needs' lcm (paper/tableau.c, flow/flow_graph.c).
+/// Greatest common divisor (gcd(a, 0) = a), for the needs' lcm (paper/tableau.c,
+/// flow/flow_graph.c).
 static inline int64_t sva_gcd64(int64_t a, int64_t b)
 {
     int64_t x = a;
@@ -69,7 +70,8 @@ void sva_commit(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan
                 uint16_t uav, uint16_t target);
 /// Cells flown over targets[0..count-1] from the UAV's mission position, return leg
 /// included; sva_route_cells: over a route's targets.
-int64_t sva_path_cells(const sva_mission_t* mission, uint16_t uav, const uint16_t* targets, uint16_t count);
+int64_t sva_path_cells(const sva_mission_t* mission, uint16_t uav, const uint16_t* targets,
+                       uint16_t count);
 int64_t sva_route_cells(const sva_mission_t* mission, uint16_t uav, const sva_route_t* route);
 void sva_plan_finish(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan);
 

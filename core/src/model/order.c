@@ -19,8 +19,8 @@ void sva_sort_targets(sva_planner_priv_t* priv, const sva_mission_t* mission)
 {
     for (uint16_t i = 0U; i < mission->target_count; i++) {
         uint16_t j = i;
-        while ((j > 0U) && target_before(&mission->targets[i],
-                                         &mission->targets[priv->target_order[j - 1U]])) {
+        while ((j > 0U) &&
+               target_before(&mission->targets[i], &mission->targets[priv->target_order[j - 1U]])) {
             priv->target_order[j] = priv->target_order[j - 1U];
             j--;
         }

@@ -75,7 +75,8 @@ void sva_commit(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan
     priv->target_served[target]++;
 }
 
-int64_t sva_path_cells(const sva_mission_t* mission, uint16_t uav, const uint16_t* targets, uint16_t count)
+int64_t sva_path_cells(const sva_mission_t* mission, uint16_t uav, const uint16_t* targets,
+                       uint16_t count)
 {
     int32_t x = mission->uavs[uav].x;
     int32_t y = mission->uavs[uav].y;

@@ -3,8 +3,8 @@
 #include "model.h"
 
 // Checks lo <= value <= hi; on failure fills diag and returns false.
-static bool in_range(sva_diag_t* diag, sva_field_t field, int32_t index, int64_t value,
-                     int64_t lo, int64_t hi, const char* hi_name)
+static bool in_range(sva_diag_t* diag, sva_field_t field, int32_t index, int64_t value, int64_t lo,
+                     int64_t hi, const char* hi_name)
 {
     if (value < lo) {
         sva_diag_set(diag, field, SVA_RULE_MIN, index, value, lo, NULL);
@@ -62,8 +62,7 @@ static bool target_ok(const sva_mission_t* m, int32_t i, sva_diag_t* diag)
         !coord_ok(diag, SVA_FIELD_TARGET_Y, i, t->y) ||
         !in_range(diag, SVA_FIELD_TARGET_START, i, t->start_ticks, 0, SVA_MAX_TICK - 1,
                   "SVA_MAX_TICK - 1") ||
-        !in_range(diag, SVA_FIELD_TARGET_END, i, t->end_ticks, 1, SVA_MAX_TICK,
-                  "SVA_MAX_TICK") ||
+        !in_range(diag, SVA_FIELD_TARGET_END, i, t->end_ticks, 1, SVA_MAX_TICK, "SVA_MAX_TICK") ||
         !in_range(diag, SVA_FIELD_TARGET_NEED, i, t->need, 1, SVA_MAX_UAVS, "SVA_MAX_UAVS")) {
         return false;
     }

@@ -122,7 +122,8 @@ static void give_back(sva_planner_priv_t* priv, const sva_mission_t* mission, sv
     }
 }
 
-static void save_best(sva_planner_priv_t* priv, const sva_mission_t* mission, const sva_plan_t* plan)
+static void save_best(sva_planner_priv_t* priv, const sva_mission_t* mission,
+                      const sva_plan_t* plan)
 {
     for (uint16_t u = 0U; u < mission->uav_count; u++) {
         priv->bfa.best_len[u] = (uint8_t)plan->routes[u].target_count;
@@ -147,8 +148,8 @@ static sva_status_t check_size(const sva_mission_t* mission, sva_diag_t* diag)
     return SVA_OK;
 }
 
-sva_status_t sva_run_bfa(sva_planner_priv_t* priv, const sva_mission_t* mission,
-                         sva_plan_t* plan, sva_diag_t* diag)
+sva_status_t sva_run_bfa(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan,
+                         sva_diag_t* diag)
 {
     sva_status_t st = check_size(mission, diag);
     if (st != SVA_OK) {

@@ -20,9 +20,9 @@ void sva_cluster_targets(sva_planner_priv_t* priv, const sva_mission_t* mission)
     priv->cluster_count = 0U;
     for (uint16_t k = 0U; k < mission->target_count; k++) {
         const bool joins =
-            (k > 0U) && sva_windows_overlap(&mission->targets[priv->target_order[k - 1U]],
-                                            &mission->targets[priv->target_order[k]],
-                                            mission->overlap_percent);
+            (k > 0U) &&
+            sva_windows_overlap(&mission->targets[priv->target_order[k - 1U]],
+                                &mission->targets[priv->target_order[k]], mission->overlap_percent);
         if (joins) {
             priv->cluster_end[priv->cluster_count - 1U] = (uint16_t)(k + 1U);
         } else {

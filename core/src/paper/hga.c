@@ -36,8 +36,8 @@ static bool first_fill(sva_hga_work_t* w, const sva_tp_t* tp, uint16_t k)
 static bool next_fill(sva_hga_work_t* w, const sva_tp_t* tp, uint16_t k)
 {
     int32_t* p = pick(w, k);
-    int32_t after = 0;      // units picked from sources after s
-    int32_t room_after = 0; // their capacity
+    int32_t after = 0;       // units picked from sources after s
+    int32_t room_after = 0;  // their capacity
     for (int32_t s = (int32_t)tp->source_count - 1; s >= 0; s--) {
         if ((p[s] > 0) && ((after + 1) <= room_after)) {
             p[s]--;

@@ -33,7 +33,7 @@ void sva_hga_solve(sva_hga_work_t* work, sva_tp_t* tp, sva_stats_t* stats);
 sva_status_t sva_run_pipeline(sva_planner_t* self, const sva_mission_t* mission,
                               sva_algorithm_t algorithm, sva_plan_t* plan);
 void sva_run_ga(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan);
-sva_status_t sva_run_bfa(sva_planner_priv_t* priv, const sva_mission_t* mission,
-                         sva_plan_t* plan, sva_diag_t* diag);
+sva_status_t sva_run_bfa(sva_planner_priv_t* priv, const sva_mission_t* mission, sva_plan_t* plan,
+                         sva_diag_t* diag);
 
 #endif  // SVA_PAPER_H

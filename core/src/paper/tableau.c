@@ -187,7 +187,8 @@ static sva_status_t pivot(sva_tableau_t* tab, shape_t sh, uint16_t prow, uint16_
         }
         for (uint16_t i = 0U; i < nz; i++) {
             const uint16_t c = (uint16_t)tab->nonzero[i];
-            const int32_t v = (int32_t)*cell(tab, sh, row, c) - ((int32_t)f * *cell(tab, sh, prow, c));
+            const int32_t v =
+                (int32_t)*cell(tab, sh, row, c) - ((int32_t)f * *cell(tab, sh, prow, c));
             if ((v < -1) || (v > 1)) {
                 return SVA_ERR_SOLVER;
             }
@@ -204,8 +205,7 @@ static sva_status_t pivot(sva_tableau_t* tab, shape_t sh, uint16_t prow, uint16_
     return SVA_OK;
 }
 
-sva_status_t sva_tableau_solve(sva_tableau_t* tab, sva_tp_t* tp, int32_t* unmet,
-                               sva_stats_t* stats)
+sva_status_t sva_tableau_solve(sva_tableau_t* tab, sva_tp_t* tp, int32_t* unmet, sva_stats_t* stats)
 {
     const shape_t sh = build(tab, tp);
     const uint32_t cells = (uint32_t)sh.rows * sh.cols;

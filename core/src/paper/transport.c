@@ -79,8 +79,8 @@ static uint16_t group_ready(sva_planner_priv_t* priv, const sva_mission_t* missi
 
 // Pass 3: when more groups are ready than SVA_MAX_TP_SOURCES, keep those with the
 // nearest reachable sink (ties: lower UAV id); number the kept ones in id order.
-static void select_sources(sva_planner_priv_t* priv, const sva_mission_t* mission,
-                           uint16_t groups, sva_stats_t* stats)
+static void select_sources(sva_planner_priv_t* priv, const sva_mission_t* mission, uint16_t groups,
+                           sva_stats_t* stats)
 {
     sva_tp_t* tp = &priv->tp;
     int32_t cutoff = INT32_MAX;

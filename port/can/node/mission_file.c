@@ -7,8 +7,8 @@
 #include "sva/sva_json.h"
 #include "sva/sva_can.h"
 
-int sva_can_mission_load(const char* path, sva_mission_t* m, char* name, size_t name_size, char* err,
-                         size_t err_size)
+int sva_can_mission_load(const char* path, sva_mission_t* m, char* name, size_t name_size,
+                         char* err, size_t err_size)
 {
     char json_name[SVA_JSON_NAME_MAX + 1];
     sva_diag_t diag;

@@ -11,7 +11,7 @@
 /// int32 or a list longer than its bound are errors), then runs sva_mission_validate()
 /// and sva_can_mission_check(). name (may be NULL) receives the mission name.
 /// Returns 0, or -1 with a one-line message naming the field and the rule in err.
-int sva_can_mission_load(const char* path, sva_mission_t* mission, char* name, size_t name_size, char* err,
-                         size_t err_size);
+int sva_can_mission_load(const char* path, sva_mission_t* mission, char* name, size_t name_size,
+                         char* err, size_t err_size);
 
 #endif

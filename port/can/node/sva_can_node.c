@@ -49,9 +49,9 @@ typedef struct {
 } vehicle_extra_t;
 
 // Everything the node owns: static, no heap (the planner state is large).
-static sva_mission_t g_mission;      // targets and fleet state as last heard
+static sva_mission_t g_mission;  // targets and fleet state as last heard
 static vehicle_extra_t g_extra[SVA_MAX_UAVS];
-static sva_mission_t g_planning;     // what sva_plan sees (unavailable UAVs left out)
+static sva_mission_t g_planning;  // what sva_plan sees (unavailable UAVs left out)
 static sva_planner_t g_planner;
 static sva_plan_t g_plan;
 static sva_can_plan_t g_wire;
@@ -66,7 +66,8 @@ static void usage(void)
 {
     fprintf(stderr,
             "usage: sva_can_node --mission FILE [--iface NAME] [--algorithm sva|ga|hga|bfa|flow]\n"
-            "                    [--settle-ms N] [--exit-after-acks N] [--max-runtime-ms N] [--print-plans]\n");
+            "                    [--settle-ms N] [--exit-after-acks N] [--max-runtime-ms N] "
+            "[--print-plans]\n");
 }
 
 static int parse_u32(const char* s, const char* opt, uint32_t* out)
@@ -77,8 +78,8 @@ static int parse_u32(const char* s, const char* opt, uint32_t* out)
     v = strtoul(s, &end, 10);
     if ((errno != 0) || (end == s) || (*end != '\0') || (v > 0x7FFFFFFFul) || (s[0] == '-')) {
         char shown[SHOWN_SIZE];
-        fprintf(stderr, "sva_can_node: %s: must be an integer in [0, 2147483647], got \"%s\"\n", opt,
-                sva_text_escape(shown, sizeof shown, s));
+        fprintf(stderr, "sva_can_node: %s: must be an integer in [0, 2147483647], got \"%s\"\n",
+                opt, sva_text_escape(shown, sizeof shown, s));
         return -1;
     }
     *out = (uint32_t)v;
@@ -86,7 +87,8 @@ static int parse_u32(const char* s, const char* opt, uint32_t* out)
 }
 
 // Plans the current fleet state; on success starts sending. Returns the fault bits.
-static uint8_t replan(sva_algorithm_t algo, uint16_t plan_id, uint32_t t, int print, uint8_t* covered)
+static uint8_t replan(sva_algorithm_t algo, uint16_t plan_id, uint32_t t, int print,
+                      uint8_t* covered)
 {
     sva_diag_t diag;
     uint16_t i;
@@ -109,14 +111,19 @@ static uint8_t replan(sva_algorithm_t algo, uint16_t plan_id, uint32_t t, int pr
     }
     cst = sva_can_plan_from_core(&g_wire, &g_planning, &g_plan, plan_id);
     if (cst != SVA_CAN_OK) {
-        fprintf(stderr, "sva_can_node: plan %u does not fit the wire (%s): more than SVA_CAN_MAX_ITEMS (%d) items?\n",
+        fprintf(stderr,
+                "sva_can_node: plan %u does not fit the wire (%s): more than SVA_CAN_MAX_ITEMS "
+                "(%d) items?\n",
                 plan_id, sva_can_status_name(cst), SVA_CAN_MAX_ITEMS);
         return SVA_CAN_FAULT_PLAN_FAILED;
     }
     *covered = (uint8_t)((g_plan.covered > 255u) ? 255u : g_plan.covered);
-    fprintf(stderr, "sva_can_node: plan %u: %s %s, covered %u of %u, cost %lld, %u items, %u frames\n", plan_id,
-            sva_algorithm_name(algo), (g_plan.status == SVA_PLAN_COMPLETE) ? "complete" : "partial", g_plan.covered,
-            g_planning.target_count, (long long)g_plan.cost, g_wire.item_count, 2u * g_wire.item_count + 2u);
+    fprintf(stderr,
+            "sva_can_node: plan %u: %s %s, covered %u of %u, cost %lld, %u items, %u frames\n",
+            plan_id, sva_algorithm_name(algo),
+            (g_plan.status == SVA_PLAN_COMPLETE) ? "complete" : "partial", g_plan.covered,
+            g_planning.target_count, (long long)g_plan.cost, g_wire.item_count,
+            2u * g_wire.item_count + 2u);
     if (print) {
         sva_can_plan_print(&g_wire);
     }
@@ -131,7 +138,8 @@ static uint8_t replan(sva_algorithm_t algo, uint16_t plan_id, uint32_t t, int pr
 // Applies a vehicle frame to the fleet state. Returns 1 when something changed.
 static int apply_vehicle(const sva_can_msg_t* m)
 {
-    const uint8_t id = (m->kind == SVA_CAN_MSG_VEHICLE_STATUS) ? m->u.vehicle.uav_id : m->u.fuel.uav_id;
+    const uint8_t id =
+        (m->kind == SVA_CAN_MSG_VEHICLE_STATUS) ? m->u.vehicle.uav_id : m->u.fuel.uav_id;
     uint16_t i;
     sva_uav_t* u = NULL;
     for (i = 0; i < g_mission.uav_count; ++i) {
@@ -142,7 +150,8 @@ static int apply_vehicle(const sva_can_msg_t* m)
     }
     if (u == NULL) {
         if (g_mission.uav_count >= SVA_MAX_UAVS) {
-            fprintf(stderr, "sva_can_node: uav %u ignored: fleet full (SVA_MAX_UAVS %d)\n", id, SVA_MAX_UAVS);
+            fprintf(stderr, "sva_can_node: uav %u ignored: fleet full (SVA_MAX_UAVS %d)\n", id,
+                    SVA_MAX_UAVS);
             return 0;
         }
         i = g_mission.uav_count++;
@@ -155,7 +164,8 @@ static int apply_vehicle(const sva_can_msg_t* m)
         g_extra[i].state = SVA_CAN_VEHICLE_UNKNOWN;
     }
     if (m->kind == SVA_CAN_MSG_VEHICLE_STATUS) {
-        if ((u->x == m->u.vehicle.x) && (u->y == m->u.vehicle.y) && (g_extra[i].state == m->u.vehicle.state)) {
+        if ((u->x == m->u.vehicle.x) && (u->y == m->u.vehicle.y) &&
+            (g_extra[i].state == m->u.vehicle.state)) {
             return 0;
         }
         u->x = m->u.vehicle.x;
@@ -165,7 +175,8 @@ static int apply_vehicle(const sva_can_msg_t* m)
     }
     {
         // Fuel above the core's bound is clamped to it (SVA_MAX_FUEL), so validation holds.
-        const int32_t fuel = (m->u.fuel.fuel > (uint32_t)SVA_MAX_FUEL) ? (int32_t)SVA_MAX_FUEL : (int32_t)m->u.fuel.fuel;
+        const int32_t fuel = (m->u.fuel.fuel > (uint32_t)SVA_MAX_FUEL) ? (int32_t)SVA_MAX_FUEL
+                                                                       : (int32_t)m->u.fuel.fuel;
         if (u->fuel == fuel) {
             return 0;
         }
@@ -223,7 +234,8 @@ int main(int argc, char** argv)
             return 0;
         }
         if (v == NULL) {
-            fprintf(stderr, "sva_can_node: %s: missing value\n", sva_text_escape(shown, sizeof shown, a));
+            fprintf(stderr, "sva_can_node: %s: missing value\n",
+                    sva_text_escape(shown, sizeof shown, a));
             usage();
             return 2;
         }
@@ -235,13 +247,17 @@ int main(int argc, char** argv)
         } else if (strcmp(a, "--algorithm") == 0) {
             algo_name = v;
         } else if (strcmp(a, "--settle-ms") == 0) {
-            if (parse_u32(v, a, &settle_ms) != 0) return 2;
+            if (parse_u32(v, a, &settle_ms) != 0)
+                return 2;
         } else if (strcmp(a, "--exit-after-acks") == 0) {
-            if (parse_u32(v, a, &exit_after_acks) != 0) return 2;
+            if (parse_u32(v, a, &exit_after_acks) != 0)
+                return 2;
         } else if (strcmp(a, "--max-runtime-ms") == 0) {
-            if (parse_u32(v, a, &max_runtime_ms) != 0) return 2;
+            if (parse_u32(v, a, &max_runtime_ms) != 0)
+                return 2;
         } else {
-            fprintf(stderr, "sva_can_node: unknown option %s\n", sva_text_escape(shown, sizeof shown, a));
+            fprintf(stderr, "sva_can_node: unknown option %s\n",
+                    sva_text_escape(shown, sizeof shown, a));
             usage();
             return 2;
         }
@@ -252,12 +268,14 @@ int main(int argc, char** argv)
         return 2;
     }
     if (sva_algorithm_from_name(algo_name, &algo) != SVA_OK) {
-        fprintf(stderr, "sva_can_node: --algorithm: unknown algorithm \"%s\" (sva, ga, hga, bfa, flow)\n",
+        fprintf(stderr,
+                "sva_can_node: --algorithm: unknown algorithm \"%s\" (sva, ga, hga, bfa, flow)\n",
                 sva_text_escape(shown_arg, sizeof shown_arg, algo_name));
         return 2;
     }
     if (sva_can_mission_load(mission_path, &g_mission, name, sizeof name, err, sizeof err) != 0) {
-        fprintf(stderr, "sva_can_node: %s: %s\n", sva_text_escape(shown_arg, sizeof shown_arg, mission_path), err);
+        fprintf(stderr, "sva_can_node: %s: %s\n",
+                sva_text_escape(shown_arg, sizeof shown_arg, mission_path), err);
         return 1;
     }
     for (i = 0; i < (int)g_mission.uav_count; ++i) {
@@ -269,26 +287,32 @@ int main(int argc, char** argv)
     }
     cst = sva_can_socketcan_open(&sock, iface);
     if (cst != SVA_CAN_OK) {
-        fprintf(stderr, "sva_can_node: --iface %s: %s%s%s\n", sva_text_escape(shown_arg, sizeof shown_arg, iface),
-                (cst == SVA_CAN_ERR_NAME) ? "interface name empty or longer than IFNAMSIZ - 1 (15)" : "cannot open",
-                (sock.last_errno != 0) ? ": " : "", (sock.last_errno != 0) ? strerror(sock.last_errno) : "");
+        fprintf(stderr, "sva_can_node: --iface %s: %s%s%s\n",
+                sva_text_escape(shown_arg, sizeof shown_arg, iface),
+                (cst == SVA_CAN_ERR_NAME) ? "interface name empty or longer than IFNAMSIZ - 1 (15)"
+                                          : "cannot open",
+                (sock.last_errno != 0) ? ": " : "",
+                (sock.last_errno != 0) ? strerror(sock.last_errno) : "");
         return 1;
     }
-    if ((sva_can_socketcan_transport(&sock, &tp) != SVA_CAN_OK) || (sva_can_sender_init(&g_sender, &tp, NULL) != SVA_CAN_OK)) {
+    if ((sva_can_socketcan_transport(&sock, &tp) != SVA_CAN_OK) ||
+        (sva_can_sender_init(&g_sender, &tp, NULL) != SVA_CAN_OK)) {
         fprintf(stderr, "sva_can_node: transport setup failed\n");
         sva_can_socketcan_close(&sock);
         return 1;
     }
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
-    if ((sigemptyset(&sa.sa_mask) != 0) || (sigaction(SIGINT, &sa, NULL) != 0) || (sigaction(SIGTERM, &sa, NULL) != 0)) {
+    if ((sigemptyset(&sa.sa_mask) != 0) || (sigaction(SIGINT, &sa, NULL) != 0) ||
+        (sigaction(SIGTERM, &sa, NULL) != 0)) {
         fprintf(stderr, "sva_can_node: sigaction: %s\n", strerror(errno));
         sva_can_socketcan_close(&sock);
         return 1;
     }
     fprintf(stderr, "sva_can_node: mission \"%s\" (%u UAVs, %u targets) on %s, algorithm %s\n",
-            sva_text_escape(shown_name, sizeof shown_name, name), g_mission.uav_count, g_mission.target_count,
-            sva_text_escape(shown_arg, sizeof shown_arg, iface), sva_algorithm_name(algo));
+            sva_text_escape(shown_name, sizeof shown_name, name), g_mission.uav_count,
+            g_mission.target_count, sva_text_escape(shown_arg, sizeof shown_arg, iface),
+            sva_algorithm_name(algo));
 
     t0 = now_ms();
     last_hb = t0 - SVA_CAN_HEARTBEAT_PERIOD_MS;  // first heartbeat at once
@@ -336,8 +360,8 @@ int main(int argc, char** argv)
             if (st != SVA_CAN_OK) {
                 ++rx_rejected;
                 faults |= SVA_CAN_FAULT_RX_ERRORS;
-                fprintf(stderr, "sva_can_node: rejected vehicle frame 0x%03lX: %s\n", (unsigned long)f.id,
-                        sva_can_status_name(st));
+                fprintf(stderr, "sva_can_node: rejected vehicle frame 0x%03lX: %s\n",
+                        (unsigned long)f.id, sva_can_status_name(st));
                 continue;
             }
             {
@@ -360,7 +384,8 @@ int main(int argc, char** argv)
         if (dirty && (elapsed(t, last_change) >= settle_ms)) {
             dirty = 0;
             plan_id = (uint16_t)((plan_id == 65535u) ? 1u : (plan_id + 1u));
-            faults = (uint8_t)(faults & (uint8_t)~(SVA_CAN_FAULT_MISSION_INVALID | SVA_CAN_FAULT_PLAN_FAILED));
+            faults = (uint8_t)(faults & (uint8_t) ~(SVA_CAN_FAULT_MISSION_INVALID |
+                                                    SVA_CAN_FAULT_PLAN_FAILED));
             faults |= replan(algo, plan_id, t, print, &covered);
         }
         if (sva_can_sender_poll(&g_sender, t) != SVA_CAN_OK) {
@@ -372,12 +397,12 @@ int main(int argc, char** argv)
                 covered_active = covered;
                 faults = (uint8_t)(faults & (uint8_t)~SVA_CAN_FAULT_TRANSFER_FAILED);
                 ++acks;
-                fprintf(stderr, "sva_can_node: plan %u acknowledged (%lu frames sent so far)\n", active_plan_id,
-                        (unsigned long)g_sender.stats.frames_sent);
+                fprintf(stderr, "sva_can_node: plan %u acknowledged (%lu frames sent so far)\n",
+                        active_plan_id, (unsigned long)g_sender.stats.frames_sent);
             } else if (g_sender.state == SVA_CAN_TX_FAILED) {
                 faults |= SVA_CAN_FAULT_TRANSFER_FAILED;
-                fprintf(stderr, "sva_can_node: plan %u aborted (reason %u)\n", g_sender.priv.plan.plan_id,
-                        g_sender.last_abort_reason);
+                fprintf(stderr, "sva_can_node: plan %u aborted (reason %u)\n",
+                        g_sender.priv.plan.plan_id, g_sender.last_abort_reason);
             }
             prev_state = g_sender.state;
         }
@@ -386,14 +411,17 @@ int main(int argc, char** argv)
             sva_can_frame_t hf;
             hb.kind = SVA_CAN_MSG_HEARTBEAT;
             hb.counter = hb_counter;
-            hb.u.heartbeat.state = (uint8_t)((g_sender.state == SVA_CAN_TX_SENDING || g_sender.state == SVA_CAN_TX_WAIT_ACK)
+            hb.u.heartbeat.state = (uint8_t)((g_sender.state == SVA_CAN_TX_SENDING ||
+                                              g_sender.state == SVA_CAN_TX_WAIT_ACK)
                                                  ? SVA_CAN_NODE_SENDING
                                              : (active_plan_id != 0u) ? SVA_CAN_NODE_ACTIVE
                                              : (faults != 0u)         ? SVA_CAN_NODE_FAULT
                                                                       : SVA_CAN_NODE_IDLE);
             hb.u.heartbeat.active_plan_id = active_plan_id;
-            hb.u.heartbeat.uav_count = (uint8_t)((g_mission.uav_count > 255u) ? 255u : g_mission.uav_count);
-            hb.u.heartbeat.target_count = (uint8_t)((g_mission.target_count > 255u) ? 255u : g_mission.target_count);
+            hb.u.heartbeat.uav_count =
+                (uint8_t)((g_mission.uav_count > 255u) ? 255u : g_mission.uav_count);
+            hb.u.heartbeat.target_count =
+                (uint8_t)((g_mission.target_count > 255u) ? 255u : g_mission.target_count);
             hb.u.heartbeat.covered_count = covered_active;
             hb.u.heartbeat.faults = (uint8_t)(faults & SVA_CAN_FAULT_MASK);
             if ((sva_can_encode(&hb, &hf) == SVA_CAN_OK) && (tp.send(tp.ctx, &hf) == SVA_CAN_OK)) {
@@ -406,7 +434,8 @@ int main(int argc, char** argv)
             break;
         }
         if ((max_runtime_ms != 0u) && (elapsed(t, t0) >= max_runtime_ms)) {
-            fprintf(stderr, "sva_can_node: --max-runtime-ms %lu reached\n", (unsigned long)max_runtime_ms);
+            fprintf(stderr, "sva_can_node: --max-runtime-ms %lu reached\n",
+                    (unsigned long)max_runtime_ms);
             rc = (exit_after_acks != 0u) ? 1 : 0;  // asked for ACKs that never came
             break;
         }
@@ -414,9 +443,11 @@ int main(int argc, char** argv)
     if (sva_can_sender_abort(&g_sender, SVA_CAN_ABORT_SHUTDOWN, now_ms()) != SVA_CAN_OK) {
         fprintf(stderr, "sva_can_node: could not send ABORT on shutdown\n");
     }
-    fprintf(stderr, "sva_can_node: exit: %lu frames sent, %lu acks, %lu nacks, %lu rejected vehicle frames\n",
-            (unsigned long)g_sender.stats.frames_sent, (unsigned long)acks, (unsigned long)g_sender.stats.nacks,
-            (unsigned long)rx_rejected);
+    fprintf(
+        stderr,
+        "sva_can_node: exit: %lu frames sent, %lu acks, %lu nacks, %lu rejected vehicle frames\n",
+        (unsigned long)g_sender.stats.frames_sent, (unsigned long)acks,
+        (unsigned long)g_sender.stats.nacks, (unsigned long)rx_rejected);
     sva_can_socketcan_close(&sock);
     return rc;
 }

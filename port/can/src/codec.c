@@ -11,24 +11,42 @@
 const char* sva_can_status_name(sva_can_status_t status)
 {
     switch (status) {
-    case SVA_CAN_OK: return "ok";
-    case SVA_CAN_AGAIN: return "again";
-    case SVA_CAN_IGNORED: return "ignored";
-    case SVA_CAN_APPLIED: return "applied";
-    case SVA_CAN_ERR_ARGUMENT: return "argument";
-    case SVA_CAN_ERR_DLC: return "dlc";
-    case SVA_CAN_ERR_CRC: return "crc";
-    case SVA_CAN_ERR_VALUE: return "value";
-    case SVA_CAN_ERR_COUNTER: return "counter";
-    case SVA_CAN_ERR_SEQUENCE: return "sequence";
-    case SVA_CAN_ERR_PLAN_CRC: return "plan_crc";
-    case SVA_CAN_ERR_TIMEOUT: return "timeout";
-    case SVA_CAN_ERR_LIMIT: return "limit";
-    case SVA_CAN_ERR_IO: return "io";
-    case SVA_CAN_ERR_NAME: return "name";
-    case SVA_CAN_ERR_UNSUPPORTED: return "unsupported";
-    case SVA_CAN_ERR_STATE: return "state";
-    default: return "unknown";
+    case SVA_CAN_OK:
+        return "ok";
+    case SVA_CAN_AGAIN:
+        return "again";
+    case SVA_CAN_IGNORED:
+        return "ignored";
+    case SVA_CAN_APPLIED:
+        return "applied";
+    case SVA_CAN_ERR_ARGUMENT:
+        return "argument";
+    case SVA_CAN_ERR_DLC:
+        return "dlc";
+    case SVA_CAN_ERR_CRC:
+        return "crc";
+    case SVA_CAN_ERR_VALUE:
+        return "value";
+    case SVA_CAN_ERR_COUNTER:
+        return "counter";
+    case SVA_CAN_ERR_SEQUENCE:
+        return "sequence";
+    case SVA_CAN_ERR_PLAN_CRC:
+        return "plan_crc";
+    case SVA_CAN_ERR_TIMEOUT:
+        return "timeout";
+    case SVA_CAN_ERR_LIMIT:
+        return "limit";
+    case SVA_CAN_ERR_IO:
+        return "io";
+    case SVA_CAN_ERR_NAME:
+        return "name";
+    case SVA_CAN_ERR_UNSUPPORTED:
+        return "unsupported";
+    case SVA_CAN_ERR_STATE:
+        return "state";
+    default:
+        return "unknown";
     }
 }
 
@@ -43,7 +61,8 @@ uint8_t sva_can_crc8(const uint8_t* data, size_t size)
         unsigned bit;
         crc = (uint8_t)(crc ^ data[i]);
         for (bit = 0; bit < 8u; ++bit) {
-            crc = ((crc & 0x80u) != 0u) ? (uint8_t)((uint8_t)(crc << 1) ^ 0x1Du) : (uint8_t)(crc << 1);
+            crc = ((crc & 0x80u) != 0u) ? (uint8_t)((uint8_t)(crc << 1) ^ 0x1Du)
+                                        : (uint8_t)(crc << 1);
         }
     }
     return (uint8_t)(crc ^ 0xFFu);
@@ -122,34 +141,54 @@ static int16_t to_i16(uint64_t raw)
 sva_can_msg_kind_t sva_can_kind_of_id(uint32_t id)
 {
     switch (id) {
-    case SVA_CAN_ID_HEARTBEAT: return SVA_CAN_MSG_HEARTBEAT;
-    case SVA_CAN_ID_PLAN_BEGIN: return SVA_CAN_MSG_PLAN_BEGIN;
-    case SVA_CAN_ID_PLAN_ITEM: return SVA_CAN_MSG_PLAN_ITEM;
-    case SVA_CAN_ID_PLAN_ITEM_TIME: return SVA_CAN_MSG_PLAN_ITEM_TIME;
-    case SVA_CAN_ID_PLAN_COMMIT: return SVA_CAN_MSG_PLAN_COMMIT;
-    case SVA_CAN_ID_PLAN_ABORT: return SVA_CAN_MSG_PLAN_ABORT;
-    case SVA_CAN_ID_PLAN_ACK: return SVA_CAN_MSG_PLAN_ACK;
-    case SVA_CAN_ID_VEHICLE_STATUS: return SVA_CAN_MSG_VEHICLE_STATUS;
-    case SVA_CAN_ID_VEHICLE_FUEL: return SVA_CAN_MSG_VEHICLE_FUEL;
-    default: return SVA_CAN_MSG_NONE;
+    case SVA_CAN_ID_HEARTBEAT:
+        return SVA_CAN_MSG_HEARTBEAT;
+    case SVA_CAN_ID_PLAN_BEGIN:
+        return SVA_CAN_MSG_PLAN_BEGIN;
+    case SVA_CAN_ID_PLAN_ITEM:
+        return SVA_CAN_MSG_PLAN_ITEM;
+    case SVA_CAN_ID_PLAN_ITEM_TIME:
+        return SVA_CAN_MSG_PLAN_ITEM_TIME;
+    case SVA_CAN_ID_PLAN_COMMIT:
+        return SVA_CAN_MSG_PLAN_COMMIT;
+    case SVA_CAN_ID_PLAN_ABORT:
+        return SVA_CAN_MSG_PLAN_ABORT;
+    case SVA_CAN_ID_PLAN_ACK:
+        return SVA_CAN_MSG_PLAN_ACK;
+    case SVA_CAN_ID_VEHICLE_STATUS:
+        return SVA_CAN_MSG_VEHICLE_STATUS;
+    case SVA_CAN_ID_VEHICLE_FUEL:
+        return SVA_CAN_MSG_VEHICLE_FUEL;
+    default:
+        return SVA_CAN_MSG_NONE;
     }
 }
 
 static uint32_t id_of_kind(sva_can_msg_kind_t kind)
 {
     switch (kind) {
-    case SVA_CAN_MSG_HEARTBEAT: return SVA_CAN_ID_HEARTBEAT;
-    case SVA_CAN_MSG_PLAN_BEGIN: return SVA_CAN_ID_PLAN_BEGIN;
-    case SVA_CAN_MSG_PLAN_ITEM: return SVA_CAN_ID_PLAN_ITEM;
-    case SVA_CAN_MSG_PLAN_ITEM_TIME: return SVA_CAN_ID_PLAN_ITEM_TIME;
-    case SVA_CAN_MSG_PLAN_COMMIT: return SVA_CAN_ID_PLAN_COMMIT;
-    case SVA_CAN_MSG_PLAN_ABORT: return SVA_CAN_ID_PLAN_ABORT;
-    case SVA_CAN_MSG_PLAN_ACK: return SVA_CAN_ID_PLAN_ACK;
-    case SVA_CAN_MSG_VEHICLE_STATUS: return SVA_CAN_ID_VEHICLE_STATUS;
-    case SVA_CAN_MSG_VEHICLE_FUEL: return SVA_CAN_ID_VEHICLE_FUEL;
+    case SVA_CAN_MSG_HEARTBEAT:
+        return SVA_CAN_ID_HEARTBEAT;
+    case SVA_CAN_MSG_PLAN_BEGIN:
+        return SVA_CAN_ID_PLAN_BEGIN;
+    case SVA_CAN_MSG_PLAN_ITEM:
+        return SVA_CAN_ID_PLAN_ITEM;
+    case SVA_CAN_MSG_PLAN_ITEM_TIME:
+        return SVA_CAN_ID_PLAN_ITEM_TIME;
+    case SVA_CAN_MSG_PLAN_COMMIT:
+        return SVA_CAN_ID_PLAN_COMMIT;
+    case SVA_CAN_MSG_PLAN_ABORT:
+        return SVA_CAN_ID_PLAN_ABORT;
+    case SVA_CAN_MSG_PLAN_ACK:
+        return SVA_CAN_ID_PLAN_ACK;
+    case SVA_CAN_MSG_VEHICLE_STATUS:
+        return SVA_CAN_ID_VEHICLE_STATUS;
+    case SVA_CAN_MSG_VEHICLE_FUEL:
+        return SVA_CAN_ID_VEHICLE_FUEL;
     case SVA_CAN_MSG_NONE:
     case SVA_CAN_MSG_COUNT_:
-    default: return 0u;
+    default:
+        return 0u;
     }
 }
 
@@ -209,7 +248,8 @@ sva_can_status_t sva_can_encode(const sva_can_msg_t* msg, sva_can_frame_t* out)
     }
     case SVA_CAN_MSG_PLAN_ITEM_TIME: {
         const sva_can_item_time_t* m = &msg->u.item_time;
-        if (!FITS(m->item_seq, 4u) || !FITS(m->arrive_by_ticks, 24u) || !FITS(m->hold_until_ticks, 24u)) {
+        if (!FITS(m->item_seq, 4u) || !FITS(m->arrive_by_ticks, 24u) ||
+            !FITS(m->hold_until_ticks, 24u)) {
             return SVA_CAN_ERR_ARGUMENT;
         }
         sva_can_put_bits(d, 4u, 4u, m->item_seq);

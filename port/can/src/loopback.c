@@ -39,7 +39,8 @@ static sva_can_status_t queue_pop(sva_can_queue_t* q, sva_can_frame_t* f)
     return SVA_CAN_OK;
 }
 
-sva_can_status_t sva_can_loopback_inject(sva_can_loopback_t* self, unsigned endpoint, const sva_can_frame_t* frame)
+sva_can_status_t sva_can_loopback_inject(sva_can_loopback_t* self, unsigned endpoint,
+                                         const sva_can_frame_t* frame)
 {
     if ((self == NULL) || (endpoint > 1u) || (frame == NULL)) {
         return SVA_CAN_ERR_ARGUMENT;
@@ -47,7 +48,8 @@ sva_can_status_t sva_can_loopback_inject(sva_can_loopback_t* self, unsigned endp
     return queue_push(&self->to[endpoint], frame);
 }
 
-sva_can_status_t sva_can_loopback_take(sva_can_loopback_t* self, unsigned endpoint, sva_can_frame_t* out)
+sva_can_status_t sva_can_loopback_take(sva_can_loopback_t* self, unsigned endpoint,
+                                       sva_can_frame_t* out)
 {
     if ((self == NULL) || (endpoint > 1u) || (out == NULL)) {
         return SVA_CAN_ERR_ARGUMENT;
@@ -80,7 +82,8 @@ static sva_can_status_t loop_recv(void* ctx, sva_can_frame_t* frame)
     return queue_pop(&end->bus->to[end->endpoint], frame);
 }
 
-sva_can_status_t sva_can_loopback_transport(sva_can_loopback_t* self, unsigned endpoint, sva_can_transport_t* out)
+sva_can_status_t sva_can_loopback_transport(sva_can_loopback_t* self, unsigned endpoint,
+                                            sva_can_transport_t* out)
 {
     if ((self == NULL) || (endpoint > 1u) || (out == NULL)) {
         return SVA_CAN_ERR_ARGUMENT;

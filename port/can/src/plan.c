@@ -86,37 +86,45 @@ sva_can_status_t sva_can_mission_check(const sva_mission_t* mission, sva_diag_t*
         return SVA_CAN_ERR_ARGUMENT;
     }
     if (mission->uav_count > SVA_CAN_MAX_UAV_ID) {
-        return fail(diag, SVA_FIELD_UAVS, -1, mission->uav_count, SVA_RULE_COUNT, SVA_CAN_MAX_UAV_ID,
-                    "SVA_CAN_MAX_UAV_ID");
+        return fail(diag, SVA_FIELD_UAVS, -1, mission->uav_count, SVA_RULE_COUNT,
+                    SVA_CAN_MAX_UAV_ID, "SVA_CAN_MAX_UAV_ID");
     }
     for (i = 0; i < mission->uav_count; ++i) {
         const sva_uav_t* u = &mission->uavs[i];
         if ((u->id < 1) || (u->id > SVA_CAN_MAX_UAV_ID)) {
-            return fail(diag, SVA_FIELD_UAV_ID, (int32_t)i, u->id, (u->id < 1) ? SVA_RULE_MIN : SVA_RULE_MAX,
-                        (u->id < 1) ? 1 : SVA_CAN_MAX_UAV_ID, (u->id < 1) ? NULL : "SVA_CAN_MAX_UAV_ID");
+            return fail(diag, SVA_FIELD_UAV_ID, (int32_t)i, u->id,
+                        (u->id < 1) ? SVA_RULE_MIN : SVA_RULE_MAX,
+                        (u->id < 1) ? 1 : SVA_CAN_MAX_UAV_ID,
+                        (u->id < 1) ? NULL : "SVA_CAN_MAX_UAV_ID");
         }
     }
     for (i = 0; i < mission->target_count; ++i) {
         const sva_target_t* t = &mission->targets[i];
         if ((t->id < 1) || (t->id > SVA_CAN_MAX_TARGET_ID)) {
-            return fail(diag, SVA_FIELD_TARGET_ID, (int32_t)i, t->id, (t->id < 1) ? SVA_RULE_MIN : SVA_RULE_MAX,
-                        (t->id < 1) ? 1 : SVA_CAN_MAX_TARGET_ID, (t->id < 1) ? NULL : "SVA_CAN_MAX_TARGET_ID");
+            return fail(diag, SVA_FIELD_TARGET_ID, (int32_t)i, t->id,
+                        (t->id < 1) ? SVA_RULE_MIN : SVA_RULE_MAX,
+                        (t->id < 1) ? 1 : SVA_CAN_MAX_TARGET_ID,
+                        (t->id < 1) ? NULL : "SVA_CAN_MAX_TARGET_ID");
         }
         if ((t->start_ticks < 0) || (t->start_ticks > SVA_CAN_MAX_TICK)) {
             return fail(diag, SVA_FIELD_TARGET_START, (int32_t)i, t->start_ticks,
-                        (t->start_ticks < 0) ? SVA_RULE_MIN : SVA_RULE_MAX, (t->start_ticks < 0) ? 0 : SVA_CAN_MAX_TICK,
+                        (t->start_ticks < 0) ? SVA_RULE_MIN : SVA_RULE_MAX,
+                        (t->start_ticks < 0) ? 0 : SVA_CAN_MAX_TICK,
                         (t->start_ticks < 0) ? NULL : "SVA_CAN_MAX_TICK");
         }
         if ((t->end_ticks < 0) || (t->end_ticks > SVA_CAN_MAX_TICK)) {
             return fail(diag, SVA_FIELD_TARGET_END, (int32_t)i, t->end_ticks,
-                        (t->end_ticks < 0) ? SVA_RULE_MIN : SVA_RULE_MAX, (t->end_ticks < 0) ? 0 : SVA_CAN_MAX_TICK,
+                        (t->end_ticks < 0) ? SVA_RULE_MIN : SVA_RULE_MAX,
+                        (t->end_ticks < 0) ? 0 : SVA_CAN_MAX_TICK,
                         (t->end_ticks < 0) ? NULL : "SVA_CAN_MAX_TICK");
         }
         if ((t->x < SVA_CAN_MIN_COORD) || (t->x > SVA_CAN_MAX_COORD)) {
-            return fail(diag, SVA_FIELD_TARGET_X, (int32_t)i, t->x, SVA_RULE_MAX, SVA_CAN_MAX_COORD, "SVA_CAN_MAX_COORD");
+            return fail(diag, SVA_FIELD_TARGET_X, (int32_t)i, t->x, SVA_RULE_MAX, SVA_CAN_MAX_COORD,
+                        "SVA_CAN_MAX_COORD");
         }
         if ((t->y < SVA_CAN_MIN_COORD) || (t->y > SVA_CAN_MAX_COORD)) {
-            return fail(diag, SVA_FIELD_TARGET_Y, (int32_t)i, t->y, SVA_RULE_MAX, SVA_CAN_MAX_COORD, "SVA_CAN_MAX_COORD");
+            return fail(diag, SVA_FIELD_TARGET_Y, (int32_t)i, t->y, SVA_RULE_MAX, SVA_CAN_MAX_COORD,
+                        "SVA_CAN_MAX_COORD");
         }
     }
     return SVA_CAN_OK;
@@ -151,8 +159,8 @@ sva_can_status_t sva_can_plan_from_core(sva_can_plan_t* out, const sva_mission_t
             t = &mission->targets[ti];
             if ((t->id < 1) || (t->id > SVA_CAN_MAX_TARGET_ID) || (t->start_ticks < 0) ||
                 (t->end_ticks > SVA_CAN_MAX_TICK) || (t->start_ticks >= t->end_ticks) ||
-                (t->x < SVA_CAN_MIN_COORD) || (t->x > SVA_CAN_MAX_COORD) || (t->y < SVA_CAN_MIN_COORD) ||
-                (t->y > SVA_CAN_MAX_COORD)) {
+                (t->x < SVA_CAN_MIN_COORD) || (t->x > SVA_CAN_MAX_COORD) ||
+                (t->y < SVA_CAN_MIN_COORD) || (t->y > SVA_CAN_MAX_COORD)) {
                 return SVA_CAN_ERR_LIMIT;
             }
             ++n;
@@ -163,7 +171,8 @@ sva_can_status_t sva_can_plan_from_core(sva_can_plan_t* out, const sva_mission_t
     }
     out->plan_id = plan_id;
     out->algorithm = (uint8_t)plan->algorithm;
-    out->plan_status = (plan->status == SVA_PLAN_COMPLETE) ? SVA_CAN_PLAN_COMPLETE : SVA_CAN_PLAN_PARTIAL;
+    out->plan_status =
+        (plan->status == SVA_PLAN_COMPLETE) ? SVA_CAN_PLAN_COMPLETE : SVA_CAN_PLAN_PARTIAL;
     out->route_count = (uint8_t)plan->route_count;
     out->item_count = (uint16_t)n;
     n = 0u;

@@ -9,15 +9,17 @@
 
 #define SVA_CAN_RX_DEFAULT_TIMEOUT_MS 2000u
 
-sva_can_status_t sva_can_receiver_init(sva_can_receiver_t* self, const sva_can_transport_t* transport,
-                                       uint32_t timeout_ms)
+sva_can_status_t sva_can_receiver_init(sva_can_receiver_t* self,
+                                       const sva_can_transport_t* transport, uint32_t timeout_ms)
 {
-    if ((self == NULL) || ((transport != NULL) && (transport->send == NULL)) || (timeout_ms >= 0x80000000u)) {
+    if ((self == NULL) || ((transport != NULL) && (transport->send == NULL)) ||
+        (timeout_ms >= 0x80000000u)) {
         return SVA_CAN_ERR_ARGUMENT;
     }
     self->transport = transport;
     self->timeout_ms = (timeout_ms == 0u) ? SVA_CAN_RX_DEFAULT_TIMEOUT_MS : timeout_ms;
-    self->stats = (sva_can_receiver_stats_t){0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u};
+    self->stats =
+        (sva_can_receiver_stats_t){0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u};
     self->has_active = false;
     self->active.plan_id = 0u;
     self->active.item_count = 0u;
@@ -75,7 +77,8 @@ sva_can_status_t sva_can_receiver_poll(sva_can_receiver_t* self, uint32_t now_ms
     if (self == NULL) {
         return SVA_CAN_ERR_ARGUMENT;
     }
-    if (self->priv.receiving && (sva_can_elapsed(now_ms, self->priv.begin_ms) >= self->timeout_ms)) {
+    if (self->priv.receiving &&
+        (sva_can_elapsed(now_ms, self->priv.begin_ms) >= self->timeout_ms)) {
         ++self->stats.timeouts;
         self->priv.receiving = false;  // no NACK: the sender has its own deadline
         return SVA_CAN_ERR_TIMEOUT;
@@ -88,8 +91,8 @@ static bool is_transfer_id(uint32_t id)
     return (id >= SVA_CAN_ID_PLAN_ABORT) && (id <= SVA_CAN_ID_PLAN_COMMIT);
 }
 
-static sva_can_status_t on_begin(sva_can_receiver_t* self, const sva_can_msg_t* m, const sva_can_frame_t* frame,
-                                 uint32_t now_ms)
+static sva_can_status_t on_begin(sva_can_receiver_t* self, const sva_can_msg_t* m,
+                                 const sva_can_frame_t* frame, uint32_t now_ms)
 {
     // A BEGIN always starts over: it is how the sender retries.
     self->priv.receiving = false;
@@ -145,7 +148,8 @@ static sva_can_status_t on_commit(sva_can_receiver_t* self, const sva_can_msg_t*
     return SVA_CAN_APPLIED;
 }
 
-sva_can_status_t sva_can_receiver_on_frame(sva_can_receiver_t* self, const sva_can_frame_t* frame, uint32_t now_ms)
+sva_can_status_t sva_can_receiver_on_frame(sva_can_receiver_t* self, const sva_can_frame_t* frame,
+                                           uint32_t now_ms)
 {
     sva_can_msg_t m;
     sva_can_status_t st;
@@ -156,7 +160,8 @@ sva_can_status_t sva_can_receiver_on_frame(sva_can_receiver_t* self, const sva_c
     if (sva_can_receiver_poll(self, now_ms) != SVA_CAN_OK) {
         // Counted as a timeout; the frame is still handled (a BEGIN may start anew).
     }
-    if (((frame->flags & (SVA_CAN_FLAG_EXTENDED | SVA_CAN_FLAG_RTR)) != 0u) || !is_transfer_id(frame->id)) {
+    if (((frame->flags & (SVA_CAN_FLAG_EXTENDED | SVA_CAN_FLAG_RTR)) != 0u) ||
+        !is_transfer_id(frame->id)) {
         ++self->stats.ignored;
         return SVA_CAN_IGNORED;
     }
@@ -226,7 +231,8 @@ sva_can_status_t sva_can_receiver_on_frame(sva_can_receiver_t* self, const sva_c
         self->priv.expect_time = true;
     } else {  // SVA_CAN_MSG_PLAN_ITEM_TIME
         sva_can_item_t* it;
-        if (!self->priv.expect_time || (m.u.item_time.item_seq != (self->priv.items_done & 0x0Fu))) {
+        if (!self->priv.expect_time ||
+            (m.u.item_time.item_seq != (self->priv.items_done & 0x0Fu))) {
             ++self->stats.out_of_order;
             return reject(self, SVA_CAN_ACK_BAD_SEQUENCE, SVA_CAN_ERR_SEQUENCE);
         }

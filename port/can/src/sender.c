@@ -20,9 +20,9 @@ sva_can_status_t sva_can_sender_init(sva_can_sender_t* self, const sva_can_trans
                                      const sva_can_sender_config_t* config)
 {
     sva_can_sender_config_t c = (config != NULL) ? *config : sva_can_sender_default_config();
-    if ((self == NULL) || (transport == NULL) || (transport->send == NULL) || (c.ack_timeout_ms == 0u) ||
-        (c.transfer_timeout_ms == 0u) || (c.max_attempts == 0u) || (c.transfer_timeout_ms >= 0x80000000u) ||
-        (c.ack_timeout_ms >= 0x80000000u)) {
+    if ((self == NULL) || (transport == NULL) || (transport->send == NULL) ||
+        (c.ack_timeout_ms == 0u) || (c.transfer_timeout_ms == 0u) || (c.max_attempts == 0u) ||
+        (c.transfer_timeout_ms >= 0x80000000u) || (c.ack_timeout_ms >= 0x80000000u)) {
         return SVA_CAN_ERR_ARGUMENT;
     }
     self->transport = transport;
@@ -89,10 +89,12 @@ sva_can_status_t sva_can_sender_poll(sva_can_sender_t* self, uint32_t now_ms)
         return SVA_CAN_ERR_ARGUMENT;
     }
     // Timers first, so a stalled transport cannot keep a transfer alive forever.
-    if (in_flight(self) && (sva_can_elapsed(now_ms, self->priv.started_ms) >= self->config.transfer_timeout_ms)) {
+    if (in_flight(self) &&
+        (sva_can_elapsed(now_ms, self->priv.started_ms) >= self->config.transfer_timeout_ms)) {
         fail_transfer(self, SVA_CAN_ABORT_TIMEOUT);
     } else if ((self->state == SVA_CAN_TX_WAIT_ACK) &&
-               (sva_can_elapsed(now_ms, self->priv.commit_sent_ms) >= self->config.ack_timeout_ms)) {
+               (sva_can_elapsed(now_ms, self->priv.commit_sent_ms) >=
+                self->config.ack_timeout_ms)) {
         ++self->stats.ack_timeouts;
         next_attempt(self);
     }
@@ -120,7 +122,8 @@ sva_can_status_t sva_can_sender_poll(sva_can_sender_t* self, uint32_t now_ms)
     while (self->state == SVA_CAN_TX_SENDING) {
         const uint32_t last = (2u * (uint32_t)self->priv.plan.item_count) + 1u;
         sva_can_frame_t f;
-        st = sva_can_transfer_frame(&self->priv.plan, self->priv.next_frame, self->priv.counter, self->priv.crc, &f);
+        st = sva_can_transfer_frame(&self->priv.plan, self->priv.next_frame, self->priv.counter,
+                                    self->priv.crc, &f);
         if (st != SVA_CAN_OK) {
             return st;
         }
@@ -141,10 +144,12 @@ sva_can_status_t sva_can_sender_poll(sva_can_sender_t* self, uint32_t now_ms)
     return SVA_CAN_OK;
 }
 
-sva_can_status_t sva_can_sender_start(sva_can_sender_t* self, const sva_can_plan_t* plan, uint32_t now_ms)
+sva_can_status_t sva_can_sender_start(sva_can_sender_t* self, const sva_can_plan_t* plan,
+                                      uint32_t now_ms)
 {
     uint32_t i;
-    if ((self == NULL) || (plan == NULL) || (plan->plan_id == 0u) || (plan->item_count > SVA_CAN_MAX_ITEMS)) {
+    if ((self == NULL) || (plan == NULL) || (plan->plan_id == 0u) ||
+        (plan->item_count > SVA_CAN_MAX_ITEMS)) {
         return SVA_CAN_ERR_ARGUMENT;
     }
     // Every field must fit its signal before anything changes (all-or-nothing).
@@ -175,14 +180,16 @@ sva_can_status_t sva_can_sender_start(sva_can_sender_t* self, const sva_can_plan
     return sva_can_sender_poll(self, now_ms);
 }
 
-sva_can_status_t sva_can_sender_on_frame(sva_can_sender_t* self, const sva_can_frame_t* frame, uint32_t now_ms)
+sva_can_status_t sva_can_sender_on_frame(sva_can_sender_t* self, const sva_can_frame_t* frame,
+                                         uint32_t now_ms)
 {
     sva_can_msg_t m;
     sva_can_status_t st;
     if ((self == NULL) || (frame == NULL)) {
         return SVA_CAN_ERR_ARGUMENT;
     }
-    if ((frame->id != SVA_CAN_ID_PLAN_ACK) || ((frame->flags & (SVA_CAN_FLAG_EXTENDED | SVA_CAN_FLAG_RTR)) != 0u)) {
+    if ((frame->id != SVA_CAN_ID_PLAN_ACK) ||
+        ((frame->flags & (SVA_CAN_FLAG_EXTENDED | SVA_CAN_FLAG_RTR)) != 0u)) {
         return SVA_CAN_IGNORED;
     }
     st = sva_can_decode(frame, &m);
@@ -197,7 +204,8 @@ sva_can_status_t sva_can_sender_on_frame(sva_can_sender_t* self, const sva_can_f
     if (m.u.ack.result == SVA_CAN_ACK_ACCEPTED) {
         // Only the answer to a COMMIT we sent counts; a late ACK of an earlier attempt
         // while we resend is ignored (the resent COMMIT gets its own).
-        if ((self->state != SVA_CAN_TX_WAIT_ACK) || (m.u.ack.items_received != self->priv.plan.item_count)) {
+        if ((self->state != SVA_CAN_TX_WAIT_ACK) ||
+            (m.u.ack.items_received != self->priv.plan.item_count)) {
             ++self->stats.acks_ignored;
             return SVA_CAN_IGNORED;
         }

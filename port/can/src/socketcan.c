@@ -6,7 +6,7 @@
 #define _DEFAULT_SOURCE 1
 
 #ifndef __linux__
-#error "socketcan.c is Linux only"
+#    error "socketcan.c is Linux only"
 #endif
 
 #include "sva/sva_can.h"
@@ -53,7 +53,8 @@ sva_can_status_t sva_can_socketcan_open(sva_can_socketcan_t* self, const char* i
     }
     // FD frames on read: an FD sender on the bus must not make reads fail; the decoder
     // rejects them. Kernels without CAN FD answer ENOPROTOOPT, which is fine.
-    if ((setsockopt(fd, SOL_CAN_RAW, CAN_RAW_FD_FRAMES, &on, (socklen_t)sizeof on) != 0) && (errno != ENOPROTOOPT)) {
+    if ((setsockopt(fd, SOL_CAN_RAW, CAN_RAW_FD_FRAMES, &on, (socklen_t)sizeof on) != 0) &&
+        (errno != ENOPROTOOPT)) {
         self->last_errno = errno;
         (void)close(fd);
         return SVA_CAN_ERR_IO;

@@ -9,7 +9,9 @@
 #include <string.h>
 #include <sys/stat.h>
 
-static sva_json_result_t read_stream(FILE* in, const char* name, char** text, size_t* len, char* err, size_t err_size) {
+static sva_json_result_t read_stream(FILE* in, const char* name, char** text, size_t* len,
+                                     char* err, size_t err_size)
+{
     size_t cap = 4096;
     size_t used = 0;
     char* buf = malloc(cap);
@@ -54,7 +56,9 @@ static sva_json_result_t read_stream(FILE* in, const char* name, char** text, si
     return SVA_JSON_OK;
 }
 
-sva_json_result_t sva_json_read_input(const char* path, char** text, size_t* len, char* err, size_t err_size) {
+sva_json_result_t sva_json_read_input(const char* path, char** text, size_t* len, char* err,
+                                      size_t err_size)
+{
     *text = NULL;
     *len = 0;
     if (strcmp(path, "-") == 0) {

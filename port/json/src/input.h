@@ -12,6 +12,7 @@
 /// Returns SVA_JSON_OK; SVA_JSON_BAD_INPUT when the path cannot be opened, is a
 /// directory or holds too much; SVA_JSON_IO_ERROR when reading fails or memory runs
 /// out. On error *text is NULL and err holds one printable line naming the path.
-sva_json_result_t sva_json_read_input(const char* path, char** text, size_t* len, char* err, size_t err_size);
+sva_json_result_t sva_json_read_input(const char* path, char** text, size_t* len, char* err,
+                                      size_t err_size);
 
 #endif  // SVA_JSON_INPUT_H

@@ -13,7 +13,9 @@
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((format(printf, 3, 4)))
 #endif
-static sva_json_result_t fail(char* err, size_t size, const char* fmt, ...) {
+static sva_json_result_t
+fail(char* err, size_t size, const char* fmt, ...)
+{
     va_list args;
     va_start(args, fmt);
     if (size > 0) {
@@ -24,26 +26,30 @@ static sva_json_result_t fail(char* err, size_t size, const char* fmt, ...) {
 }
 
 // A required or optional integer member of `object` that must fit int32.
-static sva_json_result_t member_int(const json_t* object, const char* path, const char* key, bool optional,
-                                    int32_t* out, char* err, size_t size) {
+static sva_json_result_t member_int(const json_t* object, const char* path, const char* key,
+                                    bool optional, int32_t* out, char* err, size_t size)
+{
     const json_t* value = json_object_get(object, key);
     if (value == NULL) {
         return optional ? SVA_JSON_OK : fail(err, size, "%s: missing key \"%s\"", path, key);
     }
-    if (!json_is_integer(value) || json_integer_value(value) < INT32_MIN || json_integer_value(value) > INT32_MAX) {
-        return fail(err, size, "%s.%s: must be an integer in [%ld, %ld]", path, key, (long)INT32_MIN,
-                    (long)INT32_MAX);
+    if (!json_is_integer(value) || json_integer_value(value) < INT32_MIN ||
+        json_integer_value(value) > INT32_MAX) {
+        return fail(err, size, "%s.%s: must be an integer in [%ld, %ld]", path, key,
+                    (long)INT32_MIN, (long)INT32_MAX);
     }
     *out = (int32_t)json_integer_value(value);
     return SVA_JSON_OK;
 }
 
 // Every key of `object` is one of `keys` (NULL-terminated).
-static sva_json_result_t known_keys(const json_t* object, const char* path, const char* const* keys, char* err,
-                                    size_t size) {
+static sva_json_result_t known_keys(const json_t* object, const char* path, const char* const* keys,
+                                    char* err, size_t size)
+{
     const char* key;
     json_t* value;
-    json_object_foreach((json_t*)(uintptr_t)object, key, value) {
+    json_object_foreach((json_t*)(uintptr_t)object, key, value)
+    {
         bool known = false;
         for (const char* const* k = keys; *k != NULL; ++k) {
             known = known || strcmp(*k, key) == 0;
@@ -56,7 +62,8 @@ static sva_json_result_t known_keys(const json_t* object, const char* path, cons
 }
 
 // The target id `id` of the mission, as an index, or -1.
-static int32_t target_index(const sva_mission_t* m, json_int_t id) {
+static int32_t target_index(const sva_mission_t* m, json_int_t id)
+{
     for (uint16_t t = 0; t < m->target_count; ++t) {
         if (m->targets[t].id == id) {
             return (int32_t)t;
@@ -67,10 +74,12 @@ static int32_t target_index(const sva_mission_t* m, json_int_t id) {
 
 // The plan in force: routes in mission order, target ids mapped to indices. Other
 // keys of a plan document are allowed and ignored (the figures follow from the routes).
-static sva_json_result_t parse_plan(const json_t* doc, const sva_mission_t* m, sva_plan_t* plan, char* err,
-                                    size_t size) {
-    static const char* const keys[] = {"mission", "algorithm", "status", "covered", "uncovered", "cost", "routes",
-                                       "stranded", "stats", "changes", "live", NULL};
+static sva_json_result_t parse_plan(const json_t* doc, const sva_mission_t* m, sva_plan_t* plan,
+                                    char* err, size_t size)
+{
+    static const char* const keys[] = {"mission",   "algorithm", "status", "covered",
+                                       "uncovered", "cost",      "routes", "stranded",
+                                       "stats",     "changes",   "live",   NULL};
     if (!json_is_object(doc)) {
         return fail(err, size, "plan: must be an object");
     }
@@ -82,8 +91,8 @@ static sva_json_result_t parse_plan(const json_t* doc, const sva_mission_t* m, s
         return fail(err, size, "plan.routes: must be an array");
     }
     if (json_array_size(routes) > SVA_MAX_UAVS) {
-        return fail(err, size, "plan.routes: %zu entries exceed SVA_MAX_UAVS (%ld)", json_array_size(routes),
-                    (long)SVA_MAX_UAVS);
+        return fail(err, size, "plan.routes: %zu entries exceed SVA_MAX_UAVS (%ld)",
+                    json_array_size(routes), (long)SVA_MAX_UAVS);
     }
     memset(plan, 0, sizeof *plan);
     plan->route_count = (uint16_t)json_array_size(routes);
@@ -102,8 +111,9 @@ static sva_json_result_t parse_plan(const json_t* doc, const sva_mission_t* m, s
         }
         const json_t* targets = json_object_get(route, "targets");
         if (!json_is_array(targets) || json_array_size(targets) > SVA_MAX_ROUTE_TARGETS) {
-            return fail(err, size, "%s.targets: must be an array of at most SVA_MAX_ROUTE_TARGETS (%ld) ids", path,
-                        (long)SVA_MAX_ROUTE_TARGETS);
+            return fail(err, size,
+                        "%s.targets: must be an array of at most SVA_MAX_ROUTE_TARGETS (%ld) ids",
+                        path, (long)SVA_MAX_ROUTE_TARGETS);
         }
         plan->routes[r].uav_id = uav;
         plan->routes[r].target_count = (uint16_t)json_array_size(targets);
@@ -120,7 +130,9 @@ static sva_json_result_t parse_plan(const json_t* doc, const sva_mission_t* m, s
 }
 
 // One event object (docs/SPEC.md: `{"at": T, "type": NAME, ...}`).
-static sva_json_result_t parse_event(const json_t* doc, const char* path, sva_event_t* e, char* err, size_t size) {
+static sva_json_result_t parse_event(const json_t* doc, const char* path, sva_event_t* e, char* err,
+                                     size_t size)
+{
     static const char* const keys[SVA_EVENT_COUNT_][7] = {
         {"at", "type", NULL},
         {"at", "type", "uav", NULL},
@@ -135,9 +147,11 @@ static sva_json_result_t parse_event(const json_t* doc, const char* path, sva_ev
         return fail(err, size, "%s: must be an object", path);
     }
     const json_t* type = json_object_get(doc, "type");
-    if (!json_is_string(type) || sva_event_type_from_name(json_string_value(type), &e->type) != SVA_OK) {
+    if (!json_is_string(type) ||
+        sva_event_type_from_name(json_string_value(type), &e->type) != SVA_OK) {
         return fail(err, size,
-                    "%s.type: must be one of clock, uav_lost, uav_back, fuel, target_added, target_cancelled, "
+                    "%s.type: must be one of clock, uav_lost, uav_back, fuel, target_added, "
+                    "target_cancelled, "
                     "target_changed",
                     path);
     }
@@ -150,7 +164,8 @@ static sva_json_result_t parse_event(const json_t* doc, const char* path, sva_ev
     if ((uav && member_int(doc, path, "uav", false, &e->uav_id, err, size) != SVA_JSON_OK) ||
         (back && member_int(doc, path, "x", false, &e->x, err, size) != SVA_JSON_OK) ||
         (back && member_int(doc, path, "y", false, &e->y, err, size) != SVA_JSON_OK) ||
-        ((back || e->type == SVA_EVENT_FUEL) && member_int(doc, path, "fuel", false, &e->fuel, err, size) != SVA_JSON_OK)) {
+        ((back || e->type == SVA_EVENT_FUEL) &&
+         member_int(doc, path, "fuel", false, &e->fuel, err, size) != SVA_JSON_OK)) {
         return SVA_JSON_BAD_INPUT;
     }
     if (e->type == SVA_EVENT_TARGET_CANCELLED) {
@@ -163,12 +178,16 @@ static sva_json_result_t parse_event(const json_t* doc, const char* path, sva_ev
         if (target == NULL) {
             return fail(err, size, "%s: missing key \"target\"", path);
         }
-        return sva_json_target_from(target, target_path, &e->target, err, size) ? SVA_JSON_OK : SVA_JSON_BAD_INPUT;
+        return sva_json_target_from(target, target_path, &e->target, err, size)
+                   ? SVA_JSON_OK
+                   : SVA_JSON_BAD_INPUT;
     }
     return SVA_JSON_OK;
 }
 
-static sva_json_result_t parse_live(const json_t* root, sva_json_live_t* live, char* err, size_t size) {
+static sva_json_result_t parse_live(const json_t* root, sva_json_live_t* live, char* err,
+                                    size_t size)
+{
     static const char* const keys[] = {"mission", "plan", "events", "now", NULL};
     if (!json_is_object(root)) {
         return fail(err, size, "live mission: must be an object");
@@ -181,7 +200,8 @@ static sva_json_result_t parse_live(const json_t* root, sva_json_live_t* live, c
         return fail(err, size, "live mission: missing key \"mission\"");
     }
     char inner[SVA_JSON_ERROR_SIZE];
-    if (sva_json_mission_from(mission, &live->mission, live->name, inner, sizeof inner) != SVA_JSON_OK) {
+    if (sva_json_mission_from(mission, &live->mission, live->name, inner, sizeof inner) !=
+        SVA_JSON_OK) {
         return fail(err, size, "%s%s", strncmp(inner, "mission", 7) == 0 ? "" : "mission.", inner);
     }
     sva_diag_t diag;
@@ -211,7 +231,8 @@ static sva_json_result_t parse_live(const json_t* root, sva_json_live_t* live, c
     for (size_t i = 0; i < count; ++i) {
         char path[32];
         snprintf(path, sizeof path, "events[%zu]", i);
-        if (parse_event(json_array_get(events, i), path, &live->events[i], err, size) != SVA_JSON_OK) {
+        if (parse_event(json_array_get(events, i), path, &live->events[i], err, size) !=
+            SVA_JSON_OK) {
             return SVA_JSON_BAD_INPUT;
         }
     }
@@ -220,7 +241,9 @@ static sva_json_result_t parse_live(const json_t* root, sva_json_live_t* live, c
     return member_int(root, "live mission", "now", true, &live->now_ticks, err, size);
 }
 
-sva_json_result_t sva_json_load_live(const char* path, sva_json_live_t* live, char* err, size_t err_size) {
+sva_json_result_t sva_json_load_live(const char* path, sva_json_live_t* live, char* err,
+                                     size_t err_size)
+{
     memset(live, 0, sizeof *live);
     char* text;
     size_t len;
@@ -232,8 +255,9 @@ sva_json_result_t sva_json_load_live(const char* path, sva_json_live_t* live, ch
     json_t* root = json_loadb(text, len, JSON_REJECT_DUPLICATES, &error);
     free(text);
     if (root == NULL) {
-        return fail(err, err_size, "%s:%d:%d: invalid JSON: %s", strcmp(path, "-") == 0 ? SVA_JSON_STDIN_NAME : path,
-                    error.line, error.column, error.text);
+        return fail(err, err_size, "%s:%d:%d: invalid JSON: %s",
+                    strcmp(path, "-") == 0 ? SVA_JSON_STDIN_NAME : path, error.line, error.column,
+                    error.text);
     }
     result = parse_live(root, live, err, err_size);
     json_decref(root);
@@ -243,14 +267,16 @@ sva_json_result_t sva_json_load_live(const char* path, sva_json_live_t* live, ch
     return result;
 }
 
-void sva_json_live_free(sva_json_live_t* live) {
+void sva_json_live_free(sva_json_live_t* live)
+{
     free(live->events);
     live->events = NULL;
     live->event_count = 0;
 }
 
 // Pairs of `a` that `b` lacks, as [uav id, target id] (residual mission ids).
-static json_t* pairs_missing(const sva_mission_t* m, const sva_plan_t* a, const sva_plan_t* b) {
+static json_t* pairs_missing(const sva_mission_t* m, const sva_plan_t* a, const sva_plan_t* b)
+{
     json_t* list = json_array();
     for (uint16_t r = 0; list != NULL && r < a->route_count; ++r) {
         for (uint16_t k = 0; k < a->routes[r].target_count; ++k) {
@@ -259,8 +285,9 @@ static json_t* pairs_missing(const sva_mission_t* m, const sva_plan_t* a, const 
             for (uint16_t j = 0; j < b->routes[r].target_count; ++j) {
                 kept = kept || b->routes[r].targets[j] == t;
             }
-            if (!kept && json_array_append_new(list, json_pack("[i, i]", (json_int_t)m->uavs[r].id,
-                                                               (json_int_t)m->targets[t].id)) != 0) {
+            if (!kept &&
+                json_array_append_new(list, json_pack("[i, i]", (json_int_t)m->uavs[r].id,
+                                                      (json_int_t)m->targets[t].id)) != 0) {
                 json_decref(list);
                 return NULL;
             }
@@ -269,12 +296,14 @@ static json_t* pairs_missing(const sva_mission_t* m, const sva_plan_t* a, const 
     return list;
 }
 
-json_t* sva_json_replan(const sva_live_t* live, const sva_live_result_t* r, const char* name, int64_t solve_us) {
+json_t* sva_json_replan(const sva_live_t* live, const sva_live_result_t* r, const char* name,
+                        int64_t solve_us)
+{
     json_t* doc = sva_json_plan(r->residual, name, r->plan, solve_us);
-    json_t* changes = json_pack("{s:o*, s:o*, s:i, s:i}", "dropped", pairs_missing(r->residual, r->previous, r->plan),
-                                "added", pairs_missing(r->residual, r->plan, r->previous), "count",
-                                (json_int_t)(r->dropped + r->added), "penalty",
-                                (json_int_t)live->mission.change_penalty);
+    json_t* changes = json_pack(
+        "{s:o*, s:o*, s:i, s:i}", "dropped", pairs_missing(r->residual, r->previous, r->plan),
+        "added", pairs_missing(r->residual, r->plan, r->previous), "count",
+        (json_int_t)(r->dropped + r->added), "penalty", (json_int_t)live->mission.change_penalty);
     json_t* under_way = json_array();
     json_t* targets = json_array();
     bool ok = doc != NULL && changes != NULL && under_way != NULL && targets != NULL;
@@ -283,12 +312,14 @@ json_t* sva_json_replan(const sva_live_t* live, const sva_live_result_t* r, cons
         const json_int_t id = live->mission.targets[i].id;
         ok = json_array_append_new(targets, json_pack("{s:i, s:s}", "id", id, "state",
                                                       sva_target_state_name(state))) == 0 &&
-             (state != SVA_TARGET_UNDER_WAY || json_array_append_new(under_way, json_integer(id)) == 0);
+             (state != SVA_TARGET_UNDER_WAY ||
+              json_array_append_new(under_way, json_integer(id)) == 0);
     }
-    json_t* state = ok ? json_pack("{s:i, s:i, s:b, s:i, s:o, s:o}", "now", (json_int_t)r->now_ticks, "revision",
-                                   (json_int_t)r->revision, "kept", r->kept ? 1 : 0, "covered",
-                                   (json_int_t)r->covered, "under_way", under_way, "targets", targets)
-                       : NULL;
+    json_t* state =
+        ok ? json_pack("{s:i, s:i, s:b, s:i, s:o, s:o}", "now", (json_int_t)r->now_ticks,
+                       "revision", (json_int_t)r->revision, "kept", r->kept ? 1 : 0, "covered",
+                       (json_int_t)r->covered, "under_way", under_way, "targets", targets)
+           : NULL;
     if (state == NULL) {
         if (!ok) {
             json_decref(under_way);
@@ -298,7 +329,8 @@ json_t* sva_json_replan(const sva_live_t* live, const sva_live_result_t* r, cons
         json_decref(doc);
         return NULL;
     }
-    if (json_object_set_new(doc, "changes", changes) != 0 || json_object_set_new(doc, "live", state) != 0) {
+    if (json_object_set_new(doc, "changes", changes) != 0 ||
+        json_object_set_new(doc, "live", state) != 0) {
         json_decref(doc);
         return NULL;
     }

@@ -21,22 +21,17 @@ typedef struct {
 
 // SPEC section 3, in SPEC order (missing keys are reported in this order).
 static const key_spec_t MISSION_KEYS[] = {
-    {"name", false, 0},
-    {"depot", false, 0},
-    {"ticks_per_cell", true, 1},
-    {"hover_fuel", true, 0},
-    {"overlap_percent", true, 70},
-    {"change_penalty", true, 0},
-    {"uavs", false, 0},
-    {"targets", false, 0},
-    {NULL, false, 0},
+    {"name", false, 0},      {"depot", false, 0},           {"ticks_per_cell", true, 1},
+    {"hover_fuel", true, 0}, {"overlap_percent", true, 70}, {"change_penalty", true, 0},
+    {"uavs", false, 0},      {"targets", false, 0},         {NULL, false, 0},
 };
 static const key_spec_t DEPOT_KEYS[] = {{"x", false, 0}, {"y", false, 0}, {NULL, false, 0}};
 static const key_spec_t UAV_KEYS[] = {
-    {"id", false, 0}, {"x", false, 0}, {"y", false, 0}, {"fuel", false, 0}, {"ready_at", true, 0}, {NULL, false, 0},
+    {"id", false, 0},   {"x", false, 0},       {"y", false, 0},
+    {"fuel", false, 0}, {"ready_at", true, 0}, {NULL, false, 0},
 };
 static const key_spec_t TARGET_KEYS[] = {
-    {"id", false, 0}, {"x", false, 0},   {"y", false, 0},   {"start", false, 0},
+    {"id", false, 0},  {"x", false, 0},    {"y", false, 0},  {"start", false, 0},
     {"end", false, 0}, {"need", false, 0}, {NULL, false, 0},
 };
 
@@ -49,7 +44,9 @@ typedef struct {
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((format(printf, 2, 3)))
 #endif
-static bool fail(const sink_t* err, const char* fmt, ...) {
+static bool
+fail(const sink_t* err, const char* fmt, ...)
+{
     va_list args;
     va_start(args, fmt);
     if (err->size > 0) {
@@ -63,22 +60,31 @@ static bool fail(const sink_t* err, const char* fmt, ...) {
     return false;
 }
 
-static const char* type_name(const json_t* value) {
+static const char* type_name(const json_t* value)
+{
     switch (json_typeof(value)) {
-        case JSON_OBJECT: return "object";
-        case JSON_ARRAY: return "array";
-        case JSON_STRING: return "string";
-        case JSON_INTEGER: return "integer";
-        case JSON_REAL: return "real";
-        case JSON_TRUE:
-        case JSON_FALSE: return "boolean";
-        case JSON_NULL: return "null";
+    case JSON_OBJECT:
+        return "object";
+    case JSON_ARRAY:
+        return "array";
+    case JSON_STRING:
+        return "string";
+    case JSON_INTEGER:
+        return "integer";
+    case JSON_REAL:
+        return "real";
+    case JSON_TRUE:
+    case JSON_FALSE:
+        return "boolean";
+    case JSON_NULL:
+        return "null";
     }
     return "unknown";
 }
 
 // "uavs[1]" + "x" -> "uavs[1].x"; the root's fields have no prefix.
-static void field_path(char* out, size_t size, const char* prefix, const char* key) {
+static void field_path(char* out, size_t size, const char* prefix, const char* key)
+{
     if (prefix[0] == '\0') {
         snprintf(out, size, "%s", key);
     } else {
@@ -87,18 +93,22 @@ static void field_path(char* out, size_t size, const char* prefix, const char* k
 }
 
 // How an object is named in messages: the root is "mission".
-static const char* object_name(const char* prefix) {
+static const char* object_name(const char* prefix)
+{
     return prefix[0] == '\0' ? "mission" : prefix;
 }
 
 // Unknown keys are errors at every level (SPEC 3); reported in document order,
 // before missing keys, since a misspelt key explains the missing one.
-static bool check_keys(const json_t* object, const char* prefix, const key_spec_t* keys, const sink_t* err) {
+static bool check_keys(const json_t* object, const char* prefix, const key_spec_t* keys,
+                       const sink_t* err)
+{
     const char* key;
     json_t* value;
     // json_object_foreach needs a non-const object; nothing is modified.
     json_t* mutable_object = (json_t*)(uintptr_t)object;
-    json_object_foreach(mutable_object, key, value) {
+    json_object_foreach(mutable_object, key, value)
+    {
         bool known = false;
         for (const key_spec_t* k = keys; k->name != NULL; ++k) {
             if (strcmp(k->name, key) == 0) {
@@ -109,8 +119,11 @@ static bool check_keys(const json_t* object, const char* prefix, const key_spec_
         if (!known) {
             // Quote and escape the key so the message stays one printable line.
             json_t* as_string = json_string(key);
-            char* quoted = as_string != NULL ? json_dumps(as_string, JSON_ENCODE_ANY | JSON_ENSURE_ASCII) : NULL;
-            fail(err, "%s: unknown key %s", object_name(prefix), quoted != NULL ? quoted : "(unprintable)");
+            char* quoted = as_string != NULL
+                               ? json_dumps(as_string, JSON_ENCODE_ANY | JSON_ENSURE_ASCII)
+                               : NULL;
+            fail(err, "%s: unknown key %s", object_name(prefix),
+                 quoted != NULL ? quoted : "(unprintable)");
             free(quoted);
             json_decref(as_string);
             return false;
@@ -124,7 +137,8 @@ static bool check_keys(const json_t* object, const char* prefix, const key_spec_
     return true;
 }
 
-static const key_spec_t* find_key(const key_spec_t* keys, const char* name) {
+static const key_spec_t* find_key(const key_spec_t* keys, const char* name)
+{
     while (keys->name != NULL && strcmp(keys->name, name) != 0) {
         ++keys;
     }
@@ -133,8 +147,9 @@ static const key_spec_t* find_key(const key_spec_t* keys, const char* name) {
 
 // Reads an integer that must fit int32; range rules of the SPEC are the core's, so
 // in-range violations pass through and the core's message names the SPEC limit.
-static bool get_int(const json_t* object, const char* prefix, const key_spec_t* keys, const char* key, int32_t* out,
-                    const sink_t* err) {
+static bool get_int(const json_t* object, const char* prefix, const key_spec_t* keys,
+                    const char* key, int32_t* out, const sink_t* err)
+{
     const json_t* value = json_object_get(object, key);
     if (value == NULL) {
         *out = find_key(keys, key)->fallback;  // check_keys has vetted required keys
@@ -147,15 +162,16 @@ static bool get_int(const json_t* object, const char* prefix, const key_spec_t* 
     }
     json_int_t v = json_integer_value(value);
     if (v < INT32_MIN || v > INT32_MAX) {
-        return fail(err, "%s: must be an integer in [%ld, %ld], got %lld", path, (long)INT32_MIN, (long)INT32_MAX,
-                    (long long)v);
+        return fail(err, "%s: must be an integer in [%ld, %ld], got %lld", path, (long)INT32_MIN,
+                    (long)INT32_MAX, (long long)v);
     }
     *out = (int32_t)v;
     return true;
 }
 
-static bool get_object(const json_t* parent, const char* prefix, const char* key, const json_t** out,
-                       const sink_t* err) {
+static bool get_object(const json_t* parent, const char* prefix, const char* key,
+                       const json_t** out, const sink_t* err)
+{
     const json_t* value = json_object_get(parent, key);
     if (!json_is_object(value)) {
         char path[128];
@@ -166,14 +182,16 @@ static bool get_object(const json_t* parent, const char* prefix, const char* key
     return true;
 }
 
-static bool parse_name(const json_t* root, char name[SVA_JSON_NAME_MAX + 1], const sink_t* err) {
+static bool parse_name(const json_t* root, char name[SVA_JSON_NAME_MAX + 1], const sink_t* err)
+{
     const json_t* value = json_object_get(root, "name");
     if (!json_is_string(value)) {
         return fail(err, "name: must be a string, got %s", type_name(value));
     }
     size_t len = json_string_length(value);
     if (len == 0 || len > SVA_JSON_NAME_MAX) {
-        return fail(err, "name: must be a non-empty string of at most %d bytes, got %zu", SVA_JSON_NAME_MAX, len);
+        return fail(err, "name: must be a non-empty string of at most %d bytes, got %zu",
+                    SVA_JSON_NAME_MAX, len);
     }
     memcpy(name, json_string_value(value), len);
     name[len] = '\0';
@@ -182,8 +200,9 @@ static bool parse_name(const json_t* root, char name[SVA_JSON_NAME_MAX + 1], con
 
 // The list length is checked against the compiled bound before anything is copied;
 // the message is the core's (sva_diag_format), as for every bound.
-static bool get_list(const json_t* root, const char* key, sva_field_t field, size_t bound, const char* bound_name,
-                     const json_t** out, const sink_t* err) {
+static bool get_list(const json_t* root, const char* key, sva_field_t field, size_t bound,
+                     const char* bound_name, const json_t** out, const sink_t* err)
+{
     const json_t* value = json_object_get(root, key);
     if (!json_is_array(value)) {
         return fail(err, "%s: must be an array, got %s", key, type_name(value));
@@ -199,8 +218,10 @@ static bool get_list(const json_t* root, const char* key, sva_field_t field, siz
     return true;
 }
 
-static bool get_element(const json_t* list, const char* key, size_t i, char* prefix, size_t prefix_size,
-                        const key_spec_t* keys, const json_t** out, const sink_t* err) {
+static bool get_element(const json_t* list, const char* key, size_t i, char* prefix,
+                        size_t prefix_size, const key_spec_t* keys, const json_t** out,
+                        const sink_t* err)
+{
     const json_t* element = json_array_get(list, i);
     snprintf(prefix, prefix_size, "%s[%zu]", key, i);
     if (!json_is_object(element)) {
@@ -213,7 +234,8 @@ static bool get_element(const json_t* list, const char* key, size_t i, char* pre
     return true;
 }
 
-static bool parse_uavs(const json_t* root, sva_mission_t* mission, const sink_t* err) {
+static bool parse_uavs(const json_t* root, sva_mission_t* mission, const sink_t* err)
+{
     const json_t* list = NULL;
     if (!get_list(root, "uavs", SVA_FIELD_UAVS, SVA_MAX_UAVS, "SVA_MAX_UAVS", &list, err)) {
         return false;
@@ -223,8 +245,10 @@ static bool parse_uavs(const json_t* root, sva_mission_t* mission, const sink_t*
         const json_t* e = NULL;
         sva_uav_t* u = &mission->uavs[i];
         if (!get_element(list, "uavs", i, prefix, sizeof prefix, UAV_KEYS, &e, err) ||
-            !get_int(e, prefix, UAV_KEYS, "id", &u->id, err) || !get_int(e, prefix, UAV_KEYS, "x", &u->x, err) ||
-            !get_int(e, prefix, UAV_KEYS, "y", &u->y, err) || !get_int(e, prefix, UAV_KEYS, "fuel", &u->fuel, err) ||
+            !get_int(e, prefix, UAV_KEYS, "id", &u->id, err) ||
+            !get_int(e, prefix, UAV_KEYS, "x", &u->x, err) ||
+            !get_int(e, prefix, UAV_KEYS, "y", &u->y, err) ||
+            !get_int(e, prefix, UAV_KEYS, "fuel", &u->fuel, err) ||
             !get_int(e, prefix, UAV_KEYS, "ready_at", &u->ready_at_ticks, err)) {
             return false;
         }
@@ -233,9 +257,11 @@ static bool parse_uavs(const json_t* root, sva_mission_t* mission, const sink_t*
     return true;
 }
 
-static bool parse_targets(const json_t* root, sva_mission_t* mission, const sink_t* err) {
+static bool parse_targets(const json_t* root, sva_mission_t* mission, const sink_t* err)
+{
     const json_t* list = NULL;
-    if (!get_list(root, "targets", SVA_FIELD_TARGETS, SVA_MAX_TARGETS, "SVA_MAX_TARGETS", &list, err)) {
+    if (!get_list(root, "targets", SVA_FIELD_TARGETS, SVA_MAX_TARGETS, "SVA_MAX_TARGETS", &list,
+                  err)) {
         return false;
     }
     for (size_t i = 0; i < json_array_size(list); ++i) {
@@ -243,7 +269,8 @@ static bool parse_targets(const json_t* root, sva_mission_t* mission, const sink
         const json_t* e = NULL;
         sva_target_t* t = &mission->targets[i];
         if (!get_element(list, "targets", i, prefix, sizeof prefix, TARGET_KEYS, &e, err) ||
-            !get_int(e, prefix, TARGET_KEYS, "id", &t->id, err) || !get_int(e, prefix, TARGET_KEYS, "x", &t->x, err) ||
+            !get_int(e, prefix, TARGET_KEYS, "id", &t->id, err) ||
+            !get_int(e, prefix, TARGET_KEYS, "x", &t->x, err) ||
             !get_int(e, prefix, TARGET_KEYS, "y", &t->y, err) ||
             !get_int(e, prefix, TARGET_KEYS, "start", &t->start_ticks, err) ||
             !get_int(e, prefix, TARGET_KEYS, "end", &t->end_ticks, err) ||
@@ -256,13 +283,15 @@ static bool parse_targets(const json_t* root, sva_mission_t* mission, const sink
 }
 
 static bool parse_root(const json_t* root, sva_mission_t* mission, char name[SVA_JSON_NAME_MAX + 1],
-                       const sink_t* err) {
+                       const sink_t* err)
+{
     const json_t* depot = NULL;
     if (!json_is_object(root)) {
         return fail(err, "mission: must be an object, got %s", type_name(root));
     }
     return check_keys(root, "", MISSION_KEYS, err) && parse_name(root, name, err) &&
-           get_object(root, "", "depot", &depot, err) && check_keys(depot, "depot", DEPOT_KEYS, err) &&
+           get_object(root, "", "depot", &depot, err) &&
+           check_keys(depot, "depot", DEPOT_KEYS, err) &&
            get_int(depot, "depot", DEPOT_KEYS, "x", &mission->depot_x, err) &&
            get_int(depot, "depot", DEPOT_KEYS, "y", &mission->depot_y, err) &&
            get_int(root, "", MISSION_KEYS, "ticks_per_cell", &mission->ticks_per_cell, err) &&
@@ -272,7 +301,8 @@ static bool parse_root(const json_t* root, sva_mission_t* mission, char name[SVA
            parse_uavs(root, mission, err) && parse_targets(root, mission, err);
 }
 
-static bool is_blank(const char* text, size_t len) {
+static bool is_blank(const char* text, size_t len)
+{
     for (size_t i = 0; i < len; ++i) {
         if (text[i] != ' ' && text[i] != '\t' && text[i] != '\n' && text[i] != '\r') {
             return false;
@@ -281,13 +311,10 @@ static bool is_blank(const char* text, size_t len) {
     return true;
 }
 
-sva_json_result_t sva_json_parse_mission(const char* text,
-                                         size_t len,
-                                         const char* source,
-                                         sva_mission_t* mission,
-                                         char name[SVA_JSON_NAME_MAX + 1],
-                                         char* err,
-                                         size_t err_size) {
+sva_json_result_t sva_json_parse_mission(const char* text, size_t len, const char* source,
+                                         sva_mission_t* mission, char name[SVA_JSON_NAME_MAX + 1],
+                                         char* err, size_t err_size)
+{
     const sink_t sink = {err, err_size};
     sva_mission_init(mission);
     name[0] = '\0';
@@ -324,11 +351,10 @@ sva_json_result_t sva_json_parse_mission(const char* text,
     return SVA_JSON_OK;
 }
 
-sva_json_result_t sva_json_load_mission(const char* path,
-                                        sva_mission_t* mission,
-                                        char name[SVA_JSON_NAME_MAX + 1],
-                                        char* err,
-                                        size_t err_size) {
+sva_json_result_t sva_json_load_mission(const char* path, sva_mission_t* mission,
+                                        char name[SVA_JSON_NAME_MAX + 1], char* err,
+                                        size_t err_size)
+{
     char* text;
     size_t len;
     sva_json_result_t result = sva_json_read_input(path, &text, &len, err, err_size);
@@ -351,11 +377,10 @@ sva_json_result_t sva_json_load_mission(const char* path,
     return SVA_JSON_OK;
 }
 
-sva_json_result_t sva_json_mission_from(const json_t* root,
-                                        sva_mission_t* mission,
-                                        char name[SVA_JSON_NAME_MAX + 1],
-                                        char* err,
-                                        size_t err_size) {
+sva_json_result_t sva_json_mission_from(const json_t* root, sva_mission_t* mission,
+                                        char name[SVA_JSON_NAME_MAX + 1], char* err,
+                                        size_t err_size)
+{
     const sink_t sink = {err, err_size};
     sva_mission_init(mission);
     name[0] = '\0';
@@ -368,7 +393,8 @@ sva_json_result_t sva_json_mission_from(const json_t* root,
 }
 
 bool sva_json_target_from(const json_t* object, const char* prefix, sva_target_t* target, char* err,
-                          size_t err_size) {
+                          size_t err_size)
+{
     const sink_t sink = {err, err_size};
     if (!json_is_object(object)) {
         return fail(&sink, "%s: must be an object, got %s", prefix, type_name(object));
@@ -382,17 +408,19 @@ bool sva_json_target_from(const json_t* object, const char* prefix, sva_target_t
            get_int(object, prefix, TARGET_KEYS, "need", &target->need, &sink);
 }
 
-json_t* sva_json_target(const sva_target_t* t) {
-    return json_pack("{s:i, s:i, s:i, s:i, s:i, s:i}", "id", (json_int_t)t->id, "x", (json_int_t)t->x, "y",
-                     (json_int_t)t->y, "start", (json_int_t)t->start_ticks, "end", (json_int_t)t->end_ticks, "need",
-                     (json_int_t)t->need);
+json_t* sva_json_target(const sva_target_t* t)
+{
+    return json_pack("{s:i, s:i, s:i, s:i, s:i, s:i}", "id", (json_int_t)t->id, "x",
+                     (json_int_t)t->x, "y", (json_int_t)t->y, "start", (json_int_t)t->start_ticks,
+                     "end", (json_int_t)t->end_ticks, "need", (json_int_t)t->need);
 }
 
-json_t* sva_json_mission(const sva_mission_t* m, const char* name) {
-    json_t* doc = json_pack("{s:s, s:{s:i, s:i}, s:i, s:i, s:i}", "name", name, "depot", "x", (json_int_t)m->depot_x,
-                            "y", (json_int_t)m->depot_y, "ticks_per_cell", (json_int_t)m->ticks_per_cell,
-                            "hover_fuel", (json_int_t)m->hover_fuel, "overlap_percent",
-                            (json_int_t)m->overlap_percent);
+json_t* sva_json_mission(const sva_mission_t* m, const char* name)
+{
+    json_t* doc = json_pack("{s:s, s:{s:i, s:i}, s:i, s:i, s:i}", "name", name, "depot", "x",
+                            (json_int_t)m->depot_x, "y", (json_int_t)m->depot_y, "ticks_per_cell",
+                            (json_int_t)m->ticks_per_cell, "hover_fuel", (json_int_t)m->hover_fuel,
+                            "overlap_percent", (json_int_t)m->overlap_percent);
     json_t* uavs = json_array();
     json_t* targets = json_array();
     bool ok = doc != NULL && uavs != NULL && targets != NULL;
@@ -402,10 +430,10 @@ json_t* sva_json_mission(const sva_mission_t* m, const char* name) {
     }
     for (uint16_t u = 0; ok && u < m->uav_count; ++u) {
         const sva_uav_t* v = &m->uavs[u];
-        ok = json_array_append_new(uavs, json_pack("{s:i, s:i, s:i, s:i, s:i}", "id", (json_int_t)v->id, "x",
-                                                   (json_int_t)v->x, "y", (json_int_t)v->y, "fuel",
-                                                   (json_int_t)v->fuel, "ready_at",
-                                                   (json_int_t)v->ready_at_ticks)) == 0;
+        ok = json_array_append_new(uavs, json_pack("{s:i, s:i, s:i, s:i, s:i}", "id",
+                                                   (json_int_t)v->id, "x", (json_int_t)v->x, "y",
+                                                   (json_int_t)v->y, "fuel", (json_int_t)v->fuel,
+                                                   "ready_at", (json_int_t)v->ready_at_ticks)) == 0;
     }
     for (uint16_t t = 0; ok && t < m->target_count; ++t) {
         ok = json_array_append_new(targets, sva_json_target(&m->targets[t])) == 0;

@@ -6,7 +6,8 @@
 
 // Length of the well-formed UTF-8 sequence at s that encodes a printable code point
 // (U+00A0 and up, no surrogates, at most U+10FFFF); 0 for anything else.
-static size_t printable_utf8(const unsigned char* s) {
+static size_t printable_utf8(const unsigned char* s)
+{
     size_t len;
     unsigned long cp;
     if (s[0] >= 0xc2U && s[0] <= 0xdfU) {
@@ -34,7 +35,8 @@ static size_t printable_utf8(const unsigned char* s) {
     return len;
 }
 
-char* sva_text_escape(char* out, size_t size, const char* text) {
+char* sva_text_escape(char* out, size_t size, const char* text)
+{
     size_t used = 0;
     const unsigned char* s = (const unsigned char*)(text != NULL ? text : "");
     while (*s != '\0') {

@@ -4,11 +4,13 @@
 #include <stddef.h>
 
 // json_array_append_new steals the value; a NULL value makes it fail.
-static bool append(json_t* list, json_t* value) {
+static bool append(json_t* list, json_t* value)
+{
     return json_array_append_new(list, value) == 0;
 }
 
-static json_t* int_list(const int32_t* values, size_t count) {
+static json_t* int_list(const int32_t* values, size_t count)
+{
     json_t* list = json_array();
     for (size_t i = 0; list != NULL && i < count; ++i) {
         if (!append(list, json_integer(values[i]))) {
@@ -21,7 +23,8 @@ static json_t* int_list(const int32_t* values, size_t count) {
 
 // A source-major matrix; null where the pair is no arc, so the flow and the cost
 // matrices line up cell for cell.
-static json_t* matrix(const sva_tp_view_t* p, const int32_t* cells) {
+static json_t* matrix(const sva_tp_view_t* p, const int32_t* cells)
+{
     json_t* rows = json_array();
     for (size_t s = 0; rows != NULL && s < p->source_count; ++s) {
         json_t* row = json_array();
@@ -41,7 +44,8 @@ static json_t* matrix(const sva_tp_view_t* p, const int32_t* cells) {
     return rows;
 }
 
-json_t* sva_json_transport(const sva_mission_t* mission, const sva_tp_view_t* p) {
+json_t* sva_json_transport(const sva_mission_t* mission, const sva_tp_view_t* p)
+{
     json_t* sources = json_array();
     json_t* sinks = json_array();
     json_t* dropped = json_array();
@@ -78,7 +82,8 @@ json_t* sva_json_transport(const sva_mission_t* mission, const sva_tp_view_t* p)
     return NULL;
 }
 
-void sva_trace_observer(void* user, const sva_tp_view_t* problem) {
+void sva_trace_observer(void* user, const sva_tp_view_t* problem)
+{
     sva_trace_t* trace = user;
     if (trace->failed) {
         return;
@@ -93,7 +98,9 @@ void sva_trace_observer(void* user, const sva_tp_view_t* problem) {
     json_decref(doc);
 }
 
-void sva_trace_attach(sva_trace_t* trace, sva_planner_t* planner, FILE* out, const sva_mission_t* mission) {
+void sva_trace_attach(sva_trace_t* trace, sva_planner_t* planner, FILE* out,
+                      const sva_mission_t* mission)
+{
     trace->out = out;
     trace->mission = mission;
     trace->problems = 0;

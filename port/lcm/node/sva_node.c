@@ -13,13 +13,13 @@
 #include "sva/sva_lcm.h"
 #include "sva/sva_text.h"
 
-#define DEFAULT_URL "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
+#define DEFAULT_URL    "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
 #define DEFAULT_PREFIX "SVA_"
 /// Socket receive buffer requested when a udpm URL does not name one: a burst of 1000
 /// mission messages (6 KiB each) is ~ 6 MiB of payload; the kernel caps the request at
 /// net.core.rmem_max (docs/lcm.md).
 #define RECV_BUF_BYTES 4194304
-#define URL_SIZE 512
+#define URL_SIZE       512
 /// Room for a user-supplied string (an option value, the URL, a channel name, an
 /// adapter log line) as the node prints it: escaped with sva_text_escape().
 #define SHOWN_SIZE SVA_TEXT_ESCAPED_SIZE(URL_SIZE)
@@ -167,7 +167,8 @@ int main(int argc, char** argv)
             exit_on_eof = 1;
         } else {
             char shown[SHOWN_SIZE];
-            fprintf(stderr, "sva_node: unknown or incomplete option '%s'\n", sva_text_escape(shown, sizeof shown, a));
+            fprintf(stderr, "sva_node: unknown or incomplete option '%s'\n",
+                    sva_text_escape(shown, sizeof shown, a));
             usage(stderr);
             return 2;
         }
@@ -181,7 +182,8 @@ int main(int argc, char** argv)
         return 2;
     }
     if (strlen(prefix) > SVA_LCM_PREFIX_MAX) {
-        fprintf(stderr, "sva_node: --prefix: %zu characters exceed %d (LCM channel names are <= 63)\n",
+        fprintf(stderr,
+                "sva_node: --prefix: %zu characters exceed %d (LCM channel names are <= 63)\n",
                 strlen(prefix), SVA_LCM_PREFIX_MAX);
         return 2;
     }
@@ -197,7 +199,8 @@ int main(int argc, char** argv)
     lcm_t* lcm = lcm_create(url);
     if (lcm == NULL) {
         char shown[SHOWN_SIZE];
-        fprintf(stderr, "sva_node: lcm_create(\"%s\") failed (for udpm: is there a multicast route?)\n",
+        fprintf(stderr,
+                "sva_node: lcm_create(\"%s\") failed (for udpm: is there a multicast route?)\n",
                 sva_text_escape(shown, sizeof shown, url));
         return 1;
     }
@@ -221,8 +224,8 @@ int main(int argc, char** argv)
     (void)sigaction(SIGTERM, &sa, NULL);
 
     char started[SHOWN_SIZE];
-    (void)snprintf(started, sizeof started, "in %s %s, out %s %s; algorithm %s; %s%s%s", node.channel_fleet,
-                   node.channel_mission, node.channel_plan, node.channel_status,
+    (void)snprintf(started, sizeof started, "in %s %s, out %s %s; algorithm %s; %s%s%s",
+                   node.channel_fleet, node.channel_mission, node.channel_plan, node.channel_status,
                    sva_algorithm_name(algorithm), url, (rt_priority > 0) ? "; SCHED_FIFO" : "",
                    lock_memory ? "; memory locked" : "");
     log_stderr(NULL, started);  // escapes channel names and URL
@@ -255,7 +258,8 @@ int main(int argc, char** argv)
     lcm_destroy(lcm);
 
     const sva_lcm_counters_t* c = &node.counters;
-    fprintf(stderr, "sva_node: exit: fleet %llu, mission %llu, unchanged %llu, plans %llu, rejected",
+    fprintf(stderr,
+            "sva_node: exit: fleet %llu, mission %llu, unchanged %llu, plans %llu, rejected",
             (unsigned long long)c->fleet_rx, (unsigned long long)c->mission_rx,
             (unsigned long long)c->unchanged, (unsigned long long)c->plans_published);
     for (int r = 0; r < (int)SVA_LCM_REJECT_COUNT_; ++r) {

@@ -140,7 +140,8 @@ sva_status_t sva_lcm_node_subscribe(sva_lcm_node_t* self)
     self->priv.sub_mission = lcm_subscribe(self->lcm, regex, on_mission_raw, self);
     if ((self->priv.sub_fleet == NULL) || (self->priv.sub_mission == NULL) ||
         (lcm_subscription_set_queue_capacity(self->priv.sub_fleet, SVA_LCM_QUEUE_CAPACITY) != 0) ||
-        (lcm_subscription_set_queue_capacity(self->priv.sub_mission, SVA_LCM_QUEUE_CAPACITY) != 0)) {
+        (lcm_subscription_set_queue_capacity(self->priv.sub_mission, SVA_LCM_QUEUE_CAPACITY) !=
+         0)) {
         sva_lcm_node_unsubscribe(self);
         return SVA_ERR_ARGUMENT;
     }
@@ -180,7 +181,8 @@ static sva_lcm_verdict_t reject(sva_lcm_node_t* self, sva_lcm_reject_t reason, c
     if ((self->priv.logged & bit) == 0U) {
         self->priv.logged |= bit;
         char line[360];
-        (void)snprintf(line, sizeof line, "rejected (%s; further ones only counted in %.63s): %.239s",
+        (void)snprintf(line, sizeof line,
+                       "rejected (%s; further ones only counted in %.63s): %.239s",
                        sva_lcm_reject_name(reason), self->channel_status, what);
         logf_line(self, line);
     }
@@ -234,8 +236,8 @@ static sva_lcm_verdict_t check_frame(sva_lcm_node_t* self, const char* channel, 
         got = (got << 8U) | (uint64_t)b[i];
     }
     if (got != (uint64_t)fingerprint) {
-        (void)snprintf(what, sizeof what, "%s: fingerprint 0x%016llx, expected 0x%016llx",
-                       channel, (unsigned long long)got, (unsigned long long)(uint64_t)fingerprint);
+        (void)snprintf(what, sizeof what, "%s: fingerprint 0x%016llx, expected 0x%016llx", channel,
+                       (unsigned long long)got, (unsigned long long)(uint64_t)fingerprint);
         return reject(self, SVA_LCM_REJECT_FINGERPRINT, what);
     }
     return SVA_LCM_ACCEPTED;
@@ -270,7 +272,7 @@ static bool fill_plan(sva_lcm_node_t* self)
     const sva_plan_t* plan = &self->priv.plan;
     const sva_mission_t* m = &self->priv.mission;
     p->status = (plan->status == SVA_PLAN_COMPLETE) ? SVA_LCM_PLAN_T_STATUS_COMPLETE
-                                                     : SVA_LCM_PLAN_T_STATUS_PARTIAL;
+                                                    : SVA_LCM_PLAN_T_STATUS_PARTIAL;
     p->covered = (int16_t)plan->covered;
     p->cost = plan->cost;
     p->uncovered_count = (int16_t)plan->uncovered_count;
@@ -315,9 +317,8 @@ static void publish_plan(sva_lcm_node_t* self)
     sva_lcm_plan_t* p = &self->priv.plan_tx;
     p->utime = now_us(CLOCK_REALTIME);
     const int n = sva_lcm_plan_t_encode(self->priv.plan_buf, 0, (int)sizeof self->priv.plan_buf, p);
-    if ((n != SVA_LCM_PLAN_BYTES) ||
-        (self->publish(self->publish_user, self->channel_plan, self->priv.plan_buf,
-                       (unsigned int)n) != 0)) {
+    if ((n != SVA_LCM_PLAN_BYTES) || (self->publish(self->publish_user, self->channel_plan,
+                                                    self->priv.plan_buf, (unsigned int)n) != 0)) {
         self->counters.publish_errors += 1U;
         return;
     }
@@ -338,8 +339,8 @@ static void replan(sva_lcm_node_t* self)
     sva_diag_t diag;
     sva_diag_clear(&diag);
     const int64_t t0 = now_us(CLOCK_MONOTONIC);
-    const sva_status_t st =
-        sva_plan(&self->priv.planner, &self->priv.mission, self->algorithm, &self->priv.plan, &diag);
+    const sva_status_t st = sva_plan(&self->priv.planner, &self->priv.mission, self->algorithm,
+                                     &self->priv.plan, &diag);
     const int64_t dt = now_us(CLOCK_MONOTONIC) - t0;
     p->solve_us = (dt > (int64_t)INT32_MAX) ? INT32_MAX : (int32_t)dt;
 
@@ -351,7 +352,8 @@ static void replan(sva_lcm_node_t* self)
             p->item_count = 0;
             p->status = SVA_LCM_PLAN_T_STATUS_TOO_LARGE;
             char what[128];
-            (void)snprintf(what, sizeof what, "%s: plan needs more than MAX_ROUTE_ITEMS (%d) route items",
+            (void)snprintf(what, sizeof what,
+                           "%s: plan needs more than MAX_ROUTE_ITEMS (%d) route items",
                            self->channel_plan, SVA_LCM_PLAN_T_MAX_ROUTE_ITEMS);
             (void)reject(self, SVA_LCM_REJECT_TOO_LARGE, what);
         }
@@ -379,7 +381,7 @@ static bool check_fleet(sva_lcm_node_t* self, sva_lcm_reject_t* reason, int32_t*
     sva_diag_t* d = &self->last_diag;
     if ((f->uav_count < 0) || (f->uav_count > SVA_LCM_FLEET_STATE_T_MAX_UAVS)) {
         sva_diag_set(d, SVA_FIELD_UAVS, SVA_RULE_COUNT, -1, f->uav_count, SVA_MAX_UAVS,
-                 "SVA_MAX_UAVS");
+                     "SVA_MAX_UAVS");
         *reason = SVA_LCM_REJECT_COUNT;
         return false;
     }
@@ -411,13 +413,15 @@ static bool check_mission(sva_lcm_node_t* self, sva_lcm_reject_t* reason)
     sva_diag_t* d = &self->last_diag;
     if ((m->target_count < 0) || (m->target_count > SVA_LCM_MISSION_T_MAX_TARGETS)) {
         sva_diag_set(d, SVA_FIELD_TARGETS, SVA_RULE_COUNT, -1, m->target_count, SVA_MAX_TARGETS,
-                 "SVA_MAX_TARGETS");
+                     "SVA_MAX_TARGETS");
         *reason = SVA_LCM_REJECT_COUNT;
         return false;
     }
     *reason = SVA_LCM_REJECT_VALUE;
-    if (!in_range(d, SVA_FIELD_DEPOT_X, -1, m->depot_x, SVA_COORD_MIN, SVA_COORD_MAX, "SVA_COORD_MAX") ||
-        !in_range(d, SVA_FIELD_DEPOT_Y, -1, m->depot_y, SVA_COORD_MIN, SVA_COORD_MAX, "SVA_COORD_MAX") ||
+    if (!in_range(d, SVA_FIELD_DEPOT_X, -1, m->depot_x, SVA_COORD_MIN, SVA_COORD_MAX,
+                  "SVA_COORD_MAX") ||
+        !in_range(d, SVA_FIELD_DEPOT_Y, -1, m->depot_y, SVA_COORD_MIN, SVA_COORD_MAX,
+                  "SVA_COORD_MAX") ||
         !in_range(d, SVA_FIELD_TICKS_PER_CELL, -1, m->ticks_per_cell, 1, SVA_MAX_TICKS_PER_CELL,
                   "SVA_MAX_TICKS_PER_CELL") ||
         !in_range(d, SVA_FIELD_HOVER_FUEL, -1, m->hover_fuel, 0, SVA_MAX_HOVER_FUEL,
@@ -428,8 +432,10 @@ static bool check_mission(sva_lcm_node_t* self, sva_lcm_reject_t* reason)
     for (int32_t i = 0; i < (int32_t)m->target_count; ++i) {
         const sva_lcm_target_t* t = &m->targets[i];
         if (!in_range(d, SVA_FIELD_TARGET_ID, i, t->id, 1, SVA_MAX_ID, "SVA_MAX_ID") ||
-            !in_range(d, SVA_FIELD_TARGET_X, i, t->x, SVA_COORD_MIN, SVA_COORD_MAX, "SVA_COORD_MAX") ||
-            !in_range(d, SVA_FIELD_TARGET_Y, i, t->y, SVA_COORD_MIN, SVA_COORD_MAX, "SVA_COORD_MAX") ||
+            !in_range(d, SVA_FIELD_TARGET_X, i, t->x, SVA_COORD_MIN, SVA_COORD_MAX,
+                      "SVA_COORD_MAX") ||
+            !in_range(d, SVA_FIELD_TARGET_Y, i, t->y, SVA_COORD_MIN, SVA_COORD_MAX,
+                      "SVA_COORD_MAX") ||
             !in_range(d, SVA_FIELD_TARGET_START, i, t->start_ticks, 0, SVA_MAX_TICK - 1,
                       "SVA_MAX_TICK") ||
             !in_range(d, SVA_FIELD_TARGET_END, i, t->end_ticks, 1, SVA_MAX_TICK, "SVA_MAX_TICK") ||

@@ -6,6 +6,6 @@ int tidy_canary(const char* s);
 int tidy_canary(const char* s)
 {
     char buf[4];
-    strcpy(buf, s);  /* unbounded copy: clang-analyzer / cert checks flag it */
-    return tidy_canary(buf);  /* recursion: misc-no-recursion */
+    strcpy(buf, s);          /* unbounded copy: clang-analyzer / cert checks flag it */
+    return tidy_canary(buf); /* recursion: misc-no-recursion */
 }

@@ -38,10 +38,12 @@ int main(int argc, char** argv)
     }
     st = sva_can_socketcan_open(&sock, argv[1]);
     if (st != SVA_CAN_OK) {
-        fprintf(stderr, "can_vm_bridge: open %s: %s (%s)\n", argv[1], sva_can_status_name(st), strerror(sock.last_errno));
+        fprintf(stderr, "can_vm_bridge: open %s: %s (%s)\n", argv[1], sva_can_status_name(st),
+                strerror(sock.last_errno));
         return 1;
     }
-    if ((sva_can_socketcan_transport(&sock, &tp) != SVA_CAN_OK) || (sva_can_receiver_init(&rx, &tp, 2000) != SVA_CAN_OK)) {
+    if ((sva_can_socketcan_transport(&sock, &tp) != SVA_CAN_OK) ||
+        (sva_can_receiver_init(&rx, &tp, 2000) != SVA_CAN_OK)) {
         return 1;
     }
     t0 = now_ms();
@@ -62,7 +64,8 @@ int main(int argc, char** argv)
             }
             st = sva_can_receiver_on_frame(&rx, &f, now_ms());
             if (st < 0) {
-                fprintf(stderr, "can_vm_bridge: rejected frame 0x%03lX: %s\n", (unsigned long)f.id, sva_can_status_name(st));
+                fprintf(stderr, "can_vm_bridge: rejected frame 0x%03lX: %s\n", (unsigned long)f.id,
+                        sva_can_status_name(st));
             }
             if (st == SVA_CAN_APPLIED) {
                 ++applied;
@@ -76,7 +79,8 @@ int main(int argc, char** argv)
                     vs.u.vehicle.uav_id = 1;
                     vs.u.vehicle.x = 0;
                     vs.u.vehicle.y = 0;
-                    if ((sva_can_encode(&vs, &vf) != SVA_CAN_OK) || (tp.send(tp.ctx, &vf) != SVA_CAN_OK)) {
+                    if ((sva_can_encode(&vs, &vf) != SVA_CAN_OK) ||
+                        (tp.send(tp.ctx, &vf) != SVA_CAN_OK)) {
                         fprintf(stderr, "can_vm_bridge: cannot send vehicle status\n");
                         return 1;
                     }
@@ -88,9 +92,11 @@ int main(int argc, char** argv)
             return 1;
         }
         if (applied >= 2) {
-            fprintf(stderr, "can_vm_bridge: 2 plans applied, %u heartbeats heard, %lu frames rejected\n", heartbeats,
-                    (unsigned long)(rx.stats.bad_crc + rx.stats.bad_dlc + rx.stats.counter_jumps + rx.stats.out_of_order +
-                                    rx.stats.plan_crc_mismatch));
+            fprintf(stderr,
+                    "can_vm_bridge: 2 plans applied, %u heartbeats heard, %lu frames rejected\n",
+                    heartbeats,
+                    (unsigned long)(rx.stats.bad_crc + rx.stats.bad_dlc + rx.stats.counter_jumps +
+                                    rx.stats.out_of_order + rx.stats.plan_crc_mismatch));
             sva_can_socketcan_close(&sock);
             return 0;
         }

@@ -5,7 +5,7 @@
 #include "sva/sva.h"
 
 #ifndef SVA_CONFIG_HEADER
-#error "SVA_CONFIG_HEADER did not reach this consumer (the installed package must export it)"
+#    error "SVA_CONFIG_HEADER did not reach this consumer (the installed package must export it)"
 #endif
 
 static sva_planner_t planner;
@@ -36,16 +36,18 @@ int main(void)
     mission.uavs[0] = (sva_uav_t){.id = 1, .x = 0, .y = 0, .fuel = 100, .ready_at_ticks = 0};
     mission.uavs[1] = (sva_uav_t){.id = 2, .x = 0, .y = 0, .fuel = 100, .ready_at_ticks = 0};
     mission.uav_count = 2;
-    mission.targets[0] = (sva_target_t){.id = 1, .x = 3, .y = 4, .start_ticks = 10, .end_ticks = 30, .need = 2};
+    mission.targets[0] =
+        (sva_target_t){.id = 1, .x = 3, .y = 4, .start_ticks = 10, .end_ticks = 30, .need = 2};
     mission.target_count = 1;
     bad += check(sva_planner_init(&planner) == SVA_OK, "sva_planner_init failed");
-    bad += check(sva_plan(&planner, &mission, SVA_ALGO_SVA, &plan, &diag) == SVA_OK, "sva_plan failed");
+    bad += check(sva_plan(&planner, &mission, SVA_ALGO_SVA, &plan, &diag) == SVA_OK,
+                 "sva_plan failed");
     bad += check(plan.status == SVA_PLAN_COMPLETE && plan.covered == 1, "the plan is not complete");
     // Both UAVs fly depot -> (3,4) -> depot: 7 + 7 cells each.
     bad += check(plan.cost == 28, "the plan's cost is not 28");
     if (bad == 0) {
-        printf("consumer_core: sva %d.%d.%d, plan cost %lld\n", SVA_VERSION_MAJOR, SVA_VERSION_MINOR,
-               SVA_VERSION_PATCH, (long long)plan.cost);
+        printf("consumer_core: sva %d.%d.%d, plan cost %lld\n", SVA_VERSION_MAJOR,
+               SVA_VERSION_MINOR, SVA_VERSION_PATCH, (long long)plan.cost);
     }
     return bad == 0 ? 0 : 1;
 }

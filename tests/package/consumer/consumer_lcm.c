@@ -27,7 +27,8 @@ int main(void)
         fprintf(stderr, "consumer_lcm: lcm_create(memq://) failed\n");
         return 1;
     }
-    if (sva_lcm_channel_escape("SVA_.X", escaped, sizeof escaped) != SVA_OK || strcmp(escaped, "SVA_\\.X") != 0) {
+    if (sva_lcm_channel_escape("SVA_.X", escaped, sizeof escaped) != SVA_OK ||
+        strcmp(escaped, "SVA_\\.X") != 0) {
         fprintf(stderr, "consumer_lcm: sva_lcm_channel_escape\n");
         return 1;
     }
@@ -36,7 +37,8 @@ int main(void)
         return 1;
     }
     (void)lcm_subscribe(lcm, "SVA_STATUS", on_status, NULL);
-    if (sva_lcm_publish_status(&node, 1) != SVA_OK || lcm_handle_timeout(lcm, 1000) <= 0 || received != 1) {
+    if (sva_lcm_publish_status(&node, 1) != SVA_OK || lcm_handle_timeout(lcm, 1000) <= 0 ||
+        received != 1) {
         fprintf(stderr, "consumer_lcm: no status message came back over memq://\n");
         return 1;
     }

@@ -63,9 +63,9 @@ extern "C" {
 #define SVA_CAN_PROTOCOL_VERSION 1
 
 #if defined(__GNUC__) || defined(__clang__)
-#define SVA_CAN_NODISCARD __attribute__((warn_unused_result))
+#    define SVA_CAN_NODISCARD __attribute__((warn_unused_result))
 #else
-#define SVA_CAN_NODISCARD
+#    define SVA_CAN_NODISCARD
 #endif
 
 // =================================================================================
@@ -74,27 +74,27 @@ extern "C" {
 /// Most assignments (ITEM + ITEM_TIME pairs) in one plan. Cost: 12 B per item in each
 /// sva_can_plan_t (sender 1, receiver 2).
 #ifndef SVA_CAN_MAX_ITEMS
-#define SVA_CAN_MAX_ITEMS 1024
+#    define SVA_CAN_MAX_ITEMS 1024
 #endif
 #if (SVA_CAN_MAX_ITEMS < 1) || (SVA_CAN_MAX_ITEMS > 65535)
-#error "SVA_CAN_MAX_ITEMS must be in [1, 65535]"
+#    error "SVA_CAN_MAX_ITEMS must be in [1, 65535]"
 #endif
 
 /// Frames the in-memory loopback queue holds per direction.
 #ifndef SVA_CAN_LOOPBACK_CAPACITY
-#define SVA_CAN_LOOPBACK_CAPACITY 4096
+#    define SVA_CAN_LOOPBACK_CAPACITY 4096
 #endif
 #if (SVA_CAN_LOOPBACK_CAPACITY < 2) || (SVA_CAN_LOOPBACK_CAPACITY > 65535)
-#error "SVA_CAN_LOOPBACK_CAPACITY must be in [2, 65535]"
+#    error "SVA_CAN_LOOPBACK_CAPACITY must be in [2, 65535]"
 #endif
 
 /// Wire limits (the field widths of sva.dbc). A mission outside them cannot be sent;
 /// sva_can_mission_check() reports the field and the limit.
-#define SVA_CAN_MAX_UAV_ID 255L        ///< uav_id: 8 bits, 0 is not an id
-#define SVA_CAN_MAX_TARGET_ID 4095L    ///< target_id: 12 bits, 0 is not an id
-#define SVA_CAN_MAX_TICK 16777215L     ///< arrive_by / hold_until: 24 bits
-#define SVA_CAN_MAX_COORD 32767L       ///< x, y: int16, exactly SPEC's range
-#define SVA_CAN_MIN_COORD (-32768L)
+#define SVA_CAN_MAX_UAV_ID    255L       ///< uav_id: 8 bits, 0 is not an id
+#define SVA_CAN_MAX_TARGET_ID 4095L      ///< target_id: 12 bits, 0 is not an id
+#define SVA_CAN_MAX_TICK      16777215L  ///< arrive_by / hold_until: 24 bits
+#define SVA_CAN_MAX_COORD     32767L     ///< x, y: int16, exactly SPEC's range
+#define SVA_CAN_MIN_COORD     (-32768L)
 
 // =================================================================================
 // Status
@@ -107,19 +107,19 @@ typedef enum {
     SVA_CAN_IGNORED = 2,
     /// sva_can_receiver_on_frame(): this frame completed a plan, which is now active.
     SVA_CAN_APPLIED = 3,
-    SVA_CAN_ERR_ARGUMENT = -1,  ///< NULL pointer or value out of range in an API call
-    SVA_CAN_ERR_DLC = -2,       ///< data length code is not 8
-    SVA_CAN_ERR_CRC = -3,       ///< CRC-8 of the frame does not match
-    SVA_CAN_ERR_VALUE = -4,     ///< a field holds a value the protocol forbids
-    SVA_CAN_ERR_COUNTER = -5,   ///< rolling counter not previous + 1 (or repeated)
-    SVA_CAN_ERR_SEQUENCE = -6,  ///< frame out of order: ITEM/ITEM_TIME/COMMIT unexpected
-    SVA_CAN_ERR_PLAN_CRC = -7,  ///< COMMIT's CRC-32 (or count, or plan id) mismatch
-    SVA_CAN_ERR_TIMEOUT = -8,   ///< a transfer did not complete in time
-    SVA_CAN_ERR_LIMIT = -9,     ///< more items than SVA_CAN_MAX_ITEMS, or a wire limit
-    SVA_CAN_ERR_IO = -10,       ///< a system call failed (errno kept by the transport)
-    SVA_CAN_ERR_NAME = -11,     ///< interface name empty or too long for IFNAMSIZ
+    SVA_CAN_ERR_ARGUMENT = -1,      ///< NULL pointer or value out of range in an API call
+    SVA_CAN_ERR_DLC = -2,           ///< data length code is not 8
+    SVA_CAN_ERR_CRC = -3,           ///< CRC-8 of the frame does not match
+    SVA_CAN_ERR_VALUE = -4,         ///< a field holds a value the protocol forbids
+    SVA_CAN_ERR_COUNTER = -5,       ///< rolling counter not previous + 1 (or repeated)
+    SVA_CAN_ERR_SEQUENCE = -6,      ///< frame out of order: ITEM/ITEM_TIME/COMMIT unexpected
+    SVA_CAN_ERR_PLAN_CRC = -7,      ///< COMMIT's CRC-32 (or count, or plan id) mismatch
+    SVA_CAN_ERR_TIMEOUT = -8,       ///< a transfer did not complete in time
+    SVA_CAN_ERR_LIMIT = -9,         ///< more items than SVA_CAN_MAX_ITEMS, or a wire limit
+    SVA_CAN_ERR_IO = -10,           ///< a system call failed (errno kept by the transport)
+    SVA_CAN_ERR_NAME = -11,         ///< interface name empty or too long for IFNAMSIZ
     SVA_CAN_ERR_UNSUPPORTED = -12,  ///< SocketCAN on a non-Linux build
-    SVA_CAN_ERR_STATE = -13,    ///< call not valid in the current state
+    SVA_CAN_ERR_STATE = -13,        ///< call not valid in the current state
 } sva_can_status_t;
 
 /// A short constant name for a status ("ok", "crc", ...). Never NULL.
@@ -138,23 +138,23 @@ typedef struct {
 } sva_can_frame_t;
 
 #define SVA_CAN_FLAG_EXTENDED 0x01u  ///< 29-bit id (never this protocol's)
-#define SVA_CAN_FLAG_RTR 0x02u       ///< remote request (never this protocol's)
-#define SVA_CAN_FLAG_FD 0x04u        ///< arrived as a CAN FD frame (rejected by decode)
+#define SVA_CAN_FLAG_RTR      0x02u  ///< remote request (never this protocol's)
+#define SVA_CAN_FLAG_FD       0x04u  ///< arrived as a CAN FD frame (rejected by decode)
 
 /// Message ids (11-bit). Lower id wins arbitration.
-#define SVA_CAN_ID_PLAN_ABORT 0x100u
-#define SVA_CAN_ID_PLAN_BEGIN 0x101u
-#define SVA_CAN_ID_PLAN_ITEM 0x102u
+#define SVA_CAN_ID_PLAN_ABORT     0x100u
+#define SVA_CAN_ID_PLAN_BEGIN     0x101u
+#define SVA_CAN_ID_PLAN_ITEM      0x102u
 #define SVA_CAN_ID_PLAN_ITEM_TIME 0x103u
-#define SVA_CAN_ID_PLAN_COMMIT 0x104u
-#define SVA_CAN_ID_PLAN_ACK 0x108u
-#define SVA_CAN_ID_HEARTBEAT 0x110u
+#define SVA_CAN_ID_PLAN_COMMIT    0x104u
+#define SVA_CAN_ID_PLAN_ACK       0x108u
+#define SVA_CAN_ID_HEARTBEAT      0x110u
 #define SVA_CAN_ID_VEHICLE_STATUS 0x120u
-#define SVA_CAN_ID_VEHICLE_FUEL 0x121u
+#define SVA_CAN_ID_VEHICLE_FUEL   0x121u
 
 /// Heartbeat period and the silence after which peers treat the planner as offline.
 #define SVA_CAN_HEARTBEAT_PERIOD_MS 1000u
-#define SVA_CAN_OFFLINE_AFTER_MS 3000u
+#define SVA_CAN_OFFLINE_AFTER_MS    3000u
 
 typedef enum {
     SVA_CAN_MSG_NONE = 0,
@@ -173,48 +173,48 @@ typedef enum {
 /// Planner state in the heartbeat.
 typedef enum {
     SVA_CAN_NODE_INIT = 0,
-    SVA_CAN_NODE_IDLE = 1,      ///< no plan yet
+    SVA_CAN_NODE_IDLE = 1,  ///< no plan yet
     SVA_CAN_NODE_PLANNING = 2,
-    SVA_CAN_NODE_SENDING = 3,   ///< a transfer is in flight
-    SVA_CAN_NODE_ACTIVE = 4,    ///< the bridge acknowledged active_plan_id
+    SVA_CAN_NODE_SENDING = 3,  ///< a transfer is in flight
+    SVA_CAN_NODE_ACTIVE = 4,   ///< the bridge acknowledged active_plan_id
     SVA_CAN_NODE_FAULT = 5,
 } sva_can_node_state_t;
 #define SVA_CAN_NODE_STATE_MAX 5u
 
 /// Heartbeat fault bits.
 #define SVA_CAN_FAULT_MISSION_INVALID 0x01u  ///< fleet state makes the mission invalid
-#define SVA_CAN_FAULT_PLAN_FAILED 0x02u      ///< sva_plan() returned an error
+#define SVA_CAN_FAULT_PLAN_FAILED     0x02u  ///< sva_plan() returned an error
 #define SVA_CAN_FAULT_TRANSFER_FAILED 0x04u  ///< last transfer aborted (timeout, retries)
-#define SVA_CAN_FAULT_RX_ERRORS 0x08u        ///< corrupt frames seen since last heartbeat
-#define SVA_CAN_FAULT_TX_ERRORS 0x10u        ///< the transport reported an error
-#define SVA_CAN_FAULT_MASK 0x1Fu
+#define SVA_CAN_FAULT_RX_ERRORS       0x08u  ///< corrupt frames seen since last heartbeat
+#define SVA_CAN_FAULT_TX_ERRORS       0x10u  ///< the transport reported an error
+#define SVA_CAN_FAULT_MASK            0x1Fu
 
 /// ABORT reasons.
-#define SVA_CAN_ABORT_TIMEOUT 1u     ///< transfer deadline passed
-#define SVA_CAN_ABORT_RETRIES 2u     ///< no positive ACK after every attempt
+#define SVA_CAN_ABORT_TIMEOUT    1u  ///< transfer deadline passed
+#define SVA_CAN_ABORT_RETRIES    2u  ///< no positive ACK after every attempt
 #define SVA_CAN_ABORT_SUPERSEDED 3u  ///< a newer plan replaces it
-#define SVA_CAN_ABORT_SHUTDOWN 4u
+#define SVA_CAN_ABORT_SHUTDOWN   4u
 #define SVA_CAN_ABORT_REASON_MAX 4u
 
 /// ACK results (0 accepted, the rest are NACKs naming the receiver's reason).
-#define SVA_CAN_ACK_ACCEPTED 0u
-#define SVA_CAN_ACK_BAD_CRC 1u       ///< COMMIT CRC-32, count or plan id mismatch
+#define SVA_CAN_ACK_ACCEPTED     0u
+#define SVA_CAN_ACK_BAD_CRC      1u  ///< COMMIT CRC-32, count or plan id mismatch
 #define SVA_CAN_ACK_BAD_SEQUENCE 2u  ///< counter jump, ITEM out of order or missing
-#define SVA_CAN_ACK_TOO_LARGE 3u     ///< item_count above the receiver's capacity
-#define SVA_CAN_ACK_BAD_VERSION 4u
-#define SVA_CAN_ACK_BAD_VALUE 5u     ///< a field out of its range
-#define SVA_CAN_ACK_RESULT_MAX 5u
+#define SVA_CAN_ACK_TOO_LARGE    3u  ///< item_count above the receiver's capacity
+#define SVA_CAN_ACK_BAD_VERSION  4u
+#define SVA_CAN_ACK_BAD_VALUE    5u  ///< a field out of its range
+#define SVA_CAN_ACK_RESULT_MAX   5u
 
 /// Vehicle states in VEHICLE_STATUS.
-#define SVA_CAN_VEHICLE_UNKNOWN 0u
-#define SVA_CAN_VEHICLE_AVAILABLE 1u    ///< planned for
-#define SVA_CAN_VEHICLE_BUSY 2u         ///< flying; still planned for from its position
+#define SVA_CAN_VEHICLE_UNKNOWN     0u
+#define SVA_CAN_VEHICLE_AVAILABLE   1u  ///< planned for
+#define SVA_CAN_VEHICLE_BUSY        2u  ///< flying; still planned for from its position
 #define SVA_CAN_VEHICLE_UNAVAILABLE 3u  ///< left out of planning
-#define SVA_CAN_VEHICLE_STATE_MAX 3u
+#define SVA_CAN_VEHICLE_STATE_MAX   3u
 
 /// Plan status in PLAN_BEGIN (SPEC section 1).
 #define SVA_CAN_PLAN_COMPLETE 1u
-#define SVA_CAN_PLAN_PARTIAL 2u
+#define SVA_CAN_PLAN_PARTIAL  2u
 
 typedef struct {
     uint8_t state;            ///< sva_can_node_state_t
@@ -226,20 +226,20 @@ typedef struct {
 } sva_can_heartbeat_t;
 
 typedef struct {
-    uint8_t version;     ///< SVA_CAN_PROTOCOL_VERSION
-    uint16_t plan_id;    ///< 1..65535, 0 is "no plan"
-    uint16_t item_count; ///< ITEM + ITEM_TIME pairs that follow
-    uint8_t algorithm;   ///< sva_algorithm_t (0 sva, 1 ga, 2 hga, 3 bfa, 4 flow)
-    uint8_t plan_status; ///< SVA_CAN_PLAN_COMPLETE or SVA_CAN_PLAN_PARTIAL
-    uint8_t route_count; ///< UAVs in the plan (routes, empty ones included)
+    uint8_t version;      ///< SVA_CAN_PROTOCOL_VERSION
+    uint16_t plan_id;     ///< 1..65535, 0 is "no plan"
+    uint16_t item_count;  ///< ITEM + ITEM_TIME pairs that follow
+    uint8_t algorithm;    ///< sva_algorithm_t (0 sva, 1 ga, 2 hga, 3 bfa, 4 flow)
+    uint8_t plan_status;  ///< SVA_CAN_PLAN_COMPLETE or SVA_CAN_PLAN_PARTIAL
+    uint8_t route_count;  ///< UAVs in the plan (routes, empty ones included)
 } sva_can_begin_t;
 
 /// One assignment: UAV uav_id serves target target_id at (x, y), arriving no later than
 /// arrive_by and staying until hold_until (SPEC section 1: the target's window).
 /// Items of one UAV appear in visit order.
 typedef struct {
-    uint8_t uav_id;             ///< 1..255
-    uint16_t target_id;         ///< 1..4095
+    uint8_t uav_id;      ///< 1..255
+    uint16_t target_id;  ///< 1..4095
     int16_t x;
     int16_t y;
     uint32_t arrive_by_ticks;   ///< 0..SVA_CAN_MAX_TICK
@@ -254,7 +254,7 @@ typedef struct {
 } sva_can_item_where_t;
 
 typedef struct {
-    uint8_t item_seq;           ///< item index modulo 16 (pairs it with its ITEM)
+    uint8_t item_seq;  ///< item index modulo 16 (pairs it with its ITEM)
     uint32_t arrive_by_ticks;
     uint32_t hold_until_ticks;
 } sva_can_item_time_t;
@@ -265,19 +265,19 @@ typedef struct {
 } sva_can_commit_t;
 
 typedef struct {
-    uint8_t reason;     ///< SVA_CAN_ABORT_*
+    uint8_t reason;  ///< SVA_CAN_ABORT_*
     uint16_t plan_id;
 } sva_can_abort_t;
 
 typedef struct {
-    uint8_t result;          ///< SVA_CAN_ACK_*
+    uint8_t result;  ///< SVA_CAN_ACK_*
     uint16_t plan_id;
     uint16_t items_received;
 } sva_can_ack_t;
 
 typedef struct {
-    uint8_t state;  ///< SVA_CAN_VEHICLE_*
-    uint8_t uav_id; ///< 1..255
+    uint8_t state;   ///< SVA_CAN_VEHICLE_*
+    uint8_t uav_id;  ///< 1..255
     int16_t x;
     int16_t y;
 } sva_can_vehicle_status_t;
@@ -372,28 +372,27 @@ void sva_can_loopback_init(sva_can_loopback_t* self);
 /// A transport for `endpoint` (0 or 1) of the bus. self must outlive the transport.
 /// Returns SVA_CAN_OK or SVA_CAN_ERR_ARGUMENT (NULL, endpoint > 1).
 SVA_CAN_NODISCARD sva_can_status_t sva_can_loopback_transport(sva_can_loopback_t* self,
-                                                            unsigned endpoint,
-                                                            sva_can_transport_t* out);
+                                                              unsigned endpoint,
+                                                              sva_can_transport_t* out);
 
 /// Queues *frame for `endpoint` as if the other side had sent it. Returns SVA_CAN_OK,
 /// SVA_CAN_AGAIN when full, or SVA_CAN_ERR_ARGUMENT.
 SVA_CAN_NODISCARD sva_can_status_t sva_can_loopback_inject(sva_can_loopback_t* self,
-                                                         unsigned endpoint,
-                                                         const sva_can_frame_t* frame);
+                                                           unsigned endpoint,
+                                                           const sva_can_frame_t* frame);
 
 /// Removes the oldest frame waiting for `endpoint` into *out (SVA_CAN_AGAIN if none).
 SVA_CAN_NODISCARD sva_can_status_t sva_can_loopback_take(sva_can_loopback_t* self,
-                                                       unsigned endpoint,
-                                                       sva_can_frame_t* out);
+                                                         unsigned endpoint, sva_can_frame_t* out);
 
 /// SocketCAN (Linux only). One raw CAN socket bound to one interface, non-blocking,
 /// CAN FD frames enabled on read when the interface allows it (an FD frame is
 /// delivered with SVA_CAN_FLAG_FD and rejected by the decoder).
 typedef struct {
-    int fd;             ///< -1 when closed
-    int last_errno;     ///< errno of the last failed system call, 0 if none
-    uint32_t rx_short;  ///< reads shorter than a classic frame (dropped)
-    uint32_t rx_bad_dlc;///< frames whose length exceeds their size (dropped)
+    int fd;               ///< -1 when closed
+    int last_errno;       ///< errno of the last failed system call, 0 if none
+    uint32_t rx_short;    ///< reads shorter than a classic frame (dropped)
+    uint32_t rx_bad_dlc;  ///< frames whose length exceeds their size (dropped)
 } sva_can_socketcan_t;
 
 /// Opens and binds a raw CAN socket on `ifname` (e.g. "vcan0").
@@ -401,11 +400,12 @@ typedef struct {
 /// (including its NUL); SVA_CAN_ERR_IO when socket, fcntl, ioctl(SIOCGIFINDEX) or bind
 /// fails (last_errno says why; the socket is closed again); SVA_CAN_ERR_UNSUPPORTED on
 /// non-Linux builds. All-or-nothing: on error self->fd is -1.
-SVA_CAN_NODISCARD sva_can_status_t sva_can_socketcan_open(sva_can_socketcan_t* self, const char* ifname);
+SVA_CAN_NODISCARD sva_can_status_t sva_can_socketcan_open(sva_can_socketcan_t* self,
+                                                          const char* ifname);
 
 /// The transport over an open socket (self must outlive it).
 SVA_CAN_NODISCARD sva_can_status_t sva_can_socketcan_transport(sva_can_socketcan_t* self,
-                                                             sva_can_transport_t* out);
+                                                               sva_can_transport_t* out);
 
 /// Closes the socket (no-op if closed).
 void sva_can_socketcan_close(sva_can_socketcan_t* self);
@@ -433,7 +433,8 @@ uint32_t sva_can_plan_crc(const sva_can_plan_t* plan);
 /// with *diag (if not NULL) naming field, index, value and limit (rule SVA_RULE_MAX or
 /// SVA_RULE_MIN, limit_name "SVA_CAN_MAX_*"), so sva_diag_format() prints it.
 /// Run it after sva_mission_validate(). O(U + T); allocates nothing.
-SVA_CAN_NODISCARD sva_can_status_t sva_can_mission_check(const sva_mission_t* mission, sva_diag_t* diag);
+SVA_CAN_NODISCARD sva_can_status_t sva_can_mission_check(const sva_mission_t* mission,
+                                                         sva_diag_t* diag);
 
 /// Turns a core plan (sva_plan_t) for a mission (sva_mission_t) into wire items: for
 /// each route in mission order, its targets in visit order. Returns SVA_CAN_OK, or
@@ -442,9 +443,8 @@ SVA_CAN_NODISCARD sva_can_status_t sva_can_mission_check(const sva_mission_t* mi
 /// or SVA_CAN_ERR_ARGUMENT (NULL, plan_id 0, plan status SVA_PLAN_NONE).
 /// All-or-nothing: *out is untouched on error. O(items).
 SVA_CAN_NODISCARD sva_can_status_t sva_can_plan_from_core(sva_can_plan_t* out,
-                                                        const sva_mission_t* mission,
-                                                        const sva_plan_t* plan,
-                                                        uint16_t plan_id);
+                                                          const sva_mission_t* mission,
+                                                          const sva_plan_t* plan, uint16_t plan_id);
 
 // =================================================================================
 // Sender (planner side)
@@ -458,20 +458,20 @@ typedef enum {
 } sva_can_tx_state_t;
 
 typedef struct {
-    uint32_t ack_timeout_ms;      ///< wait for ACK after COMMIT before retrying (250)
-    uint32_t transfer_timeout_ms; ///< whole transfer, every attempt included (3000)
-    uint8_t max_attempts;         ///< transfers before giving up (3)
+    uint32_t ack_timeout_ms;       ///< wait for ACK after COMMIT before retrying (250)
+    uint32_t transfer_timeout_ms;  ///< whole transfer, every attempt included (3000)
+    uint8_t max_attempts;          ///< transfers before giving up (3)
 } sva_can_sender_config_t;
 
 typedef struct {
     uint32_t frames_sent;
-    uint32_t attempts;        ///< transfers started (retries included)
-    uint32_t nacks;           ///< negative ACKs received
+    uint32_t attempts;  ///< transfers started (retries included)
+    uint32_t nacks;     ///< negative ACKs received
     uint32_t ack_timeouts;
     uint32_t aborts_sent;
-    uint32_t acks_ignored;    ///< ACKs for another plan id, or outside WAIT_ACK
-    uint32_t rx_rejected;     ///< ACK frames failing decode (CRC, DLC, value)
-    uint32_t tx_errors;       ///< transport send errors
+    uint32_t acks_ignored;  ///< ACKs for another plan id, or outside WAIT_ACK
+    uint32_t rx_rejected;   ///< ACK frames failing decode (CRC, DLC, value)
+    uint32_t tx_errors;     ///< transport send errors
 } sva_can_sender_stats_t;
 
 typedef struct {
@@ -483,14 +483,14 @@ typedef struct {
     sva_can_sender_stats_t stats;
     struct {
         sva_can_plan_t plan;
-        uint32_t next_frame;       ///< 0 BEGIN, 1..2n items, 2n+1 COMMIT
-        uint32_t started_ms;       ///< first attempt
+        uint32_t next_frame;  ///< 0 BEGIN, 1..2n items, 2n+1 COMMIT
+        uint32_t started_ms;  ///< first attempt
         uint32_t commit_sent_ms;
-        uint8_t counter;           ///< next transfer-stream counter
-        uint8_t pending_abort;     ///< reason of an ABORT still to send, 0 for none
+        uint8_t counter;        ///< next transfer-stream counter
+        uint8_t pending_abort;  ///< reason of an ABORT still to send, 0 for none
         uint16_t abort_plan_id;
         uint8_t attempt;
-        uint32_t crc;              ///< CRC-32 over the frames sent in this attempt
+        uint32_t crc;  ///< CRC-32 over the frames sent in this attempt
     } priv;
 } sva_can_sender_t;
 
@@ -500,8 +500,8 @@ sva_can_sender_config_t sva_can_sender_default_config(void);
 /// Prepares an idle sender. config may be NULL (defaults). Returns SVA_CAN_OK or
 /// SVA_CAN_ERR_ARGUMENT (NULL self/transport, zero timeouts or attempts). O(1).
 SVA_CAN_NODISCARD sva_can_status_t sva_can_sender_init(sva_can_sender_t* self,
-                                                     const sva_can_transport_t* transport,
-                                                     const sva_can_sender_config_t* config);
+                                                       const sva_can_transport_t* transport,
+                                                       const sva_can_sender_config_t* config);
 
 /// Starts sending *plan (copied). If a transfer is in flight it is superseded: an
 /// ABORT(SUPERSEDED) for it goes out first. Sends as many frames as the transport
@@ -509,8 +509,8 @@ SVA_CAN_NODISCARD sva_can_status_t sva_can_sender_init(sva_can_sender_t* self,
 /// SVA_CAN_ERR_ARGUMENT (NULL, plan_id 0, item_count > SVA_CAN_MAX_ITEMS), or the
 /// transport's error. O(item_count) for the copy.
 SVA_CAN_NODISCARD sva_can_status_t sva_can_sender_start(sva_can_sender_t* self,
-                                                      const sva_can_plan_t* plan,
-                                                      uint32_t now_ms);
+                                                        const sva_can_plan_t* plan,
+                                                        uint32_t now_ms);
 
 /// Hands pending frames to the transport until it says AGAIN, and runs the timers:
 /// no ACK within ack_timeout_ms -> next attempt from BEGIN; attempts exhausted or the
@@ -522,30 +522,30 @@ SVA_CAN_NODISCARD sva_can_status_t sva_can_sender_poll(sva_can_sender_t* self, u
 /// for the plan in WAIT_ACK -> DONE; a NACK -> next attempt (or FAILED). Returns
 /// SVA_CAN_OK, SVA_CAN_IGNORED, or the decode error of a corrupt ACK (counted).
 SVA_CAN_NODISCARD sva_can_status_t sva_can_sender_on_frame(sva_can_sender_t* self,
-                                                         const sva_can_frame_t* frame,
-                                                         uint32_t now_ms);
+                                                           const sva_can_frame_t* frame,
+                                                           uint32_t now_ms);
 
 /// Aborts an in-flight transfer with `reason` (ABORT frame queued), state FAILED.
 /// No-op (SVA_CAN_OK) when nothing is in flight.
 SVA_CAN_NODISCARD sva_can_status_t sva_can_sender_abort(sva_can_sender_t* self, uint8_t reason,
-                                                      uint32_t now_ms);
+                                                        uint32_t now_ms);
 
 // =================================================================================
 // Receiver (bridge side, and tests)
 
 typedef struct {
-    uint32_t frames;          ///< frames fed
-    uint32_t ignored;         ///< not this protocol's, or not transfer frames
+    uint32_t frames;   ///< frames fed
+    uint32_t ignored;  ///< not this protocol's, or not transfer frames
     uint32_t bad_dlc;
     uint32_t bad_crc;
     uint32_t bad_value;
     uint32_t counter_jumps;
-    uint32_t out_of_order;    ///< ITEM/ITEM_TIME/COMMIT not expected now, item missing
+    uint32_t out_of_order;  ///< ITEM/ITEM_TIME/COMMIT not expected now, item missing
     uint32_t plan_crc_mismatch;
     uint32_t too_large;
     uint32_t bad_version;
     uint32_t timeouts;
-    uint32_t aborted;         ///< transfers the sender aborted
+    uint32_t aborted;  ///< transfers the sender aborted
     uint32_t plans_applied;
     uint32_t acks_sent;
     uint32_t nacks_sent;
@@ -557,11 +557,11 @@ typedef struct {
     uint32_t timeout_ms;                   ///< BEGIN to COMMIT (2000 by default)
     sva_can_receiver_stats_t stats;
     bool has_active;
-    sva_can_plan_t active;                 ///< the applied plan (read-only)
+    sva_can_plan_t active;  ///< the applied plan (read-only)
     struct {
         sva_can_plan_t staging;
         bool receiving;
-        bool expect_time;     ///< the next transfer frame must be ITEM_TIME
+        bool expect_time;  ///< the next transfer frame must be ITEM_TIME
         uint8_t last_counter;
         uint8_t ack_counter;
         uint16_t items_done;
@@ -573,8 +573,8 @@ typedef struct {
 /// Prepares a receiver with no active plan. transport may be NULL; timeout_ms 0 means
 /// the default 2000 ms. Returns SVA_CAN_OK or SVA_CAN_ERR_ARGUMENT. O(1).
 SVA_CAN_NODISCARD sva_can_status_t sva_can_receiver_init(sva_can_receiver_t* self,
-                                                       const sva_can_transport_t* transport,
-                                                       uint32_t timeout_ms);
+                                                         const sva_can_transport_t* transport,
+                                                         uint32_t timeout_ms);
 
 /// Feeds one received frame. Returns
 ///   SVA_CAN_OK        a transfer frame accepted (or an ABORT handled);
@@ -586,8 +586,8 @@ SVA_CAN_NODISCARD sva_can_status_t sva_can_receiver_init(sva_can_receiver_t* sel
 /// The active plan changes only on SVA_CAN_APPLIED: never from a partial or corrupt
 /// transfer. Also runs the timeout check first. O(1) per frame.
 SVA_CAN_NODISCARD sva_can_status_t sva_can_receiver_on_frame(sva_can_receiver_t* self,
-                                                           const sva_can_frame_t* frame,
-                                                           uint32_t now_ms);
+                                                             const sva_can_frame_t* frame,
+                                                             uint32_t now_ms);
 
 /// Runs the timeout: a transfer open longer than timeout_ms is discarded and counted
 /// (returns SVA_CAN_ERR_TIMEOUT once for it); otherwise SVA_CAN_OK.

@@ -51,20 +51,14 @@ typedef enum {
 /// ("<source>:<line>:<column>: invalid JSON: ..."). Checks the document's shape only,
 /// not the core's value rules. On error writes one line (no "sva: error: " prefix, no
 /// newline) into err and returns SVA_JSON_BAD_INPUT.
-sva_json_result_t sva_json_parse_mission(const char* text,
-                                         size_t len,
-                                         const char* source,
-                                         sva_mission_t* mission,
-                                         char name[SVA_JSON_NAME_MAX + 1],
-                                         char* err,
-                                         size_t err_size);
+sva_json_result_t sva_json_parse_mission(const char* text, size_t len, const char* source,
+                                         sva_mission_t* mission, char name[SVA_JSON_NAME_MAX + 1],
+                                         char* err, size_t err_size);
 
 /// The mission object `root` (an already parsed document) into *mission and its name,
 /// as sva_json_parse_mission() does for text; the core's value rules are not checked.
-sva_json_result_t sva_json_mission_from(const json_t* root,
-                                        sva_mission_t* mission,
-                                        char name[SVA_JSON_NAME_MAX + 1],
-                                        char* err,
+sva_json_result_t sva_json_mission_from(const json_t* root, sva_mission_t* mission,
+                                        char name[SVA_JSON_NAME_MAX + 1], char* err,
                                         size_t err_size);
 
 /// One target object (SPEC section 3 keys) into *target; `prefix` names it in messages
@@ -84,10 +78,8 @@ json_t* sva_json_mission(const sva_mission_t* mission, const char* name);
 /// sva_mission_validate(). Returns SVA_JSON_OK, SVA_JSON_BAD_INPUT (unreadable
 /// path, empty or oversized input, malformed document, broken rule) or
 /// SVA_JSON_IO_ERROR (a read failing after the file was opened), with a message in err.
-sva_json_result_t sva_json_load_mission(const char* path,
-                                        sva_mission_t* mission,
-                                        char name[SVA_JSON_NAME_MAX + 1],
-                                        char* err,
+sva_json_result_t sva_json_load_mission(const char* path, sva_mission_t* mission,
+                                        char name[SVA_JSON_NAME_MAX + 1], char* err,
                                         size_t err_size);
 
 /// How input read from standard input is named in messages.
@@ -102,7 +94,8 @@ sva_json_result_t sva_json_load_mission(const char* path,
 /// fuel_used}, one per UAV in mission order), stranded (UAV ids), stats (solve_us,
 /// then every sva_stats_t counter under its own name).
 /// Returns a new reference (json_decref it), or NULL when memory runs out.
-json_t* sva_json_plan(const sva_mission_t* mission, const char* name, const sva_plan_t* plan, int64_t solve_us);
+json_t* sva_json_plan(const sva_mission_t* mission, const char* name, const sva_plan_t* plan,
+                      int64_t solve_us);
 
 /// Writes `plan` indented by 2, keys in insertion order, and a final newline.
 /// Returns 0, or -1 when writing fails (errno tells why).
@@ -134,7 +127,8 @@ json_t* sva_json_transport(const sva_mission_t* mission, const sva_tp_view_t* pr
 void sva_trace_observer(void* user, const sva_tp_view_t* problem);
 
 /// Points planner->on_transport at sva_trace_observer with *trace.
-void sva_trace_attach(sva_trace_t* trace, sva_planner_t* planner, FILE* out, const sva_mission_t* mission);
+void sva_trace_attach(sva_trace_t* trace, sva_planner_t* planner, FILE* out,
+                      const sva_mission_t* mission);
 
 // ---------------------------------------------------------------------------------
 // Live missions (docs/SPEC.md, live missions)
@@ -160,7 +154,8 @@ typedef struct {
 /// the mission is also checked against the core's rules. Event rules (ids, ticks) are
 /// the core's, checked when sva_live_apply() takes each event. Returns SVA_JSON_OK, or
 /// SVA_JSON_BAD_INPUT / SVA_JSON_IO_ERROR with one line in err (nothing to free then).
-sva_json_result_t sva_json_load_live(const char* path, sva_json_live_t* live, char* err, size_t err_size);
+sva_json_result_t sva_json_load_live(const char* path, sva_json_live_t* live, char* err,
+                                     size_t err_size);
 
 /// Frees the events of a loaded live document.
 void sva_json_live_free(sva_json_live_t* live);
@@ -169,7 +164,8 @@ void sva_json_live_free(sva_json_live_t* live);
 /// more keys: "changes" ({dropped, added: [[uav id, target id], ...], count, penalty})
 /// and "live" ({now, revision, kept, covered, under_way: [target ids], targets: [{id,
 /// state}]}). New reference, or NULL when memory runs out.
-json_t* sva_json_replan(const sva_live_t* live, const sva_live_result_t* result, const char* name, int64_t solve_us);
+json_t* sva_json_replan(const sva_live_t* live, const sva_live_result_t* result, const char* name,
+                        int64_t solve_us);
 
 #ifdef __cplusplus
 }

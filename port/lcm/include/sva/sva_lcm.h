@@ -57,14 +57,15 @@ extern "C" {
 /// field is always encoded, so each type has exactly one valid size; tests check these
 /// against lcm-gen's *_encoded_size().
 #define SVA_LCM_UAV_STATE_BYTES 21
-#define SVA_LCM_TARGET_BYTES 24
-#define SVA_LCM_ROUTE_BYTES 23
-#define SVA_LCM_FLEET_BYTES (8 + 8 + 2 + SVA_LCM_FLEET_STATE_T_MAX_UAVS * SVA_LCM_UAV_STATE_BYTES)
-#define SVA_LCM_MISSION_BYTES (8 + 8 + 20 + 2 + SVA_LCM_MISSION_T_MAX_TARGETS * SVA_LCM_TARGET_BYTES)
+#define SVA_LCM_TARGET_BYTES    24
+#define SVA_LCM_ROUTE_BYTES     23
+#define SVA_LCM_FLEET_BYTES     (8 + 8 + 2 + SVA_LCM_FLEET_STATE_T_MAX_UAVS * SVA_LCM_UAV_STATE_BYTES)
+#define SVA_LCM_MISSION_BYTES \
+    (8 + 8 + 20 + 2 + SVA_LCM_MISSION_T_MAX_TARGETS * SVA_LCM_TARGET_BYTES)
 /// The plan: fingerprint, ids and times (32 + 4), algorithm/status/error_code (3), flow's
 /// certificate (11), diag (22), covered and cost (10), uncovered (2 + 4 per target),
 /// routes (2 + 23 per UAV), route items (2 + 4 each): 18976 bytes.
-#define SVA_LCM_PLAN_BYTES                                                      \
+#define SVA_LCM_PLAN_BYTES                                                       \
     (8 + 32 + 4 + 3 + 11 + 22 + 2 + 8 + 2 + 4 * SVA_LCM_PLAN_T_MAX_TARGETS + 2 + \
      SVA_LCM_PLAN_T_MAX_UAVS * SVA_LCM_ROUTE_BYTES + 2 + 4 * SVA_LCM_PLAN_T_MAX_ROUTE_ITEMS)
 #define SVA_LCM_STATUS_BYTES (8 + 8 * 9 + 2 + 4 * SVA_LCM_NODE_STATUS_T_NUM_REASONS)
@@ -145,11 +146,11 @@ typedef struct {
 /// One planner node. Declare it static (it holds the planner: ~ 150 KiB with the
 /// default profile, see sva_limits()).
 typedef struct {
-    lcm_t* lcm;                  ///< subscriptions; default publish target
+    lcm_t* lcm;  ///< subscriptions; default publish target
     sva_algorithm_t algorithm;
     sva_lcm_publish_fn publish;  ///< default: lcm_publish on lcm
     void* publish_user;
-    sva_lcm_log_fn log;          ///< NULL: no logging
+    sva_lcm_log_fn log;  ///< NULL: no logging
     void* log_user;
     char channel_fleet[SVA_LCM_CHANNEL_SIZE];
     char channel_mission[SVA_LCM_CHANNEL_SIZE];
@@ -167,8 +168,8 @@ typedef struct {
 /// Returns SVA_OK, or SVA_ERR_ARGUMENT iff self or prefix is NULL, the prefix is longer
 /// than SVA_LCM_PREFIX_MAX, or the algorithm is out of range. Allocates nothing; O(size
 /// of the node) (it clears it).
-SVA_NODISCARD sva_status_t sva_lcm_node_init(sva_lcm_node_t* self, lcm_t* lcm,
-                                             const char* prefix, sva_algorithm_t algorithm);
+SVA_NODISCARD sva_status_t sva_lcm_node_init(sva_lcm_node_t* self, lcm_t* lcm, const char* prefix,
+                                             sva_algorithm_t algorithm);
 
 /// Subscribes raw handlers to the exact fleet and mission channel names (escaped:
 /// lcm_subscribe takes a regular expression) and sets both queue capacities to
