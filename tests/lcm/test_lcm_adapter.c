@@ -367,7 +367,7 @@ static void test_every_algorithm(void** state)
     }
 }
 
-// Issue 6: a flow plan over LCM carries its certificate, and only a plan that delivers
+// A flow plan over LCM carries its certificate, and only a plan that delivers
 // routes does (the node's wire plan is reused: a rejected or too large plan after a flow
 // plan must not inherit its bound).
 static void test_flow_certificate(void** state)
@@ -746,7 +746,7 @@ static void test_status(void** state)
     assert_int_equal(s.rejected[SVA_LCM_REJECT_TRUNCATED], 1);
 }
 
-// SPEC/issue goal: zero heap allocations per message in steady state, accepted or not,
+// The port's goal: zero heap allocations per message in steady state, accepted or not,
 // planning and publishing included.
 static void test_zero_allocations_per_message(void** state)
 {

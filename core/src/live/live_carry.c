@@ -45,6 +45,54 @@ static int32_t first_misfit(const sva_mission_t* m, const sva_plan_t* plan, uint
     return -1;
 }
 
+// Distances, fuel, cost, coverage and status of a plan whose routes are set.
+static void plan_figures(const sva_mission_t* m, sva_plan_t* plan, uint16_t* served)
+{
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        served[t] = 0U;
+    }
+    plan->cost = 0;
+    plan->stranded_count = 0U;
+    for (uint16_t r = 0U; r < m->uav_count; r++) {
+        sva_route_t* route = &plan->routes[r];
+        const sva_uav_t* uav = &m->uavs[r];
+        route->uav_id = uav->id;
+        route->stranded = (int64_t)uav->fuel < sva_distance(uav->x, uav->y, m->depot_x, m->depot_y);
+        plan->stranded_count = (uint16_t)(plan->stranded_count + (route->stranded ? 1U : 0U));
+        if (route->stranded) {
+            route->target_count = 0U;
+            route->distance_cells = 0;
+            route->fuel_used = 0;
+            continue;
+        }
+        int32_t x = uav->x;
+        int32_t y = uav->y;
+        int64_t cells = 0;
+        for (uint16_t k = 0U; k < route->target_count; k++) {
+            const sva_target_t* t = &m->targets[route->targets[k]];
+            cells += sva_distance(x, y, t->x, t->y);
+            x = t->x;
+            y = t->y;
+            served[route->targets[k]]++;
+        }
+        cells += sva_distance(x, y, m->depot_x, m->depot_y);
+        route->distance_cells = cells;
+        route->fuel_used = cells + ((int64_t)m->hover_fuel * (int64_t)route->target_count);
+        plan->cost += cells;
+    }
+    plan->covered = 0U;
+    plan->uncovered_count = 0U;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        if ((int32_t)served[t] == m->targets[t].need) {
+            plan->covered++;
+        } else {
+            plan->uncovered[plan->uncovered_count] = t;
+            plan->uncovered_count++;
+        }
+    }
+    plan->status = (plan->uncovered_count == 0U) ? SVA_PLAN_COMPLETE : SVA_PLAN_PARTIAL;
+}
+
 void sva_live_carry(const sva_mission_t* m, sva_plan_t* plan, sva_algorithm_t algorithm,
                     uint16_t* served)
 {
@@ -76,52 +124,5 @@ void sva_live_carry(const sva_mission_t* m, sva_plan_t* plan, sva_algorithm_t al
             }
         }
     }
-    sva_live_finish(m, plan, served);
-}
-
-void sva_live_finish(const sva_mission_t* m, sva_plan_t* plan, uint16_t* served)
-{
-    for (uint16_t t = 0U; t < m->target_count; t++) {
-        served[t] = 0U;
-    }
-    plan->cost = 0;
-    plan->stranded_count = 0U;
-    for (uint16_t r = 0U; r < m->uav_count; r++) {
-        sva_route_t* route = &plan->routes[r];
-        const sva_uav_t* uav = &m->uavs[r];
-        route->uav_id = uav->id;
-        route->stranded = (int64_t)uav->fuel < sva_distance(uav->x, uav->y, m->depot_x, m->depot_y);
-        plan->stranded_count = (uint16_t)(plan->stranded_count + (route->stranded ? 1U : 0U));
-        if (route->stranded) {
-            route->target_count = 0U;
-            route->distance_cells = 0;
-            route->fuel_used = 0;
-            continue;
-        }
-        int32_t x = uav->x;
-        int32_t y = uav->y;
-        int64_t cells = 0;
-        for (uint16_t k = 0U; k < route->target_count; k++) {
-            const sva_target_t* t = &m->targets[route->targets[k]];
-            cells += sva_distance(x, y, t->x, t->y);
-            x = t->x;
-            y = t->y;
-            served[route->targets[k]]++;
-        }
-        cells += sva_distance(x, y, m->depot_x, m->depot_y);
-        route->distance_cells = cells;
-        route->fuel_used = cells + ((int64_t)m->hover_fuel * route->target_count);
-        plan->cost += cells;
-    }
-    plan->covered = 0U;
-    plan->uncovered_count = 0U;
-    for (uint16_t t = 0U; t < m->target_count; t++) {
-        if ((int32_t)served[t] == m->targets[t].need) {
-            plan->covered++;
-        } else {
-            plan->uncovered[plan->uncovered_count] = t;
-            plan->uncovered_count++;
-        }
-    }
-    plan->status = (plan->uncovered_count == 0U) ? SVA_PLAN_COMPLETE : SVA_PLAN_PARTIAL;
+    plan_figures(m, plan, served);
 }

@@ -24,28 +24,13 @@ int32_t sva_live_find_target(const sva_live_t* self, int32_t id)
     return -1;
 }
 
-// A value in [lo, hi], or a diagnostic naming the field and the bound.
-static bool in_range(sva_diag_t* diag, sva_field_t field, int32_t index, int64_t value, int64_t lo,
-                     int64_t hi, const char* hi_name)
-{
-    if (value < lo) {
-        sva_diag_set(diag, field, SVA_RULE_MIN, index, value, lo, NULL);
-        return false;
-    }
-    if (value > hi) {
-        sva_diag_set(diag, field, SVA_RULE_MAX, index, value, hi, hi_name);
-        return false;
-    }
-    return true;
-}
-
 bool sva_live_target_ok(const sva_target_t* t, int32_t index, int64_t now, sva_diag_t* diag)
 {
-    if (!in_range(diag, SVA_FIELD_TARGET_ID, index, t->id, 1, SVA_MAX_ID, NULL) ||
-        !in_range(diag, SVA_FIELD_TARGET_X, index, t->x, SVA_COORD_MIN, SVA_COORD_MAX, NULL) ||
-        !in_range(diag, SVA_FIELD_TARGET_Y, index, t->y, SVA_COORD_MIN, SVA_COORD_MAX, NULL) ||
-        !in_range(diag, SVA_FIELD_TARGET_START, index, t->start_ticks, 0, SVA_MAX_TICK - 1,
-                  "SVA_MAX_TICK")) {
+    if (!sva_in_range(diag, SVA_FIELD_TARGET_ID, index, t->id, 1, SVA_MAX_ID, NULL) ||
+        !sva_in_range(diag, SVA_FIELD_TARGET_X, index, t->x, SVA_COORD_MIN, SVA_COORD_MAX, NULL) ||
+        !sva_in_range(diag, SVA_FIELD_TARGET_Y, index, t->y, SVA_COORD_MIN, SVA_COORD_MAX, NULL) ||
+        !sva_in_range(diag, SVA_FIELD_TARGET_START, index, t->start_ticks, 0, SVA_MAX_TICK - 1,
+                      "SVA_MAX_TICK")) {
         return false;
     }
     if (t->start_ticks < now) {
@@ -57,9 +42,10 @@ bool sva_live_target_ok(const sva_target_t* t, int32_t index, int64_t now, sva_d
                      t->start_ticks, NULL);
         return false;
     }
-    return in_range(diag, SVA_FIELD_TARGET_END, index, t->end_ticks, 1, SVA_MAX_TICK,
-                    "SVA_MAX_TICK") &&
-           in_range(diag, SVA_FIELD_TARGET_NEED, index, t->need, 1, SVA_MAX_UAVS, "SVA_MAX_UAVS");
+    return sva_in_range(diag, SVA_FIELD_TARGET_END, index, t->end_ticks, 1, SVA_MAX_TICK,
+                        "SVA_MAX_TICK") &&
+           sva_in_range(diag, SVA_FIELD_TARGET_NEED, index, t->need, 1, SVA_MAX_UAVS,
+                        "SVA_MAX_UAVS");
 }
 
 // The plan in force given at the start: one route per UAV in mission order, known
@@ -78,7 +64,7 @@ static bool plan_ok(const sva_mission_t* m, const sva_plan_t* plan, sva_diag_t* 
                          m->uavs[u].id, NULL);
             return false;
         }
-        if (r->target_count > SVA_MAX_ROUTE_TARGETS) {
+        if ((uint32_t)r->target_count > (uint32_t)SVA_MAX_ROUTE_TARGETS) {
             sva_diag_set(diag, SVA_FIELD_ROUTE_TARGETS, SVA_RULE_COUNT, (int32_t)u, r->target_count,
                          SVA_MAX_ROUTE_TARGETS, "SVA_MAX_ROUTE_TARGETS");
             return false;
@@ -150,14 +136,13 @@ static bool event_ok(const sva_live_t* self, const sva_event_t* e, sva_diag_t* d
                      NULL);
         return false;
     }
-    if (!in_range(diag, SVA_FIELD_EVENT_AT, -1, e->at_ticks, 0, SVA_MAX_TICK, "SVA_MAX_TICK")) {
+    if (!sva_in_range(diag, SVA_FIELD_EVENT_AT, -1, e->at_ticks, 0, SVA_MAX_TICK, "SVA_MAX_TICK")) {
         return false;
     }
     const sva_mission_t* m = &self->mission;
-    int32_t u = -1;
     if ((e->type == SVA_EVENT_UAV_LOST) || (e->type == SVA_EVENT_UAV_BACK) ||
         (e->type == SVA_EVENT_FUEL)) {
-        u = sva_live_find_uav(self, e->uav_id);
+        const int32_t u = sva_live_find_uav(self, e->uav_id);
         if (u < 0) {
             sva_diag_set(diag, SVA_FIELD_EVENT_UAV, SVA_RULE_UNKNOWN, -1, e->uav_id, 0, NULL);
             return false;
@@ -171,11 +156,15 @@ static bool event_ok(const sva_live_t* self, const sva_event_t* e, sva_diag_t* d
     }
     switch (e->type) {
     case SVA_EVENT_UAV_BACK:
-        return in_range(diag, SVA_FIELD_EVENT_X, -1, e->x, SVA_COORD_MIN, SVA_COORD_MAX, NULL) &&
-               in_range(diag, SVA_FIELD_EVENT_Y, -1, e->y, SVA_COORD_MIN, SVA_COORD_MAX, NULL) &&
-               in_range(diag, SVA_FIELD_EVENT_FUEL, -1, e->fuel, 0, SVA_MAX_FUEL, "SVA_MAX_FUEL");
+        return sva_in_range(diag, SVA_FIELD_EVENT_X, -1, e->x, SVA_COORD_MIN, SVA_COORD_MAX,
+                            NULL) &&
+               sva_in_range(diag, SVA_FIELD_EVENT_Y, -1, e->y, SVA_COORD_MIN, SVA_COORD_MAX,
+                            NULL) &&
+               sva_in_range(diag, SVA_FIELD_EVENT_FUEL, -1, e->fuel, 0, SVA_MAX_FUEL,
+                            "SVA_MAX_FUEL");
     case SVA_EVENT_FUEL:
-        return in_range(diag, SVA_FIELD_EVENT_FUEL, -1, e->fuel, 0, SVA_MAX_FUEL, "SVA_MAX_FUEL");
+        return sva_in_range(diag, SVA_FIELD_EVENT_FUEL, -1, e->fuel, 0, SVA_MAX_FUEL,
+                            "SVA_MAX_FUEL");
     case SVA_EVENT_TARGET_ADDED: {
         const int32_t same = sva_live_find_target(self, e->target.id);
         if (same >= 0) {
@@ -183,7 +172,7 @@ static bool event_ok(const sva_live_t* self, const sva_event_t* e, sva_diag_t* d
                          NULL);
             return false;
         }
-        if (m->target_count >= SVA_MAX_TARGETS) {
+        if ((uint32_t)m->target_count >= (uint32_t)SVA_MAX_TARGETS) {
             sva_diag_set(diag, SVA_FIELD_TARGETS, SVA_RULE_COUNT, -1, (int64_t)m->target_count + 1,
                          SVA_MAX_TARGETS, "SVA_MAX_TARGETS");
             return false;
@@ -255,13 +244,15 @@ sva_status_t sva_live_apply(sva_live_t* self, const sva_event_t* event, sva_diag
         return SVA_ERR_INVALID;
     }
     const int64_t at = event->at_ticks;
+    // event_ok found the UAV of a UAV event; 0 stands in for the others (unused).
+    const int32_t found = sva_live_find_uav(self, event->uav_id);
+    const uint16_t u = (uint16_t)((found < 0) ? 0 : found);
+    sva_live_uav_t* v = &self->priv.uavs[u];
     sva_live_advance(self, at);
-    const int32_t u = sva_live_find_uav(self, event->uav_id);
-    sva_live_uav_t* v = (u >= 0) ? &self->priv.uavs[u] : NULL;
     switch (event->type) {
     case SVA_EVENT_UAV_LOST: {
         sva_live_pos_t pos;
-        sva_live_walk(self, (uint16_t)u, at, &pos, -1, NULL);
+        sva_live_walk(self, u, at, &pos, -1, NULL);
         v->lost = true;
         if ((pos.busy_with >= 0) &&
             (self->target_state[(uint16_t)pos.busy_with] == (uint8_t)SVA_TARGET_UNDER_WAY)) {
@@ -279,9 +270,9 @@ sva_status_t sva_live_apply(sva_live_t* self, const sva_event_t* event, sva_diag
         v->route_count = 0U;
         break;
     case SVA_EVENT_FUEL: {
-        sva_live_rebase(self, (uint16_t)u, at);
+        sva_live_rebase(self, u, at);
         sva_live_pos_t pos;
-        sva_live_walk(self, (uint16_t)u, at, &pos, -1, NULL);
+        sva_live_walk(self, u, at, &pos, -1, NULL);
         v->fuel += (int64_t)event->fuel - pos.fuel;
         break;
     }

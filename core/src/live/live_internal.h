@@ -49,7 +49,5 @@ int32_t sva_live_find_target(const sva_live_t* self, int32_t id);
 /// scratch for SVA_MAX_TARGETS counts.
 void sva_live_carry(const sva_mission_t* mission, sva_plan_t* plan, sva_algorithm_t algorithm,
                     uint16_t* served);
-/// Fills distances, fuel, cost, coverage and status of a plan whose routes are set.
-void sva_live_finish(const sva_mission_t* mission, sva_plan_t* plan, uint16_t* served);
 
 #endif  // SVA_LIVE_INTERNAL_H

@@ -6,14 +6,17 @@
 static void step_point(int32_t ax, int32_t ay, int32_t bx, int32_t by, int64_t s, int32_t* x,
                        int32_t* y)
 {
-    const int64_t dx = (bx >= ax) ? ((int64_t)bx - ax) : ((int64_t)ax - bx);
+    const int64_t x0 = ax;
+    const int64_t y0 = ay;
+    const int64_t east = ((int64_t)bx >= x0) ? 1 : -1;
+    const int64_t north = ((int64_t)by >= y0) ? 1 : -1;
+    const int64_t dx = ((int64_t)bx - x0) * east;
     if (s <= dx) {
-        *x = (int32_t)((bx >= ax) ? (ax + s) : (ax - s));
+        *x = (int32_t)(x0 + (s * east));
         *y = ay;
     } else {
-        const int64_t sy = s - dx;
         *x = bx;
-        *y = (int32_t)((by >= ay) ? (ay + sy) : (ay - sy));
+        *y = (int32_t)(y0 + ((s - dx) * north));
     }
 }
 
@@ -29,9 +32,15 @@ static void on_leg(int32_t x, int32_t y, int32_t bx, int32_t by, int64_t t, int6
     out->ready = t + (steps * tpc);
 }
 
-void sva_live_walk(const sva_live_t* self, uint16_t u, int64_t at, sva_live_pos_t* out,
+void sva_live_walk(const sva_live_t* self, uint16_t u, int64_t at_ticks, sva_live_pos_t* out,
                    int32_t probe, int64_t* arrival)
 {
+    int64_t at = at_ticks;  // -1 once the position is known
+    out->x = self->priv.uavs[u].x;
+    out->y = self->priv.uavs[u].y;
+    out->fuel = self->priv.uavs[u].fuel;
+    out->ready = self->priv.uavs[u].from_ticks;
+
     const sva_mission_t* m = &self->mission;
     const sva_live_uav_t* v = &self->priv.uavs[u];
     const int64_t tpc = m->ticks_per_cell;

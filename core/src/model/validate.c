@@ -2,9 +2,8 @@
 // first violation (instance fields, then UAVs, then targets, in list order) wins.
 #include "model.h"
 
-// Checks lo <= value <= hi; on failure fills diag and returns false.
-static bool in_range(sva_diag_t* diag, sva_field_t field, int32_t index, int64_t value, int64_t lo,
-                     int64_t hi, const char* hi_name)
+bool sva_in_range(sva_diag_t* diag, sva_field_t field, int32_t index, int64_t value, int64_t lo,
+                  int64_t hi, const char* hi_name)
 {
     if (value < lo) {
         sva_diag_set(diag, field, SVA_RULE_MIN, index, value, lo, NULL);
@@ -19,30 +18,30 @@ static bool in_range(sva_diag_t* diag, sva_field_t field, int32_t index, int64_t
 
 static bool coord_ok(sva_diag_t* diag, sva_field_t field, int32_t index, int32_t value)
 {
-    return in_range(diag, field, index, value, SVA_COORD_MIN, SVA_COORD_MAX, NULL);
+    return sva_in_range(diag, field, index, value, SVA_COORD_MIN, SVA_COORD_MAX, NULL);
 }
 
 static bool instance_ok(const sva_mission_t* m, sva_diag_t* diag)
 {
     return coord_ok(diag, SVA_FIELD_DEPOT_X, -1, m->depot_x) &&
            coord_ok(diag, SVA_FIELD_DEPOT_Y, -1, m->depot_y) &&
-           in_range(diag, SVA_FIELD_TICKS_PER_CELL, -1, m->ticks_per_cell, 1,
-                    SVA_MAX_TICKS_PER_CELL, "SVA_MAX_TICKS_PER_CELL") &&
-           in_range(diag, SVA_FIELD_HOVER_FUEL, -1, m->hover_fuel, 0, SVA_MAX_HOVER_FUEL,
-                    "SVA_MAX_HOVER_FUEL") &&
-           in_range(diag, SVA_FIELD_OVERLAP_PERCENT, -1, m->overlap_percent, 0, 100, NULL) &&
-           in_range(diag, SVA_FIELD_CHANGE_PENALTY, -1, m->change_penalty, 0,
-                    SVA_MAX_CHANGE_PENALTY, "SVA_MAX_CHANGE_PENALTY");
+           sva_in_range(diag, SVA_FIELD_TICKS_PER_CELL, -1, m->ticks_per_cell, 1,
+                        SVA_MAX_TICKS_PER_CELL, "SVA_MAX_TICKS_PER_CELL") &&
+           sva_in_range(diag, SVA_FIELD_HOVER_FUEL, -1, m->hover_fuel, 0, SVA_MAX_HOVER_FUEL,
+                        "SVA_MAX_HOVER_FUEL") &&
+           sva_in_range(diag, SVA_FIELD_OVERLAP_PERCENT, -1, m->overlap_percent, 0, 100, NULL) &&
+           sva_in_range(diag, SVA_FIELD_CHANGE_PENALTY, -1, m->change_penalty, 0,
+                        SVA_MAX_CHANGE_PENALTY, "SVA_MAX_CHANGE_PENALTY");
 }
 
 static bool uav_ok(const sva_mission_t* m, int32_t i, sva_diag_t* diag)
 {
     const sva_uav_t* u = &m->uavs[i];
-    if (!in_range(diag, SVA_FIELD_UAV_ID, i, u->id, 1, SVA_MAX_ID, NULL) ||
+    if (!sva_in_range(diag, SVA_FIELD_UAV_ID, i, u->id, 1, SVA_MAX_ID, NULL) ||
         !coord_ok(diag, SVA_FIELD_UAV_X, i, u->x) || !coord_ok(diag, SVA_FIELD_UAV_Y, i, u->y) ||
-        !in_range(diag, SVA_FIELD_UAV_FUEL, i, u->fuel, 0, SVA_MAX_FUEL, "SVA_MAX_FUEL") ||
-        !in_range(diag, SVA_FIELD_UAV_READY_AT, i, u->ready_at_ticks, 0, SVA_MAX_TICK,
-                  "SVA_MAX_TICK")) {
+        !sva_in_range(diag, SVA_FIELD_UAV_FUEL, i, u->fuel, 0, SVA_MAX_FUEL, "SVA_MAX_FUEL") ||
+        !sva_in_range(diag, SVA_FIELD_UAV_READY_AT, i, u->ready_at_ticks, 0, SVA_MAX_TICK,
+                      "SVA_MAX_TICK")) {
         return false;
     }
     for (int32_t j = 0; j < i; j++) {
@@ -57,13 +56,14 @@ static bool uav_ok(const sva_mission_t* m, int32_t i, sva_diag_t* diag)
 static bool target_ok(const sva_mission_t* m, int32_t i, sva_diag_t* diag)
 {
     const sva_target_t* t = &m->targets[i];
-    if (!in_range(diag, SVA_FIELD_TARGET_ID, i, t->id, 1, SVA_MAX_ID, NULL) ||
+    if (!sva_in_range(diag, SVA_FIELD_TARGET_ID, i, t->id, 1, SVA_MAX_ID, NULL) ||
         !coord_ok(diag, SVA_FIELD_TARGET_X, i, t->x) ||
         !coord_ok(diag, SVA_FIELD_TARGET_Y, i, t->y) ||
-        !in_range(diag, SVA_FIELD_TARGET_START, i, t->start_ticks, 0, SVA_MAX_TICK - 1,
-                  "SVA_MAX_TICK - 1") ||
-        !in_range(diag, SVA_FIELD_TARGET_END, i, t->end_ticks, 1, SVA_MAX_TICK, "SVA_MAX_TICK") ||
-        !in_range(diag, SVA_FIELD_TARGET_NEED, i, t->need, 1, SVA_MAX_UAVS, "SVA_MAX_UAVS")) {
+        !sva_in_range(diag, SVA_FIELD_TARGET_START, i, t->start_ticks, 0, SVA_MAX_TICK - 1,
+                      "SVA_MAX_TICK - 1") ||
+        !sva_in_range(diag, SVA_FIELD_TARGET_END, i, t->end_ticks, 1, SVA_MAX_TICK,
+                      "SVA_MAX_TICK") ||
+        !sva_in_range(diag, SVA_FIELD_TARGET_NEED, i, t->need, 1, SVA_MAX_UAVS, "SVA_MAX_UAVS")) {
         return false;
     }
     if (t->end_ticks <= t->start_ticks) {
