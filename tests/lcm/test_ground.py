@@ -102,7 +102,7 @@ def test_sva_tools_wrapper_dispatches_lcm(tmp_path):
     wrapper = REPO / "tools" / "sva-tools"
     r = subprocess.run([str(wrapper), "lcm", "--help"], capture_output=True, text=True, timeout=60)
     assert r.returncode == 0, r.stderr
-    assert r.stdout.startswith("usage: sva-tools lcm") and "{send,record,replay}" in r.stdout
+    assert r.stdout.startswith("usage: sva-tools lcm") and "{send,scenario,record,replay}" in r.stdout
     r = subprocess.run([str(wrapper), "lcm", "send", str(tmp_path / "missing.json")],
                        capture_output=True, text=True, timeout=60)
     assert r.returncode == 2

@@ -257,6 +257,11 @@ static void test_encoded_sizes(void** state)
     assert_int_equal(sva_lcm_mission_t_encoded_size(&mission), SVA_LCM_MISSION_BYTES);
     assert_int_equal(sva_lcm_plan_t_encoded_size(&p), SVA_LCM_PLAN_BYTES);
     assert_int_equal(sva_lcm_node_status_t_encoded_size(&s), SVA_LCM_STATUS_BYTES);
+    static sva_lcm_event_t e;
+    static sva_lcm_replan_t r;
+    assert_int_equal(sva_lcm_event_t_encoded_size(&e), SVA_LCM_EVENT_BYTES);
+    assert_int_equal(sva_lcm_replan_t_encoded_size(&r), SVA_LCM_REPLAN_BYTES);
+    assert_true(SVA_LCM_REPLAN_BYTES + 64 <= 65499);
     // one udpm datagram (LCM_SHORT_MESSAGE_MAX_SIZE) with the longest channel name
     assert_true(SVA_LCM_PLAN_BYTES + 64 <= 65499);
 }
