@@ -859,6 +859,66 @@ static void test_live_events(void** state)
     assert_int_equal(node.counters.replans_published, 5);
 }
 
+// fleet_reports: while a live mission runs, a fleet message is a report. A UAV reported
+// unavailable becomes uav_lost, one whose fuel is below its route's need a fuel event,
+// each answered by one replan (event_seq -1) and no plan from scratch; a report that
+// contradicts nothing publishes nothing.
+static void test_fleet_reports(void** state)
+{
+    (void)state;
+    node_setup(SVA_ALGO_SVA);
+    node.fleet_reports = true;
+    make_inputs(4);
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
+    assert_int_equal(plans_seen, 1);
+    decode_last_plan();
+    int busy = -1;  // a UAV with a route, other than UAV 11
+    for (int r = 0; r < got_plan.route_count; ++r) {
+        if ((got_plan.routes[r].target_count > 0) && (got_plan.routes[r].uav_id != 11) &&
+            (busy < 0)) {
+            busy = r;
+        }
+    }
+    assert_true(busy >= 0);
+    const int32_t busy_id = got_plan.routes[busy].uav_id;
+
+    fleet.uavs[1].health = SVA_LCM_UAV_STATE_T_HEALTH_UNAVAILABLE;  // UAV 11
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_int_equal(plans_seen, 1);
+    assert_int_equal(replans_seen, 1);
+    assert_int_equal(got_replan.event_seq, -1);
+    assert_int_equal(got_replan.event_type, SVA_LCM_EVENT_T_TYPE_UAV_LOST);
+    assert_int_equal(got_replan.accepted, 1);
+    assert_int_equal(got_replan.revision, 1);
+    assert_int_equal(got_replan.residual_fleet.uav_count, 4);
+    for (int u = 0; u < got_replan.residual_fleet.uav_count; ++u) {
+        assert_int_not_equal(got_replan.residual_fleet.uavs[u].id, 11);
+    }
+
+    fleet.uavs[busy_id - 10].fuel = 1;  // ids are 10 + index
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_int_equal(replans_seen, 2);
+    assert_int_equal(got_replan.event_type, SVA_LCM_EVENT_T_TYPE_FUEL);
+    assert_int_equal(got_replan.revision, 2);
+    int found = 0;
+    for (int u = 0; u < got_replan.residual_fleet.uav_count; ++u) {
+        if (got_replan.residual_fleet.uavs[u].id == busy_id) {
+            assert_int_equal(got_replan.residual_fleet.uavs[u].fuel, 1);
+            found = 1;
+        }
+    }
+    assert_true(found);
+    // the same report again: unchanged; more fuel than any route needs: nothing to do
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_UNCHANGED);
+    fleet.uavs[busy_id - 10].fuel = 200;
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_int_equal(replans_seen, 2);
+    assert_int_equal(plans_seen, 1);
+    assert_int_equal(node.priv.live.revision, 2);
+}
+
 static void test_zero_allocations_per_message(void** state)
 {
     (void)state;
@@ -945,6 +1005,7 @@ int main(void)
         cmocka_unit_test(test_plan_too_large),
         cmocka_unit_test(test_status),
         cmocka_unit_test(test_live_events),
+        cmocka_unit_test(test_fleet_reports),
         cmocka_unit_test(test_zero_allocations_per_message),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

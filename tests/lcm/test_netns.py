@@ -763,3 +763,42 @@ def test_live_event_version_and_no_mission_refused(node):
         wire.replan_document(r42, "m")
     status = node.fresh_status()
     assert status.rejected[wire.REJECT_REASONS.index("value")] >= 2
+
+
+def test_fleet_reports_turn_contradictions_into_replans():
+    """A node with --fleet-reports: after the mission's plan, a fleet report with UAV 2
+    unavailable is answered by a replan (event_seq -1, uav_lost) whose plan passes the
+    checker on its residual mission without UAV 2, and no plan from scratch; a report
+    with UAV 3's fuel below its route's need by a fuel replan; then nothing for a report
+    that contradicts nothing."""
+    n = Node(f"R{uuid.uuid4().hex[:6]}_", "--fleet-reports")
+    try:
+        _, fleet, mission = wire.mission_messages(LIVE_MISSION, 8, 8)
+        n.pub.publish(n.prefix + "FLEET", fleet.encode())
+        n.pub.publish(n.prefix + "MISSION", mission.encode())
+        assert n.wait(lambda: n.plans)
+        plan0 = wire.plan_document(n.plans[-1], "live_lcm")
+        fleet.uavs[1].health = 1  # UAV 2
+        n.pub.publish(n.prefix + "FLEET", fleet.encode())
+        assert n.wait(lambda: len(n.replans) == 1)
+        doc = wire.replan_document(n.replans[-1], "live_lcm")
+        assert (doc["event_seq"], doc["event"], doc["accepted"], doc["revision"]) == \
+            (-1, "uav_lost", True, 1)
+        assert 2 not in {u["id"] for u in doc["residual"]["uavs"]}
+        assert violations_doc(doc["residual"], doc["plan"]) == []
+        busy = [r["uav"] for r in doc["plan"]["routes"] if r["targets"]]
+        assert busy, doc["plan"]
+        fleet.uavs[busy[0] - 1].fuel = 1
+        n.pub.publish(n.prefix + "FLEET", fleet.encode())
+        assert n.wait(lambda: len(n.replans) == 2)
+        doc = wire.replan_document(n.replans[-1], "live_lcm")
+        assert (doc["event"], doc["revision"]) == ("fuel", 2)
+        assert [u["fuel"] for u in doc["residual"]["uavs"] if u["id"] == busy[0]] == [1]
+        assert violations_doc(doc["residual"], doc["plan"]) == []
+        fleet.uavs[busy[0] - 1].fuel = 100
+        n.pub.publish(n.prefix + "FLEET", fleet.encode())
+        s = n.fresh_status()
+        assert s.fleet_rx == 4 and len(n.replans) == 2 and len(n.plans) == 1, plan0
+    finally:
+        rc, err = n.stop()
+    assert rc == 0, err

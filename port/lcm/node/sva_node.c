@@ -67,6 +67,10 @@ static void usage(FILE* out)
             "  -a, --algorithm NAME   sva, ga, hga, bfa or flow (default sva)\n"
             "  -c, --change-penalty N cells a replan pays per changed visit (default 0,\n"
             "                         at most %ld; SPEC section 12.4)\n"
+            "  -f, --fleet-reports    while a live mission runs, a fleet message is a report\n"
+            "                         checked against the plan in force (a UAV unavailable:\n"
+            "                         uav_lost; fuel below its route's need: a fuel event)\n"
+            "                         instead of a new fleet to plan from scratch\n"
             "  -s, --status-ms MS     status period in milliseconds (default 1000)\n"
             "  -e, --exit-on-eof      stop when the provider ends (file:// logs)\n"
             "  -r, --rt-priority N    run under SCHED_FIFO priority N (1..99), LCM's receive\n"
@@ -143,6 +147,7 @@ int main(int argc, char** argv)
     const char* algo_name = "sva";
     long status_ms = 1000;
     long change_penalty = 0;
+    int fleet_reports = 0;
     long rt_priority = 0;
     int lock_memory = 0;
     int exit_on_eof = 0;
@@ -171,6 +176,8 @@ int main(int argc, char** argv)
             if (!integer_option("--rt-priority", argv[++i], 1, 99, &rt_priority)) {
                 return 2;
             }
+        } else if ((strcmp(a, "-f") == 0) || (strcmp(a, "--fleet-reports") == 0)) {
+            fleet_reports = 1;
         } else if ((strcmp(a, "-m") == 0) || (strcmp(a, "--mlock") == 0)) {
             lock_memory = 1;
         } else if ((strcmp(a, "-e") == 0) || (strcmp(a, "--exit-on-eof") == 0)) {
@@ -226,6 +233,7 @@ int main(int argc, char** argv)
     }
     node.log = log_stderr;
     node.change_penalty = (int32_t)change_penalty;
+    node.fleet_reports = (fleet_reports != 0);
 
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);

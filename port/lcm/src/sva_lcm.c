@@ -404,6 +404,9 @@ static void replan(sva_lcm_node_t* self)
 // ---------------------------------------------------------------------------------
 // Inputs.
 
+// The live mission's handlers (defined below, with the events).
+static void fleet_report(sva_lcm_node_t* self);
+
 static bool check_fleet(sva_lcm_node_t* self, sva_lcm_reject_t* reason, int32_t* bad_health)
 {
     const sva_lcm_fleet_state_t* f = &self->priv.fleet_rx;
@@ -521,7 +524,9 @@ sva_lcm_verdict_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_
     }
     self->priv.fleet_revision = f->revision;
     self->priv.have_fleet = true;
-    if (self->priv.have_mission) {
+    if (self->fleet_reports && self->priv.live_active) {
+        fleet_report(self);
+    } else if (self->priv.have_mission) {
         replan(self);
     }
     return SVA_LCM_ACCEPTED;
@@ -695,6 +700,8 @@ static int16_t list_changes(const sva_plan_t* from, const sva_plan_t* to, const 
     return n;
 }
 
+static void replan_live(sva_lcm_node_t* self);
+
 sva_lcm_verdict_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_t size)
 {
     self->counters.event_rx += 1U;
@@ -761,6 +768,19 @@ sva_lcm_verdict_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_
         (void)snprintf(text, sizeof text, "%.31s: %.126s", self->channel_event, msg);
         return refuse_event(self, SVA_LCM_REJECT_INVALID, &diag, text);
     }
+    replan_live(self);
+    return SVA_LCM_ACCEPTED;
+}
+
+// Replans the live mission after applied events and publishes the replan (header set).
+static void replan_live(sva_lcm_node_t* self)
+{
+    sva_lcm_replan_t* r = &self->priv.replan_tx;
+    sva_live_t* live = &self->priv.live;
+    sva_diag_t diag;
+    sva_diag_clear(&diag);
+    char msg[128];
+    char text[SVA_LCM_REPLAN_T_DIAG_TEXT_SIZE];
     r->accepted = 1;
     self->priv.plan_id += 1;
     sva_lcm_plan_t* p = &r->plan;
@@ -788,7 +808,7 @@ sva_lcm_verdict_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_
         }
         (void)reject(self, SVA_LCM_REJECT_PLANNER, text);
         publish_replan(self);
-        return SVA_LCM_ACCEPTED;
+        return;
     }
     r->kept = res->kept ? (int8_t)1 : (int8_t)0;
     r->under_way = (int16_t)res->under_way;
@@ -811,7 +831,65 @@ sva_lcm_verdict_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_
                      "replan: plan needs more than MAX_ROUTE_ITEMS");
     }
     publish_replan(self);
-    return SVA_LCM_ACCEPTED;
+}
+
+// A fleet report while a live mission runs (fleet_reports set): each UAV in service
+// whose report contradicts the plan in force becomes an event at the live mission's
+// now: health not OK -> uav_lost; fuel below what its route in force still needs (the
+// flight model's fuel now less its fuel at the route's end) -> a fuel event. With at
+// least one applied, one replan is published (event_seq -1, event_type the last one).
+static void fleet_report(sva_lcm_node_t* self)
+{
+    const sva_lcm_fleet_state_t* f = &self->priv.fleet_rx;
+    sva_live_t* live = &self->priv.live;
+    sva_lcm_replan_t* r = &self->priv.replan_tx;
+    memset(r, 0, sizeof(*r));
+    r->version = SVA_LCM_REPLAN_T_VERSION;
+    r->event_seq = -1;
+    r->change_penalty = self->change_penalty;
+    uint32_t applied = 0;
+    for (int32_t i = 0; i < (int32_t)f->uav_count; ++i) {
+        const sva_lcm_uav_state_t* w = &f->uavs[i];
+        int32_t u = -1;
+        for (uint16_t k = 0; k < live->mission.uav_count; ++k) {
+            if (live->mission.uavs[k].id == w->id) {
+                u = (int32_t)k;
+            }
+        }
+        int32_t x = 0;
+        int32_t y = 0;
+        int32_t fuel = 0;
+        int32_t ready = 0;
+        if ((u < 0) ||
+            !sva_live_uav_at(live, (uint16_t)u, live->now_ticks, &x, &y, &fuel, &ready)) {
+            continue;  // not in the live mission, or out of service
+        }
+        sva_event_t ev;
+        memset(&ev, 0, sizeof ev);
+        ev.at_ticks = live->now_ticks;
+        ev.uav_id = w->id;
+        if (w->health != SVA_LCM_UAV_STATE_T_HEALTH_OK) {
+            ev.type = SVA_EVENT_UAV_LOST;
+        } else {
+            int32_t end_fuel = 0;
+            if (!sva_live_uav_at(live, (uint16_t)u, (int32_t)SVA_MAX_TICK, &x, &y, &end_fuel,
+                                 &ready) ||
+                ((int64_t)w->fuel >= (int64_t)fuel - (int64_t)end_fuel)) {
+                continue;
+            }
+            ev.type = SVA_EVENT_FUEL;
+            ev.fuel = w->fuel;
+        }
+        if (sva_live_apply(live, &ev, NULL) == SVA_OK) {
+            applied += 1U;
+            r->event_type = (int8_t)ev.type;
+        }
+    }
+    if (applied > 0U) {
+        r->now_ticks = live->now_ticks;
+        r->revision = (int64_t)live->revision;
+        replan_live(self);
+    }
 }
 
 sva_status_t sva_lcm_publish_status(sva_lcm_node_t* self, int64_t utime)

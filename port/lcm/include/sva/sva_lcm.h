@@ -32,6 +32,10 @@
 /// (accepted 0, the diagnostic as sva_diag_t fields and text; the live mission is
 /// unchanged). A refusal is also counted (REJECT_VALUE for the version, the type and
 /// "no live mission"; REJECT_INVALID for the core's verdict).
+/// With fleet_reports set, a fleet message that arrives while a live mission runs is
+/// a report: a UAV in service reported with health not OK becomes uav_lost, one whose
+/// fuel is below what its route in force still needs becomes a fuel event (both at the
+/// live mission's now); if any applied, one replan (event_seq -1) is published.
 ///
 /// ## Where every byte lives
 /// Everything is in sva_lcm_node_t, which the caller owns (the node program declares it
@@ -194,6 +198,11 @@ typedef struct {
     /// Cells a replan pays per changed visit (SPEC 12.4), [0, SVA_MAX_CHANGE_PENALTY]:
     /// set it before the first plan (the live mission takes it when it starts).
     int32_t change_penalty;
+    /// false (default): every accepted fleet change replans from scratch and starts a
+    /// new live mission. true: while a live mission runs, a fleet message is a report
+    /// checked against the plan in force (see "The live mission"): no replan from
+    /// scratch; contradictions become events and one replan on REPLAN.
+    bool fleet_reports;
     sva_lcm_counters_t counters;
     sva_lcm_reject_t last_reject;  ///< valid after a SVA_LCM_REJECTED verdict
     sva_diag_t last_diag;          ///< the last COUNT/VALUE/INVALID/PLANNER diagnostic
