@@ -102,7 +102,7 @@ def test_sva_tools_wrapper_dispatches_lcm(tmp_path):
     wrapper = REPO / "tools" / "sva-tools"
     r = subprocess.run([str(wrapper), "lcm", "--help"], capture_output=True, text=True, timeout=60)
     assert r.returncode == 0, r.stderr
-    assert r.stdout.startswith("usage: sva-tools lcm") and "{send,record,replay}" in r.stdout
+    assert r.stdout.startswith("usage: sva-tools lcm") and "{send,scenario,record,replay}" in r.stdout
     r = subprocess.run([str(wrapper), "lcm", "send", str(tmp_path / "missing.json")],
                        capture_output=True, text=True, timeout=60)
     assert r.returncode == 2
@@ -110,3 +110,55 @@ def test_sva_tools_wrapper_dispatches_lcm(tmp_path):
     r = subprocess.run([str(wrapper), "lcm", "send", str(SMALL), "--url", "memq://",
                         "--timeout", "0.2"], capture_output=True, text=True, timeout=60)
     assert r.returncode == 3 and "no plan on SVA_PLAN" in r.stderr  # nobody answers on memq
+
+
+def test_event_messages_and_their_shape_errors():
+    """SPEC 12.5 event objects to event_t (version 1, seq, every field) and back through
+    the codec; a bad event names the field and the rule."""
+    t = wire.types()
+    tg = {"id": 9, "x": 2, "y": -3, "start": 40, "end": 50, "need": 2}
+    e = t.event_t.decode(wire.event_message({"at": 14, "type": "target_added", "target": tg},
+                                            5).encode())
+    assert (e.version, e.seq, e.type, e.at_ticks) == (1, 5, 4, 14)
+    assert (e.target.id, e.target.x, e.target.y, e.target.start_ticks, e.target.end_ticks,
+            e.target.need) == (9, 2, -3, 40, 50, 2)
+    e = wire.event_message({"at": 3, "type": "uav_back", "uav": 2, "x": 4, "y": 5, "fuel": 60}, 0)
+    assert (e.type, e.uav_id, e.x, e.y, e.fuel) == (2, 2, 4, 5, 60)
+    assert wire.event_message({"at": 3, "type": "target_cancelled", "target": 4}, 0).target.id == 4
+    assert len(e.encode()) == 62
+    for doc, message in [
+        ({"at": 1, "type": "explode"}, "events[0].type: must be one of clock, uav_lost"),
+        ({"at": 1, "type": "uav_lost"}, "events[0].uav: missing key (a uav_lost event needs it)"),
+        ({"at": 1, "type": "clock", "uav": 3}, "events[0].uav: not a field of a clock event"),
+        ({"at": "1", "type": "clock"}, "events[0].at: must be an integer"),
+    ]:
+        with pytest.raises(wire.InputError, match=message.replace("[", r"\[").replace("]", r"\]")
+                           .replace("(", r"\(").replace(")", r"\)")):
+            wire.event_message(doc, 0, "events[0].")
+
+
+def test_replan_document_and_version():
+    """A refused replan_t gives its text; an accepted one its residual mission and plan;
+    another version is refused naming both."""
+    t = wire.types()
+    r = t.replan_t()
+    r.version, r.event_seq, r.event_type, r.accepted = 1, 3, 1, 0
+    r.now_ticks, r.revision = 14, 2
+    r.diag_text = list(b"SVA_EVENT: event.at: 3 is before now (14)".ljust(160, b"\0"))
+    r = t.replan_t.decode(r.encode())
+    assert wire.replan_document(r, "m") == {
+        "event_seq": 3, "event": "uav_lost", "accepted": False, "now": 14, "revision": 2,
+        "error": "SVA_EVENT: event.at: 3 is before now (14)"}
+    r.version = 2
+    with pytest.raises(wire.InputError, match=r"replan_t.version is 2, this tool speaks version 1"):
+        wire.replan_document(r, "m")
+
+
+def test_scenario_file_errors_without_network(tmp_path, capsys):
+    bad = tmp_path / "s.json"
+    bad.write_text(json.dumps({"mission": small(), "events": [{"at": 1, "type": "nope"}]}))
+    assert cli.main(["scenario", str(bad), "--timeout", "0.1"]) == 2
+    assert "events[0].type: must be one of" in capsys.readouterr().err
+    bad.write_text(json.dumps({"mission": small(), "events": [], "extra": 1}))
+    assert cli.main(["scenario", str(bad)]) == 2
+    assert "extra: unknown key" in capsys.readouterr().err

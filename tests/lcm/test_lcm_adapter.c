@@ -66,13 +66,19 @@ static uint8_t mission_buf[SVA_LCM_MISSION_BYTES + 8];
 static uint8_t last_plan_bytes[SVA_LCM_PLAN_BYTES];
 static unsigned int last_plan_size;
 static int plans_seen;
+static int replans_seen;
+static sva_lcm_replan_t got_replan;
 static int status_seen;
 static int log_lines[SVA_LCM_REJECT_COUNT_ + 1];
 
 static int capture(void* user, const char* channel, const void* data, unsigned int size)
 {
     (void)user;
-    if (strstr(channel, "PLAN") != NULL) {
+    if (strstr(channel, "REPLAN") != NULL) {
+        assert_int_equal(size, SVA_LCM_REPLAN_BYTES);
+        assert_int_equal(sva_lcm_replan_t_decode(data, 0, (int)size, &got_replan), (int)size);
+        replans_seen++;
+    } else if (strstr(channel, "PLAN") != NULL) {
         if (size <= sizeof last_plan_bytes) {
             memcpy(last_plan_bytes, data, size);
         }
@@ -155,6 +161,7 @@ static void node_setup(sva_algorithm_t algo)
     node.publish = capture;
     node.log = count_log;
     plans_seen = 0;
+    replans_seen = 0;
     status_seen = 0;
     memset(log_lines, 0, sizeof log_lines);
 }
@@ -257,6 +264,11 @@ static void test_encoded_sizes(void** state)
     assert_int_equal(sva_lcm_mission_t_encoded_size(&mission), SVA_LCM_MISSION_BYTES);
     assert_int_equal(sva_lcm_plan_t_encoded_size(&p), SVA_LCM_PLAN_BYTES);
     assert_int_equal(sva_lcm_node_status_t_encoded_size(&s), SVA_LCM_STATUS_BYTES);
+    static sva_lcm_event_t e;
+    static sva_lcm_replan_t r;
+    assert_int_equal(sva_lcm_event_t_encoded_size(&e), SVA_LCM_EVENT_BYTES);
+    assert_int_equal(sva_lcm_replan_t_encoded_size(&r), SVA_LCM_REPLAN_BYTES);
+    assert_true(SVA_LCM_REPLAN_BYTES + 64 <= 65499);
     // one udpm datagram (LCM_SHORT_MESSAGE_MAX_SIZE) with the longest channel name
     assert_true(SVA_LCM_PLAN_BYTES + 64 <= 65499);
 }
@@ -748,6 +760,165 @@ static void test_status(void** state)
 
 // The port's goal: zero heap allocations per message in steady state, accepted or not,
 // planning and publishing included.
+static int send_event(const sva_lcm_event_t* e)
+{
+    static uint8_t buf[SVA_LCM_EVENT_BYTES];
+    assert_int_equal(sva_lcm_event_t_encode(buf, 0, (int)sizeof buf, e), SVA_LCM_EVENT_BYTES);
+    return (int)sva_lcm_on_event(&node, buf, sizeof buf);
+}
+
+static const char* replan_text(void)
+{
+    static char text[SVA_LCM_REPLAN_T_DIAG_TEXT_SIZE + 1];
+    for (int i = 0; i < SVA_LCM_REPLAN_T_DIAG_TEXT_SIZE; ++i) {
+        text[i] = (char)got_replan.diag_text[i];
+    }
+    text[SVA_LCM_REPLAN_T_DIAG_TEXT_SIZE] = '\0';
+    return text;
+}
+
+// Events: refused before a mission; a plan starts the live mission; a version, a type
+// and the core's verdict refused with the live state byte for byte unchanged; a loss
+// applied and replanned as sva_live_replan does on the same live mission.
+static void test_live_events(void** state)
+{
+    (void)state;
+    node_setup(SVA_ALGO_SVA);
+    static sva_lcm_event_t e;
+    memset(&e, 0, sizeof e);
+    e.version = SVA_LCM_EVENT_T_VERSION;
+    e.seq = 7;
+    e.type = SVA_LCM_EVENT_T_TYPE_CLOCK;
+    e.at_ticks = 1;
+    assert_int_equal(send_event(&e), SVA_LCM_REJECTED);
+    assert_int_equal(replans_seen, 1);
+    assert_int_equal(got_replan.accepted, 0);
+    assert_int_equal(got_replan.event_seq, 7);
+    assert_string_equal(replan_text(),
+                        "T_EVENT: no live mission: a fleet and a mission must be planned first");
+
+    make_inputs(3);
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
+    static sva_live_t before;
+    before = node.priv.live;
+
+    e.seq = 8;
+    e.version = 2;
+    assert_int_equal(send_event(&e), SVA_LCM_REJECTED);
+    assert_string_equal(replan_text(), "T_EVENT: event_t.version is 2, this node speaks version 1");
+    e.version = SVA_LCM_EVENT_T_VERSION;
+    e.type = 9;
+    assert_int_equal(send_event(&e), SVA_LCM_REJECTED);
+    assert_int_equal(got_replan.diag_field, (int)SVA_FIELD_EVENT_TYPE);
+    e.type = SVA_LCM_EVENT_T_TYPE_UAV_LOST;
+    e.uav_id = 99;
+    assert_int_equal(send_event(&e), SVA_LCM_REJECTED);
+    assert_int_equal(got_replan.accepted, 0);
+    assert_int_equal(got_replan.plan.status, SVA_LCM_PLAN_T_STATUS_REJECTED);
+    assert_int_equal(got_replan.diag_field, (int)SVA_FIELD_EVENT_UAV);
+    assert_int_equal(got_replan.diag_rule, (int)SVA_RULE_UNKNOWN);
+    assert_int_equal(got_replan.diag_value, 99);
+    assert_memory_equal(&node.priv.live, &before, sizeof before);
+    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_VALUE], 3);
+    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_INVALID], 1);
+
+    // A loss at tick 11: the same event on a copy of the live mission, replanned by
+    // the core directly, gives the plan the node published.
+    e.seq = 9;
+    e.uav_id = 10;
+    e.at_ticks = 11;
+    static sva_live_t mirror;
+    mirror = before;
+    const sva_event_t ev = {.type = SVA_EVENT_UAV_LOST, .at_ticks = 11, .uav_id = 10};
+    assert_int_equal(sva_live_apply(&mirror, &ev, NULL), SVA_OK);
+    sva_live_result_t res;
+    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    assert_int_equal(sva_live_replan(&mirror, &planner, SVA_ALGO_SVA, &res, NULL), SVA_OK);
+    assert_int_equal(send_event(&e), SVA_LCM_ACCEPTED);
+    assert_int_equal(got_replan.accepted, 1);
+    assert_int_equal(got_replan.event_seq, 9);
+    assert_int_equal(got_replan.now_ticks, 11);
+    assert_int_equal(got_replan.revision, (int64_t)res.revision);
+    assert_int_equal(got_replan.kept, res.kept ? 1 : 0);
+    assert_int_equal(got_replan.dropped, (int32_t)res.dropped);
+    assert_int_equal(got_replan.added, (int32_t)res.added);
+    assert_int_equal(got_replan.dropped_listed, (int16_t)res.dropped);
+    assert_int_equal(got_replan.added_listed, (int16_t)res.added);
+    assert_int_equal(got_replan.objective, res.objective);
+    assert_int_equal(got_replan.residual_fleet.uav_count, (int16_t)res.residual->uav_count);
+    assert_int_equal(got_replan.residual_mission.target_count, (int16_t)res.residual->target_count);
+    for (int u = 0; u < got_replan.residual_fleet.uav_count; ++u) {
+        assert_int_not_equal(got_replan.residual_fleet.uavs[u].id, 10);  // lost
+    }
+    assert_int_equal(got_replan.plan.cost, res.plan->cost);
+    assert_int_equal(got_replan.plan.covered, (int16_t)res.plan->covered);
+    assert_int_equal(got_replan.plan.route_count, (int16_t)res.plan->route_count);
+    assert_int_equal(got_replan.plan.plan_id, 2);  // after the mission's plan
+    assert_int_equal(node.counters.replans_published, 5);
+}
+
+// fleet_reports: while a live mission runs, a fleet message is a report. A UAV reported
+// unavailable becomes uav_lost, one whose fuel is below its route's need a fuel event,
+// each answered by one replan (event_seq -1) and no plan from scratch; a report that
+// contradicts nothing publishes nothing.
+static void test_fleet_reports(void** state)
+{
+    (void)state;
+    node_setup(SVA_ALGO_SVA);
+    node.fleet_reports = true;
+    make_inputs(4);
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
+    assert_int_equal(plans_seen, 1);
+    decode_last_plan();
+    int busy = -1;  // a UAV with a route, other than UAV 11
+    for (int r = 0; r < got_plan.route_count; ++r) {
+        if ((got_plan.routes[r].target_count > 0) && (got_plan.routes[r].uav_id != 11) &&
+            (busy < 0)) {
+            busy = r;
+        }
+    }
+    assert_true(busy >= 0);
+    const int32_t busy_id = got_plan.routes[busy].uav_id;
+
+    fleet.uavs[1].health = SVA_LCM_UAV_STATE_T_HEALTH_UNAVAILABLE;  // UAV 11
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_int_equal(plans_seen, 1);
+    assert_int_equal(replans_seen, 1);
+    assert_int_equal(got_replan.event_seq, -1);
+    assert_int_equal(got_replan.event_type, SVA_LCM_EVENT_T_TYPE_UAV_LOST);
+    assert_int_equal(got_replan.accepted, 1);
+    assert_int_equal(got_replan.revision, 1);
+    assert_int_equal(got_replan.residual_fleet.uav_count, 4);
+    for (int u = 0; u < got_replan.residual_fleet.uav_count; ++u) {
+        assert_int_not_equal(got_replan.residual_fleet.uavs[u].id, 11);
+    }
+
+    fleet.uavs[busy_id - 10].fuel = 1;  // ids are 10 + index
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_int_equal(replans_seen, 2);
+    assert_int_equal(got_replan.event_type, SVA_LCM_EVENT_T_TYPE_FUEL);
+    assert_int_equal(got_replan.revision, 2);
+    int found = 0;
+    for (int u = 0; u < got_replan.residual_fleet.uav_count; ++u) {
+        if (got_replan.residual_fleet.uavs[u].id == busy_id) {
+            assert_int_equal(got_replan.residual_fleet.uavs[u].fuel, 1);
+            found = 1;
+        }
+    }
+    assert_true(found);
+    // the same report again: unchanged; more fuel than any route needs: nothing to do
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_UNCHANGED);
+    fleet.uavs[busy_id - 10].fuel = 200;
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_int_equal(replans_seen, 2);
+    assert_int_equal(plans_seen, 1);
+    assert_int_equal(node.priv.live.revision, 2);
+}
+
 static void test_zero_allocations_per_message(void** state)
 {
     (void)state;
@@ -833,6 +1004,8 @@ int main(void)
         cmocka_unit_test(test_core_rejection_and_planner_limit),
         cmocka_unit_test(test_plan_too_large),
         cmocka_unit_test(test_status),
+        cmocka_unit_test(test_live_events),
+        cmocka_unit_test(test_fleet_reports),
         cmocka_unit_test(test_zero_allocations_per_message),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

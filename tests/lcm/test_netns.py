@@ -70,6 +70,10 @@ class Node:
         st.set_queue_capacity(100000)
         s = self.lc.subscribe(prefix + "PLAN", lambda c, d: self.plans.append(t.plan_t.decode(d)))
         s.set_queue_capacity(5000)
+        self.replans = []
+        r = self.lc.subscribe(prefix + "REPLAN",
+                              lambda c, d: self.replans.append(t.replan_t.decode(d)))
+        r.set_queue_capacity(5000)
         assert self.wait(lambda: self.statuses), "node published no status"
 
     def wait(self, cond, timeout=5.0):
@@ -234,8 +238,9 @@ def test_node_prints_user_text_escaped(tmp_path):
                        capture_output=True, text=True, timeout=30)
     assert r.returncode == 0, r.stderr
     start = [line for line in lines(r) if line.startswith("sva_node: in ")]
-    assert start == [f"sva_node: in {HOSTILE_SHOWN}FLEET {HOSTILE_SHOWN}MISSION, out {HOSTILE_SHOWN}PLAN "
-                     f"{HOSTILE_SHOWN}STATUS; algorithm sva; file://{log}?mode=r"]
+    assert start == [f"sva_node: in {HOSTILE_SHOWN}FLEET {HOSTILE_SHOWN}MISSION {HOSTILE_SHOWN}EVENT, "
+                     f"out {HOSTILE_SHOWN}PLAN {HOSTILE_SHOWN}STATUS {HOSTILE_SHOWN}REPLAN; algorithm sva; "
+                     f"change penalty 0; file://{log}?mode=r"]
 
 
 def test_realtime_options(tmp_path):
@@ -435,7 +440,7 @@ def java_dump(log, prefix):
 def test_lcm_spy_decodes_node_traffic_headless(tmp_path):
     """The docs' lcm-spy recipe: lcm-spy with build/port/lcm/java/sva_lcm.jar on its
     CLASSPATH, on a virtual X display (Xvfb), watching a node that publishes statuses
-    and a plan. It must find our 7 types, run without exceptions, and have decoded
+    and a plan. It must find our 9 types, run without exceptions, and have decoded
     every channel: its JVM then holds the last decoded message of each (jcmd's class
     histogram counts live sva_lcm.* objects; type discovery creates none)."""
     assert JAVA_JAR and Path(JAVA_JAR).exists(), "no build/port/lcm/java/sva_lcm.jar (needs a JDK)"
@@ -484,7 +489,7 @@ def test_lcm_spy_decodes_node_traffic_headless(tmp_path):
         x.wait(timeout=10)
     assert node_rc[0] == 0, node_rc[1]
     text = out.read_text()
-    assert "Found 7 LCM types" in text, text
+    assert "Found 9 LCM types" in text, text
     # lcm-spy's class scan reports classes of the wheel's own jars it cannot load
     # ("ClassDiscoverer: ..." and two indented lines): noise, not ours. Nothing else
     # may mention an exception or error (decode failures print "Spy.messageReceived ex").
@@ -542,7 +547,8 @@ class AllocCounter:
 def test_node_steady_state_allocates_nothing(tmp_path):
     """build/bin/sva_node itself, under an LD_PRELOAD counter of the malloc family: after a
     warm-up, every kind of message (new fleet, new mission, unchanged input, each malformed
-    kind, a mission the core rejects) plus the plans and statuses the node publishes cause
+    kind, a mission the core rejects, a live event applied and one refused) plus the
+    plans, replans and statuses the node publishes cause
     no heap allocation at all, in any thread (LCM's udpm receive thread included)."""
     assert ALLOC_LIB and Path(ALLOC_LIB).exists(), "SVA_ALLOC_LIB: build tests/lcm's sva_alloc_count"
     counter = AllocCounter(tmp_path / "alloc.bin")
@@ -560,7 +566,9 @@ def test_node_steady_state_allocates_nothing(tmp_path):
         over.uav_count = 65
         _, _, mval = wire.mission_messages(doc, 1, 1)
         mval.targets[2].need = 0
-        F, M = n.prefix + "FLEET", n.prefix + "MISSION"
+        F, M, E = n.prefix + "FLEET", n.prefix + "MISSION", n.prefix + "EVENT"
+        clock = wire.event_message({"at": 1, "type": "clock"}, 0)
+        bad_event = wire.event_message({"at": 1, "type": "uav_lost", "uav": 99999}, 0)
 
         def round_(rev):
             """One of each kind of message; returns the plans it must produce."""
@@ -579,12 +587,18 @@ def test_node_steady_state_allocates_nothing(tmp_path):
             n.pub.publish(M, invalid.encode())          # core rejection: a REJECTED plan
             mission.revision = rev + 2_000_000
             n.pub.publish(M, mission.encode())          # a valid mission again: replan
+            clock.seq = rev
+            n.pub.publish(E, clock.encode())            # live event: applied, replanned
+            bad_event.seq = rev
+            n.pub.publish(E, bad_event.encode())        # refused event: answered
             return 4
 
         def run(rounds, rev0):
             for k in range(rounds):
                 want = len(n.plans) + round_(rev0 + k)
-                assert n.wait(lambda: len(n.plans) >= want), f"round {k}: plans missing"
+                want_r = len(n.replans) + 2
+                assert n.wait(lambda: len(n.plans) >= want and len(n.replans) >= want_r), \
+                    f"round {k}: plans or replans missing"
             return n.fresh_status()
 
         n.pub.publish(F, fleet.encode())
@@ -599,7 +613,10 @@ def test_node_steady_state_allocates_nothing(tmp_path):
         msgs = (s1.fleet_rx - s0.fleet_rx) + (s1.mission_rx - s0.mission_rx)
         plans = s1.plans_published - s0.plans_published
         assert msgs == rounds * 10 and plans == rounds * 4
-        assert list(s1.rejected)[:6] == [x + rounds for x in list(s0.rejected)[:6]]
+        assert [r.accepted for r in n.replans[-2 * rounds:]] == [1, 0] * rounds
+        # one of each malformed kind per round; invalid: the mission and the refused event
+        assert list(s1.rejected)[:6] == [x + rounds * (1 + (i == 5))
+                                         for i, x in enumerate(list(s0.rejected)[:6])]
         allocs = after["seq"] - before["seq"]
         print(f"node heap allocations after warm-up: {allocs} over {msgs} messages and "
               f"{plans} plans in {(s1.utime - s0.utime) / 1e6:.1f} s (statuses every 100 ms)")
@@ -631,6 +648,157 @@ def test_node_steady_state_allocates_nothing(tmp_path):
         # 10 growths (11 MiB) leave room for a slower machine and still catch anything
         # per message (1000 per burst).
         assert growth <= 2 * 10, growth
+    finally:
+        rc, err = n.stop()
+    assert rc == 0, err
+
+
+# --- the live mission: events in, replans out (SPEC section 12) ---------------------------
+
+LIVE_MISSION = {
+    "name": "live_lcm", "depot": {"x": 0, "y": 0},
+    "uavs": [{"id": 1, "x": 0, "y": 0, "fuel": 100}, {"id": 2, "x": 0, "y": 0, "fuel": 100},
+             {"id": 3, "x": 0, "y": 0, "fuel": 100}],
+    "targets": [{"id": 1, "x": 5, "y": 0, "start": 10, "end": 20, "need": 2},
+                {"id": 2, "x": 5, "y": 5, "start": 30, "end": 40, "need": 1},
+                {"id": 3, "x": -4, "y": 2, "start": 25, "end": 35, "need": 1}]}
+POPUP = {"id": 9, "x": 2, "y": -3, "start": 60, "end": 70, "need": 1}
+LIVE_EVENTS = [
+    {"at": 12, "type": "uav_lost", "uav": 1},                  # 0: a loss
+    {"at": 14, "type": "target_added", "target": POPUP},       # 1: a pop-up target
+    {"at": 3, "type": "clock"},                                # 2: refused: before now
+    {"at": 15, "type": "uav_lost", "uav": 7},                  # 3: refused: unknown UAV
+    {"at": 16, "type": "target_cancelled", "target": 3},       # 4: a cancellation
+]
+
+
+def test_live_mission_events_answered_by_replans(node, tmp_path):
+    """`sva-tools lcm scenario` against a real node: the mission's plan starts the live
+    mission; every event is answered on REPLAN with its seq. Accepted ones: the clock at
+    the event's tick, the revision counting applied events, a residual mission that
+    reflects the event, a plan that passes the independent checker on it, and changed
+    visits that are exactly the pairs the plans differ by. Refused ones: the diagnostic,
+    and the live mission unchanged (clock and revision as before)."""
+    scen = tmp_path / "scenario.json"
+    scen.write_text(json.dumps({"mission": LIVE_MISSION, "events": LIVE_EVENTS}))
+    out = tmp_path / "record.json"
+    r = subprocess.run([str(SVA_TOOLS), "lcm", "scenario", str(scen), "--url", URL,
+                        "--prefix", node.prefix, "--timeout", "5", "-o", str(out)],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 1, r.stderr  # two events refused
+    assert "events[2] refused: " in r.stderr and "events[3] refused: " in r.stderr, r.stderr
+    rec = json.loads(out.read_text())
+    assert violations_doc(LIVE_MISSION, rec["plan"]) == []
+    replans = rec["replans"]
+    assert [x["event_seq"] for x in replans] == [0, 1, 2, 3, 4]
+    assert [x["accepted"] for x in replans] == [True, True, False, False, True]
+    assert [x["event"] for x in replans] == [e["type"] for e in LIVE_EVENTS]
+    assert [x["revision"] for x in replans] == [1, 2, 2, 2, 3]
+    assert [x["now"] for x in replans] == [12, 14, 14, 14, 16]
+    assert replans[2]["error"] == f"{node.prefix}EVENT: event.at: 3 is before now (14)"
+    assert replans[3]["error"].startswith(f"{node.prefix}EVENT: event.uav: "), replans[3]["error"]
+    assert "7" in replans[3]["error"], replans[3]["error"]
+    previous = rec["plan"]
+    for i, x in enumerate(replans):
+        if not x["accepted"]:
+            continue
+        res, plan = x["residual"], x["plan"]
+        assert violations_doc(res, plan) == [], (i, plan)
+        uavs = {u["id"] for u in res["uavs"]}
+        targets = {g["id"] for g in res["targets"]}
+        assert 1 not in uavs, i  # lost at 12
+        assert uavs <= {2, 3}
+        if i >= 1:
+            assert 9 in targets and 9 not in plan["uncovered"], (i, plan)  # the pop-up is flown
+        if i == 4:
+            assert 3 not in targets
+        # changed visits: exactly the pairs the plan in force before and the new one differ
+        # by, over the residual's targets
+        old = {(rt["uav"], g) for rt in previous["routes"] for g in rt["targets"]
+               if g in targets and rt["uav"] in uavs}
+        new = {(rt["uav"], g) for rt in plan["routes"] for g in rt["targets"]}
+        ch = x["changes"]
+        assert ch["added"] == len(ch["added_visits"]) and ch["dropped"] == len(ch["dropped_visits"])
+        assert {tuple(v) for v in ch["added_visits"]} == new - old, (i, ch)
+        assert {tuple(v) for v in ch["dropped_visits"]} <= old - new, (i, ch)
+        assert x["covered"] == x["under_way"] + plan["covered"]
+        previous = plan
+
+
+def violations_doc(mission_doc_, plan_doc):
+    """The independent checker on in-memory documents."""
+    return check.check_plan(sio.mission_from_json(mission_doc_), sio.plan_from_json(plan_doc))
+
+
+def test_live_event_version_and_no_mission_refused(node):
+    """An event_t of another version, and an event before any mission, are answered on
+    REPLAN with accepted 0 and a message naming the rule; the ground tool refuses a
+    replan_t of another version with a message naming both versions."""
+    E = node.prefix + "EVENT"
+    e = wire.event_message({"at": 1, "type": "clock"}, 41)
+    node.pub.publish(E, e.encode())
+    assert node.wait(lambda: any(r.event_seq == 41 for r in node.replans))
+    doc = wire.replan_document(next(r for r in node.replans if r.event_seq == 41), "m")
+    assert doc["accepted"] is False
+    assert doc["error"] == (f"{node.prefix}EVENT: no live mission: a fleet and a mission must be "
+                            "planned first")
+    _, fleet, mission = wire.mission_messages(LIVE_MISSION, 5, 5)
+    node.pub.publish(node.prefix + "FLEET", fleet.encode())
+    node.pub.publish(node.prefix + "MISSION", mission.encode())
+    assert node.wait(lambda: node.plans)
+    e.seq, e.version = 42, 2
+    node.pub.publish(E, e.encode())
+    assert node.wait(lambda: any(r.event_seq == 42 for r in node.replans))
+    r42 = next(r for r in node.replans if r.event_seq == 42)
+    doc = wire.replan_document(r42, "m")
+    assert doc["accepted"] is False and doc["revision"] == 0 and doc["now"] == 0
+    assert doc["error"] == f"{node.prefix}EVENT: event_t.version is 2, this node speaks version 1"
+    e.seq, e.version = 43, 1
+    node.pub.publish(E, e.encode())
+    assert node.wait(lambda: any(r.event_seq == 43 for r in node.replans))
+    ok = wire.replan_document(next(r for r in node.replans if r.event_seq == 43), "m")
+    assert ok["accepted"] is True and ok["revision"] == 1 and ok["now"] == 1
+    r42.version = 3
+    with pytest.raises(wire.InputError, match=r"replan_t.version is 3, this tool speaks version 1"):
+        wire.replan_document(r42, "m")
+    status = node.fresh_status()
+    assert status.rejected[wire.REJECT_REASONS.index("value")] >= 2
+
+
+def test_fleet_reports_turn_contradictions_into_replans():
+    """A node with --fleet-reports: after the mission's plan, a fleet report with UAV 2
+    unavailable is answered by a replan (event_seq -1, uav_lost) whose plan passes the
+    checker on its residual mission without UAV 2, and no plan from scratch; a report
+    with UAV 3's fuel below its route's need by a fuel replan; then nothing for a report
+    that contradicts nothing."""
+    n = Node(f"R{uuid.uuid4().hex[:6]}_", "--fleet-reports")
+    try:
+        _, fleet, mission = wire.mission_messages(LIVE_MISSION, 8, 8)
+        n.pub.publish(n.prefix + "FLEET", fleet.encode())
+        n.pub.publish(n.prefix + "MISSION", mission.encode())
+        assert n.wait(lambda: n.plans)
+        plan0 = wire.plan_document(n.plans[-1], "live_lcm")
+        fleet.uavs[1].health = 1  # UAV 2
+        n.pub.publish(n.prefix + "FLEET", fleet.encode())
+        assert n.wait(lambda: len(n.replans) == 1)
+        doc = wire.replan_document(n.replans[-1], "live_lcm")
+        assert (doc["event_seq"], doc["event"], doc["accepted"], doc["revision"]) == \
+            (-1, "uav_lost", True, 1)
+        assert 2 not in {u["id"] for u in doc["residual"]["uavs"]}
+        assert violations_doc(doc["residual"], doc["plan"]) == []
+        busy = [r["uav"] for r in doc["plan"]["routes"] if r["targets"]]
+        assert busy, doc["plan"]
+        fleet.uavs[busy[0] - 1].fuel = 1
+        n.pub.publish(n.prefix + "FLEET", fleet.encode())
+        assert n.wait(lambda: len(n.replans) == 2)
+        doc = wire.replan_document(n.replans[-1], "live_lcm")
+        assert (doc["event"], doc["revision"]) == ("fuel", 2)
+        assert [u["fuel"] for u in doc["residual"]["uavs"] if u["id"] == busy[0]] == [1]
+        assert violations_doc(doc["residual"], doc["plan"]) == []
+        fleet.uavs[busy[0] - 1].fuel = 100
+        n.pub.publish(n.prefix + "FLEET", fleet.encode())
+        s = n.fresh_status()
+        assert s.fleet_rx == 4 and len(n.replans) == 2 and len(n.plans) == 1, plan0
     finally:
         rc, err = n.stop()
     assert rc == 0, err

@@ -272,7 +272,7 @@ def test_timeline_shows_every_event_and_replan(sva_bin, tmp_path):
 def test_via_lcm_is_not_available_yet(tmp_path):
     r = sva_tools("sim", "--via", "lcm", write(tmp_path, "s.json", HAND_POPUP))
     assert r.returncode == 2
-    assert "not available yet: the LCM node does not keep live missions" in r.stderr
+    assert "not available yet: the simulator flies against the CLI only" in r.stderr
 
 
 def test_a_bad_scenario_names_the_field(tmp_path):

@@ -484,8 +484,9 @@ def add_parser(sub) -> None:
 
 def run(args) -> int:
     if args.via == "lcm":
-        print("sva-tools: error: sim --via lcm: not available yet: the LCM node does not "
-              "keep live missions", file=sys.stderr)
+        print("sva-tools: error: sim --via lcm: not available yet: the simulator flies "
+              "against the CLI only (`sva-tools lcm scenario` sends a scenario's events to "
+              "the LCM node and records its replans)", file=sys.stderr)
         return 2
     mission, events, penalty = load_scenario(args.scenario)
     try:

@@ -1,5 +1,6 @@
 // sva_node -- the on-board planner process: fleet state and missions in over LCM,
-// plans and a 1 Hz status out. One thread calls lcm_handle_timeout in a loop (LCM
+// plans and a 1 Hz status out; each plan starts a live mission, whose events come in
+// and whose replans go out (docs/lcm.md). One thread calls lcm_handle_timeout in a loop (LCM
 // requires a single handling thread); SIGINT/SIGTERM end the loop cleanly.
 #include <errno.h>
 #include <sched.h>
@@ -61,15 +62,22 @@ static void usage(FILE* out)
             "  -u, --url URL          LCM provider (default " DEFAULT_URL ")\n"
             "                         a udpm URL without recv_buf_size gets %d\n"
             "  -p, --prefix PREFIX    channel prefix (default " DEFAULT_PREFIX "): channels\n"
-            "                         PREFIX{FLEET,MISSION,PLAN,STATUS}, matched exactly\n"
+            "                         PREFIX{FLEET,MISSION,PLAN,STATUS,EVENT,REPLAN}, matched\n"
+            "                         exactly\n"
             "  -a, --algorithm NAME   sva, ga, hga, bfa or flow (default sva)\n"
+            "  -c, --change-penalty N cells a replan pays per changed visit (default 0,\n"
+            "                         at most %ld; SPEC section 12.4)\n"
+            "  -f, --fleet-reports    while a live mission runs, a fleet message is a report\n"
+            "                         checked against the plan in force (a UAV unavailable:\n"
+            "                         uav_lost; fuel below its route's need: a fuel event)\n"
+            "                         instead of a new fleet to plan from scratch\n"
             "  -s, --status-ms MS     status period in milliseconds (default 1000)\n"
             "  -e, --exit-on-eof      stop when the provider ends (file:// logs)\n"
             "  -r, --rt-priority N    run under SCHED_FIFO priority N (1..99), LCM's receive\n"
             "                         thread included (needs CAP_SYS_NICE or RLIMIT_RTPRIO)\n"
             "  -m, --mlock            lock every page in RAM (mlockall current and future)\n"
             "  -h, --help             this text\n",
-            RECV_BUF_BYTES);
+            RECV_BUF_BYTES, (long)SVA_MAX_CHANGE_PENALTY);
 }
 
 // Appends recv_buf_size to a udpm URL that has none (LCM's default is 2 MiB).
@@ -138,6 +146,8 @@ int main(int argc, char** argv)
     const char* prefix = DEFAULT_PREFIX;
     const char* algo_name = "sva";
     long status_ms = 1000;
+    long change_penalty = 0;
+    int fleet_reports = 0;
     long rt_priority = 0;
     int lock_memory = 0;
     int exit_on_eof = 0;
@@ -157,10 +167,17 @@ int main(int argc, char** argv)
             if (!integer_option("--status-ms", argv[++i], 10, 3600000, &status_ms)) {
                 return 2;
             }
+        } else if (((strcmp(a, "-c") == 0) || (strcmp(a, "--change-penalty") == 0)) && has_value) {
+            if (!integer_option("--change-penalty", argv[++i], 0, (long)SVA_MAX_CHANGE_PENALTY,
+                                &change_penalty)) {
+                return 2;
+            }
         } else if (((strcmp(a, "-r") == 0) || (strcmp(a, "--rt-priority") == 0)) && has_value) {
             if (!integer_option("--rt-priority", argv[++i], 1, 99, &rt_priority)) {
                 return 2;
             }
+        } else if ((strcmp(a, "-f") == 0) || (strcmp(a, "--fleet-reports") == 0)) {
+            fleet_reports = 1;
         } else if ((strcmp(a, "-m") == 0) || (strcmp(a, "--mlock") == 0)) {
             lock_memory = 1;
         } else if ((strcmp(a, "-e") == 0) || (strcmp(a, "--exit-on-eof") == 0)) {
@@ -215,6 +232,8 @@ int main(int argc, char** argv)
         return 1;
     }
     node.log = log_stderr;
+    node.change_penalty = (int32_t)change_penalty;
+    node.fleet_reports = (fleet_reports != 0);
 
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
@@ -224,9 +243,11 @@ int main(int argc, char** argv)
     (void)sigaction(SIGTERM, &sa, NULL);
 
     char started[SHOWN_SIZE];
-    (void)snprintf(started, sizeof started, "in %s %s, out %s %s; algorithm %s; %s%s%s",
-                   node.channel_fleet, node.channel_mission, node.channel_plan, node.channel_status,
-                   sva_algorithm_name(algorithm), url, (rt_priority > 0) ? "; SCHED_FIFO" : "",
+    (void)snprintf(started, sizeof started,
+                   "in %s %s %s, out %s %s %s; algorithm %s; change penalty %ld; %s%s%s",
+                   node.channel_fleet, node.channel_mission, node.channel_event, node.channel_plan,
+                   node.channel_status, node.channel_replan, sva_algorithm_name(algorithm),
+                   change_penalty, url, (rt_priority > 0) ? "; SCHED_FIFO" : "",
                    lock_memory ? "; memory locked" : "");
     log_stderr(NULL, started);  // escapes channel names and URL
     send_status();
@@ -259,9 +280,11 @@ int main(int argc, char** argv)
 
     const sva_lcm_counters_t* c = &node.counters;
     fprintf(stderr,
-            "sva_node: exit: fleet %llu, mission %llu, unchanged %llu, plans %llu, rejected",
+            "sva_node: exit: fleet %llu, mission %llu, event %llu, unchanged %llu, plans %llu, "
+            "replans %llu, rejected",
             (unsigned long long)c->fleet_rx, (unsigned long long)c->mission_rx,
-            (unsigned long long)c->unchanged, (unsigned long long)c->plans_published);
+            (unsigned long long)c->event_rx, (unsigned long long)c->unchanged,
+            (unsigned long long)c->plans_published, (unsigned long long)c->replans_published);
     for (int r = 0; r < (int)SVA_LCM_REJECT_COUNT_; ++r) {
         fprintf(stderr, " %s=%lu", sva_lcm_reject_name((sva_lcm_reject_t)r),
                 (unsigned long)c->rejected[r]);

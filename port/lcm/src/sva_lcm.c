@@ -23,6 +23,12 @@ SVA_LCM_STATIC_ASSERT(SVA_LCM_REJECT_COUNT_ <= 32, reasons_fit_logged_mask);
 // The plan must fit one udpm datagram (65499 bytes) with the longest channel name, so
 // that it is never fragmented (fragments are allocated by the receiver).
 SVA_LCM_STATIC_ASSERT(SVA_LCM_PLAN_BYTES + SVA_LCM_CHANNEL_SIZE <= 65499, plan_one_datagram);
+SVA_LCM_STATIC_ASSERT(SVA_LCM_REPLAN_BYTES + SVA_LCM_CHANNEL_SIZE <= 65499, replan_one_datagram);
+// event_t's TYPE_* are sva_event_type_t's numbers.
+SVA_LCM_STATIC_ASSERT(SVA_LCM_EVENT_T_TYPE_TARGET_CHANGED == (int)SVA_EVENT_TARGET_CHANGED &&
+                          SVA_EVENT_COUNT_ == 7,
+                      event_type_numbers);
+SVA_LCM_STATIC_ASSERT(SVA_LCM_REPLAN_T_MAX_CHANGES <= 32767, changes_fit_int16);
 // Counts travel as int16_t.
 SVA_LCM_STATIC_ASSERT(SVA_LCM_PLAN_T_MAX_ROUTE_ITEMS <= 32767, items_fit_int16);
 // plan_t.lcm names the algorithm numbers in its comment on `algorithm`.
@@ -72,7 +78,9 @@ sva_status_t sva_lcm_node_init(sva_lcm_node_t* self, lcm_t* lcm, const char* pre
     if (!make_channel(self->channel_fleet, prefix, "FLEET") ||
         !make_channel(self->channel_mission, prefix, "MISSION") ||
         !make_channel(self->channel_plan, prefix, "PLAN") ||
-        !make_channel(self->channel_status, prefix, "STATUS")) {
+        !make_channel(self->channel_status, prefix, "STATUS") ||
+        !make_channel(self->channel_event, prefix, "EVENT") ||
+        !make_channel(self->channel_replan, prefix, "REPLAN")) {
         return SVA_ERR_ARGUMENT;
     }
     sva_diag_clear(&self->last_diag);
@@ -122,6 +130,12 @@ static void on_mission_raw(const lcm_recv_buf_t* rbuf, const char* channel, void
     (void)sva_lcm_on_mission((sva_lcm_node_t*)user, rbuf->data, rbuf->data_size);
 }
 
+static void on_event_raw(const lcm_recv_buf_t* rbuf, const char* channel, void* user)
+{
+    (void)channel;
+    (void)sva_lcm_on_event((sva_lcm_node_t*)user, rbuf->data, rbuf->data_size);
+}
+
 sva_status_t sva_lcm_node_subscribe(sva_lcm_node_t* self)
 {
     if ((self == NULL) || (self->lcm == NULL)) {
@@ -138,10 +152,17 @@ sva_status_t sva_lcm_node_subscribe(sva_lcm_node_t* self)
         return SVA_ERR_ARGUMENT;
     }
     self->priv.sub_mission = lcm_subscribe(self->lcm, regex, on_mission_raw, self);
+    if (sva_lcm_channel_escape(self->channel_event, regex, sizeof regex) != SVA_OK) {
+        sva_lcm_node_unsubscribe(self);
+        return SVA_ERR_ARGUMENT;
+    }
+    self->priv.sub_event = lcm_subscribe(self->lcm, regex, on_event_raw, self);
     if ((self->priv.sub_fleet == NULL) || (self->priv.sub_mission == NULL) ||
+        (self->priv.sub_event == NULL) ||
         (lcm_subscription_set_queue_capacity(self->priv.sub_fleet, SVA_LCM_QUEUE_CAPACITY) != 0) ||
         (lcm_subscription_set_queue_capacity(self->priv.sub_mission, SVA_LCM_QUEUE_CAPACITY) !=
-         0)) {
+         0) ||
+        (lcm_subscription_set_queue_capacity(self->priv.sub_event, SVA_LCM_QUEUE_CAPACITY) != 0)) {
         sva_lcm_node_unsubscribe(self);
         return SVA_ERR_ARGUMENT;
     }
@@ -160,6 +181,10 @@ void sva_lcm_node_unsubscribe(sva_lcm_node_t* self)
     if (self->priv.sub_mission != NULL) {
         (void)lcm_unsubscribe(self->lcm, self->priv.sub_mission);
         self->priv.sub_mission = NULL;
+    }
+    if (self->priv.sub_event != NULL) {
+        (void)lcm_unsubscribe(self->lcm, self->priv.sub_event);
+        self->priv.sub_event = NULL;
     }
 }
 
@@ -264,13 +289,10 @@ static void plan_diag(sva_lcm_plan_t* p, const sva_diag_t* d)
     p->diag_limit = d->limit;
 }
 
-// Fills plan_tx from the core plan; false when the routes need more than
-// MAX_ROUTE_ITEMS items (then plan_tx has no routes).
-static bool fill_plan(sva_lcm_node_t* self)
+// Fills *p from a core plan over mission m; false when the routes need more than
+// MAX_ROUTE_ITEMS items (then the caller clears the routes).
+static bool fill_plan(sva_lcm_plan_t* p, const sva_plan_t* plan, const sva_mission_t* m)
 {
-    sva_lcm_plan_t* p = &self->priv.plan_tx;
-    const sva_plan_t* plan = &self->priv.plan;
-    const sva_mission_t* m = &self->priv.mission;
     p->status = (plan->status == SVA_PLAN_COMPLETE) ? SVA_LCM_PLAN_T_STATUS_COMPLETE
                                                     : SVA_LCM_PLAN_T_STATUS_PARTIAL;
     p->covered = (int16_t)plan->covered;
@@ -344,8 +366,15 @@ static void replan(sva_lcm_node_t* self)
     const int64_t dt = now_us(CLOCK_MONOTONIC) - t0;
     p->solve_us = (dt > (int64_t)INT32_MAX) ? INT32_MAX : (int32_t)dt;
 
+    // The plan published starts the live mission (sva_live_init validates again; a
+    // change_penalty out of range fails here and leaves no live mission).
+    self->priv.live_active = false;
     if (st == SVA_OK) {
-        if (!fill_plan(self)) {
+        sva_diag_t live_diag;
+        self->priv.mission.change_penalty = self->change_penalty;
+        self->priv.live_active = (sva_live_init(&self->priv.live, &self->priv.mission,
+                                                &self->priv.plan, &live_diag) == SVA_OK);
+        if (!fill_plan(p, &self->priv.plan, &self->priv.mission)) {
             memset(p->routes, 0, sizeof p->routes);
             memset(p->route_targets, 0, sizeof p->route_targets);
             p->route_count = 0;
@@ -374,6 +403,9 @@ static void replan(sva_lcm_node_t* self)
 
 // ---------------------------------------------------------------------------------
 // Inputs.
+
+// The live mission's handlers (defined below, with the events).
+static void fleet_report(sva_lcm_node_t* self);
 
 static bool check_fleet(sva_lcm_node_t* self, sva_lcm_reject_t* reason, int32_t* bad_health)
 {
@@ -492,7 +524,9 @@ sva_lcm_verdict_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_
     }
     self->priv.fleet_revision = f->revision;
     self->priv.have_fleet = true;
-    if (self->priv.have_mission) {
+    if (self->fleet_reports && self->priv.live_active) {
+        fleet_report(self);
+    } else if (self->priv.have_mission) {
         replan(self);
     }
     return SVA_LCM_ACCEPTED;
@@ -541,6 +575,321 @@ sva_lcm_verdict_t sva_lcm_on_mission(sva_lcm_node_t* self, const void* data, siz
         replan(self);
     }
     return SVA_LCM_ACCEPTED;
+}
+
+// ---------------------------------------------------------------------------------
+// The live mission: events in, replans out.
+
+static void publish_replan(sva_lcm_node_t* self)
+{
+    sva_lcm_replan_t* r = &self->priv.replan_tx;
+    r->plan.utime = now_us(CLOCK_REALTIME);
+    const int n =
+        sva_lcm_replan_t_encode(self->priv.replan_buf, 0, (int)sizeof self->priv.replan_buf, r);
+    if ((n != SVA_LCM_REPLAN_BYTES) ||
+        (self->publish(self->publish_user, self->channel_replan, self->priv.replan_buf,
+                       (unsigned int)n) != 0)) {
+        self->counters.publish_errors += 1U;
+        return;
+    }
+    self->counters.replans_published += 1U;
+}
+
+// Answers the event in replan_tx (its header already set) as refused: `text` names the
+// field, the rule and the limit; diag (may be NULL) gives the fields. Counts and logs the
+// refusal as `reason`, publishes, and leaves the live mission as it was.
+static sva_lcm_verdict_t refuse_event(sva_lcm_node_t* self, sva_lcm_reject_t reason,
+                                      const sva_diag_t* diag, const char* text)
+{
+    sva_lcm_replan_t* r = &self->priv.replan_tx;
+    r->accepted = 0;
+    if (diag != NULL) {
+        r->diag_field = (int8_t)diag->field;
+        r->diag_rule = (int8_t)diag->rule;
+        r->diag_value = diag->value;
+        r->diag_limit = diag->limit;
+        plan_diag(&r->plan, diag);
+    }
+    for (size_t i = 0; (i + 1U < (size_t)SVA_LCM_REPLAN_T_DIAG_TEXT_SIZE) && (text[i] != '\0');
+         ++i) {
+        r->diag_text[i] = (int8_t)text[i];
+    }
+    r->plan.status = SVA_LCM_PLAN_T_STATUS_REJECTED;
+    r->plan.algorithm = (int8_t)self->algorithm;
+    r->plan.fleet_revision = self->priv.fleet_revision;
+    r->plan.mission_revision = self->priv.mission_revision;
+    const sva_lcm_verdict_t v = reject(self, reason, text);
+    publish_replan(self);
+    return v;
+}
+
+// The residual mission as wire messages (stamped with the live revision).
+static void fill_residual(sva_lcm_replan_t* r, const sva_mission_t* m, int64_t revision)
+{
+    sva_lcm_fleet_state_t* f = &r->residual_fleet;
+    f->revision = revision;
+    f->uav_count = (int16_t)m->uav_count;
+    for (uint16_t u = 0; u < m->uav_count; ++u) {
+        sva_lcm_uav_state_t* w = &f->uavs[u];
+        w->id = m->uavs[u].id;
+        w->x = m->uavs[u].x;
+        w->y = m->uavs[u].y;
+        w->fuel = m->uavs[u].fuel;
+        w->ready_at_ticks = m->uavs[u].ready_at_ticks;
+        w->health = SVA_LCM_UAV_STATE_T_HEALTH_OK;
+    }
+    sva_lcm_mission_t* w = &r->residual_mission;
+    w->revision = revision;
+    w->depot_x = m->depot_x;
+    w->depot_y = m->depot_y;
+    w->ticks_per_cell = m->ticks_per_cell;
+    w->hover_fuel = m->hover_fuel;
+    w->overlap_percent = m->overlap_percent;
+    w->target_count = (int16_t)m->target_count;
+    for (uint16_t i = 0; i < m->target_count; ++i) {
+        sva_lcm_target_t* t = &w->targets[i];
+        t->id = m->targets[i].id;
+        t->x = m->targets[i].x;
+        t->y = m->targets[i].y;
+        t->start_ticks = m->targets[i].start_ticks;
+        t->end_ticks = m->targets[i].end_ticks;
+        t->need = m->targets[i].need;
+    }
+}
+
+static const sva_route_t* route_of(const sva_plan_t* plan, int32_t uav_id)
+{
+    for (uint16_t r = 0; r < plan->route_count; ++r) {
+        if (plan->routes[r].uav_id == uav_id) {
+            return &plan->routes[r];
+        }
+    }
+    return NULL;
+}
+
+static bool route_has(const sva_route_t* route, uint16_t target)
+{
+    if (route == NULL) {
+        return false;
+    }
+    for (uint16_t k = 0; k < route->target_count; ++k) {
+        if (route->targets[k] == target) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// Lists the (UAV id, target id) pairs of `from` that `to` lacks, the first
+// MAX_CHANGES of them, into uav[] and target[]; returns how many were listed.
+static int16_t list_changes(const sva_plan_t* from, const sva_plan_t* to, const sva_mission_t* m,
+                            int32_t* uav, int32_t* target)
+{
+    int16_t n = 0;
+    for (uint16_t r = 0; r < from->route_count; ++r) {
+        const sva_route_t* a = &from->routes[r];
+        const sva_route_t* b = route_of(to, a->uav_id);
+        for (uint16_t k = 0; k < a->target_count; ++k) {
+            if (!route_has(b, a->targets[k]) && (n < SVA_LCM_REPLAN_T_MAX_CHANGES)) {
+                uav[n] = a->uav_id;
+                target[n] = m->targets[a->targets[k]].id;
+                n += 1;
+            }
+        }
+    }
+    return n;
+}
+
+static void replan_live(sva_lcm_node_t* self);
+
+sva_lcm_verdict_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_t size)
+{
+    self->counters.event_rx += 1U;
+    const sva_lcm_verdict_t v = check_frame(self, self->channel_event, data, size,
+                                            SVA_LCM_EVENT_BYTES, __sva_lcm_event_t_get_hash());
+    if (v != SVA_LCM_ACCEPTED) {
+        return v;
+    }
+    sva_lcm_event_t* e = &self->priv.event_rx;
+    if (sva_lcm_event_t_decode(data, 0, (int)size, e) != (int)size) {
+        return reject(self, SVA_LCM_REJECT_TRUNCATED, "event: decoder refused the bytes");
+    }
+    sva_lcm_replan_t* r = &self->priv.replan_tx;
+    // Every array is encoded in full: clear what the last answer left behind.
+    memset(r, 0, sizeof(*r));
+    r->version = SVA_LCM_REPLAN_T_VERSION;
+    r->event_seq = e->seq;
+    r->event_type = e->type;
+    r->change_penalty = self->change_penalty;
+    if (self->priv.live_active) {
+        r->now_ticks = self->priv.live.now_ticks;
+        r->revision = (int64_t)self->priv.live.revision;
+    }
+    char text[SVA_LCM_REPLAN_T_DIAG_TEXT_SIZE];
+    if (e->version != SVA_LCM_EVENT_T_VERSION) {
+        (void)snprintf(text, sizeof text,
+                       "%.63s: event_t.version is %d, this node speaks version %d",
+                       self->channel_event, (int)e->version, (int)SVA_LCM_EVENT_T_VERSION);
+        return refuse_event(self, SVA_LCM_REJECT_VALUE, NULL, text);
+    }
+    if (!self->priv.live_active) {
+        (void)snprintf(text, sizeof text,
+                       "%.63s: no live mission: a fleet and a mission must be planned first",
+                       self->channel_event);
+        return refuse_event(self, SVA_LCM_REJECT_VALUE, NULL, text);
+    }
+    sva_diag_t diag;
+    sva_diag_clear(&diag);
+    char msg[128];
+    if (!in_range(&diag, SVA_FIELD_EVENT_TYPE, -1, e->type, 0, (int64_t)SVA_EVENT_COUNT_ - 1,
+                  NULL)) {
+        (void)sva_diag_format(&diag, msg, sizeof msg);
+        (void)snprintf(text, sizeof text, "%.31s: %.126s", self->channel_event, msg);
+        return refuse_event(self, SVA_LCM_REJECT_VALUE, &diag, text);
+    }
+    sva_event_t ev;
+    memset(&ev, 0, sizeof ev);
+    ev.type = (sva_event_type_t)e->type;
+    ev.at_ticks = e->at_ticks;
+    ev.uav_id = e->uav_id;
+    ev.x = e->x;
+    ev.y = e->y;
+    ev.fuel = e->fuel;
+    ev.target.id = e->target.id;
+    ev.target.x = e->target.x;
+    ev.target.y = e->target.y;
+    ev.target.start_ticks = e->target.start_ticks;
+    ev.target.end_ticks = e->target.end_ticks;
+    ev.target.need = e->target.need;
+    sva_live_t* live = &self->priv.live;
+    if (sva_live_apply(live, &ev, &diag) != SVA_OK) {
+        self->last_diag = diag;
+        (void)sva_diag_format(&diag, msg, sizeof msg);
+        (void)snprintf(text, sizeof text, "%.31s: %.126s", self->channel_event, msg);
+        return refuse_event(self, SVA_LCM_REJECT_INVALID, &diag, text);
+    }
+    replan_live(self);
+    return SVA_LCM_ACCEPTED;
+}
+
+// Replans the live mission after applied events and publishes the replan (header set).
+static void replan_live(sva_lcm_node_t* self)
+{
+    sva_lcm_replan_t* r = &self->priv.replan_tx;
+    sva_live_t* live = &self->priv.live;
+    sva_diag_t diag;
+    sva_diag_clear(&diag);
+    char msg[128];
+    char text[SVA_LCM_REPLAN_T_DIAG_TEXT_SIZE];
+    r->accepted = 1;
+    self->priv.plan_id += 1;
+    sva_lcm_plan_t* p = &r->plan;
+    p->plan_id = self->priv.plan_id;
+    p->fleet_revision = self->priv.fleet_revision;
+    p->mission_revision = self->priv.mission_revision;
+    p->algorithm = (int8_t)self->algorithm;
+    sva_live_result_t* res = &self->priv.live_result;
+    const int64_t t0 = now_us(CLOCK_MONOTONIC);
+    const sva_status_t st = sva_live_replan(live, &self->priv.planner, self->algorithm, res, &diag);
+    const int64_t dt = now_us(CLOCK_MONOTONIC) - t0;
+    p->solve_us = (dt > (int64_t)INT32_MAX) ? INT32_MAX : (int32_t)dt;
+    r->now_ticks = live->now_ticks;
+    r->revision = (int64_t)live->revision;
+    if (st != SVA_OK) {
+        // The event stands; the plan in force stays as it was (sva_live_replan).
+        self->last_diag = diag;
+        plan_diag(p, &diag);
+        p->error_code = (int8_t)st;
+        p->status = SVA_LCM_PLAN_T_STATUS_FAILED;
+        (void)sva_diag_format(&diag, msg, sizeof msg);
+        (void)snprintf(text, sizeof text, "%.31s: %.126s", self->channel_replan, msg);
+        for (size_t i = 0; (i + 1U < sizeof text) && (text[i] != '\0'); ++i) {
+            r->diag_text[i] = (int8_t)text[i];
+        }
+        (void)reject(self, SVA_LCM_REJECT_PLANNER, text);
+        publish_replan(self);
+        return;
+    }
+    r->kept = res->kept ? (int8_t)1 : (int8_t)0;
+    r->under_way = (int16_t)res->under_way;
+    r->covered = (int16_t)res->covered;
+    r->objective = res->objective;
+    r->dropped = (int32_t)res->dropped;
+    r->added = (int32_t)res->added;
+    r->dropped_listed =
+        list_changes(res->previous, res->plan, res->residual, r->dropped_uav, r->dropped_target);
+    r->added_listed =
+        list_changes(res->plan, res->previous, res->residual, r->added_uav, r->added_target);
+    fill_residual(r, res->residual, r->revision);
+    if (!fill_plan(p, res->plan, res->residual)) {
+        memset(p->routes, 0, sizeof p->routes);
+        memset(p->route_targets, 0, sizeof p->route_targets);
+        p->route_count = 0;
+        p->item_count = 0;
+        p->status = SVA_LCM_PLAN_T_STATUS_TOO_LARGE;
+        (void)reject(self, SVA_LCM_REJECT_TOO_LARGE,
+                     "replan: plan needs more than MAX_ROUTE_ITEMS");
+    }
+    publish_replan(self);
+}
+
+// A fleet report while a live mission runs (fleet_reports set): each UAV in service
+// whose report contradicts the plan in force becomes an event at the live mission's
+// now: health not OK -> uav_lost; fuel below what its route in force still needs (the
+// flight model's fuel now less its fuel at the route's end) -> a fuel event. With at
+// least one applied, one replan is published (event_seq -1, event_type the last one).
+static void fleet_report(sva_lcm_node_t* self)
+{
+    const sva_lcm_fleet_state_t* f = &self->priv.fleet_rx;
+    sva_live_t* live = &self->priv.live;
+    sva_lcm_replan_t* r = &self->priv.replan_tx;
+    memset(r, 0, sizeof(*r));
+    r->version = SVA_LCM_REPLAN_T_VERSION;
+    r->event_seq = -1;
+    r->change_penalty = self->change_penalty;
+    uint32_t applied = 0;
+    for (int32_t i = 0; i < (int32_t)f->uav_count; ++i) {
+        const sva_lcm_uav_state_t* w = &f->uavs[i];
+        int32_t u = -1;
+        for (uint16_t k = 0; k < live->mission.uav_count; ++k) {
+            if (live->mission.uavs[k].id == w->id) {
+                u = (int32_t)k;
+            }
+        }
+        int32_t x = 0;
+        int32_t y = 0;
+        int32_t fuel = 0;
+        int32_t ready = 0;
+        if ((u < 0) ||
+            !sva_live_uav_at(live, (uint16_t)u, live->now_ticks, &x, &y, &fuel, &ready)) {
+            continue;  // not in the live mission, or out of service
+        }
+        sva_event_t ev;
+        memset(&ev, 0, sizeof ev);
+        ev.at_ticks = live->now_ticks;
+        ev.uav_id = w->id;
+        if (w->health != SVA_LCM_UAV_STATE_T_HEALTH_OK) {
+            ev.type = SVA_EVENT_UAV_LOST;
+        } else {
+            int32_t end_fuel = 0;
+            if (!sva_live_uav_at(live, (uint16_t)u, (int32_t)SVA_MAX_TICK, &x, &y, &end_fuel,
+                                 &ready) ||
+                ((int64_t)w->fuel >= (int64_t)fuel - (int64_t)end_fuel)) {
+                continue;
+            }
+            ev.type = SVA_EVENT_FUEL;
+            ev.fuel = w->fuel;
+        }
+        if (sva_live_apply(live, &ev, NULL) == SVA_OK) {
+            applied += 1U;
+            r->event_type = (int8_t)ev.type;
+        }
+    }
+    if (applied > 0U) {
+        r->now_ticks = live->now_ticks;
+        r->revision = (int64_t)live->revision;
+        replan_live(self);
+    }
 }
 
 sva_status_t sva_lcm_publish_status(sva_lcm_node_t* self, int64_t utime)

@@ -195,3 +195,100 @@ def plan_document(plan, mission_name: str) -> dict:
         doc["stats"].update(lower_bound=plan.lower_bound, optimal=bool(plan.optimal),
                             flow_incomplete=plan.flow_incomplete)
     return doc
+
+
+# --- live missions: event JSON -> event_t, replan_t -> JSON -------------------------------
+
+EVENT_TYPES = ["clock", "uav_lost", "uav_back", "fuel", "target_added", "target_cancelled",
+               "target_changed"]  # sva_event_type_t order == event_t.TYPE_*
+_EVENT_KEYS = {"clock": set(), "uav_lost": {"uav"}, "uav_back": {"uav", "x", "y", "fuel"},
+               "fuel": {"uav", "fuel"}, "target_added": {"target"},
+               "target_cancelled": {"target"}, "target_changed": {"target"}}
+
+
+def event_message(doc: Any, seq: int, path: str = "event."):
+    """event_t from a SPEC section 12.5 event object (shape checked here; whether it may
+    be applied is the node's to judge)."""
+    t = types()
+    _keys(doc, {"at", "type", "uav", "x", "y", "fuel", "target"}, path)
+    kind = doc.get("type")
+    if kind not in _EVENT_KEYS:
+        raise InputError(f"{path}type: must be one of {', '.join(EVENT_TYPES)}, got {kind!r}")
+    for k in sorted(_EVENT_KEYS[kind] | {"at", "type"}):
+        if k not in doc:
+            raise InputError(f"{path}{k}: missing key (a {kind} event needs it)")
+    extra = sorted(set(doc) - _EVENT_KEYS[kind] - {"at", "type"})
+    if extra:
+        raise InputError(f"{path}{extra[0]}: not a field of a {kind} event")
+    e = t.event_t()
+    e.version = t.event_t.VERSION
+    e.seq = seq
+    e.type = EVENT_TYPES.index(kind)
+    e.at_ticks = _int(doc, "at", path)
+    e.uav_id = _int(doc, "uav", path, 0)
+    e.x, e.y = _int(doc, "x", path, 0), _int(doc, "y", path, 0)
+    e.fuel = _int(doc, "fuel", path, 0)
+    e.target = t.target_t()
+    if kind == "target_cancelled":
+        e.target.id = _int(doc, "target", path)
+    elif "target" in doc:
+        g, p = doc["target"], f"{path}target."
+        _keys(g, {"id", "x", "y", "start", "end", "need"}, p)
+        e.target.id, e.target.x, e.target.y = _int(g, "id", p), _int(g, "x", p), _int(g, "y", p)
+        e.target.start_ticks, e.target.end_ticks = _int(g, "start", p), _int(g, "end", p)
+        e.target.need = _int(g, "need", p)
+    return e
+
+
+def mission_document(fleet, mission, name: str) -> dict:
+    """SPEC section 3 mission JSON from a fleet_state_t and a mission_t."""
+    return {
+        "name": name,
+        "depot": {"x": mission.depot_x, "y": mission.depot_y},
+        "ticks_per_cell": mission.ticks_per_cell,
+        "hover_fuel": mission.hover_fuel,
+        "overlap_percent": mission.overlap_percent,
+        "uavs": [{"id": u.id, "x": u.x, "y": u.y, "fuel": u.fuel, "ready_at": u.ready_at_ticks}
+                 for u in fleet.uavs[:fleet.uav_count]],
+        "targets": [{"id": g.id, "x": g.x, "y": g.y, "start": g.start_ticks, "end": g.end_ticks,
+                     "need": g.need} for g in mission.targets[:mission.target_count]],
+    }
+
+
+def replan_document(replan, mission_name: str) -> dict:
+    """JSON of a replan_t: the event answered, whether it was accepted, the clock and
+    revision, the changed visits, and (accepted) the residual mission and the plan over
+    it. A replan_t of another version is refused (InputError naming both versions)."""
+    t = types()
+    if replan.version != t.replan_t.VERSION:
+        raise InputError(f"replan_t.version is {replan.version}, this tool speaks version "
+                         f"{t.replan_t.VERSION}")
+    text = bytes(b & 0xFF for b in replan.diag_text).split(b"\0", 1)[0]
+    doc = {
+        "event_seq": replan.event_seq,
+        "event": EVENT_TYPES[replan.event_type] if 0 <= replan.event_type < len(EVENT_TYPES)
+        else replan.event_type,
+        "accepted": bool(replan.accepted),
+        "now": replan.now_ticks,
+        "revision": replan.revision,
+    }
+    if not replan.accepted:
+        doc["error"] = text.decode("utf-8", "replace")
+        return doc
+    plan = replan.plan
+    doc.update(kept=bool(replan.kept), under_way=replan.under_way, covered=replan.covered,
+               objective=replan.objective, change_penalty=replan.change_penalty,
+               changes={"dropped": replan.dropped, "added": replan.added,
+                        "dropped_visits": [[u, g] for u, g in zip(
+                            replan.dropped_uav[:replan.dropped_listed],
+                            replan.dropped_target[:replan.dropped_listed])],
+                        "added_visits": [[u, g] for u, g in zip(
+                            replan.added_uav[:replan.added_listed],
+                            replan.added_target[:replan.added_listed])]},
+               residual=mission_document(replan.residual_fleet, replan.residual_mission,
+                                         f"{mission_name}@{replan.now_ticks}"))
+    if plan.status in (plan.STATUS_COMPLETE, plan.STATUS_PARTIAL):
+        doc["plan"] = plan_document(plan, doc["residual"]["name"])
+    else:
+        doc["error"] = text.decode("utf-8", "replace") or f"plan status {plan.status}"
+    return doc
