@@ -362,22 +362,34 @@ static int print_plan(const options_t* opt, const char* name, int64_t solve_us)
     return EXIT_PLANNED;
 }
 
-static int cmd_plan(int argc, char** argv)
+// The options of a command that plans (plan, replan), and its --algo: EXIT_PLANNED to go
+// on (or with opt->help, after printing the usage), or the exit code of a usage error.
+static int parse_planning(const char* command, const struct option* options, int argc, char** argv,
+                          options_t* opt, sva_algorithm_t* algorithm)
 {
-    options_t opt;
-    int code = parse_options("plan", PLAN_OPTIONS, argc, argv, &opt);
-    if (code != EXIT_PLANNED || opt.help) {
-        if (opt.help) {
+    const int code = parse_options(command, options, argc, argv, opt);
+    if (code != EXIT_PLANNED || opt->help) {
+        if (opt->help) {
             print_usage(stdout);
         }
         return code;
     }
-    sva_algorithm_t algorithm;
-    if (sva_algorithm_from_name(opt.algo, &algorithm) != SVA_OK) {
+    if (sva_algorithm_from_name(opt->algo, algorithm) != SVA_OK) {
         char algos[128];
         list_algorithms(algos, sizeof algos);
-        return error_exit(EXIT_BAD_INPUT, "plan: --algo: unknown algorithm \"%s\" (known: %s)",
-                          opt.algo, algos);
+        return error_exit(EXIT_BAD_INPUT, "%s: --algo: unknown algorithm \"%s\" (known: %s)",
+                          command, opt->algo, algos);
+    }
+    return EXIT_PLANNED;
+}
+
+static int cmd_plan(int argc, char** argv)
+{
+    options_t opt;
+    sva_algorithm_t algorithm;
+    int code = parse_planning("plan", PLAN_OPTIONS, argc, argv, &opt, &algorithm);
+    if (code != EXIT_PLANNED || opt.help) {
+        return code;
     }
     char name[SVA_JSON_NAME_MAX + 1];
     code = load(opt.mission, name);
@@ -531,19 +543,10 @@ static int replay(const options_t* opt, sva_algorithm_t algorithm)
 static int cmd_replan(int argc, char** argv)
 {
     options_t opt;
-    int code = parse_options("replan", REPLAN_OPTIONS, argc, argv, &opt);
-    if (code != EXIT_PLANNED || opt.help) {
-        if (opt.help) {
-            print_usage(stdout);
-        }
-        return code;
-    }
     sva_algorithm_t algorithm;
-    if (sva_algorithm_from_name(opt.algo, &algorithm) != SVA_OK) {
-        char algos[128];
-        list_algorithms(algos, sizeof algos);
-        return error_exit(EXIT_BAD_INPUT, "replan: --algo: unknown algorithm \"%s\" (known: %s)",
-                          opt.algo, algos);
+    int code = parse_planning("replan", REPLAN_OPTIONS, argc, argv, &opt, &algorithm);
+    if (code != EXIT_PLANNED || opt.help) {
+        return code;
     }
     char err[SVA_JSON_ERROR_SIZE];
     const sva_json_result_t loaded = sva_json_load_live(opt.mission, &g_doc, err, sizeof err);
