@@ -3,8 +3,9 @@
 
 Each benchmark writes its own fragment when run with `--results` (scripts/bench.sh,
 scripts/instructions.sh, tests/footprint/footprint.py results, tools/bench/flow_vs_ref.py,
-tools/bench/flow_vs_peer.py, `sva-tools bench`, port/lcm/bench/latency.sh), then this
-script assembles docs/results.md; re-running a bench rewrites only its own fragment.
+tools/bench/flow_vs_peer.py, tools/bench/live_bench.py, `sva-tools bench`,
+port/lcm/bench/latency.sh), then this script assembles docs/results.md; re-running a bench
+rewrites only its own fragment.
 A fragment is docs/results/SECTION.md (the section's text) or docs/results/SECTION.PART.md
 (one part of it, e.g. one mission set; parts follow the section's own fragment, in name
 order). Every fragment names the command that reproduces it (a line `Command: `...``)
@@ -41,6 +42,7 @@ SECTIONS = [
     ("footprint", "Cortex-M footprint and stack"),
     ("flow_vs_ref", "flow against the exact optimum"),
     ("flow_vs_peer", "flow against the OR-tools routing peer"),
+    ("live", "Live missions"),
     ("paper", "The paper's evaluation"),
     ("lcm_latency", "LCM latency"),
 ]

@@ -1,0 +1,288 @@
+#!/usr/bin/env python3
+"""Live missions flown with each algorithm: coverage, replans against the exact optimum,
+changed visits and replan latency (docs/live.md, docs/SPEC.md section 12).
+
+Usage (from the repository root, after scripts/setup.sh and scripts/build.sh):
+    .venv/bin/python tools/bench/live_bench.py [--results] [--set TxU:N ...] [options]
+    e.g. nice .venv/bin/python tools/bench/live_bench.py --results --set 25x5:20 --set 100x20:5
+
+For each set (T targets, U UAVs, N scenarios) it writes N scenarios with
+`sva-tools gen --targets T --uavs U --events E --count N --seed S` (plus --gen options),
+flies each with `sva-tools sim` in this process (the simulator calls `sva replan`) for
+each algorithm (--algos, default sva,ga,hga,flow) and each change_penalty (--penalties,
+default 0,1000), and runs `sva-tools ref --det-limit D --workers 1` on every replan's
+residual mission that has a target. It prints, per set, algorithm and penalty:
+- flight coverage: targets covered / targets coverable after the events (the sums of the
+  flight logs' summaries);
+- replans against ref: the share of residual missions where the replan covers as many
+  targets as ref, the replans' covered targets / ref's, and the cost gap at equal coverage;
+- changed visits per replan (the logs' changes.count; the start replan has none);
+- replan latency p50 / p99: stats.solve_us of each replan, timed by `sva replan` around
+  sva_live_replan() in its own process (nearest-rank percentiles).
+Goals: flow covers as many targets as ref on at least 99 % of the residual missions;
+flow at 25 x 5 replans in p50 < 1 ms and p99 < 10 ms.
+
+Scenarios, flight logs and ref results are kept under --work (default build/live_bench/):
+ref results by a hash of the residual mission, so a re-run only solves new ones (delete
+the folder to recompute). --results writes docs/results/live.md (tools/bench/results.py).
+"""
+import argparse
+import concurrent.futures
+import hashlib
+import json
+import os
+import statistics
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+TOOLS = [sys.executable, "-m", "sva_tools"]  # this Python (.venv), tools/ on PYTHONPATH
+ENV = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "tools") + os.pathsep + os.environ.get("PYTHONPATH", ""))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+
+from sva_tools import sim  # noqa: E402
+
+GOAL_EQUAL = 99.0       # % of residual missions where flow covers as many targets as ref
+GOAL_P50_MS = 1.0       # flow at 25 x 5
+GOAL_P99_MS = 10.0
+
+
+def parse_set(text):
+    """TxU:N[:K] -> (T, U, N, K): K (default N) scenarios of the N whose replans meet ref."""
+    try:
+        size, *counts = text.split(":")
+        t, u = size.lower().split("x")
+        if len(counts) not in (1, 2):
+            raise ValueError
+        out = (int(t), int(u), int(counts[0]), int(counts[-1]))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--set {text!r}: expected TARGETSxUAVS:SCENARIOS[:REF_SCENARIOS], "
+                                         "e.g. 25x5:20 or 100x20:5:1")
+    if min(out[:3]) < 1 or not 0 <= out[3] <= out[2]:
+        raise argparse.ArgumentTypeError(f"--set {text!r}: targets, UAVs and scenarios must be >= 1, "
+                                         "ref scenarios between 0 and the scenarios")
+    return out
+
+
+def percentile(sorted_values, p):
+    """Nearest-rank percentile of a sorted list."""
+    k = max(1, -(-len(sorted_values) * p // 100))
+    return sorted_values[int(k) - 1]
+
+
+def scenarios(folder, targets, uavs, count, args):
+    os.makedirs(folder, exist_ok=True)
+    subprocess.run(TOOLS + ["gen", "--targets", str(targets), "--uavs", str(uavs),
+                    "--events", str(args.events), "--count", str(count), "--seed", str(args.seed),
+                    "--name", "live", "-o", folder] + args.gen, check=True, capture_output=True, env=ENV)
+    return [os.path.join(folder, f"live_{i:04d}.json") for i in range(count)]
+
+
+def fly(path, algo, penalty, log_path):
+    if os.path.exists(log_path):
+        with open(log_path, encoding="utf-8") as f:
+            return json.load(f)
+    mission, events, _ = sim.load_scenario(path)
+    log = sim.simulate(mission, events, penalty, algo)
+    with open(log_path, "w", encoding="utf-8") as f:
+        json.dump(log, f)
+    return log
+
+
+def ref_key(residual):
+    doc = {k: v for k, v in residual.items() if k not in ("change_penalty", "name")}
+    return hashlib.sha256(json.dumps(doc, sort_keys=True).encode()).hexdigest()[:24]
+
+
+def ref(residual, folder, det_limit):
+    """ref's plan of a residual mission (cached in folder by the mission's hash)."""
+    key = ref_key(residual)
+    out = os.path.join(folder, key + ".ref.json")
+    if not os.path.exists(out):
+        src = os.path.join(folder, key + ".json")
+        with open(src, "w", encoding="utf-8") as f:
+            json.dump({k: v for k, v in residual.items() if k != "change_penalty"}, f)
+        r = subprocess.run(TOOLS + ["ref", "--det-limit", str(det_limit), "--workers", "1", src],
+                           capture_output=True, text=True, check=True, env=ENV)
+        with open(out + ".tmp", "w", encoding="utf-8") as f:
+            f.write(r.stdout)
+        os.replace(out + ".tmp", out)
+    with open(out, encoding="utf-8") as f:
+        return json.load(f)
+
+
+def figures(logs, refs, ref_count):
+    """The figures of one (set, algorithm, penalty) from its flight logs and the ref plans
+    of the replans' residual missions of the first ref_count logs (refs: ref_key -> plan)."""
+    covered = sum(l["summary"]["covered"] for l in logs)
+    coverable = sum(l["summary"]["coverable"] for l in logs)
+    replans = [r for l in logs for r in l["replans"]]
+    judged = [(r["plan"], refs[ref_key(r["mission"])]) for l in logs[:ref_count] for r in l["replans"]
+              if r["mission"]["targets"]]
+    as_many = sum(1 for p, q in judged if p["covered"] >= q["covered"])
+    above = sum(1 for p, q in judged if p["covered"] > q["covered"])
+    gaps = [100.0 * (p["cost"] - q["cost"]) / q["cost"] for p, q in judged
+            if p["covered"] == q["covered"] and q["cost"] > 0]
+    later = [r for r in replans if r["cause"] != "start"]
+    times = sorted(r["solve_us"] for r in replans if r["solve_us"] is not None)
+    return {
+        "scenarios": len(logs), "covered": covered, "coverable": coverable,
+        "replans": len(replans), "judged": len(judged), "as_many": as_many, "above": above,
+        "plan_covered": sum(p["covered"] for p, _ in judged), "ref_covered": sum(q["covered"] for _, q in judged),
+        "ref_proven": sum(1 for _, q in judged if q["stats"].get("optimal")),
+        "gap_mean": statistics.mean(gaps) if gaps else 0.0, "gap_max": max(gaps) if gaps else 0.0,
+        "changes": sum(r["changes"]["count"] for r in later), "later": len(later),
+        "p50_us": percentile(times, 50) if times else None, "p99_us": percentile(times, 99) if times else None,
+        "timed": len(times),
+    }
+
+
+def pct(a, b):
+    return 100.0 * a / b if b else 100.0
+
+
+def ms(us):
+    return "–" if us is None else f"{us / 1000:.3f} ms"
+
+
+def row(algo, penalty, f):
+    if f["judged"]:
+        against = (f"{f['as_many']}/{f['judged']} ({pct(f['as_many'], f['judged']):.1f} %) "
+                   f"| {f['plan_covered']}/{f['ref_covered']} ({pct(f['plan_covered'], f['ref_covered']):.1f} %) "
+                   f"| mean {f['gap_mean']:.2f} %, largest {f['gap_max']:.2f} %")
+    else:
+        against = "– | – | –"  # ref not run on this set
+    return (f"| {algo} | {penalty} | {f['covered']}/{f['coverable']} ({pct(f['covered'], f['coverable']):.1f} %) "
+            f"| {against} | {f['changes'] / f['later'] if f['later'] else 0.0:.2f} | {ms(f['p50_us'])} "
+            f"| {ms(f['p99_us'])} |")
+
+
+HEAD = ("| algorithm | change_penalty | flight: covered / coverable | replans covering as many as ref "
+        "| replans' covered / ref's | cost gap at equal coverage | changed visits per replan "
+        "| replan p50 | replan p99 |\n|---|---|---|---|---|---|---|---|---|")
+
+
+def goals(targets, uavs, by):
+    """Goal lines for flow in this set (None when flow was not flown)."""
+    lines = []
+    for (algo, pen), f in sorted(by.items()):
+        if algo != "flow":
+            continue
+        share = pct(f["as_many"], f["judged"])
+        if not f["judged"]:
+            lines.append(f"- flow, change_penalty {pen}: against ref: not measured on this set (ref not run).")
+        else:
+                lines.append(f"- flow, change_penalty {pen}: covers as many targets as ref on {share:.1f} % of "
+                         f"{f['judged']} residual missions (goal at least {GOAL_EQUAL:g} %): "
+                         f"{'met' if share >= GOAL_EQUAL else 'not met'}.")
+        if (targets, uavs) == (25, 5) and f["p50_us"] is not None:
+            ok50 = f["p50_us"] / 1000 < GOAL_P50_MS
+            ok99 = f["p99_us"] / 1000 < GOAL_P99_MS
+            lines.append(f"- flow, change_penalty {pen}: replan p50 {ms(f['p50_us'])} (goal under {GOAL_P50_MS:g} ms): "
+                         f"{'met' if ok50 else 'not met'}; p99 {ms(f['p99_us'])} (goal under {GOAL_P99_MS:g} ms): "
+                         f"{'met' if ok99 else 'not met'} ({f['timed']} replans).")
+    return lines
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--results", action="store_true", help="write docs/results/live.md and docs/results.md")
+    ap.add_argument("--set", dest="sets", action="append", type=parse_set, metavar="TxU:N",
+                    help="a scenario set: targets x UAVs : scenarios [: how many of them (the first) meet ref, "
+                         "default all] (repeatable; default 25x5:20 and 100x20:5)")
+    ap.add_argument("--events", type=int, default=10, help="events per scenario (default 10)")
+    ap.add_argument("--seed", type=int, default=7, help="gen's seed (default 7)")
+    ap.add_argument("--algos", default="sva,ga,hga,flow", help="comma-separated (default sva,ga,hga,flow)")
+    ap.add_argument("--penalties", default="0,1000", help="change_penalty values, comma-separated (default 0,1000)")
+    ap.add_argument("--det-limit", type=float, default=10.0, help="ref's deterministic limit (default 10)")
+    ap.add_argument("--jobs", type=int, default=2, help="ref processes at once (default 2)")
+    ap.add_argument("--work", default=os.path.join(ROOT, "build", "live_bench"),
+                    help="scenarios, flight logs and ref cache (default build/live_bench)")
+    ap.add_argument("--gen", action="append", default=[], metavar="ARG",
+                    help="an extra `sva-tools gen` argument, e.g. --gen=--need --gen=1:2 (repeatable)")
+    args = ap.parse_args(argv)
+    sets = args.sets or [(25, 5, 20, 20), (100, 20, 5, 5)]
+    algos = [a for a in args.algos.split(",") if a]
+    penalties = [int(p) for p in args.penalties.split(",") if p]
+    load_start = " ".join(f"{x:.2f}" for x in os.getloadavg())
+    gen_tag = "_".join(a.strip("-").replace(":", "-") for a in args.gen)
+    sections = []
+    for targets, uavs, count, ref_count in sets:
+        tag = f"{targets}x{uavs}_e{args.events}_s{args.seed}" + (f"_{gen_tag}" if gen_tag else "")
+        folder = os.path.join(args.work, tag)
+        paths = scenarios(os.path.join(folder, "scenarios"), targets, uavs, count, args)
+        os.makedirs(os.path.join(folder, "logs"), exist_ok=True)
+        ref_dir = os.path.join(args.work, "ref")
+        os.makedirs(ref_dir, exist_ok=True)
+        logs = {}
+        for algo in algos:
+            for pen in penalties:
+                logs[algo, pen] = [fly(p, algo, pen, os.path.join(
+                    folder, "logs", f"{os.path.basename(p)[:-5]}.{algo}.p{pen}.json")) for p in paths]
+                print(f"{targets}x{uavs}: flown {algo} penalty {pen}", file=sys.stderr, flush=True)
+        residuals = {}  # scenario by scenario, so an interrupted run leaves whole scenarios cached
+        for i in range(ref_count):
+            for ls in logs.values():
+                for r in ls[i]["replans"]:
+                    if r["mission"]["targets"]:
+                        residuals.setdefault(ref_key(r["mission"]), r["mission"])
+        print(f"{targets}x{uavs}: {len(residuals)} distinct residual missions for ref", file=sys.stderr, flush=True)
+        with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
+            refs = dict(zip(residuals, pool.map(lambda m: ref(m, ref_dir, args.det_limit), residuals.values())))
+        by = {k: figures(v, refs, ref_count) for k, v in logs.items()}
+        proven = sum(1 for q in refs.values() if q["stats"].get("optimal"))
+        ref_s = sorted(q["stats"]["solve_us"] / 1e6 for q in refs.values()) or [0.0]
+        lines = [f"#### {targets} targets x {uavs} UAVs, {count} scenarios", "",
+                 f"`sva-tools gen --targets {targets} --uavs {uavs} --events {args.events} --count {count} "
+                 f"--seed {args.seed} {' '.join(args.gen)}`".replace("  ", " ").replace(" `", "`") +
+                 (f"; ref on the replans of {'all' if ref_count == count else f'the first {ref_count}'} "
+                  f"{'scenarios' if ref_count != 1 else 'scenario'}: {len(refs)} distinct residual missions "
+                  f"with a target, {proven} of them proven optimal by ref; ref's wall time per mission "
+                  f"(its stats.solve_us): median {ref_s[len(ref_s) // 2]:.1f} s, largest {ref_s[-1]:.1f} s."
+                  if ref_count else
+                  "; ref not run on this set (the columns against ref are empty)."), "",
+                 HEAD] + [row(a, p, by[a, p]) for a in algos for p in penalties]
+        g = goals(targets, uavs, by)
+        if g:
+            lines += [""] + g
+        sections.append("\n".join(lines))
+        print("\n".join(lines) + "\n")
+    if args.results:
+        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+        import results as page  # tools/bench/results.py
+        opts = []
+        for t, u, n, k in sets:
+            opts += ["--set", f"{t}x{u}:{n}" + (f":{k}" if k != n else "")]
+        if args.events != 10:
+            opts += ["--events", str(args.events)]
+        if args.seed != 7:
+            opts += ["--seed", str(args.seed)]
+        if args.algos != "sva,ga,hga,flow":
+            opts += ["--algos", args.algos]
+        if args.penalties != "0,1000":
+            opts += ["--penalties", args.penalties]
+        if args.det_limit != 10.0:
+            opts += ["--det-limit", f"{args.det_limit:g}"]
+        opts += [f"--gen={a}" for a in args.gen]
+        cmd = " ".join(["nice .venv/bin/python tools/bench/live_bench.py --results"] + opts)
+        intro = "\n".join([
+            "Scenarios from `sva-tools gen --events`, flown tick by tick by `sva-tools sim` (in the bench's "
+            "process; the simulator calls `sva replan` at tick 0 and at each tick with events) with each "
+            f"algorithm and `change_penalty` {' and '.join(map(str, penalties))}. Flight coverage: targets "
+            "covered over targets still coverable after the events (neither cancelled nor lost), summed over "
+            "the flight logs. Each replan's plan of its residual mission is compared with `sva-tools ref "
+            f"--det-limit {args.det_limit:g} --workers 1` on that residual mission (replans whose residual "
+            "mission has no target left are not counted); ref is not always proven optimal, so a replan can "
+            "cover more. Changed visits per replan: SPEC 12 changed visits of each replan after the start one. "
+            "Latency: `stats.solve_us` of each replan, the wall time of `sva_live_replan()` in the `sva replan` "
+            "process (nearest-rank p50 and p99 over all replans, the start one included). `change_penalty` "
+            "weighs only between the algorithm's plan and the plan in force, after coverage (docs/live.md), so "
+            "a large one removes only the changes that buy no coverage.", "",
+            "The latency of a replan through the LCM node is not measured: the node does not keep live "
+            "missions yet (docs/live.md).", ""])
+        page.write(page.ROOT, "live", cmd, intro + "\n" + "\n\n".join(sections), load_start=load_start)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
