@@ -278,8 +278,8 @@ def main(argv):
             "process (nearest-rank p50 and p99 over all replans, the start one included). `change_penalty` "
             "weighs only between the algorithm's plan and the plan in force, after coverage (docs/live.md), so "
             "a large one removes only the changes that buy no coverage.", "",
-            "The latency of a replan through the LCM node is not measured: the node does not keep live "
-            "missions yet (docs/live.md).", ""])
+            "This bench does not measure a replan's latency through the LCM node yet (the node's "
+            "live missions: docs/lcm.md).", ""])
         page.write(page.ROOT, "live", cmd, intro + "\n" + "\n\n".join(sections), load_start=load_start)
     return 0
 

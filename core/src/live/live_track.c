@@ -8,8 +8,14 @@ static void step_point(int32_t ax, int32_t ay, int32_t bx, int32_t by, int64_t s
 {
     const int64_t x0 = ax;
     const int64_t y0 = ay;
-    const int64_t east = ((int64_t)bx >= x0) ? 1 : -1;
-    const int64_t north = ((int64_t)by >= y0) ? 1 : -1;
+    int64_t east = 1;
+    int64_t north = 1;
+    if ((int64_t)bx < x0) {
+        east = -1;
+    }
+    if ((int64_t)by < y0) {
+        north = -1;
+    }
     const int64_t dx = ((int64_t)bx - x0) * east;
     if (s <= dx) {
         *x = (int32_t)(x0 + (s * east));
