@@ -292,4 +292,13 @@
 #    error "SVA_ENABLE_ASSERT must be 0 or 1"
 #endif
 
+/// 1: flow honours sva_planner_t.standing (a live mission's change_penalty, SPEC
+/// section 12.4); 0: it ignores it, saving about 1.2 KB of code (Cortex-M4, -Os).
+#ifndef SVA_FLOW_STANDING
+#    define SVA_FLOW_STANDING 1
+#endif
+#if (SVA_FLOW_STANDING != 0) && (SVA_FLOW_STANDING != 1)
+#    error "SVA_FLOW_STANDING must be 0 or 1"
+#endif
+
 #endif  // SVA_CONFIG_H
