@@ -398,7 +398,8 @@ typedef struct sva_planner {
     /// The other algorithms ignore it; with NULL or change_penalty 0 flow plans exactly
     /// as without it. It must be a plan of this mission (route r for UAV r, every visit
     /// in time and every target served by at most its need); flow ignores one that is
-    /// not, and ignores it past SVA_FLOW_MAX_COPIES (SVA_FLOW_OVER_COPIES). Read, never
+    /// not, and ignores it past SVA_FLOW_MAX_COPIES (SVA_FLOW_OVER_COPIES) and when
+    /// compiled with SVA_FLOW_STANDING 0 (the tiny profile). Read, never
     /// written, during sva_plan() only: the caller keeps it alive for the call.
     /// sva_live_replan() sets it for its own sva_plan() call and clears it after.
     /// Memory: two successor lists in the planner (sva_private.h); stack: no frame
