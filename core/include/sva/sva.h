@@ -334,7 +334,7 @@ typedef struct {
     uint16_t flow_ruin_rounds;
 } sva_stats_t;
 
-typedef struct {
+typedef struct sva_plan {
     sva_algorithm_t algorithm;
     sva_plan_status_t status;
     uint16_t covered;  ///< targets covered
@@ -387,6 +387,24 @@ typedef struct sva_planner {
     /// sva_planner_init sets SVA_FLOW_MAX_WORK; any value in [1000, SVA_FLOW_MAX_WORK]
     /// may be set between runs (others are clamped into that range).
     uint32_t flow_max_work;
+    /// The plan in force over the mission being planned (a live mission's plan carried
+    /// over, SPEC section 12.4), or NULL (sva_planner_init's value). Read by flow alone,
+    /// and only when mission.change_penalty > 0: flow then also repairs this plan as one
+    /// more seed, and returns, of the plans it offers, the one covering the most
+    /// targets, then with the least cost + change_penalty * changed visits against it
+    /// (a changed visit: a (UAV, target) pair in one plan and not the other). Its
+    /// search and lower_bound are unchanged: lower_bound bounds the cost alone, and
+    /// `optimal` holds only when the plan returned costs what the proven optimum does.
+    /// The other algorithms ignore it; with NULL or change_penalty 0 flow plans exactly
+    /// as without it. It must be a plan of this mission (route r for UAV r, every visit
+    /// in time and every target served by at most its need); flow ignores one that is
+    /// not, and ignores it past SVA_FLOW_MAX_COPIES (SVA_FLOW_OVER_COPIES) and when
+    /// compiled with SVA_FLOW_STANDING 0 (the tiny profile). Read, never
+    /// written, during sva_plan() only: the caller keeps it alive for the call.
+    /// sva_live_replan() sets it for its own sva_plan() call and clears it after.
+    /// Memory: two successor lists in the planner (sva_private.h); stack: no frame
+    /// deeper than flow's deepest path (DESIGN.md section 6).
+    const struct sva_plan* standing;
     /// All working memory (sva_private.h): read-only to users, its layout may change
     /// in any release.
     sva_planner_priv_t priv;
@@ -531,7 +549,9 @@ SVA_NODISCARD sva_status_t sva_live_apply(sva_live_t* self, const sva_event_t* e
 /// Plans the residual mission with `algorithm` and makes the better of that plan and the
 /// plan in force (less what no longer fits) the new plan in force: more targets covered
 /// first, then the smaller cost + change_penalty * changed visits (SPEC section 12.4).
-/// Returns SVA_OK with *result filled; otherwise sva_plan()'s status and diag, and the
+/// The carried plan is planner->standing during its sva_plan() call (flow weighs
+/// changes against it); planner->standing is NULL on return. Returns SVA_OK with
+/// *result filled; otherwise sva_plan()'s status and diag, and the
 /// plan in force stays as it was. Allocates nothing; sva_plan()'s complexity plus
 /// O(U * R * T).
 SVA_NODISCARD sva_status_t sva_live_replan(sva_live_t* self, sva_planner_t* planner,

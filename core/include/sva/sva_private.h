@@ -21,6 +21,9 @@
 extern "C" {
 #endif
 
+/// sva_plan_t (sva.h), which flow's working memory points to.
+struct sva_plan;
+
 /// One transportation problem: sources are UAV groups, sinks are targets.
 typedef struct {
     uint16_t source_count;
@@ -204,6 +207,16 @@ typedef struct {
     uint16_t inc_next[SVA_FLOW_MAX_COPIES];
     int64_t inc_value;
     bool has_inc;
+    // The plan offered that is best against the standing plan (sva_planner_t.standing):
+    // coverage first, then cost + change_penalty * changed visits (flow_incumbent.c).
+    const struct sva_plan* standing;  ///< while it counts (penalty > 0), else NULL
+    bool has_pen;
+#if SVA_FLOW_STANDING
+    uint16_t pen_first[SVA_MAX_UAVS];
+    uint16_t pen_next[SVA_FLOW_MAX_COPIES];
+    int64_t pen_value;  ///< cost + change_penalty * changed visits
+    uint16_t pen_covered;
+#endif
     uint16_t depth;
     int64_t max_cost;  ///< no flow or plan costs more (rewards)
     sva_flow_frame_t stack[SVA_FLOW_MAX_DEPTH];

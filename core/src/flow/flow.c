@@ -352,6 +352,7 @@ static void finish(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t*
                             (coverage_proven && (bound >= cost)));
     stats->flow_incomplete = stats->optimal ? (uint8_t)SVA_FLOW_COMPLETE : (uint8_t)incomplete;
     stats->flow_work = w->work;
+    sva_flow_standing_finish(priv, m, plan);
 }
 
 // With a need above 1 (and none above UINT8_MAX), the pooled graph's relaxation comes
@@ -411,6 +412,7 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     budget = (budget < 1000U) ? 1000U : budget;
     budget = (budget > (uint64_t)SVA_FLOW_MAX_WORK) ? (uint64_t)SVA_FLOW_MAX_WORK : budget;
     w->has_inc = false;
+    sva_flow_standing_begin(priv, m, plan, self->standing);
     w->insert_backwards = false;
     w->work = 0U;
     w->local_work = budget / 2U;
@@ -428,6 +430,9 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
         // through the repair and the local search, then ruin and recreate.
         if (!pooled_proven) {
             seed(self, m, plan);
+        }
+        sva_flow_seed_standing(priv, m, plan);
+        if (!pooled_proven) {
             (void)sva_flow_ruin_recreate(priv, m, plan, w->work + budget, -1);
         }
         finish(priv, m, plan, pooled, 0, false, over);
@@ -448,8 +453,11 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
         // incumbent. The phases' budgets count from here: seeding (two local searches at
         // most, each within w->local_work) does not eat into the search.
         seed(self, m, plan);
+        sva_flow_seed_standing(priv, m, plan);
         start = w->work - root_work;  // the root counts in the search's share, as before
         open = search(priv, m, plan, start + (budget / 16U), root_solved, &incomplete);
+    } else {
+        sva_flow_seed_standing(priv, m, plan);
     }
     if (open != INT64_MAX) {
         lagrange_bound = sva_flow_lagrange(priv, m, plan, start + (budget - (budget / 4U)),

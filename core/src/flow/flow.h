@@ -40,8 +40,19 @@ bool sva_flow_route_fits(const sva_mission_t* m, uint16_t u, const uint16_t* cop
 /// cells less the rewards of the targets it covers.
 int64_t sva_flow_plan_value(const sva_planner_priv_t* priv, const sva_mission_t* m,
                             const sva_plan_t* plan);
-/// Keeps the plan in *plan (routes + priv->target_served) if it beats the incumbent.
+/// Keeps the plan in *plan (routes + priv->target_served) if it beats the incumbent
+/// (offering it to sva_flow_offer_standing first).
 bool sva_flow_offer_plan(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan);
+/// With a standing plan (w->standing, set only while change_penalty > 0): keeps the
+/// plan in *plan (routes + priv->target_served) in pen_first/pen_next if it covers more
+/// targets than the one kept there, or as many at a smaller cost + change_penalty *
+/// changed visits against the standing plan. Nothing otherwise.
+void sva_flow_offer_standing(sva_planner_priv_t* priv, const sva_mission_t* m,
+                             const sva_plan_t* plan);
+/// The plan sva_flow_offer_standing kept into *plan and priv->target_served; false,
+/// nothing written, when there is no standing plan or no such plan.
+bool sva_flow_write_standing_pick(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                  sva_plan_t* plan);
 /// Gives UAVs in the same state (position, fuel, ready time) the incumbent's routes in
 /// id order: the route whose targets come first in window order to the lowest id, empty
 /// routes to the highest. The same plan whatever order the mission lists them in.
@@ -163,6 +174,19 @@ bool sva_flow_lp_prices(sva_flow_work_t* w, const sva_mission_t* m, const sva_pl
 /// sva_flow_repair to complete and offer. False if nothing was fixed.
 bool sva_flow_lp_dive(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                       uint64_t budget);
+
+// flow_standing.c: the standing plan (sva_planner_t.standing; SVA_FLOW_STANDING).
+/// Sets w->standing to `standing` when the mission has a change_penalty and it is a
+/// plan of the mission (*plan fresh from sva_state_reset), else NULL; no plan kept yet.
+void sva_flow_standing_begin(sva_planner_priv_t* priv, const sva_mission_t* m,
+                             const sva_plan_t* plan, const sva_plan_t* standing);
+/// The standing plan repaired (sva_flow_repair) and offered, from and back to a reset
+/// state, stats kept; nothing without one.
+void sva_flow_seed_standing(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
+/// With a standing plan: the plan best against it into *plan (over the incumbent
+/// finish wrote), `optimal` kept only if it costs the incumbent's cost, lower_bound at
+/// most its cost.
+void sva_flow_standing_finish(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
 
 // flow.c: the algorithm.
 sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* mission, sva_plan_t* plan);

@@ -46,32 +46,105 @@ int64_t sva_flow_plan_value(const sva_planner_priv_t* priv, const sva_mission_t*
     return value;
 }
 
-bool sva_flow_offer_plan(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan)
+// The routes of *plan as successor lists over copies (first[u], next[c]).
+static void link_routes(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
+                        uint16_t* first, uint16_t* next)
 {
-    sva_flow_work_t* w = &priv->flow;
-    const int64_t value = sva_flow_plan_value(priv, m, plan);
-    if (w->has_inc && (value >= w->inc_value)) {
-        return false;
-    }
     for (uint16_t t = 0U; t < m->target_count; t++) {
         w->target_taken[t] = 0U;
     }
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         const sva_route_t* r = &plan->routes[u];
-        uint16_t* link = &w->inc_first[u];
+        uint16_t* link = &first[u];
         for (uint16_t k = 0U; k < r->target_count; k++) {
             const uint16_t t = r->targets[k];
             const uint16_t c = (uint16_t)(w->target_first_copy[t] + w->target_taken[t]);
             w->target_taken[t]++;
             *link = c;
-            link = &w->inc_next[c];
+            link = &next[c];
         }
         *link = SVA_FLOW_ROUTE_END;
     }
+}
+
+bool sva_flow_offer_plan(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan)
+{
+    sva_flow_work_t* w = &priv->flow;
+    sva_flow_offer_standing(priv, m, plan);
+    const int64_t value = sva_flow_plan_value(priv, m, plan);
+    if (w->has_inc && (value >= w->inc_value)) {
+        return false;
+    }
+    link_routes(w, m, plan, w->inc_first, w->inc_next);
     w->inc_value = value;
     w->has_inc = true;
     return true;
 }
+
+// ---------------------------------------------------------------------------------
+// The plan best against the standing plan (sva_planner_t.standing).
+
+#if SVA_FLOW_STANDING
+static bool route_has(const sva_route_t* r, uint16_t t)
+{
+    for (uint16_t k = 0U; k < r->target_count; k++) {
+        if (r->targets[k] == t) {
+            return true;
+        }
+    }
+    return false;
+}
+
+void sva_flow_offer_standing(sva_planner_priv_t* priv, const sva_mission_t* m,
+                             const sva_plan_t* plan)
+{
+    sva_flow_work_t* w = &priv->flow;
+    const sva_plan_t* standing = w->standing;
+    if (standing == NULL) {
+        return;
+    }
+    uint16_t covered = 0U;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        covered = (uint16_t)(covered +
+                             (((int32_t)priv->target_served[t] == m->targets[t].need) ? 1U : 0U));
+    }
+    if (w->has_pen && (covered < w->pen_covered)) {
+        return;
+    }
+    int64_t cost = 0;
+    int64_t changes = 0;
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        const sva_route_t* r = &plan->routes[u];
+        const sva_route_t* s = &standing->routes[u];
+        if (!r->stranded) {
+            cost += sva_route_cells(m, u, r);
+        }
+        for (uint16_t k = 0U; k < r->target_count; k++) {
+            changes += route_has(s, r->targets[k]) ? 0 : 1;
+        }
+        for (uint16_t k = 0U; k < s->target_count; k++) {
+            changes += route_has(r, s->targets[k]) ? 0 : 1;
+        }
+        w->work += 1U + ((uint64_t)r->target_count * s->target_count);
+    }
+    const int64_t value = cost + ((int64_t)m->change_penalty * changes);
+    if (w->has_pen && (covered == w->pen_covered) && (value >= w->pen_value)) {
+        return;
+    }
+    link_routes(w, m, plan, w->pen_first, w->pen_next);
+    w->pen_value = value;
+    w->pen_covered = covered;
+    w->has_pen = true;
+}
+#else
+void sva_flow_offer_standing(sva_planner_priv_t* priv, const sva_mission_t* m,
+                             const sva_plan_t* plan)
+{
+    (void)priv;
+    (void)m;
+    (void)plan;
+}
+#endif  // SVA_FLOW_STANDING
 
 // Whether the incumbent's route from copy a comes before the one from copy b: their
 // targets compared in window order (copy ids follow it: flow_graph.c), a route before
@@ -111,7 +184,9 @@ void sva_flow_canonical_incumbent(sva_planner_priv_t* priv, const sva_mission_t*
     }
 }
 
-void sva_flow_write_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+// The routes of successor lists first/next into *plan and priv->target_served.
+static void write_routes(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                         const uint16_t* first, const uint16_t* next)
 {
     const sva_flow_work_t* w = &priv->flow;
     for (uint16_t t = 0U; t < m->target_count; t++) {
@@ -120,7 +195,7 @@ void sva_flow_write_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, 
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         sva_route_t* r = &plan->routes[u];
         r->target_count = 0U;
-        for (uint16_t c = w->inc_first[u]; c != SVA_FLOW_ROUTE_END; c = w->inc_next[c]) {
+        for (uint16_t c = first[u]; c != SVA_FLOW_ROUTE_END; c = next[c]) {
             const uint16_t t = w->copy_target[c];
             SVA_ASSERT(r->target_count < SVA_MAX_ROUTE_TARGETS);
             r->targets[r->target_count] = t;
@@ -129,6 +204,23 @@ void sva_flow_write_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, 
         }
     }
 }
+
+void sva_flow_write_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+{
+    write_routes(priv, m, plan, priv->flow.inc_first, priv->flow.inc_next);
+}
+
+#if SVA_FLOW_STANDING
+bool sva_flow_write_standing_pick(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                  sva_plan_t* plan)
+{
+    if ((priv->flow.standing == NULL) || !priv->flow.has_pen) {
+        return false;
+    }
+    write_routes(priv, m, plan, priv->flow.pen_first, priv->flow.pen_next);
+    return true;
+}
+#endif  // SVA_FLOW_STANDING
 
 void sva_flow_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                         int64_t* cost, int64_t* covered)

@@ -329,6 +329,8 @@ void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_
             (void)sva_flow_eject_for(priv, m, plan, t);
         }
     }
+    // The plan before its local search, which may trade standing visits for cells.
+    sva_flow_offer_standing(priv, m, plan);
     // Local search only for plans within reach of the best: better already, or (when
     // `polish`) at most 1/16 of their length worse.
     int64_t margin = 0;

@@ -1,6 +1,7 @@
 // live_replan.c -- a live mission's replan (SPEC section 12.4): the residual mission,
-// two candidates (the planner's plan of it, the plan in force carried over), the better
-// by coverage, then cost + change_penalty * changed visits, made the plan in force.
+// two candidates (the plan in force carried over, and the planner's plan of it with the
+// carried plan standing: sva_planner_t.standing), the better by coverage, then cost +
+// change_penalty * changed visits, made the plan in force.
 #include "live_internal.h"
 
 #include <string.h>
@@ -126,13 +127,16 @@ sva_status_t sva_live_replan(sva_live_t* self, sva_planner_t* planner, sva_algor
         return SVA_ERR_ARGUMENT;
     }
     build_residual(self);
-    const sva_status_t status = sva_plan(planner, &self->residual, algorithm, &self->plan, diag);
-    if (status != SVA_OK) {
-        return status;
-    }
     build_previous(self);
     self->candidate = self->previous;
     sva_live_carry(&self->residual, &self->candidate, algorithm, self->priv.served);
+    // The carried plan stands while the planner plans: flow weighs its changes against it.
+    planner->standing = &self->candidate;
+    const sva_status_t status = sva_plan(planner, &self->residual, algorithm, &self->plan, diag);
+    planner->standing = NULL;
+    if (status != SVA_OK) {
+        return status;
+    }
     self->candidate.stats = self->plan.stats;
     const sva_plan_t* fresh = &self->plan;
     const sva_plan_t* kept = &self->candidate;
