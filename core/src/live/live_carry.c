@@ -65,17 +65,10 @@ static void plan_figures(const sva_mission_t* m, sva_plan_t* plan, uint16_t* ser
             route->fuel_used = 0;
             continue;
         }
-        int32_t x = uav->x;
-        int32_t y = uav->y;
-        int64_t cells = 0;
         for (uint16_t k = 0U; k < route->target_count; k++) {
-            const sva_target_t* t = &m->targets[route->targets[k]];
-            cells += sva_distance(x, y, t->x, t->y);
-            x = t->x;
-            y = t->y;
             served[route->targets[k]]++;
         }
-        cells += sva_distance(x, y, m->depot_x, m->depot_y);
+        const int64_t cells = sva_route_cells(m, r, route);
         route->distance_cells = cells;
         route->fuel_used = cells + ((int64_t)m->hover_fuel * (int64_t)route->target_count);
         plan->cost += cells;
