@@ -1,0 +1,195 @@
+// The mission frame library (port/frame): ranges with their messages, units rounded
+// half away from zero, ISO 8601 UTC text both ways, and cells to WGS84 checked against
+// PROJ's geodesic (Karney's algorithm, a different computation than the ENU pipeline).
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+#include <geodesic.h>
+
+#include "sva/sva_frame.h"
+
+static sva_frame_units_t units(void)
+{
+    sva_frame_units_t u = {48.1372, 11.5755, 60.0, 100.0, 1.0, "2026-06-01T08:00:00Z"};
+    return u;
+}
+
+static void check_fails(const sva_frame_units_t* u, const char* expected)
+{
+    char err[SVA_FRAME_ERROR_SIZE] = "";
+    sva_frame_t f;
+    memset(&f, 0x5a, sizeof f);
+    const sva_frame_t before = f;
+    assert_false(sva_frame_from_units(u, &f, err, sizeof err));
+    assert_non_null(strstr(err, expected));
+    assert_memory_equal(&f, &before, sizeof f);
+}
+
+static void test_units_round_half_away_from_zero(void** state)
+{
+    (void)state;
+    sva_frame_units_t u = units();
+    char err[SVA_FRAME_ERROR_SIZE] = "";
+    sva_frame_t f;
+    u.lat = -33.00000005;  // half a unit of 1e-7 degree: away from zero
+    u.cell_m = 12.345;     // 1234.5 cm -> 1235
+    u.tick_s = 0.0005;     // below the millisecond: out of range
+    check_fails(&u, "frame.tick_s: 0.0005 is outside [0.001, 3600] s");
+    u.tick_s = 2.0005;
+    assert_true(sva_frame_from_units(&u, &f, err, sizeof err));
+    assert_int_equal(f.lat_e7, -330000001);
+    assert_int_equal(f.cell_cm, 1235);
+    assert_int_equal(f.tick_ms, 2001);
+    assert_int_equal(f.alt_cm, 6000);
+}
+
+static void test_every_range_is_named(void** state)
+{
+    (void)state;
+    sva_frame_units_t u = units();
+    u.lat = 85.5;
+    check_fails(&u, "frame.lat: 85.5 is outside [-85, 85] degrees");
+    u = units();
+    u.lon = -180.01;
+    check_fails(&u, "frame.lon: -180.01 is outside [-180, 180] degrees");
+    u = units();
+    u.alt_m = -1.0;
+    check_fails(&u, "frame.alt_m: -1 is outside [0, 10000] m");
+    u = units();
+    u.cell_m = 0.05;
+    check_fails(&u, "frame.cell_m: 0.05 is outside [0.1, 10000] m");
+    u = units();
+    u.cell_m = NAN;
+    check_fails(&u, "frame.cell_m");
+    u = units();
+    u.t0 = "1969-12-31T23:59:59Z";
+    check_fails(&u, "frame.t0: must be between 1970-01-01T00:00:00Z");
+    u = units();
+    u.t0 = NULL;
+    check_fails(&u, "frame.t0: missing");
+
+    // the integer form has the same ranges
+    char err[SVA_FRAME_ERROR_SIZE] = "";
+    sva_frame_t f = {0, 0, 0, SVA_FRAME_MAX_CELL_CM + 1, 1000, 0};
+    assert_false(sva_frame_check(&f, err, sizeof err));
+    assert_string_equal(err, "frame.cell_m: 10000.01 is outside [0.1, 10000] m");
+    f.cell_cm = 100;
+    f.tick_ms = 0;
+    assert_false(sva_frame_check(&f, err, sizeof err));
+    assert_string_equal(err, "frame.tick_s: 0.000 is outside [0.001, 3600] s");
+    f.tick_ms = 1;
+    assert_true(sva_frame_check(&f, err, sizeof err));
+}
+
+static void test_utc_text(void** state)
+{
+    (void)state;
+    char err[SVA_FRAME_ERROR_SIZE] = "";
+    char text[SVA_FRAME_UTC_SIZE];
+    int64_t ms = -1;
+
+    assert_true(sva_frame_parse_utc("1970-01-01T00:00:00Z", "t0", &ms, err, sizeof err));
+    assert_int_equal(ms, 0);
+    // 2024-02-29 is day 19782 after the epoch
+    assert_true(sva_frame_parse_utc("2024-02-29T12:30:15.25Z", "t0", &ms, err, sizeof err));
+    assert_int_equal(ms, (19782LL * 86400 + 12 * 3600 + 30 * 60 + 15) * 1000 + 250);
+    assert_true(sva_frame_format_utc(ms, text, sizeof text));
+    assert_string_equal(text, "2024-02-29T12:30:15.250Z");
+    // an offset is folded into UTC; a sub-millisecond fraction rounds
+    int64_t ms2 = -1;
+    assert_true(sva_frame_parse_utc("2024-02-29T14:30:15.2494+02:00", "t0", &ms2, err, sizeof err));
+    assert_int_equal(ms2, ms - 1);
+    assert_true(sva_frame_parse_utc("2024-02-29T07:00:15.2495-05:30", "t0", &ms2, err, sizeof err));
+    assert_int_equal(ms2, ms);
+
+    static const char* const bad[] = {"2026-06-01 08:00:00Z",     "2026-06-01T08:00:00",
+                                      "2026-06-01T08:00Z",        "2026-13-01T08:00:00Z",
+                                      "2023-02-29T08:00:00Z",     "2026-06-01T24:00:00Z",
+                                      "2026-06-01T08:00:00.Z",    "2026-06-01T08:00:00+2:00",
+                                      "2026-06-01T08:00:00Zjunk", ""};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        ms = 7;
+        assert_false(sva_frame_parse_utc(bad[i], "frame.t0", &ms, err, sizeof err));
+        assert_int_equal(ms, 7);
+        assert_true(strncmp(err, "frame.t0: ", 10) == 0);
+    }
+    assert_false(sva_frame_format_utc(-1, text, sizeof text));
+    assert_true(sva_frame_format_utc(SVA_FRAME_MAX_T0_MS, text, sizeof text));
+    assert_string_equal(text, "9999-12-31T23:59:59.999Z");
+}
+
+static void test_ticks_to_utc(void** state)
+{
+    (void)state;
+    const sva_frame_t f = {0, 0, 0, 100, 1500, 1000000};
+    assert_int_equal(sva_frame_tick_utc_ms(&f, 0), 1000000);
+    assert_int_equal(sva_frame_tick_utc_ms(&f, 40), 1060000);
+}
+
+// Distance and azimuth from the origin on the ellipsoid (PROJ's geodesic).
+static void geodesic(const sva_frame_t* f, const sva_frame_geo_t* p, double* dist, double* azi)
+{
+    struct geod_geodesic g;
+    double azi2;
+    geod_init(&g, 6378137.0, 1.0 / 298.257223563);
+    geod_inverse(&g, (double)f->lat_e7 / 1e7, (double)f->lon_e7 / 1e7, p->lat_deg, p->lon_deg, dist,
+                 azi, &azi2);
+}
+
+static void test_cells_on_the_ellipsoid(void** state)
+{
+    (void)state;
+    char err[SVA_FRAME_ERROR_SIZE] = "";
+    const sva_frame_units_t u = units();
+    sva_frame_t f;
+    sva_frame_geo_t p;
+    double dist, azi, east, north;
+    assert_true(sva_frame_from_units(&u, &f, err, sizeof err));
+    sva_frame_geodesy_t* g = sva_frame_geodesy_open(&f, err, sizeof err);
+    assert_non_null(g);
+
+    assert_true(sva_frame_cell_to_geo(g, 0, 0, &p));
+    assert_true(fabs(p.lat_deg - 48.1372) < 1e-9);
+    assert_true(fabs(p.lon_deg - 11.5755) < 1e-9);
+    assert_true(fabs(p.alt_m - 60.0) < 1e-9);
+
+    // 10 cells of 100 m east: 1 km at azimuth 90 (within a millimetre; the tangent
+    // plane and the ellipsoid part by ~1e-4 m at this range)
+    assert_true(sva_frame_cell_to_geo(g, 10, 0, &p));
+    geodesic(&f, &p, &dist, &azi);
+    assert_true(fabs(dist - 1000.0) < 1e-3);
+    assert_true(fabs(azi - 90.0) < 1e-3);
+    // 20 cells south: 2 km at azimuth 180
+    assert_true(sva_frame_cell_to_geo(g, 0, -20, &p));
+    geodesic(&f, &p, &dist, &azi);
+    assert_true(fabs(dist - 2000.0) < 1e-3);
+    assert_true(fabs(fabs(azi) - 180.0) < 1e-3);
+    // and back to the plane (at height 0: the cell's point lies ~0.2 m above the
+    // ellipsoid, which moves it ~2e-5 m)
+    assert_true(sva_frame_cell_to_geo(g, -7, 13, &p));
+    assert_true(sva_frame_geo_to_enu(g, p.lat_deg, p.lon_deg, &east, &north));
+    assert_true(fabs(east + 700.0) < 1e-3);
+    assert_true(fabs(north - 1300.0) < 1e-3);
+    sva_frame_geodesy_close(g);
+
+    const sva_frame_t bad = {0, 0, 0, 0, 1000, 0};
+    assert_null(sva_frame_geodesy_open(&bad, err, sizeof err));
+    assert_non_null(strstr(err, "frame.cell_m"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_units_round_half_away_from_zero),
+        cmocka_unit_test(test_every_range_is_named),
+        cmocka_unit_test(test_utc_text),
+        cmocka_unit_test(test_ticks_to_utc),
+        cmocka_unit_test(test_cells_on_the_ellipsoid),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
