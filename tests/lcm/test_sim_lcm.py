@@ -145,3 +145,44 @@ def test_without_root_it_refuses_clearly(tmp_path):
 def test_via_cli_refuses_lcm_options():
     r = sim(str(SCENARIOS / "hand_events.json"), "--attach")
     assert r.returncode == 2 and "--attach, --url and --prefix need --via lcm" in r.stderr
+
+
+def test_live_bench_node_figures_recomputed_from_its_logs(tmp_path):
+    """tools/bench/live_bench.py --node: its fragment (docs/results/live.node.md in a copy)
+    gives the round trip and node solve percentiles of the flight logs it keeps."""
+    import math
+    import re
+
+    root = tmp_path / "repo"
+    (root / "docs").mkdir(parents=True)
+    shutil.copytree(REPO / "docs" / "results", root / "docs" / "results")
+    shutil.copy(REPO / "docs" / "results.md", root / "docs" / "results.md")
+    work = tmp_path / "work"
+    e = outside_env()
+    e["SVA_RESULTS_ROOT"] = str(root)
+    r = subprocess.run([sys.executable, str(REPO / "tools" / "bench" / "live_bench.py"), "--node",
+                        "--results", "--set", "6x2:2", "--events", "3", "--algos", "sva",
+                        "--penalties", "0", "--work", str(work)],
+                       capture_output=True, text=True, env=e, timeout=300)
+    assert r.returncode == 0, r.stderr
+    text = (root / "docs" / "results" / "live.node.md").read_text()
+    assert "Command: `nice .venv/bin/python tools/bench/live_bench.py --results --node --set 6x2:2 " \
+           "--events 3 --algos sva --penalties 0`" in text
+    assert (root / "docs" / "results" / "live.md").read_text() == \
+        (REPO / "docs" / "results" / "live.md").read_text()  # --node leaves the main part alone
+    m = re.search(r"^\| sva \| 0 \| (\d+)/(\d+) \| (\d+) \| (\S+) ms \| (\S+) ms \| (\S+) ms "
+                  r"\| (\S+) ms \| (\S+) ms \|$", text, re.M)
+    assert m, text
+    logs = [json.loads(p.read_text()) for p in sorted(work.glob("6x2_*/logs/live_*.sva.p0.lcm.json"))]
+    cli = [json.loads(p.read_text()) for p in sorted(work.glob("6x2_*/logs/live_*.sva.p0.json"))]
+    assert len(logs) == len(cli) == 2 and all(lg["via"] == "lcm" for lg in logs)
+    msgs = [x for lg in logs for rp in lg["replans"] for x in rp["node"]["messages"]
+            if x["channel"] == "REPLAN"]
+    rank = lambda v, p: sorted(v)[math.ceil(len(v) * p / 100) - 1]  # noqa: E731
+    rts = [x["round_trip_us"] for x in msgs]
+    solve = [x["solve_us"] for x in msgs]
+    same = sum(a["summary"]["covered"] == b["summary"]["covered"] for a, b in zip(logs, cli))
+    assert (int(m[1]), int(m[2]), int(m[3])) == (same, 2, len(msgs))
+    assert m[4] == f"{rank(rts, 50) / 1000:.3f}" and m[5] == f"{rank(rts, 99) / 1000:.3f}"
+    assert m[6] == f"{max(rts) / 1000:.3f}"
+    assert m[7] == f"{rank(solve, 50) / 1000:.3f}" and m[8] == f"{rank(solve, 99) / 1000:.3f}"

@@ -510,19 +510,27 @@ def _argv(args) -> List[str]:
     return argv
 
 
-def _fly_via_lcm(args, mission, events, penalty) -> dict:
+def simulate_via_lcm(mission: M.Mission, events: List[dict], penalty: Optional[int] = None,
+                     algo: str = "sva", **link) -> dict:
+    """Flies the scenario against sva_node over LCM (sva_tools.lcm.simnode; `link`: url,
+    prefix, attach, timeout) from inside a network namespace; raises SimError or
+    simnode.NodeError."""
     from .lcm import simnode
 
-    kw = {k: getattr(args, k) for k in ("url", "prefix") if getattr(args, k) is not None}
-    node = simnode.NodePlanner(args.algo, penalty, attach=args.attach,
-                               timeout=args.timeout, **kw)
+    node = simnode.NodePlanner(algo, penalty, **link)
     try:
-        log = simulate(mission, events, penalty, args.algo, planner=node)
+        log = simulate(mission, events, penalty, algo, planner=node)
     finally:
         node.close()
     log["via"] = "lcm"
     log["node"] = node.summary()
     return log
+
+
+def _fly_via_lcm(args, mission, events, penalty) -> dict:
+    kw = {k: getattr(args, k) for k in ("url", "prefix") if getattr(args, k) is not None}
+    return simulate_via_lcm(mission, events, penalty, args.algo, attach=args.attach,
+                            timeout=args.timeout, **kw)
 
 
 def run(args) -> int:
