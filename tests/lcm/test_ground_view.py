@@ -204,6 +204,11 @@ def test_the_page_shows_what_the_traffic_says(browser, tmp_path):
     ARTIFACTS.mkdir(parents=True, exist_ok=True)
     scenario = json.loads(SCENARIO.read_text())
     lost_uav = next(e["uav"] for e in scenario["events"] if e["type"] == "uav_lost")
+    record = tmp_path / "traffic.lcmlog"
+    env = dict(os.environ, PYTHONPATH=str(REPO / "tools"))
+    recorder = subprocess.Popen([sys.executable, "-m", "sva_tools", "lcm", "record", "-o",
+                                 str(record), "--url", URL], env=env)
+    time.sleep(1.0)  # lcm-logger subscribed before the first message
     node = subprocess.Popen([os.environ["SVA_NODE"], "--url", URL, "--algorithm", "sva",
                              "--change-penalty", str(scenario["change_penalty"]),
                              "--status-ms", "200"], stdout=subprocess.DEVNULL,
@@ -216,7 +221,6 @@ def test_the_page_shows_what_the_traffic_says(browser, tmp_path):
     lc.subscribe("SVA_PLAN", lambda c, d: seen["plan"].append(t.plan_t.decode(d)))
     lc.subscribe("SVA_REPLAN", lambda c, d: seen["replan"].append(t.replan_t.decode(d)))
     try:
-        env = dict(os.environ, PYTHONPATH=str(REPO / "tools"))
         out = tmp_path / "flight.json"
         r = subprocess.run([sys.executable, "-m", "sva_tools", "sim", str(SCENARIO), "--via",
                             "lcm", "--attach", "--out", str(out)], capture_output=True,
@@ -267,9 +271,30 @@ def test_the_page_shows_what_the_traffic_says(browser, tmp_path):
         assert d["plan-cost"] == str(last.cost) and d["warning-count"] == "2"
         browser.save_screenshot(str(ARTIFACTS / "ground_live.png"))
         assert (ARTIFACTS / "ground_live.png").stat().st_size > 10000
+        live = json.loads(urllib.request.urlopen(f"http://127.0.0.1:{port}/state.json",
+                                                 timeout=5).read())
     finally:
+        recorder.send_signal(2)  # SIGINT: lcm-logger closes the log
+        recorder.wait(timeout=10)
         stop(ground)
         stop(node)
+
+    # The same traffic played back from the lcm-logger file, 20 times faster: the same
+    # picture (the warnings included), without any network.
+    player, port = start_ground("--lcm-log", str(record), "--speed", "20")
+    try:
+        def played():
+            s = json.loads(urllib.request.urlopen(f"http://127.0.0.1:{port}/state.json",
+                                                  timeout=5).read())
+            return s["log"] and s["log"][-1]["kind"] == "end" and s
+        s = wait_for(played, timeout=60, what="the end of the LCM log")
+    finally:
+        stop(player)
+    assert s["replan_count"] == live["replan_count"] == len(replans) + 1  # the refused one too
+    assert s["plan"]["cost"] == last.cost and s["plan"]["covered"] == last.covered
+    assert s["warnings"]["count"] == 2
+    assert [u["lost"] for u in s["uavs"]] == [u["lost"] for u in live["uavs"]]
+    assert [t["state"] for t in s["targets"]] == [t["state"] for t in live["targets"]]
 
 
 @needs_netns
