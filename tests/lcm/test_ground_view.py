@@ -90,7 +90,9 @@ def test_bad_command_lines(tmp_path):
     for args, message in [(["--speed", "0"], "--speed: must be > 0, got 0.0"),
                           (["--frame", str(bad)], "frame.tick_s: must be > 0, got -1"),
                           (["--flight-log", str(tmp_path / "none.json")], "No such file"),
-                          (["--flight-log", str(bad)], "not a flight log")]:
+                          (["--flight-log", str(bad)], "not a flight log"),
+                          (["--lcm-log", str(tmp_path / "none.lcmlog")], "none.lcmlog"),
+                          (["--url", "bogus://x"], "--url bogus://x: Couldn't create LCM")]:
         r = subprocess.run([sys.executable, "-m", "sva_tools", "ground", *args],
                            capture_output=True, text=True, env=env, timeout=60)
         assert r.returncode == 2 and message in r.stderr, (args, r.stderr)

@@ -11,7 +11,9 @@ event and reappears on uav_back.
 
 At tick 0 (cause "start") and at every tick with events (after applying them) it runs
 the C CLI's `sva replan` over the whole history (mission, events so far, now) and gives
-every UAV in service the new plan's route as its orders. It stops when every UAV in
+every UAV in service the new plan's route as its orders. With `--via lcm` the planner
+is a real sva_node over LCM instead (sva_tools.lcm.simnode, in a network namespace of
+its own; root). It stops when every UAV in
 service is home with no orders (or out of fuel) and no window or event is left. The
 flight log (docs/live.md) is JSON: tracks, visits, every target's outcome, every
 replan with its residual mission and plan, and a summary.
