@@ -45,7 +45,7 @@ def test_fragment_shape_and_figures_from_the_logs(tmp_path, sva_bin):
     assert ("Command: `nice .venv/bin/python tools/bench/live_bench.py --results --set 6x2:2 --events 3 "
             "--algos sva,flow --gen=--need --gen=1`") in text
     assert re.search(r"^Machine: \d+ cores, ", text, re.M)
-    assert "latency through the LCM node yet" in text
+    assert "latency through the LCM node is measured by `live_bench.py --node`" in text
     assert "#### 6 targets x 2 UAVs, 2 scenarios" in text
     rows = {(m.group(1), int(m.group(2))): m.groups()[2:] for m in re.finditer(
         r"^\| (\w+) \| (\d+) \| (\d+)/(\d+) \(.*?\) \| (\d+)/(\d+) \(.*?\) \| (\d+)/(\d+) \(.*?\) "

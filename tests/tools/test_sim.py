@@ -269,10 +269,11 @@ def test_timeline_shows_every_event_and_replan(sva_bin, tmp_path):
     assert lines[4].startswith("flown to tick ") and "covered 2 of 2 coverable" in lines[4]
 
 
-def test_via_lcm_is_not_available_yet(tmp_path):
-    r = sva_tools("sim", "--via", "lcm", write(tmp_path, "s.json", HAND_POPUP))
+def test_lcm_options_need_via_lcm(tmp_path):
+    # --via lcm itself is tested against a real node (tests/lcm/test_sim_lcm.py).
+    r = sva_tools("sim", "--url", "memq://", write(tmp_path, "s.json", HAND_POPUP))
     assert r.returncode == 2
-    assert "not available yet: the simulator flies against the CLI only" in r.stderr
+    assert "--attach, --url and --prefix need --via lcm" in r.stderr
 
 
 def test_a_bad_scenario_names_the_field(tmp_path):

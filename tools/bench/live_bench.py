@@ -22,6 +22,16 @@ residual mission that has a target. It prints, per set, algorithm and penalty:
 Goals: flow covers as many targets as ref on at least 99 % of the residual missions;
 flow at 25 x 5 replans in p50 < 1 ms and p99 < 10 ms.
 
+--node measures the node instead (root: the bench re-runs itself in a network namespace
+made with tests/lcm/netns_run.sh): every scenario is flown in process (cached as above)
+and again with `sva-tools sim --via lcm`'s planner, a real sva_node per flight over LCM
+multicast; ref is not run. Its table gives per algorithm and penalty: flights whose
+coverage equals the in-process flight's, the replan round trip (event_t published to
+replan_t received, monotonic clock, nearest-rank p50 / p99 over every event and clock
+message) and the node's solve time (plan_t.solve_us of those replans). Goal: a replan
+round trip through the node at 25 x 5 in p99 < 20 ms. --node --results writes
+docs/results/live.node.md (a part of the same section).
+
 Scenarios, flight logs and ref results are kept under --work (default build/live_bench/):
 ref results by a hash of the residual mission, so a re-run only solves new ones (delete
 the folder to recompute). --results writes docs/results/live.md (tools/bench/results.py).
@@ -45,6 +55,7 @@ from sva_tools import sim  # noqa: E402
 GOAL_EQUAL = 99.0       # % of residual missions where flow covers as many targets as ref
 GOAL_P50_MS = 1.0       # flow at 25 x 5
 GOAL_P99_MS = 10.0
+GOAL_NODE_P99_MS = 20.0  # replan round trip through sva_node at 25 x 5
 
 
 def parse_set(text):
@@ -87,6 +98,68 @@ def fly(path, algo, penalty, log_path):
     with open(log_path, "w", encoding="utf-8") as f:
         json.dump(log, f)
     return log
+
+
+def fly_node(path, algo, penalty, log_path):
+    """The flight against a real sva_node (`sim --via lcm`'s planner), cached like fly."""
+    if os.path.exists(log_path):
+        with open(log_path, encoding="utf-8") as f:
+            return json.load(f)
+    mission, events, _ = sim.load_scenario(path)
+    log = sim.simulate_via_lcm(mission, events, penalty, algo)
+    with open(log_path, "w", encoding="utf-8") as f:
+        json.dump(log, f)
+    return log
+
+
+def node_figures(node_logs, cli_logs):
+    """Round trips and node solve times of the REPLAN answers of node_logs; flights whose
+    coverage equals the in-process flight's."""
+    msgs = [m for l in node_logs for r in l["replans"] for m in r["node"]["messages"]
+            if m["channel"] == "REPLAN"]
+    rts = sorted(m["round_trip_us"] for m in msgs)
+    solve = sorted(m["solve_us"] for m in msgs)
+    same = sum(1 for a, b in zip(node_logs, cli_logs) if a["summary"]["covered"] == b["summary"]["covered"])
+    return {"flights": len(node_logs), "same": same, "messages": len(msgs),
+            "rt_p50": percentile(rts, 50) if rts else None, "rt_p99": percentile(rts, 99) if rts else None,
+            "rt_max": rts[-1] if rts else None,
+            "solve_p50": percentile(solve, 50) if solve else None,
+            "solve_p99": percentile(solve, 99) if solve else None}
+
+
+NODE_HEAD = ("| algorithm | change_penalty | flights covering as in process | replans through the node "
+             "| round trip p50 | round trip p99 | round trip max | node solve p50 | node solve p99 |\n"
+             "|---|---|---|---|---|---|---|---|---|")
+
+
+def node_row(algo, penalty, f):
+    return (f"| {algo} | {penalty} | {f['same']}/{f['flights']} | {f['messages']} | {ms(f['rt_p50'])} "
+            f"| {ms(f['rt_p99'])} | {ms(f['rt_max'])} | {ms(f['solve_p50'])} | {ms(f['solve_p99'])} |")
+
+
+def node_goals(targets, uavs, by):
+    if (targets, uavs) != (25, 5):
+        return []
+    return [f"- {algo}, change_penalty {pen}: replan round trip through the node p99 {ms(f['rt_p99'])} "
+            f"(goal under {GOAL_NODE_P99_MS:g} ms): "
+            f"{'met' if f['rt_p99'] is not None and f['rt_p99'] / 1000 < GOAL_NODE_P99_MS else 'not met'} "
+            f"({f['messages']} replans)." for (algo, pen), f in sorted(by.items())]
+
+
+def node_section(targets, uavs, count, paths, folder, logs, algos, penalties, args):
+    by = {}
+    for algo in algos:
+        for pen in penalties:
+            node_logs = [fly_node(p, algo, pen, os.path.join(
+                folder, "logs", f"{os.path.basename(p)[:-5]}.{algo}.p{pen}.lcm.json")) for p in paths]
+            by[algo, pen] = node_figures(node_logs, logs[algo, pen])
+            print(f"{targets}x{uavs}: flown {algo} penalty {pen} through the node", file=sys.stderr, flush=True)
+    lines = [f"#### {targets} targets x {uavs} UAVs, {count} scenarios, through the LCM node", "",
+             f"`sva-tools gen --targets {targets} --uavs {uavs} --events {args.events} --count {count} "
+             f"--seed {args.seed} {' '.join(args.gen)}`".replace("  ", " ").replace(" `", "`") + ".", "",
+             NODE_HEAD] + [node_row(a, p, by[a, p]) for a in algos for p in penalties]
+    g = node_goals(targets, uavs, by)
+    return "\n".join(lines + ([""] + g if g else []))
 
 
 def ref_key(residual):
@@ -200,7 +273,18 @@ def main(argv):
                     help="scenarios, flight logs and ref cache (default build/live_bench)")
     ap.add_argument("--gen", action="append", default=[], metavar="ARG",
                     help="an extra `sva-tools gen` argument, e.g. --gen=--need --gen=1:2 (repeatable)")
+    ap.add_argument("--node", action="store_true",
+                    help="also fly every scenario through a real sva_node over LCM (root; the bench runs in "
+                         "a network namespace of its own) and measure the replan round trip")
     args = ap.parse_args(argv)
+    if args.node and not os.environ.get("SVA_LCM_NETNS"):
+        from sva_tools.lcm import simnode
+        if os.geteuid() != 0:
+            print("live_bench: --node needs root (the node runs in a network namespace made for the bench)",
+                  file=sys.stderr)
+            return 2
+        return subprocess.run([str(simnode.netns_helper()), sys.executable, os.path.abspath(__file__), *argv],
+                              env=ENV).returncode
     sets = args.sets or [(25, 5, 20, 20), (100, 20, 5, 5)]
     algos = [a for a in args.algos.split(",") if a]
     penalties = [int(p) for p in args.penalties.split(",") if p]
@@ -220,6 +304,10 @@ def main(argv):
                 logs[algo, pen] = [fly(p, algo, pen, os.path.join(
                     folder, "logs", f"{os.path.basename(p)[:-5]}.{algo}.p{pen}.json")) for p in paths]
                 print(f"{targets}x{uavs}: flown {algo} penalty {pen}", file=sys.stderr, flush=True)
+        if args.node:
+            sections.append(node_section(targets, uavs, count, paths, folder, logs, algos, penalties, args))
+            print(sections[-1] + "\n")
+            continue
         residuals = {}  # scenario by scenario, so an interrupted run leaves whole scenarios cached
         for i in range(ref_count):
             for ls in logs.values():
@@ -264,6 +352,8 @@ def main(argv):
         if args.det_limit != 10.0:
             opts += ["--det-limit", f"{args.det_limit:g}"]
         opts += [f"--gen={a}" for a in args.gen]
+        if args.node:
+            opts.insert(0, "--node")
         cmd = " ".join(["nice .venv/bin/python tools/bench/live_bench.py --results"] + opts)
         intro = "\n".join([
             "Scenarios from `sva-tools gen --events`, flown tick by tick by `sva-tools sim` (in the bench's "
@@ -278,8 +368,22 @@ def main(argv):
             "process (nearest-rank p50 and p99 over all replans, the start one included). `change_penalty` "
             "weighs only between the algorithm's plan and the plan in force, after coverage (docs/live.md), so "
             "a large one removes only the changes that buy no coverage.", "",
-            "This bench does not measure a replan's latency through the LCM node yet (the node's "
-            "live missions: docs/lcm.md).", ""])
+            "The replan latency through the LCM node is measured by `live_bench.py --node` (the part "
+            "\"through the LCM node\" below).", ""])
+        if args.node:
+            intro = " ".join([
+                "The scenarios above flown again by the simulator against a real `sva_node` per flight (its "
+                "algorithm and `change_penalty`; `sva-tools sim --via lcm`'s planner) over LCM UDP multicast on "
+                "the loopback of a network namespace, the simulator and the node on the same machine. Round "
+                "trip: from publishing an `event_t` (each event, and a clock at tick 0) to receiving its "
+                "`replan_t`, on the simulator's monotonic clock: the node's decoding, `sva_live_apply`, "
+                "`sva_live_replan`, encoding, both datagrams (a replan_t is 34926 bytes) and the Python side's "
+                "decoding of the answer (nearest-rank p50 and p99 over every replan). Node solve: "
+                "`plan_t.solve_us` of those replans. Flights covering as in process: the flights whose covered "
+                "count equals the in-process flight's (`sva replan`)."]) + "\n"
+            page.write(page.ROOT, "live.node", cmd, intro + "\n" + "\n\n".join(sections),
+                       title="Replans through the LCM node", load_start=load_start)
+            return 0
         page.write(page.ROOT, "live", cmd, intro + "\n" + "\n\n".join(sections), load_start=load_start)
     return 0
 

@@ -11,7 +11,9 @@ event and reappears on uav_back.
 
 At tick 0 (cause "start") and at every tick with events (after applying them) it runs
 the C CLI's `sva replan` over the whole history (mission, events so far, now) and gives
-every UAV in service the new plan's route as its orders. It stops when every UAV in
+every UAV in service the new plan's route as its orders. With `--via lcm` the planner
+is a real sva_node over LCM instead (sva_tools.lcm.simnode, in a network namespace of
+its own; root). It stops when every UAV in
 service is home with no orders (or out of fuel) and no window or event is left. The
 flight log (docs/live.md) is JSON: tracks, visits, every target's outcome, every
 replan with its residual mission and plan, and a summary.
@@ -282,10 +284,14 @@ class Flight:
             self._apply(e, t)
         cli_changes = out.pop("changes", None)
         live = out.pop("live", None)
+        node = out.pop("node", None)
         solve_us = (out.get("stats") or {}).get("solve_us")
         changes = self._changes(residual, out, now_events, cli_changes)
-        self.replans.append({"at": t, "cause": cause, "mission": residual, "plan": out,
-                             "changes": changes, "solve_us": solve_us, "live": live})
+        rec = {"at": t, "cause": cause, "mission": residual, "plan": out,
+               "changes": changes, "solve_us": solve_us, "live": live}
+        if node is not None:
+            rec["node"] = node  # --via lcm: the node's plan id and every message's round trip
+        self.replans.append(rec)
         routes = {r["uav"]: list(r["targets"]) for r in out.get("routes", [])}
         for c in self.crafts:
             if c.in_service:
@@ -477,20 +483,78 @@ def add_parser(sub) -> None:
                     help="print a timeline of events and replans on stdout instead of the log")
     ap.add_argument("--plot", metavar="FILE.png", help="also draw the flight (map and Gantt)")
     ap.add_argument("--via", choices=["cli", "lcm"], default="cli",
-                    help="how the planner is reached: cli (`sva replan`, default); lcm is "
-                         "not available yet")
+                    help="how the planner is reached: cli (`sva replan`, default) or lcm (a "
+                         "real sva_node over LCM multicast, in a network namespace made for "
+                         "the run; needs root)")
+    ap.add_argument("--attach", action="store_true",
+                    help="--via lcm: use the sva_node already running (started with the same "
+                         "--algorithm and --change-penalty) instead of starting one, and no "
+                         "namespace of its own")
+    ap.add_argument("--url", default=None,
+                    help="--via lcm: LCM provider (default udpm://239.255.76.67:7667?ttl=0)")
+    ap.add_argument("--prefix", default=None, help="--via lcm: channel prefix (default SVA_)")
+    ap.add_argument("--timeout", type=float, default=10.0,
+                    help="--via lcm: seconds to wait for each answer of the node (default 10)")
     ap.set_defaults(func=run)
 
 
+def _argv(args) -> List[str]:
+    """The command line of this run, for its re-execution inside a network namespace."""
+    argv = ["sim", args.scenario, "--algo", args.algo, "--via", "lcm",
+            "--timeout", str(args.timeout)]
+    for opt in ("out", "plot", "url", "prefix"):
+        if getattr(args, opt) is not None:
+            argv += [f"--{opt}", getattr(args, opt)]
+    if args.timeline:
+        argv.append("--timeline")
+    if args.attach:
+        argv.append("--attach")
+    return argv
+
+
+def simulate_via_lcm(mission: M.Mission, events: List[dict], penalty: Optional[int] = None,
+                     algo: str = "sva", **link) -> dict:
+    """Flies the scenario against sva_node over LCM (sva_tools.lcm.simnode; `link`: url,
+    prefix, attach, timeout) from inside a network namespace; raises SimError or
+    simnode.NodeError."""
+    from .lcm import simnode
+
+    node = simnode.NodePlanner(algo, penalty, **link)
+    try:
+        log = simulate(mission, events, penalty, algo, planner=node)
+    finally:
+        node.close()
+    log["via"] = "lcm"
+    log["node"] = node.summary()
+    return log
+
+
+def _fly_via_lcm(args, mission, events, penalty) -> dict:
+    kw = {k: getattr(args, k) for k in ("url", "prefix") if getattr(args, k) is not None}
+    return simulate_via_lcm(mission, events, penalty, args.algo, attach=args.attach,
+                            timeout=args.timeout, **kw)
+
+
 def run(args) -> int:
-    if args.via == "lcm":
-        print("sva-tools: error: sim --via lcm: not available yet: the simulator flies "
-              "against the CLI only (`sva-tools lcm scenario` sends a scenario's events to "
-              "the LCM node and records its replans)", file=sys.stderr)
+    if args.via == "cli" and (args.attach or args.url or args.prefix):
+        print("sva-tools: error: sim: --attach, --url and --prefix need --via lcm",
+              file=sys.stderr)
         return 2
+    if args.via == "lcm" and not args.attach and not os.environ.get("SVA_LCM_NETNS"):
+        load_scenario(args.scenario)  # a bad scenario is reported before any namespace
+        from .lcm import simnode
+        return simnode.reexec_in_netns(_argv(args))
     mission, events, penalty = load_scenario(args.scenario)
     try:
-        log = simulate(mission, events, penalty, args.algo)
+        if args.via == "lcm":
+            from .lcm import simnode
+            try:
+                log = _fly_via_lcm(args, mission, events, penalty)
+            except simnode.NodeError as e:
+                print(f"sva-tools: error: {args.scenario}: --via lcm: {e}", file=sys.stderr)
+                return e.status
+        else:
+            log = simulate(mission, events, penalty, args.algo)
     except cbin.CliMissing as e:
         print(f"sva-tools: error: sim: {e}", file=sys.stderr)
         return 2
