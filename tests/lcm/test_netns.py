@@ -370,10 +370,13 @@ def test_record_and_replay(tmp_path):
     rec = subprocess.Popen([str(SVA_TOOLS), "lcm", "record", "-o", str(log),
                             "--url", URL, "--channels", prefix + ".*"])
     try:
-        time.sleep(0.5)
+        # the recorder listens once the node's 1 Hz status reaches the log
+        assert wait_until(lambda: prefix + "STATUS" in logged_channels(log), 30), \
+            "lcm record wrote no status of the node within 30 s"
         r = send(prefix, SMALL, "--revision", "77", "-o", str(plan_json))
         assert r.returncode == 0, r.stderr
-        time.sleep(0.5)
+        assert wait_until(lambda: prefix + "PLAN" in logged_channels(log), 30), \
+            "lcm record wrote no plan within 30 s"
     finally:
         rec.send_signal(signal.SIGINT)  # to the tool alone, not its process group
         rec_rc = rec.wait(timeout=5)
@@ -437,6 +440,42 @@ def java_dump(log, prefix):
     return [json.loads(line) for line in r.stdout.splitlines()]
 
 
+def wait_until(predicate, seconds):
+    """Polls predicate every 0.2 s until it holds (True) or `seconds` pass (False)."""
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        if predicate():
+            return True
+        time.sleep(0.2)
+    return predicate()
+
+
+def logged_channels(log):
+    """Channels in an LCM log being written (a partial last event ends the read)."""
+    channels = set()
+    if not Path(log).exists():
+        return channels
+    try:
+        for e in lcm.EventLog(str(log), "r"):
+            channels.add(e.channel)
+    except (IOError, ValueError):
+        pass
+    return channels
+
+
+def spy_live_objects(pid):
+    """Live sva_lcm.* objects in lcm-spy's JVM by class (jcmd's class histogram)."""
+    h = subprocess.run(["jcmd", str(pid), "GC.class_histogram"], capture_output=True,
+                       text=True, timeout=60)
+    assert h.returncode == 0, h.stdout + h.stderr
+    live = {}
+    for line in h.stdout.splitlines():
+        f = line.split()
+        if len(f) >= 4 and f[3].startswith("sva_lcm."):
+            live[f[3]] = int(f[1])
+    return live
+
+
 def test_lcm_spy_decodes_node_traffic_headless(tmp_path):
     """The docs' lcm-spy recipe: lcm-spy with build/port/lcm/java/sva_lcm.jar on its
     CLASSPATH, on a virtual X display (Xvfb), watching a node that publishes statuses
@@ -465,21 +504,21 @@ def test_lcm_spy_decodes_node_traffic_headless(tmp_path):
             # the wheel's shell script execs java: spy.pid is the JVM's pid
             spy = subprocess.Popen([LCM_SPY, "--lcm-url", URL], env=env, stdout=o,
                                    stderr=subprocess.STDOUT)
-        time.sleep(2.5)
+        # lcm-spy subscribes once it has scanned the class path for types, and has
+        # decoded the node's 1 Hz status once its JVM holds a node_status_t
+        wanted = ["sva_lcm." + t for t in ("fleet_state_t", "mission_t", "plan_t", "node_status_t")]
+        live = {}
+
+        def decoded(names):
+            assert spy.poll() is None, out.read_text()
+            live.clear()
+            live.update(spy_live_objects(spy.pid))
+            return all(live.get(t, 0) >= 1 for t in names)
+
+        assert wait_until(lambda: decoded(wanted[3:]), 60), ("lcm-spy decoded no status", live)
         r = send(n.prefix, SMALL)
         assert r.returncode == 0, r.stderr
-        time.sleep(1.0)
-        assert spy.poll() is None, out.read_text()
-        h = subprocess.run(["jcmd", str(spy.pid), "GC.class_histogram"], capture_output=True,
-                           text=True, timeout=60)
-        assert h.returncode == 0, h.stdout + h.stderr
-        live = {}
-        for line in h.stdout.splitlines():
-            f = line.split()
-            if len(f) >= 4 and f[3].startswith("sva_lcm."):
-                live[f[3]] = int(f[1])
-        for t in ("fleet_state_t", "mission_t", "plan_t", "node_status_t"):
-            assert live.get("sva_lcm." + t, 0) >= 1, (t, live)
+        assert wait_until(lambda: decoded(wanted), 30), live
     finally:
         if spy is not None:
             spy.terminate()
