@@ -284,6 +284,27 @@ def test_a_polygon_goes_to_its_area_centroid(tools, tmp_path):
     assert (round(mean[0]), round(mean[1])) != (15, 10)  # the vertices' mean is elsewhere
 
 
+def test_a_polygon_with_a_hole_goes_to_the_centroid_of_what_is_left(tools, tmp_path):
+    fr = _frame(cell_m=10)
+
+    def ring(cells):
+        return [list(reversed(fr.cell_to_geodetic(x, y))) for x, y in cells]
+
+    outer = ring([(0, 0), (40, 0), (40, 40), (0, 40), (0, 0)])      # area 1600, centroid (20, 20)
+    hole = ring([(1, 1), (1, 11), (11, 11), (11, 1), (1, 1)])        # area 100, centroid (6, 6)
+    # (1600 * 20 - 100 * 6) / 1500 = 20.93: cell 21 on both axes.
+    feat = {"type": "Feature", "geometry": {"type": "Polygon", "coordinates": [outer, hole]},
+            "properties": {"start": 10, "end": 20, "need": 1}}
+    args = ["--depot", f"{fr.lat},{fr.lon}", "--cell-m", "10", "--tick-s", "1", "--t0", "2026-06-01T00:00:00Z"]
+    r, _ = _geo_mission(tools, tmp_path, [feat], args=args)
+    assert r.returncode == 0, r.stderr
+    t = json.loads(r.stdout)["targets"][0]
+    assert (t["x"], t["y"]) == (21, 21)
+    r, _ = _geo_mission(tools, tmp_path, [dict(feat, geometry={"type": "Polygon", "coordinates": [outer]})],
+                        args=args)
+    assert [(t["x"], t["y"]) for t in json.loads(r.stdout)["targets"]] == [(20, 20)]
+
+
 def test_a_point_half_a_cell_out_snaps_away_from_zero(tools, tmp_path):
     fr = _frame(cell_m=10)
     feats = []
