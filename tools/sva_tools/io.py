@@ -10,6 +10,7 @@ a syntax error) and exit status 2.
 from __future__ import annotations
 
 import json
+import math
 import os
 import sys
 from typing import Any, Dict, List, Optional
@@ -45,6 +46,22 @@ class _DuplicateKey(Exception):
 
 class _TooBig(Exception):
     pass
+
+
+class _NotFinite(Exception):
+    pass
+
+
+def _constant(name: str):
+    # NaN and Infinity are not JSON (RFC 8259); Python's reader takes them, jansson not.
+    raise _NotFinite(f"invalid token {name}")
+
+
+def _real(text: str) -> float:
+    v = float(text)
+    if math.isinf(v):
+        raise _NotFinite(f"real number overflow {text}")
+    return v
 
 
 def _int64(digits: str) -> int:
@@ -88,13 +105,16 @@ def parse_json(data: bytes) -> Any:
     if "\0" in text:
         raise InputError("invalid JSON: NUL byte in input", where=_line_col(text, text.index("\0")))
     try:
-        doc = json.loads(text, object_pairs_hook=_no_duplicates, parse_int=_int64)
+        doc = json.loads(text, object_pairs_hook=_no_duplicates, parse_int=_int64,
+                         parse_float=_real, parse_constant=_constant)
     except json.JSONDecodeError as e:
         raise InputError(f"invalid JSON: {e.msg}", where=f"{e.lineno}:{e.colno}") from None
     except _DuplicateKey as e:
         raise InputError(f"invalid JSON: duplicate object key {json.dumps(e.args[0])}") from None
     except _TooBig as e:
         raise InputError(f"invalid JSON: too big integer {e.args[0]}") from None
+    except _NotFinite as e:
+        raise InputError(f"invalid JSON: {e.args[0]}") from None
     except RecursionError:
         raise InputError("invalid JSON: nested too deeply") from None
     if _has_nul(doc):

@@ -23,6 +23,7 @@ from typing import Any, Dict, List, Optional, Tuple
 from jsonschema import Draft202012Validator, validators
 from referencing import Registry, Resource
 
+from . import frame as F
 from . import model as M
 
 SCHEMA_DIR = Path(__file__).resolve().parents[2] / "docs" / "schema"
@@ -32,7 +33,8 @@ ROOT_NAMES = {"mission": "mission", "plan": "plan", "trace": "record", "bound": 
               "cache-entry": "entry"}
 
 # Document order of keys (SPEC section 3 order): one ranking serves every object.
-_KEY_ORDER = ("name", "mission", "algorithm", "status", "covered", "uncovered", "cost",
+_KEY_ORDER = ("name", "mission", "frame", "lat", "lon", "alt_m", "cell_m", "tick_s", "t0",
+              "algorithm", "status", "covered", "uncovered", "cost",
               "depot", "ticks_per_cell", "hover_fuel", "overlap_percent", "change_penalty",
               "uavs", "id", "uav",
               "x", "y", "fuel", "ready_at", "targets", "start", "end", "need", "distance",
@@ -179,6 +181,8 @@ def _described(err, root: str, prefix: Tuple = ()) -> Optional[Found]:
             return min(inner, key=lambda f: f[:3])
         return (_SHAPE, pos, 2, f"{where}: must be null or {_article(_first_type(err))} "
                                 f"{_first_type(err)}, got {json_type(v)}")
+    if rule == "utc-time" and kw == "pattern":
+        return (_VALUE, pos, 0, f"{where}: {F.ISO_RULE}, got {json.dumps(v)}")
     if kw == "pattern":
         return (_VALUE, pos, 0, f"{where}: must match {err.validator_value}, got {json.dumps(v)}")
     return (_VALUE, pos, 0, f"{where}: {err.message}")
@@ -208,10 +212,28 @@ def _duplicate_ids(items, list_name: str, found: List[Found]) -> None:
             first[uid] = i
 
 
+def _frame_rules(doc: Any, found: List[Found]) -> None:
+    """The frame's t0 (SPEC section 3): a date of the calendar, within the range (its
+    form is the schema's pattern, which Python's `$` lets end in a newline)."""
+    frame = doc.get("frame")
+    if not isinstance(frame, dict) or not isinstance(frame.get("t0"), str):
+        return
+    rule = F.t0_rule(frame["t0"])
+    if rule:
+        found.append((_VALUE, _position(["frame", "t0"]), 0,
+                      f"frame.t0: {rule}, got {json.dumps(frame['t0'])}"))
+
+
+def _plan_rules(doc: Any, found: List[Found]) -> None:
+    if isinstance(doc, dict):
+        _frame_rules(doc, found)
+
+
 def _mission_rules(doc: Any, found: List[Found]) -> None:
     """SPEC section 4 rules a schema cannot express; the default profile's bounds."""
     if not isinstance(doc, dict):
         return
+    _frame_rules(doc, found)
     name = doc.get("name")
     limit = schemas()["mission"]["$defs"]["name"]["maxLength"]
     if isinstance(name, str) and len(name) <= limit < len(name.encode("utf-8")):
@@ -269,7 +291,7 @@ def _trace_rules(doc: Any, found: List[Found]) -> None:
                                                  f"cost is, got {json.dumps(f)}"))
 
 
-_RULES = {"mission": _mission_rules, "trace": _trace_rules}
+_RULES = {"mission": _mission_rules, "plan": _plan_rules, "trace": _trace_rules}
 
 
 def errors(doc: Any, kind: str, definition: str = "", root: str = "") -> List[str]:

@@ -66,7 +66,7 @@ extern "C" {
 #define SVA_VERSION_MINOR 2
 #define SVA_VERSION_PATCH 0
 /// Version of the mission and plan JSON schema (SPEC.md section 3).
-#define SVA_SCHEMA_VERSION 2
+#define SVA_SCHEMA_VERSION 3
 
 #if defined(__GNUC__) || defined(__clang__)
 #    define SVA_NODISCARD __attribute__((warn_unused_result))
