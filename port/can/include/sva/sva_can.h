@@ -1,12 +1,8 @@
 /// sva_can.h -- the CAN port of sva: a project-defined protocol (port/can/sva.dbc),
 /// its codec, the plan sender and receiver state machines, and transports.
 ///
-/// ## Why a project-defined protocol
-/// PX4 and ArduPilot take mission commands over MAVLink or DDS; DroneCAN on both is for
-/// peripherals and has no mission message. This port therefore speaks its own protocol,
-/// described by the checked-in DBC file, and a bridge on the flight side (for example an
-/// ArduPilot Lua script with CAN_Dx_PROTOCOL set to scripting) turns it into commands.
-/// See docs/can.md.
+/// Its own protocol (no flight stack has a CAN mission message; a bridge on the flight
+/// side turns it into commands): docs/can.md says why and how.
 ///
 /// ## Pipeline
 ///   sva_plan() -> sva_can_plan_from_core() -> sva_can_plan_t (wire items)
@@ -15,13 +11,11 @@
 ///   -> sva_can_receiver_*: checks CRC-8, counter, DLC, order, CRC-32, timeout;
 ///      applies a plan only when it is complete and intact, then ACKs.
 ///
-/// ## Frames (all 11-bit ids, classic CAN, DLC 8, little-endian signals)
+/// ## Frames (all 11-bit ids, classic CAN, DLC 8, little-endian signals; sva.dbc)
 /// Every frame: bits 0..3 rolling counter, byte 7 CRC-8 (SAE J1850: poly 0x1D, init
-/// 0xFF, xorout 0xFF, not reflected) over the id as two little-endian bytes
-/// (id & 0xFF, id >> 8) followed by data bytes 0..6. COMMIT carries a CRC-32
-/// (ISO-HDLC / zlib: poly 0x04C11DB7 reflected, init and xorout 0xFFFFFFFF) over data
-/// bytes 0..6 of BEGIN and of every ITEM and ITEM_TIME frame, in transfer order, each
-/// with its counter nibble (byte 0 bits 0..3) cleared. Field layout: sva.dbc.
+/// 0xFF, xorout 0xFF, not reflected) over the id as two little-endian bytes then data
+/// bytes 0..6. COMMIT carries a CRC-32 (ISO-HDLC / zlib) over data bytes 0..6 of BEGIN
+/// and every ITEM and ITEM_TIME frame in transfer order, counter nibbles cleared.
 ///
 /// ## Where every byte lives
 /// Nothing is allocated. The caller owns every struct (sender, receiver, loopback bus,
