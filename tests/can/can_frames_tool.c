@@ -3,14 +3,19 @@
 //   can_frames_tool codec      reads lines from stdin, answers one line each:
 //       encode NAME sig=value ...   -> "ID#HEX" (16 hex digits) or "error STATUS"
 //       decode ID#HEX               -> "NAME sig=value ... crc=N" or "error STATUS"
+//       check ID#HEX COUNTER        -> sva_can_frame_check()'s status name ("ok", ...)
 //     NAME and signal names are those of port/can/sva.dbc.
 //   can_frames_tool plan MISSION ALGORITHM PLAN_ID
 //       plans the mission with the core and prints the wire plan as JSON, with
 //       its CRC-32 and the transfer frames (as sent on the first attempt, counter from 0).
+//   can_frames_tool live MISSION ALGORITHM TICK LOST_UAV
+//       the CAN node's live mission (can_live.c): the plan it sends after a clock frame
+//       of TICK and a loss of LOST_UAV, printed as for `plan`.
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "can_live.h"
 #include "mission_file.h"
 #include "sva/sva.h"
 #include "sva/sva_can.h"
@@ -46,7 +51,8 @@ static const char* const names[SVA_CAN_MSG_COUNT_] = {"",
                                                       "SVA_PLAN_ABORT",
                                                       "SVA_PLAN_ACK",
                                                       "SVA_VEHICLE_STATUS",
-                                                      "SVA_VEHICLE_FUEL"};
+                                                      "SVA_VEHICLE_FUEL",
+                                                      "SVA_MISSION_CLOCK"};
 
 static void do_encode(char* rest)
 {
@@ -129,6 +135,9 @@ static void do_encode(char* rest)
         m.u.fuel.uav_id = (uint8_t)get("uav_id");
         m.u.fuel.fuel = (uint32_t)get("fuel");
         break;
+    case SVA_CAN_MSG_MISSION_CLOCK:
+        m.u.clock.tick = (uint32_t)get("tick");
+        break;
     case SVA_CAN_MSG_NONE:
     case SVA_CAN_MSG_COUNT_:
     default:
@@ -151,28 +160,48 @@ static void do_encode(char* rest)
     printf("\n");
 }
 
+// "ID#HEX" -> *f (dlc = the number of bytes given). Returns the text after the hex
+// digits, or NULL on a syntax error.
+static const char* parse_frame(const char* text, sva_can_frame_t* f)
+{
+    const char* hash = strchr(text, '#');
+    size_t n;
+    size_t i;
+    if (hash == NULL) {
+        return NULL;
+    }
+    memset(f, 0, sizeof *f);
+    f->id = (uint32_t)strtoul(text, NULL, 16);
+    n = strspn(hash + 1, "0123456789abcdefABCDEF") / 2u;
+    for (i = 0; i < n && i < 8u; ++i) {
+        char b[3] = {hash[1 + 2 * i], hash[2 + 2 * i], '\0'};
+        f->data[i] = (uint8_t)strtoul(b, NULL, 16);
+    }
+    f->dlc = (uint8_t)n;
+    return hash + 1 + 2u * n;
+}
+
+// "check ID#HEX EXPECTED_COUNTER" -> the status name of sva_can_frame_check().
+static void do_check(const char* text)
+{
+    sva_can_frame_t f;
+    const char* rest = parse_frame(text, &f);
+    if (rest == NULL) {
+        printf("error syntax\n");
+        return;
+    }
+    printf("%s\n", sva_can_status_name(sva_can_frame_check(&f, (int)strtol(rest, NULL, 10))));
+}
+
 static void do_decode(const char* text)
 {
     sva_can_frame_t f;
     sva_can_msg_t m;
-    unsigned long id;
-    const char* hash = strchr(text, '#');
-    size_t n;
-    size_t i;
     sva_can_status_t st;
-    if (hash == NULL) {
+    if (parse_frame(text, &f) == NULL) {
         printf("error syntax\n");
         return;
     }
-    id = strtoul(text, NULL, 16);
-    memset(&f, 0, sizeof f);
-    f.id = (uint32_t)id;
-    n = strspn(hash + 1, "0123456789abcdefABCDEF") / 2u;
-    for (i = 0; i < n && i < 8u; ++i) {
-        char b[3] = {hash[1 + 2 * i], hash[2 + 2 * i], '\0'};
-        f.data[i] = (uint8_t)strtoul(b, NULL, 16);
-    }
-    f.dlc = (uint8_t)n;
     st = sva_can_decode(&f, &m);
     if (st != SVA_CAN_OK) {
         printf("error %s\n", sva_can_status_name(st));
@@ -221,6 +250,9 @@ static void do_decode(const char* text)
     case SVA_CAN_MSG_VEHICLE_FUEL:
         printf(" uav_id=%u fuel=%lu", m.u.fuel.uav_id, (unsigned long)m.u.fuel.fuel);
         break;
+    case SVA_CAN_MSG_MISSION_CLOCK:
+        printf(" tick=%lu", (unsigned long)m.u.clock.tick);
+        break;
     case SVA_CAN_MSG_NONE:
     case SVA_CAN_MSG_COUNT_:
     default:
@@ -236,15 +268,13 @@ static sva_can_plan_t wire;
 static sva_can_loopback_t bus;
 static sva_can_sender_t sender;
 
+static int print_wire(uint32_t covered, int64_t cost);
+
 static int do_plan(const char* path, const char* algo_name, const char* id_text)
 {
     char err[256];
     sva_algorithm_t algo;
     sva_diag_t diag;
-    sva_can_transport_t tp;
-    sva_can_frame_t f;
-    uint16_t i;
-    int first = 1;
     const long plan_id = strtol(id_text, NULL, 10);
     if ((plan_id < 1) || (plan_id > 65535)) {
         fprintf(stderr, "plan_id: must be in [1, 65535]\n");
@@ -264,6 +294,16 @@ static int do_plan(const char* path, const char* algo_name, const char* id_text)
         fprintf(stderr, "planning failed\n");
         return 1;
     }
+    return print_wire(plan.covered, plan.cost);
+}
+
+// The wire plan as JSON with the transfer's frames (first attempt, counter from 0).
+static int print_wire(uint32_t covered, int64_t cost)
+{
+    sva_can_transport_t tp;
+    sva_can_frame_t f;
+    uint16_t i;
+    int first = 1;
     sva_can_loopback_init(&bus);
     if ((sva_can_loopback_transport(&bus, 0, &tp) != SVA_CAN_OK) ||
         (sva_can_sender_init(&sender, &tp, NULL) != SVA_CAN_OK) ||
@@ -274,8 +314,8 @@ static int do_plan(const char* path, const char* algo_name, const char* id_text)
     printf("{\"plan_id\": %u, \"algorithm\": %u, \"plan_status\": %u, \"route_count\": %u, "
            "\"covered\": %u, "
            "\"cost\": %lld, \"plan_crc\": %lu, \"items\": [",
-           wire.plan_id, wire.algorithm, wire.plan_status, wire.route_count, plan.covered,
-           (long long)plan.cost, (unsigned long)sva_can_plan_crc(&wire));
+           wire.plan_id, wire.algorithm, wire.plan_status, wire.route_count, (unsigned)covered,
+           (long long)cost, (unsigned long)sva_can_plan_crc(&wire));
     for (i = 0; i < wire.item_count; ++i) {
         const sva_can_item_t* it = &wire.items[i];
         printf("%s{\"uav\": %u, \"target\": %u, \"x\": %d, \"y\": %d, \"arrive_by\": %lu, "
@@ -297,14 +337,56 @@ static int do_plan(const char* path, const char* algo_name, const char* id_text)
     return 0;
 }
 
+static sva_can_live_t live;
+
+// The CAN node's live mission (can_live.c) on MISSION: plan 1, then a clock frame of
+// TICK and UAV LOST_UAV reported unavailable, one replan; prints the plan it sends.
+static int do_live(const char* path, const char* algo_name, const char* tick_text,
+                   const char* uav_text)
+{
+    char err[256];
+    sva_algorithm_t algo;
+    sva_can_msg_t m;
+    if (sva_can_mission_load(path, &mission, NULL, 0, err, sizeof err) != 0) {
+        fprintf(stderr, "%s: %s\n", path, err);
+        return 1;
+    }
+    if ((sva_algorithm_from_name(algo_name, &algo) != SVA_OK) ||
+        (sva_can_live_start(&live, &mission, algo, err, sizeof err) != 0)) {
+        fprintf(stderr, "live mission: cannot start (%s)\n", algo_name);
+        return 1;
+    }
+    memset(&m, 0, sizeof m);
+    m.kind = SVA_CAN_MSG_MISSION_CLOCK;
+    m.u.clock.tick = (uint32_t)strtoul(tick_text, NULL, 10);
+    if (sva_can_live_on_msg(&live, &m, 0u) != 1) {
+        fprintf(stderr, "clock %s refused\n", tick_text);
+        return 1;
+    }
+    memset(&m, 0, sizeof m);
+    m.kind = SVA_CAN_MSG_VEHICLE_STATUS;
+    m.u.vehicle.uav_id = (uint8_t)strtoul(uav_text, NULL, 10);
+    m.u.vehicle.state = SVA_CAN_VEHICLE_UNAVAILABLE;
+    if ((sva_can_live_on_msg(&live, &m, 0u) != 1) || (sva_can_live_poll(&live, 0u, 0u) != 1)) {
+        fprintf(stderr, "loss of uav %s: no new plan\n", uav_text);
+        return 1;
+    }
+    wire = live.wire;
+    return print_wire(live.result.covered, live.result.plan->cost);
+}
+
 int main(int argc, char** argv)
 {
     char line[1024];
     if ((argc == 5) && (strcmp(argv[1], "plan") == 0)) {
         return do_plan(argv[2], argv[3], argv[4]);
     }
+    if ((argc == 6) && (strcmp(argv[1], "live") == 0)) {
+        return do_live(argv[2], argv[3], argv[4], argv[5]);
+    }
     if ((argc != 2) || (strcmp(argv[1], "codec") != 0)) {
-        fprintf(stderr, "usage: can_frames_tool codec | plan MISSION ALGORITHM PLAN_ID\n");
+        fprintf(stderr, "usage: can_frames_tool codec | plan MISSION ALGORITHM PLAN_ID | live "
+                        "MISSION ALGORITHM TICK LOST_UAV\n");
         return 2;
     }
     while (fgets(line, sizeof line, stdin) != NULL) {
@@ -312,6 +394,8 @@ int main(int argc, char** argv)
             do_encode(line + 7);
         } else if (strncmp(line, "decode ", 7) == 0) {
             do_decode(line + 7);
+        } else if (strncmp(line, "check ", 6) == 0) {
+            do_check(line + 6);
         } else {
             printf("error syntax\n");
         }

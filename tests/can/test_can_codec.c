@@ -158,6 +158,9 @@ static void roundtrip(const sva_can_msg_t* m)
         assert_int_equal(back.u.fuel.uav_id, m->u.fuel.uav_id);
         assert_int_equal(back.u.fuel.fuel, m->u.fuel.fuel);
         break;
+    case SVA_CAN_MSG_MISSION_CLOCK:
+        assert_int_equal(back.u.clock.tick, m->u.clock.tick);
+        break;
     case SVA_CAN_MSG_NONE:
     case SVA_CAN_MSG_COUNT_:
     default:
@@ -198,6 +201,16 @@ static void test_roundtrip_every_kind_at_bounds(void** state)
         m.u.item.x = lo ? -32768 : 32767;
         m.u.item.y = lo ? 32767 : -32768;
         roundtrip(&m);
+        memset(&m, 0, sizeof m);
+        m.kind = SVA_CAN_MSG_MISSION_CLOCK;
+        m.counter = lo ? 0 : 15;
+        m.u.clock.tick = lo ? 0 : (uint32_t)SVA_CAN_MAX_TICK;
+        roundtrip(&m);
+        {
+            sva_can_frame_t too_late;
+            m.u.clock.tick = (uint32_t)SVA_CAN_MAX_TICK + 1u;  // does not fit 24 bits
+            assert_int_equal(sva_can_encode(&m, &too_late), SVA_CAN_ERR_ARGUMENT);
+        }
         memset(&m, 0, sizeof m);
         m.kind = SVA_CAN_MSG_PLAN_ITEM_TIME;
         m.u.item_time.item_seq = lo ? 0 : 15;

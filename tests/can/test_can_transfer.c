@@ -487,9 +487,15 @@ static void test_too_large_and_bad_version(void** state)
     m.u.begin.item_count = 1;
     m.u.begin.version = SVA_CAN_PROTOCOL_VERSION + 1;
     assert_int_equal(sva_can_encode(&m, &f), SVA_CAN_OK);
-    assert_int_equal(sva_can_receiver_on_frame(&receiver, &f, 0), SVA_CAN_ERR_VALUE);
+    assert_int_equal(sva_can_receiver_on_frame(&receiver, &f, 0), SVA_CAN_ERR_VERSION);
     assert_int_equal(receiver.stats.bad_version, 1);
-    assert_int_equal(receiver.stats.nacks_sent, 2);
+    // Version 1 (the protocol before SVA_MISSION_CLOCK) is another version too.
+    m.u.begin.version = 1;
+    assert_int_equal(sva_can_encode(&m, &f), SVA_CAN_OK);
+    assert_int_equal(sva_can_receiver_on_frame(&receiver, &f, 0), SVA_CAN_ERR_VERSION);
+    assert_int_equal(receiver.stats.bad_version, 2);
+    assert_string_equal(sva_can_status_name(SVA_CAN_ERR_VERSION), "version");
+    assert_int_equal(receiver.stats.nacks_sent, 3);
     assert_false(receiver.has_active);
 }
 

@@ -57,8 +57,8 @@ def parse_decoded(line):
     return name, {k: int(v) for k, v in (p.split("=") for p in pairs)}
 
 
-def test_dbc_describes_nine_messages_with_counter_and_crc(db):
-    assert len(db.messages) == 9
+def test_dbc_describes_ten_messages_with_counter_and_crc(db):
+    assert len(db.messages) == 10
     for msg in db.messages:
         assert not msg.is_extended_frame and msg.frame_id <= 0x7FF and msg.length == 8
         counter = msg.get_signal_by_name("counter")
@@ -86,7 +86,7 @@ def test_c_encode_is_decoded_by_cantools(db, codec):
             ref = db.encode_message(fid, dict(values, crc=0), strict=True)
             assert can_wire.with_crc(fid, ref) == data
             checked += 1
-    assert checked == 9 * 42
+    assert checked == 10 * 42
 
 
 def test_cantools_encode_is_decoded_by_c(db, codec):
@@ -148,7 +148,7 @@ def test_begin_algorithm_range_is_what_the_c_codec_accepts(db, codec):
     sig = db.get_message_by_name("SVA_PLAN_BEGIN").get_signal_by_name("algorithm")
     names = ["sva", "ga", "hga", "bfa", "flow"]  # sva_algorithm_t order
     assert {k: str(v) for k, v in sig.choices.items()} == dict(enumerate(names))
-    base = {"counter": 3, "version": 1, "plan_id": 42, "item_count": 7, "plan_status": 1,
+    base = {"counter": 3, "version": 2, "plan_id": 42, "item_count": 7, "plan_status": 1,
             "route_count": 5, "crc": 0}
     accepted = []
     for number in range(16):  # every value of the 4-bit field
@@ -190,3 +190,48 @@ def test_core_flow_plan_transfer_decodes_with_cantools(db):
     sig = db.decode_message(fid, begin)
     assert str(sig["algorithm"]) == "flow"
     assert can_wire.with_crc(fid, db.encode_message(fid, dict(sig, crc=0))) == begin
+
+
+def test_dbc_and_c_speak_protocol_version_2(db):
+    """The DBC's VERSION string names the protocol version the C port puts in BEGIN."""
+    assert db.version == "sva-can 2"
+    begin = db.get_message_by_name("SVA_PLAN_BEGIN")
+    data = can_wire.with_crc(0x101, begin.encode({"counter": 0, "version": 2, "plan_id": 1,
+                                                  "item_count": 0, "algorithm": 0,
+                                                  "plan_status": 1, "route_count": 0, "crc": 0}))
+    assert db.decode_message(0x101, data)["version"] == 2
+
+
+def test_frame_check_against_cantools_frames(db, codec):
+    """sva_can_frame_check() on frames cantools encodes (CRC-8 from crccheck): a
+    counter sequence passes; a corrupted CRC, a flipped data bit, a skipped or repeated
+    counter and a short frame each fail with the check that catches them."""
+    clock = db.get_message_by_name("SVA_MISSION_CLOCK")
+    status = db.get_message_by_name("SVA_VEHICLE_STATUS")
+
+    def frame(msg, counter, **sig):
+        return can_wire.with_crc(msg.frame_id, msg.encode(dict(sig, counter=counter, crc=0)))
+
+    def check(fid, data, expected):
+        return codec(f"check {fid:03X}#{data.hex().upper()} {expected}")
+
+    checked = 0
+    for k in range(40):  # counters wrap at 16
+        data = frame(clock, k % 16, tick=1000 + k)
+        assert check(clock.frame_id, data, k % 16) == "ok"
+        assert check(clock.frame_id, data, -1) == "ok"  # any counter
+        checked += 1
+    good = frame(status, 7, state=1, uav_id=3, x=-5, y=12)
+    assert check(status.frame_id, good, 7) == "ok"
+    bad_crc = good[:7] + bytes([good[7] ^ 0x01])
+    assert check(status.frame_id, bad_crc, 7) == "crc"
+    flipped = bytes([good[0], good[1] ^ 0x10]) + good[2:]
+    assert check(status.frame_id, flipped, 7) == "crc"
+    assert check(status.frame_id, good, 6) == "counter"   # a frame was skipped
+    assert check(status.frame_id, good, 8) == "counter"   # repeated (or old)
+    assert check(status.frame_id, good[:7], 7) == "dlc"
+    # The CRC covers the id: the same bytes under another id fail it.
+    assert check(clock.frame_id, good, 7) == "crc"
+    # A corrupted CRC is reported before a wrong counter.
+    assert check(status.frame_id, bad_crc, 6) == "crc"
+    print(f"frame check: {checked} cantools frames in sequence, 7 faults caught")

@@ -81,9 +81,11 @@ def test_every_event_type(tmp_path):
         {"at": 5, "type": "target_added", "target": {"id": 9, "x": 2, "y": 2, "start": 50, "end": 60, "need": 1}},
         {"at": 6, "type": "target_changed", "target": {"id": 3, "x": 2, "y": 7, "start": 33, "end": 40, "need": 1}},
         {"at": 7, "type": "target_cancelled", "target": 2},
-        {"at": 8, "type": "clock"}]}
+        {"at": 8, "type": "clock"},
+        {"at": 9, "type": "position", "uav": 1, "x": 4, "y": 0, "fuel": 80}]}
     mission, plan = replan(tmp_path, doc, "--algo", "flow")
-    assert plan["live"]["revision"] == 7 and plan["live"]["now"] == 8
+    assert plan["live"]["revision"] == 8 and plan["live"]["now"] == 9
+    assert (mission["uavs"][0]["x"], mission["uavs"][0]["y"], mission["uavs"][0]["fuel"]) == (4, 0, 80)
     assert states(plan) == {1: "waiting", 2: "cancelled", 3: "waiting", 9: "waiting"}
     assert sorted(t["id"] for t in mission["targets"]) == [1, 3, 9]
     assert next(t for t in mission["targets"] if t["id"] == 3)["x"] == 2
@@ -114,8 +116,13 @@ def test_without_a_plan_the_mission_is_planned_first(tmp_path):
      "events[0]: event.uav: the UAV is in service"),
     ([{"at": 5, "type": "teleport", "uav": 1}],
      "events[0].type: must be one of clock, uav_lost, uav_back, fuel, target_added, target_cancelled, "
-     "target_changed"),
+     "target_changed, position"),
     ([{"at": 5, "type": "uav_lost", "uav": 1, "x": 3}], 'events[0]: unknown key "x"'),
+    ([{"at": 5, "type": "position", "uav": 1, "x": 3, "fuel": 9}], 'events[0]: missing key "y"'),
+    ([{"at": 2, "type": "uav_lost", "uav": 2}, {"at": 3, "type": "position", "uav": 2, "x": 1, "y": 0, "fuel": 9}],
+     "events[1]: event.uav: the UAV is lost"),
+    ([{"at": 12, "type": "clock"}, {"at": 14, "type": "position", "uav": 1, "x": 5, "y": 0, "fuel": -3}],
+     "events[1]: event.fuel: must be >= 0, got -3"),
     ([{"at": 5, "type": "fuel", "uav": 1}], 'events[0]: missing key "fuel"'),
 ])
 def test_rejected_events(tmp_path, events, message):

@@ -283,6 +283,68 @@ static void test_uav_back_and_fuel(void** state)
     assert_int_equal(r.residual->uavs[0].fuel, 12);
 }
 
+static void position_ok(int32_t at, int32_t uav, int32_t x, int32_t y, int32_t fuel)
+{
+    sva_event_t e = at_event(SVA_EVENT_POSITION, at);
+    e.uav_id = uav;
+    e.x = x;
+    e.y = y;
+    e.fuel = fuel;
+    apply_ok(e);
+}
+
+static void assert_uav_at(uint16_t u, int32_t at, int32_t x, int32_t y, int32_t fuel, int32_t ready)
+{
+    int32_t gx = 0;
+    int32_t gy = 0;
+    int32_t gf = 0;
+    int32_t gr = 0;
+    assert_true(sva_live_uav_at(&live, u, at, &gx, &gy, &gf, &gr));
+    assert_int_equal(gx, x);
+    assert_int_equal(gy, y);
+    assert_int_equal(gf, fuel);
+    assert_int_equal(gr, ready);
+}
+
+// A position report rebases the UAV: its route goes on from there, and a UAV reported
+// off its target's cell during a visit under way breaks that visit.
+static void test_position_event(void** state)
+{
+    (void)state;
+    start_hand(0);
+    assert_uav_at(0U, 3, 3, 0, 97, 3);
+    position_ok(3, 1, 0, 3, 90);
+    assert_uav_at(0U, 3, 0, 3, 90, 3);
+    // x first, then y, from the reported cell and fuel.
+    assert_uav_at(0U, 4, 1, 3, 89, 4);
+    // 8 cells from (0, 3) to T1 at (5, 0): arriving at 11, after T1's start; with one
+    // UAV able to be there in time, T1 (need 2) can no longer be covered.
+    assert_int_equal(state_of(1), SVA_TARGET_EXPIRED);
+    sva_live_result_t r;
+    replan_ok(SVA_ALGO_FLOW, &r);
+    assert_int_equal(r.residual->uavs[0].x, 0);
+    assert_int_equal(r.residual->uavs[0].y, 3);
+    assert_int_equal(r.residual->uavs[0].fuel, 90);
+
+    start_hand(0);
+    apply_ok(at_event(SVA_EVENT_CLOCK, 12));
+    assert_int_equal(state_of(1), SVA_TARGET_UNDER_WAY);
+    // On station: only the fuel changes; the visit goes on until its end.
+    position_ok(13, 2, 5, 0, 70);
+    assert_int_equal(state_of(1), SVA_TARGET_UNDER_WAY);
+    assert_uav_at(1U, 13, 5, 0, 70, 20);
+    // Off station during the visit: T1 is lost, both UAVs are free now.
+    position_ok(14, 1, 6, 0, 80);
+    assert_int_equal(state_of(1), SVA_TARGET_LOST);
+    assert_uav_at(0U, 14, 6, 0, 80, 14);
+    assert_uav_at(1U, 14, 5, 0, 70, 14);
+    replan_ok(SVA_ALGO_FLOW, &r);
+    assert_int_equal(residual_index(&r, 1), -1);
+    assert_int_equal(r.under_way, 0);
+    assert_int_equal(r.covered, 2);
+    assert_int_equal(live.revision, 3U);
+}
+
 // A rejected event: the status, the message, and the live state byte for byte.
 static void rejected(sva_event_t e, const char* message)
 {
@@ -316,6 +378,22 @@ static void test_rejected_events_change_nothing(void** state)
     e.uav_id = 1;
     e.fuel = -1;
     rejected(e, "event.fuel: must be >= 0, got -1");
+    e = at_event(SVA_EVENT_POSITION, 14);
+    e.uav_id = 2;
+    rejected(e, "event.uav: the UAV is lost");
+    e.uav_id = 9;
+    rejected(e, "event.uav: unknown id 9");
+    e.uav_id = 1;
+    e.y = -40000;
+    rejected(e, "event.y: must be >= -32768, got -40000");
+    e.y = 0;
+    e.fuel = 1000000001;
+    rejected(e, "event.fuel: must be <= SVA_MAX_FUEL (1000000000), got 1000000001");
+    // Off station during T1's visit under way, but at a tick before now.
+    e = at_event(SVA_EVENT_POSITION, 12);
+    e.uav_id = 1;
+    e.x = 9;
+    rejected(e, "event.at: 12 is before now (13)");
     e = at_event(SVA_EVENT_UAV_BACK, 14);
     e.uav_id = 1;
     rejected(e, "event.uav: the UAV is in service");
@@ -342,7 +420,7 @@ static void test_rejected_events_change_nothing(void** state)
                 "started may change");
     e = at_event(SVA_EVENT_CLOCK, 14);
     e.type = SVA_EVENT_COUNT_;
-    rejected(e, "event.type: must be <= 6, got 7");
+    rejected(e, "event.type: must be <= 7, got 8");
     // Done targets cannot be cancelled.
     apply_ok(at_event(SVA_EVENT_CLOCK, 45));
     e = at_event(SVA_EVENT_TARGET_CANCELLED, 46);
@@ -481,7 +559,8 @@ static void test_random_live_missions(void** state)
         int32_t at = 0;
         for (int k = 0; k < 6; k++) {
             at += test_rng_range(&rng, 1, 12);
-            sva_event_t e = at_event((sva_event_type_t)test_rng_range(&rng, 0, 6), at);
+            sva_event_t e = at_event(
+                (sva_event_type_t)test_rng_range(&rng, 0, (int32_t)SVA_EVENT_COUNT_ - 1), at);
             e.uav_id = live.mission.uavs[test_rng_range(&rng, 0, live.mission.uav_count - 1)].id;
             e.x = test_rng_range(&rng, 0, 10);
             e.y = test_rng_range(&rng, 0, 10);
@@ -534,6 +613,7 @@ int main(void)
         cmocka_unit_test(test_replan_keeps_visits_under_way),
         cmocka_unit_test(test_targets_added_cancelled_changed),
         cmocka_unit_test(test_uav_back_and_fuel),
+        cmocka_unit_test(test_position_event),
         cmocka_unit_test(test_rejected_events_change_nothing),
         cmocka_unit_test(test_rejected_starts),
         cmocka_unit_test(test_random_live_missions),

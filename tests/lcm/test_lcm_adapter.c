@@ -861,8 +861,8 @@ static void test_live_events(void** state)
 
 // fleet_reports: while a live mission runs, a fleet message is a report. A UAV reported
 // unavailable becomes uav_lost, one whose fuel is below its route's need a fuel event,
-// each answered by one replan (event_seq -1) and no plan from scratch; a report that
-// contradicts nothing publishes nothing.
+// one off its track by more than the tolerance a position event, each answered by one replan
+// (event_seq -1) and no plan from scratch; a report that contradicts nothing publishes nothing.
 static void test_fleet_reports(void** state)
 {
     (void)state;
@@ -917,6 +917,31 @@ static void test_fleet_reports(void** state)
     assert_int_equal(replans_seen, 2);
     assert_int_equal(plans_seen, 1);
     assert_int_equal(node.priv.live.revision, 2);
+
+    // UAV 10 off its track: within the tolerance (2 cells) nothing; 3 cells off, a
+    // position event: it flies on from the reported cell with the reported fuel.
+    assert_int_equal(node.track_tolerance_cells, SVA_LCM_TRACK_TOLERANCE_DEFAULT);
+    const int32_t x0 = fleet.uavs[0].x;
+    fleet.uavs[0].x = x0 + 1;
+    fleet.uavs[0].y += 1;
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_int_equal(replans_seen, 2);
+    fleet.uavs[0].x = x0 + 2;
+    fleet.uavs[0].fuel -= 3;
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_int_equal(replans_seen, 3);
+    assert_int_equal(got_replan.event_type, SVA_LCM_EVENT_T_TYPE_POSITION);
+    assert_int_equal(got_replan.revision, 3);
+    assert_int_equal(got_replan.residual_fleet.uavs[0].id, 10);
+    assert_int_equal(got_replan.residual_fleet.uavs[0].x, x0 + 2);
+    assert_int_equal(got_replan.residual_fleet.uavs[0].y, fleet.uavs[0].y);
+    assert_int_equal(got_replan.residual_fleet.uavs[0].fuel, fleet.uavs[0].fuel);
+    // A tighter tolerance: the same report (one cell off the new track) is off it now.
+    node.track_tolerance_cells = 0;
+    fleet.uavs[0].y += 1;
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_int_equal(replans_seen, 4);
+    assert_int_equal(got_replan.event_type, SVA_LCM_EVENT_T_TYPE_POSITION);
 }
 
 static void test_zero_allocations_per_message(void** state)

@@ -205,6 +205,8 @@ def test_node_rejects_bad_options():
     assert r.returncode == 2 and "--algorithm" in r.stderr
     r = subprocess.run([NODE, "--prefix", "P" * 60], capture_output=True, text=True)
     assert r.returncode == 2 and "--prefix" in r.stderr
+    r = subprocess.run([NODE, "--track-tolerance", "-1"], capture_output=True, text=True)
+    assert r.returncode == 2 and "--track-tolerance: must be an integer in [0, 131070]" in r.stderr
     for bad in ("0", "100", "x"):
         r = subprocess.run([NODE, "--rt-priority", bad], capture_output=True, text=True)
         assert r.returncode == 2 and "--rt-priority: must be an integer in [1, 99]" in r.stderr
@@ -809,8 +811,9 @@ def test_fleet_reports_turn_contradictions_into_replans():
     unavailable is answered by a replan (event_seq -1, uav_lost) whose plan passes the
     checker on its residual mission without UAV 2, and no plan from scratch; a report
     with UAV 3's fuel below its route's need by a fuel replan; then nothing for a report
-    that contradicts nothing."""
-    n = Node(f"R{uuid.uuid4().hex[:6]}_", "--fleet-reports")
+    that contradicts nothing or puts a UAV within --track-tolerance of its track, and a
+    position replan for one off it."""
+    n = Node(f"R{uuid.uuid4().hex[:6]}_", "--fleet-reports", "--track-tolerance", "3")
     try:
         _, fleet, mission = wire.mission_messages(LIVE_MISSION, 8, 8)
         n.pub.publish(n.prefix + "FLEET", fleet.encode())
@@ -838,6 +841,19 @@ def test_fleet_reports_turn_contradictions_into_replans():
         n.pub.publish(n.prefix + "FLEET", fleet.encode())
         s = n.fresh_status()
         assert s.fleet_rx == 4 and len(n.replans) == 2 and len(n.plans) == 1, plan0
+        # Off its track: 3 cells (tolerance 3: nothing), then 4 cells (a position event).
+        fleet.uavs[busy[0] - 1].y = 3
+        n.pub.publish(n.prefix + "FLEET", fleet.encode())
+        s = n.fresh_status()
+        assert s.fleet_rx == 5 and len(n.replans) == 2
+        fleet.uavs[busy[0] - 1].y = 4
+        n.pub.publish(n.prefix + "FLEET", fleet.encode())
+        assert n.wait(lambda: len(n.replans) == 3)
+        doc = wire.replan_document(n.replans[-1], "live_lcm")
+        assert (doc["event"], doc["revision"]) == ("position", 3)
+        assert [(u["x"], u["y"], u["fuel"]) for u in doc["residual"]["uavs"] if u["id"] == busy[0]] \
+            == [(0, 4, 100)]
+        assert violations_doc(doc["residual"], doc["plan"]) == []
     finally:
         rc, err = n.stop()
     assert rc == 0, err

@@ -5,8 +5,10 @@ scenario stored in the log (the mission and the events) and the SPEC text, and j
 
 - service: each UAV has a track entry for exactly the ticks it is in service (from the
   scenario's uav_lost / uav_back events), from 0 to end_tick, and `out` says the same;
-  it starts where the mission (or its uav_back event) puts it.
-- movement: between consecutive ticks a UAV moves 0 or 1 cell (Manhattan), and two
+  it starts where the mission (or its uav_back event) puts it, and stands where a
+  position event puts it at that event's tick.
+- movement: between consecutive ticks a UAV moves 0 or 1 cell (Manhattan; a position
+  event may move it anywhere, and its next step may start then), and two
   moves within one stretch in service are at least ticks_per_cell ticks apart (the first
   at least ticks_per_cell after the stretch starts, or after the mission's ready_at).
 - visits: a visit's UAV stands on the target's cell from `arrived` to `left`, arrived by
@@ -144,9 +146,14 @@ def check_flight(log: dict) -> List[str]:
             cancelled[e["target"]] = e["at"]
     fuel_at: Dict[Tuple[int, int], int] = {}
     lost_at: Dict[int, List[int]] = {}
+    seen_at: Dict[Tuple[int, int], Tuple[int, int]] = {}   # position events
+    moved_at: Dict[int, List[int]] = {}
     for e in events:
-        if e["type"] == "fuel":
+        if e["type"] in ("fuel", "position"):
             fuel_at[(e["uav"], e["at"])] = e["fuel"]
+        if e["type"] == "position":
+            seen_at[(e["uav"], e["at"])] = (e["x"], e["y"])
+            moved_at.setdefault(e["uav"], []).append(e["at"])
         elif e["type"] == "uav_lost":
             lost_at.setdefault(e["uav"], []).append(e["at"])
 
@@ -183,7 +190,9 @@ def check_flight(log: dict) -> List[str]:
                 v.append(f"{w}: visit of unknown target {vis['target']}")
                 continue
             a, left = vis["arrived"], vis["left"]
-            lost_here = left in lost_at.get(uid, [])
+            # Lost there, or seen off the cell (a position event) at `left`.
+            lost_here = (left in lost_at.get(uid, []) or
+                         (uid, left) in seen_at and seen_at[(uid, left)] != t.cell)
             stay_to = left - 1 if lost_here else left
             if a > t.start or left is None or left > t.end or left < t.start:
                 v.append(f"{w}: visit of target {t.id} from {a} to {left} does not hold its "
@@ -194,7 +203,8 @@ def check_flight(log: dict) -> List[str]:
                          f"[{a}, {left}]")
             early = left < t.end
             if early and not (lost_here or cancelled.get(t.id) == left or
-                              any(left in lost_at.get(o, []) for o in logged if o != uid)):
+                              any(left in lost_at.get(o, []) + moved_at.get(o, [])
+                                  for o in logged if o != uid)):
                 v.append(f"{w}: left target {t.id} at {left}, before its end {t.end}, "
                          f"with no cancellation or loss then")
             if early and cancelled.get(t.id) != left:
@@ -215,6 +225,11 @@ def check_flight(log: dict) -> List[str]:
                 # The first step may start at t (at tick 0: at the UAV's ready_at).
                 last_move = (uav0_ready(u0) if t == 0 else t) - tpc
                 prev_fuel = sf
+            elif (uid, t) in seen_at:
+                if (x, y) != seen_at[(uid, t)]:
+                    v.append(f"{w}: at {(x, y)} at tick {t}, a position event puts it at "
+                             f"{seen_at[(uid, t)]}")
+                last_move = t - tpc  # its next step may start now
             else:
                 d = _dist(p[t - 1], (x, y))
                 if d > 1:
@@ -234,6 +249,10 @@ def check_flight(log: dict) -> List[str]:
             want = moves + hover * hover_ticks.get(t, 0)
             paid = prev_fuel - f
             ok = {want, want + 1} if cut else {want}
+            if any(t < st <= later for st in moved_at.get(uid, [])):
+                # A position event before the step would end: the track cannot tell
+                # whether a step started.
+                ok = {want - moves, want - moves + 1}
             if (uid, t) in fuel_at:
                 # A reading at the start of a window the UAV already hovers over counts
                 # the hover fuel paid then (it is paid before the tick's events).

@@ -225,6 +225,35 @@ def test_uav_back_brings_a_target_back_within_reach(sva_bin):
     assert target(log, 1)["covered"] and target(log, 1)["served_by"] == [1, 2]
 
 
+def test_position_event_flies_on_from_the_reported_cell(sva_bin):
+    doc = scenario([(1, 0, 0, 100)], [(1, 6, 0, 20, 30, 1)],
+                   [{"at": 2, "type": "position", "uav": 1, "x": 0, "y": 4, "fuel": 50}])
+    log = ok(fly(doc))
+    assert uav(log, 1)["track"][2][1:3] == [0, 4]
+    # From (0, 4) at tick 2: 6 cells in x, 4 in y.
+    assert uav(log, 1)["visits"] == [{"target": 1, "arrived": 12, "left": 30}]
+    assert log["replans"][-1]["mission"]["uavs"][0]["fuel"] == 50
+
+
+def test_position_off_station_breaks_the_visit(sva_bin):
+    doc = scenario([(1, 0, 0, 100), (2, 0, 0, 100)], [(1, 5, 0, 10, 30, 2)],
+                   [{"at": 15, "type": "position", "uav": 1, "x": 5, "y": 2, "fuel": 50},
+                    {"at": 16, "type": "position", "uav": 1, "x": 5, "y": 3, "fuel": 49}])
+    log = ok(fly(doc))
+    assert target(log, 1)["outcome"] == "lost" and not target(log, 1)["covered"]
+    assert uav(log, 2)["visits"][0] == {"target": 1, "arrived": 5, "left": 15}
+    states = {t["id"]: t["state"] for t in log["replans"][-1]["live"]["targets"]}
+    assert states[1] == "lost"
+
+
+def test_checker_catches_a_uav_not_where_a_position_event_puts_it(sva_bin):
+    doc = scenario([(1, 0, 0, 100)], [(1, 6, 0, 20, 30, 1)],
+                   [{"at": 2, "type": "position", "uav": 1, "x": 0, "y": 4, "fuel": 50}])
+    log = fly(doc)
+    log["scenario"]["events"][0]["y"] = 3
+    assert any("a position event puts it at (0, 3)" in m for m in check_flight(log))
+
+
 def test_target_changed_moves_the_visit(sva_bin):
     doc = scenario([(1, 0, 0, 100)], [(1, 3, 0, 20, 30, 1)],
                    [{"at": 2, "type": "target_changed", "target": tjson(1, 0, 7, 25, 35, 1)}])

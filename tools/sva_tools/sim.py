@@ -7,7 +7,9 @@ each leg x first, then y, one cell per ticks_per_cell ticks, paying 1 fuel when 
 step starts; it waits at a target until its start, pays hover_fuel at the start and
 leaves at the end; arriving after a start it does not stop; a step in progress is
 finished before new orders; with no orders it flies home. A lost UAV vanishes at its
-event and reappears on uav_back.
+event and reappears on uav_back. A position event puts a UAV in service on its cell
+with its fuel (blown off course), a step in progress dropped; off its target's cell
+during a visit, it breaks the visit as a loss there would.
 
 At tick 0 (cause "start") and at every tick with events (after applying them) it runs
 the C CLI's `sva replan` over the whole history (mission, events so far, now) and gives
@@ -39,7 +41,7 @@ from . import io
 from . import model as M
 
 EVENT_TYPES = ("clock", "uav_lost", "uav_back", "fuel", "target_added", "target_cancelled",
-               "target_changed")
+               "target_changed", "position")
 OUTCOMES = ("covered", "uncovered", "cancelled", "lost")
 
 
@@ -242,6 +244,21 @@ class Flight:
             c.out[-1][1] = t
         elif kind == "fuel":
             self.by_id[e["uav"]].fuel = e["fuel"]
+        elif kind == "position":
+            c = self.by_id[e["uav"]]
+            tid = c.hover
+            cell = (e["x"], e["y"])
+            if tid is not None and cell == (self.targets[tid].x, self.targets[tid].y):
+                c.fuel = e["fuel"]  # on station: the visit goes on
+                return
+            if tid is not None:
+                # Off station during its visit: broken, as by a loss there.
+                hovering = sum(1 for o in self.crafts if o.in_service and o.hover == tid)
+                self._end_hover(c, t)
+                if hovering >= self.targets[tid].need:
+                    self._free_target(tid, t, "lost")
+            (c.x, c.y), c.fuel = cell, e["fuel"]
+            c.step_to, c.arrived, c.free_at = None, t, t
         elif kind in ("target_added", "target_changed"):
             tg = _target(e["target"], "event")
             if tg.id not in self.targets:
@@ -428,6 +445,8 @@ def _event_text(e: dict) -> str:
         return f"uav {e['uav']} back at ({e['x']}, {e['y']}) with fuel {e['fuel']}"
     if k == "fuel":
         return f"uav {e['uav']} fuel reads {e['fuel']}"
+    if k == "position":
+        return f"uav {e['uav']} seen at ({e['x']}, {e['y']}) with fuel {e['fuel']}"
     if k == "target_added":
         t = e["target"]
         return (f"target {t['id']} added at ({t['x']}, {t['y']}) [{t['start']}, {t['end']}) "

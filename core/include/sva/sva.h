@@ -464,11 +464,11 @@ typedef enum {
     SVA_EVENT_TARGET_ADDED,      ///< `target` joins the mission (a new id)
     SVA_EVENT_TARGET_CANCELLED,  ///< target.id is cancelled
     SVA_EVENT_TARGET_CHANGED,    ///< target.id gets target's position, window and need
+    SVA_EVENT_POSITION,          ///< uav_id was seen at (x, y) with fuel: its route goes on
     SVA_EVENT_COUNT_             ///< number of event types (not a type)
 } sva_event_type_t;
 
-/// The SPEC name of an event type ("clock", "uav_lost", "uav_back", "fuel",
-/// "target_added", "target_cancelled", "target_changed"), or "" when out of range.
+/// The SPEC name of an event type ("clock", ..., "position"), or "" when out of range.
 const char* sva_event_type_name(sva_event_type_t type);
 
 /// Looks an event type up by its SPEC name. SVA_OK, or SVA_ERR_ARGUMENT when unknown.
@@ -478,10 +478,10 @@ SVA_NODISCARD sva_status_t sva_event_type_from_name(const char* name, sva_event_
 typedef struct {
     sva_event_type_t type;
     int32_t at_ticks;     ///< when it happened: >= the live mission's now
-    int32_t uav_id;       ///< uav_lost, uav_back, fuel
-    int32_t x;            ///< uav_back
-    int32_t y;            ///< uav_back
-    int32_t fuel;         ///< uav_back, fuel: [0, SVA_MAX_FUEL]
+    int32_t uav_id;       ///< uav_lost, uav_back, fuel, position
+    int32_t x;            ///< uav_back, position
+    int32_t y;            ///< uav_back, position
+    int32_t fuel;         ///< uav_back, fuel, position: [0, SVA_MAX_FUEL]
     sva_target_t target;  ///< target_added, target_changed; target_cancelled reads target.id
 } sva_event_t;
 
@@ -539,7 +539,7 @@ SVA_NODISCARD sva_status_t sva_live_init(sva_live_t* self, const sva_mission_t* 
 /// expire on the way), then the event acts (SPEC section 12.3). Returns SVA_OK, or
 /// SVA_ERR_INVALID with diag naming the field and rule: an event before now, an unknown
 /// UAV or target, a duplicate target id, target_changed at or after its start, a fuel
-/// reading of a UAV out of service, uav_back of a UAV in service, a cancelled target
+/// or position of a UAV out of service, uav_back of a UAV in service, a cancelled target
 /// that is done or lost, a target over SVA_MAX_TARGETS or breaking a mission rule.
 /// All-or-nothing: a rejected event leaves *self byte for byte as it was.
 /// Allocates nothing; O(U * R + T).

@@ -141,7 +141,7 @@ static bool event_ok(const sva_live_t* self, const sva_event_t* e, sva_diag_t* d
     }
     const sva_mission_t* m = &self->mission;
     if ((e->type == SVA_EVENT_UAV_LOST) || (e->type == SVA_EVENT_UAV_BACK) ||
-        (e->type == SVA_EVENT_FUEL)) {
+        (e->type == SVA_EVENT_FUEL) || (e->type == SVA_EVENT_POSITION)) {
         const int32_t u = sva_live_find_uav(self, e->uav_id);
         if (u < 0) {
             sva_diag_set(diag, SVA_FIELD_EVENT_UAV, SVA_RULE_UNKNOWN, -1, e->uav_id, 0, NULL);
@@ -156,6 +156,7 @@ static bool event_ok(const sva_live_t* self, const sva_event_t* e, sva_diag_t* d
     }
     switch (e->type) {
     case SVA_EVENT_UAV_BACK:
+    case SVA_EVENT_POSITION:
         return sva_in_range(diag, SVA_FIELD_EVENT_X, -1, e->x, SVA_COORD_MIN, SVA_COORD_MAX,
                             NULL) &&
                sva_in_range(diag, SVA_FIELD_EVENT_Y, -1, e->y, SVA_COORD_MIN, SVA_COORD_MAX,
@@ -274,6 +275,27 @@ sva_status_t sva_live_apply(sva_live_t* self, const sva_event_t* event, sva_diag
         sva_live_pos_t pos;
         sva_live_walk(self, u, at, &pos, -1, NULL);
         v->fuel += (int64_t)event->fuel - pos.fuel;
+        break;
+    }
+    case SVA_EVENT_POSITION: {
+        sva_live_rebase(self, u, at);
+        sva_live_pos_t pos;
+        sva_live_walk(self, u, at, &pos, -1, NULL);
+        const int32_t busy = pos.busy_with;
+        if ((busy >= 0) && (self->target_state[(uint16_t)busy] == (uint8_t)SVA_TARGET_UNDER_WAY)) {
+            const sva_target_t* tg = &self->mission.targets[(uint16_t)busy];
+            if ((tg->x == event->x) && (tg->y == event->y)) {
+                v->fuel = event->fuel;  // on station: the visit goes on
+                break;
+            }
+            // Off station during its visit: the visit is broken, as by a loss there.
+            end_target(self, (uint16_t)busy, SVA_TARGET_LOST, at);
+        }
+        v->x = event->x;
+        v->y = event->y;
+        v->fuel = event->fuel;
+        v->from_ticks = at;
+        v->busy_with = -1;
         break;
     }
     case SVA_EVENT_TARGET_ADDED:

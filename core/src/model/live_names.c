@@ -11,7 +11,8 @@ const char* sva_target_state_name(sva_target_state_t state)
 }
 
 static const char* const event_names[SVA_EVENT_COUNT_] = {
-    "clock", "uav_lost", "uav_back", "fuel", "target_added", "target_cancelled", "target_changed",
+    "clock",        "uav_lost",         "uav_back",       "fuel",
+    "target_added", "target_cancelled", "target_changed", "position",
 };
 
 const char* sva_event_type_name(sva_event_type_t type)

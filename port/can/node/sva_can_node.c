@@ -1,12 +1,14 @@
-// sva_can_node: the planner on a CAN bus. Reads the mission's targets and initial fleet
-// from a SPEC section 3 mission file, listens for vehicle status (SVA_VEHICLE_STATUS,
-// SVA_VEHICLE_FUEL) on a SocketCAN interface, replans with sva_plan() when the fleet
-// state changes, sends each plan with the protocol of port/can/sva.dbc and sends the
-// heartbeat every second. SIGINT/SIGTERM: aborts an in-flight transfer, exits 0.
+// sva_can_node: the planner on a CAN bus, running a live mission. Plans the mission of
+// a SPEC section 3 mission file, sends the plan with the protocol of port/can/sva.dbc,
+// and keeps the live mission (can_live.c) from the flight stack's frames on a SocketCAN
+// interface: SVA_MISSION_CLOCK (the clock), SVA_VEHICLE_STATUS (loss, return, position)
+// and SVA_VEHICLE_FUEL (fuel), each change a core event; once the bus has been quiet
+// for --settle-ms after an event it replans and sends the new plan when it changed.
+// Heartbeat every second. SIGINT/SIGTERM: aborts an in-flight transfer, exits 0.
 //
 // Usage: sva_can_node --mission FILE [--iface vcan0] [--algorithm sva]
-//                     [--settle-ms 200] [--exit-after-acks N] [--max-runtime-ms N]
-//                     [--print-plans]
+//                     [--settle-ms 200] [--track-tolerance 2] [--exit-after-acks N]
+//                     [--max-runtime-ms N] [--print-plans]
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
@@ -17,6 +19,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "can_live.h"
 #include "mission_file.h"
 #include "plan_print.h"
 #include "sva/sva.h"
@@ -44,17 +47,9 @@ static uint32_t now_ms(void)
     return (uint32_t)((uint64_t)ts.tv_sec * 1000u + (uint64_t)ts.tv_nsec / 1000000u);
 }
 
-typedef struct {
-    uint8_t state;  // SVA_CAN_VEHICLE_*
-} vehicle_extra_t;
-
-// Everything the node owns: static, no heap (the planner state is large).
-static sva_mission_t g_mission;  // targets and fleet state as last heard
-static vehicle_extra_t g_extra[SVA_MAX_UAVS];
-static sva_mission_t g_planning;  // what sva_plan sees (unavailable UAVs left out)
-static sva_planner_t g_planner;
-static sva_plan_t g_plan;
-static sva_can_plan_t g_wire;
+// Everything the node owns: static, no heap (the live mission and planner are large).
+static sva_mission_t g_mission;  // the mission file: the live mission's start
+static sva_can_live_t g_live;
 static sva_can_sender_t g_sender;
 
 static uint32_t elapsed(uint32_t now, uint32_t then)
@@ -66,8 +61,8 @@ static void usage(void)
 {
     fprintf(stderr,
             "usage: sva_can_node --mission FILE [--iface NAME] [--algorithm sva|ga|hga|bfa|flow]\n"
-            "                    [--settle-ms N] [--exit-after-acks N] [--max-runtime-ms N] "
-            "[--print-plans]\n");
+            "                    [--settle-ms N] [--track-tolerance N] [--exit-after-acks N]\n"
+            "                    [--max-runtime-ms N] [--print-plans]\n");
 }
 
 static int parse_u32(const char* s, const char* opt, uint32_t* out)
@@ -86,103 +81,25 @@ static int parse_u32(const char* s, const char* opt, uint32_t* out)
     return 0;
 }
 
-// Plans the current fleet state; on success starts sending. Returns the fault bits.
-static uint8_t replan(sva_algorithm_t algo, uint16_t plan_id, uint32_t t, int print,
-                      uint8_t* covered)
+// Hands the live mission's wire plan to the sender. Returns the fault bits.
+static uint8_t send_plan(uint32_t t, int print)
 {
-    sva_diag_t diag;
-    uint16_t i;
-    char msg[256];
-    sva_status_t st;
     sva_can_status_t cst;
-    g_planning = g_mission;
-    g_planning.uav_count = 0;
-    for (i = 0; i < g_mission.uav_count; ++i) {
-        if (g_extra[i].state != SVA_CAN_VEHICLE_UNAVAILABLE) {
-            g_planning.uavs[g_planning.uav_count++] = g_mission.uavs[i];
-        }
-    }
-    sva_diag_clear(&diag);
-    st = sva_plan(&g_planner, &g_planning, algo, &g_plan, &diag);
-    if (st != SVA_OK) {
-        (void)sva_diag_format(&diag, msg, sizeof msg);
-        fprintf(stderr, "sva_can_node: plan %u failed (status %d): %s\n", plan_id, (int)st, msg);
-        return (st == SVA_ERR_INVALID) ? SVA_CAN_FAULT_MISSION_INVALID : SVA_CAN_FAULT_PLAN_FAILED;
-    }
-    cst = sva_can_plan_from_core(&g_wire, &g_planning, &g_plan, plan_id);
-    if (cst != SVA_CAN_OK) {
-        fprintf(stderr,
-                "sva_can_node: plan %u does not fit the wire (%s): more than SVA_CAN_MAX_ITEMS "
-                "(%d) items?\n",
-                plan_id, sva_can_status_name(cst), SVA_CAN_MAX_ITEMS);
-        return SVA_CAN_FAULT_PLAN_FAILED;
-    }
-    *covered = (uint8_t)((g_plan.covered > 255u) ? 255u : g_plan.covered);
-    fprintf(stderr,
-            "sva_can_node: plan %u: %s %s, covered %u of %u, cost %lld, %u items, %u frames\n",
-            plan_id, sva_algorithm_name(algo),
-            (g_plan.status == SVA_PLAN_COMPLETE) ? "complete" : "partial", g_plan.covered,
-            g_planning.target_count, (long long)g_plan.cost, g_wire.item_count,
-            2u * g_wire.item_count + 2u);
+    fprintf(stderr, "sva_can_node: plan %u: %s %s, covered %u of %u, %u items, %u frames\n",
+            g_live.wire.plan_id, sva_algorithm_name((sva_algorithm_t)g_live.wire.algorithm),
+            (g_live.wire.plan_status == SVA_CAN_PLAN_COMPLETE) ? "complete" : "partial",
+            g_live.covered, g_live.live.mission.target_count, g_live.wire.item_count,
+            2u * g_live.wire.item_count + 2u);
     if (print) {
-        sva_can_plan_print(&g_wire);
+        sva_can_plan_print(&g_live.wire);
     }
-    cst = sva_can_sender_start(&g_sender, &g_wire, t);
+    cst = sva_can_sender_start(&g_sender, &g_live.wire, t);
     if ((cst != SVA_CAN_OK) && (cst != SVA_CAN_AGAIN)) {
-        fprintf(stderr, "sva_can_node: sending plan %u: %s\n", plan_id, sva_can_status_name(cst));
+        fprintf(stderr, "sva_can_node: sending plan %u: %s\n", g_live.wire.plan_id,
+                sva_can_status_name(cst));
         return SVA_CAN_FAULT_TX_ERRORS;
     }
     return 0u;
-}
-
-// Applies a vehicle frame to the fleet state. Returns 1 when something changed.
-static int apply_vehicle(const sva_can_msg_t* m)
-{
-    const uint8_t id =
-        (m->kind == SVA_CAN_MSG_VEHICLE_STATUS) ? m->u.vehicle.uav_id : m->u.fuel.uav_id;
-    uint16_t i;
-    sva_uav_t* u = NULL;
-    for (i = 0; i < g_mission.uav_count; ++i) {
-        if (g_mission.uavs[i].id == (int32_t)id) {
-            u = &g_mission.uavs[i];
-            break;
-        }
-    }
-    if (u == NULL) {
-        if (g_mission.uav_count >= SVA_MAX_UAVS) {
-            fprintf(stderr, "sva_can_node: uav %u ignored: fleet full (SVA_MAX_UAVS %d)\n", id,
-                    SVA_MAX_UAVS);
-            return 0;
-        }
-        i = g_mission.uav_count++;
-        u = &g_mission.uavs[i];
-        u->id = id;
-        u->x = g_mission.depot_x;
-        u->y = g_mission.depot_y;
-        u->fuel = 0;  // until its fuel frame arrives
-        u->ready_at_ticks = 0;
-        g_extra[i].state = SVA_CAN_VEHICLE_UNKNOWN;
-    }
-    if (m->kind == SVA_CAN_MSG_VEHICLE_STATUS) {
-        if ((u->x == m->u.vehicle.x) && (u->y == m->u.vehicle.y) &&
-            (g_extra[i].state == m->u.vehicle.state)) {
-            return 0;
-        }
-        u->x = m->u.vehicle.x;
-        u->y = m->u.vehicle.y;
-        g_extra[i].state = m->u.vehicle.state;
-        return 1;
-    }
-    {
-        // Fuel above the core's bound is clamped to it (SVA_MAX_FUEL), so validation holds.
-        const int32_t fuel = (m->u.fuel.fuel > (uint32_t)SVA_MAX_FUEL) ? (int32_t)SVA_MAX_FUEL
-                                                                       : (int32_t)m->u.fuel.fuel;
-        if (u->fuel == fuel) {
-            return 0;
-        }
-        u->fuel = fuel;
-        return 1;
-    }
 }
 
 int main(int argc, char** argv)
@@ -206,18 +123,15 @@ int main(int argc, char** argv)
     struct sigaction sa;
     uint32_t t0;
     uint32_t last_hb;
-    uint32_t last_change = 0u;
-    int dirty = 0;
-    uint16_t plan_id = 0u;
+    uint32_t track_tolerance = SVA_CAN_LIVE_TRACK_TOLERANCE;
     uint16_t active_plan_id = 0u;
     uint8_t hb_counter = 0u;
     uint8_t faults = 0u;
-    uint8_t covered = 0u;
     uint8_t covered_active = 0u;
     uint32_t acks = 0u;
     uint32_t rx_rejected = 0u;
-    int has_last_counter[2] = {0, 0};
-    uint8_t last_counter[2] = {0u, 0u};
+    int has_last_counter[3] = {0, 0, 0};
+    uint8_t last_counter[3] = {0u, 0u, 0u};
     sva_can_tx_state_t prev_state = SVA_CAN_TX_IDLE;
     int rc = 0;
 
@@ -249,6 +163,9 @@ int main(int argc, char** argv)
         } else if (strcmp(a, "--settle-ms") == 0) {
             if (parse_u32(v, a, &settle_ms) != 0)
                 return 2;
+        } else if (strcmp(a, "--track-tolerance") == 0) {
+            if (parse_u32(v, a, &track_tolerance) != 0)
+                return 2;
         } else if (strcmp(a, "--exit-after-acks") == 0) {
             if (parse_u32(v, a, &exit_after_acks) != 0)
                 return 2;
@@ -278,11 +195,10 @@ int main(int argc, char** argv)
                 sva_text_escape(shown_arg, sizeof shown_arg, mission_path), err);
         return 1;
     }
-    for (i = 0; i < (int)g_mission.uav_count; ++i) {
-        g_extra[i].state = SVA_CAN_VEHICLE_AVAILABLE;
-    }
-    if (sva_planner_init(&g_planner) != SVA_OK) {
-        fprintf(stderr, "sva_can_node: planner init failed\n");
+    g_live.log = stderr;
+    g_live.track_tolerance_cells = (int32_t)track_tolerance;
+    if (sva_can_live_start(&g_live, &g_mission, algo, err, sizeof err) != 0) {
+        fprintf(stderr, "sva_can_node: %s\n", err);
         return 1;
     }
     cst = sva_can_socketcan_open(&sock, iface);
@@ -316,8 +232,7 @@ int main(int argc, char** argv)
 
     t0 = now_ms();
     last_hb = t0 - SVA_CAN_HEARTBEAT_PERIOD_MS;  // first heartbeat at once
-    plan_id = 1u;
-    faults |= replan(algo, plan_id, t0, print, &covered);
+    faults |= send_plan(t0, print);
 
     while (!g_stop) {
         struct pollfd pfd;
@@ -350,7 +265,8 @@ int main(int argc, char** argv)
                 }
                 continue;
             }
-            if ((f.id != SVA_CAN_ID_VEHICLE_STATUS) && (f.id != SVA_CAN_ID_VEHICLE_FUEL)) {
+            if ((f.id != SVA_CAN_ID_VEHICLE_STATUS) && (f.id != SVA_CAN_ID_VEHICLE_FUEL) &&
+                (f.id != SVA_CAN_ID_MISSION_CLOCK)) {
                 continue;
             }
             st = sva_can_decode(&f, &m);
@@ -360,14 +276,16 @@ int main(int argc, char** argv)
             if (st != SVA_CAN_OK) {
                 ++rx_rejected;
                 faults |= SVA_CAN_FAULT_RX_ERRORS;
-                fprintf(stderr, "sva_can_node: rejected vehicle frame 0x%03lX: %s\n",
+                fprintf(stderr, "sva_can_node: rejected flight-stack frame 0x%03lX: %s\n",
                         (unsigned long)f.id, sva_can_status_name(st));
                 continue;
             }
             {
                 // A repeated counter is a stale or duplicated frame: rejected. A jump is
                 // lost frames: the state still applies (latest state wins).
-                const int k = (m.kind == SVA_CAN_MSG_VEHICLE_STATUS) ? 0 : 1;
+                const int k = (m.kind == SVA_CAN_MSG_VEHICLE_STATUS) ? 0
+                              : (m.kind == SVA_CAN_MSG_VEHICLE_FUEL) ? 1
+                                                                     : 2;
                 if (has_last_counter[k] && (m.counter == last_counter[k])) {
                     ++rx_rejected;
                     faults |= SVA_CAN_FAULT_RX_ERRORS;
@@ -376,17 +294,16 @@ int main(int argc, char** argv)
                 has_last_counter[k] = 1;
                 last_counter[k] = m.counter;
             }
-            if (apply_vehicle(&m)) {
-                dirty = 1;
-                last_change = t;
-            }
+            (void)sva_can_live_on_msg(&g_live, &m, t);
         }
-        if (dirty && (elapsed(t, last_change) >= settle_ms)) {
-            dirty = 0;
-            plan_id = (uint16_t)((plan_id == 65535u) ? 1u : (plan_id + 1u));
-            faults = (uint8_t)(faults & (uint8_t) ~(SVA_CAN_FAULT_MISSION_INVALID |
-                                                    SVA_CAN_FAULT_PLAN_FAILED));
-            faults |= replan(algo, plan_id, t, print, &covered);
+        {
+            const int changed = sva_can_live_poll(&g_live, t, settle_ms);
+            if (changed < 0) {
+                faults |= SVA_CAN_FAULT_PLAN_FAILED;
+            } else if (changed > 0) {
+                faults = (uint8_t)(faults & (uint8_t)~SVA_CAN_FAULT_PLAN_FAILED);
+                faults |= send_plan(t, print);
+            }
         }
         if (sva_can_sender_poll(&g_sender, t) != SVA_CAN_OK) {
             faults |= SVA_CAN_FAULT_TX_ERRORS;
@@ -394,15 +311,18 @@ int main(int argc, char** argv)
         if (g_sender.state != prev_state) {
             if (g_sender.state == SVA_CAN_TX_DONE) {
                 active_plan_id = g_sender.priv.plan.plan_id;
-                covered_active = covered;
+                covered_active = g_live.covered;
                 faults = (uint8_t)(faults & (uint8_t)~SVA_CAN_FAULT_TRANSFER_FAILED);
                 ++acks;
                 fprintf(stderr, "sva_can_node: plan %u acknowledged (%lu frames sent so far)\n",
                         active_plan_id, (unsigned long)g_sender.stats.frames_sent);
             } else if (g_sender.state == SVA_CAN_TX_FAILED) {
                 faults |= SVA_CAN_FAULT_TRANSFER_FAILED;
-                fprintf(stderr, "sva_can_node: plan %u aborted (reason %u)\n",
-                        g_sender.priv.plan.plan_id, g_sender.last_abort_reason);
+                fprintf(stderr, "sva_can_node: plan %u aborted (reason %u)%s\n",
+                        g_sender.priv.plan.plan_id, g_sender.last_abort_reason,
+                        (g_sender.last_nack == SVA_CAN_ACK_BAD_VERSION)
+                            ? ": the bridge refused the protocol version (NACK BAD_VERSION)"
+                            : "");
             }
             prev_state = g_sender.state;
         }
@@ -418,10 +338,13 @@ int main(int argc, char** argv)
                                              : (faults != 0u)         ? SVA_CAN_NODE_FAULT
                                                                       : SVA_CAN_NODE_IDLE);
             hb.u.heartbeat.active_plan_id = active_plan_id;
-            hb.u.heartbeat.uav_count =
-                (uint8_t)((g_mission.uav_count > 255u) ? 255u : g_mission.uav_count);
-            hb.u.heartbeat.target_count =
-                (uint8_t)((g_mission.target_count > 255u) ? 255u : g_mission.target_count);
+            {
+                const uint16_t in_service = sva_can_live_in_service(&g_live);
+                hb.u.heartbeat.uav_count = (uint8_t)((in_service > 255u) ? 255u : in_service);
+                hb.u.heartbeat.target_count = (uint8_t)((g_live.live.mission.target_count > 255u)
+                                                            ? 255u
+                                                            : g_live.live.mission.target_count);
+            }
             hb.u.heartbeat.covered_count = covered_active;
             hb.u.heartbeat.faults = (uint8_t)(faults & SVA_CAN_FAULT_MASK);
             if ((sva_can_encode(&hb, &hf) == SVA_CAN_OK) && (tp.send(tp.ctx, &hf) == SVA_CAN_OK)) {
@@ -443,11 +366,13 @@ int main(int argc, char** argv)
     if (sva_can_sender_abort(&g_sender, SVA_CAN_ABORT_SHUTDOWN, now_ms()) != SVA_CAN_OK) {
         fprintf(stderr, "sva_can_node: could not send ABORT on shutdown\n");
     }
-    fprintf(
-        stderr,
-        "sva_can_node: exit: %lu frames sent, %lu acks, %lu nacks, %lu rejected vehicle frames\n",
-        (unsigned long)g_sender.stats.frames_sent, (unsigned long)acks,
-        (unsigned long)g_sender.stats.nacks, (unsigned long)rx_rejected);
+    fprintf(stderr,
+            "sva_can_node: exit: %lu frames sent, %lu acks, %lu nacks, %lu rejected flight-stack "
+            "frames, %lu events applied, %lu refused, %lu replans (%lu unchanged)\n",
+            (unsigned long)g_sender.stats.frames_sent, (unsigned long)acks,
+            (unsigned long)g_sender.stats.nacks, (unsigned long)rx_rejected,
+            (unsigned long)g_live.stats.events_applied, (unsigned long)g_live.stats.events_refused,
+            (unsigned long)g_live.stats.replans, (unsigned long)g_live.stats.unchanged);
     sva_can_socketcan_close(&sock);
     return rc;
 }

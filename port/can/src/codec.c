@@ -45,6 +45,8 @@ const char* sva_can_status_name(sva_can_status_t status)
         return "unsupported";
     case SVA_CAN_ERR_STATE:
         return "state";
+    case SVA_CAN_ERR_VERSION:
+        return "version";
     default:
         return "unknown";
     }
@@ -159,6 +161,8 @@ sva_can_msg_kind_t sva_can_kind_of_id(uint32_t id)
         return SVA_CAN_MSG_VEHICLE_STATUS;
     case SVA_CAN_ID_VEHICLE_FUEL:
         return SVA_CAN_MSG_VEHICLE_FUEL;
+    case SVA_CAN_ID_MISSION_CLOCK:
+        return SVA_CAN_MSG_MISSION_CLOCK;
     default:
         return SVA_CAN_MSG_NONE;
     }
@@ -185,6 +189,8 @@ static uint32_t id_of_kind(sva_can_msg_kind_t kind)
         return SVA_CAN_ID_VEHICLE_STATUS;
     case SVA_CAN_MSG_VEHICLE_FUEL:
         return SVA_CAN_ID_VEHICLE_FUEL;
+    case SVA_CAN_MSG_MISSION_CLOCK:
+        return SVA_CAN_ID_MISSION_CLOCK;
     case SVA_CAN_MSG_NONE:
     case SVA_CAN_MSG_COUNT_:
     default:
@@ -291,6 +297,12 @@ sva_can_status_t sva_can_encode(const sva_can_msg_t* msg, sva_can_frame_t* out)
         sva_can_put_bits(d, 8u, 8u, msg->u.fuel.uav_id);
         sva_can_put_bits(d, 16u, 32u, msg->u.fuel.fuel);
         break;
+    case SVA_CAN_MSG_MISSION_CLOCK:
+        if (msg->u.clock.tick > (uint32_t)SVA_CAN_MAX_TICK) {
+            return SVA_CAN_ERR_ARGUMENT;
+        }
+        sva_can_put_bits(d, 8u, 24u, msg->u.clock.tick);
+        break;
     case SVA_CAN_MSG_NONE:
     case SVA_CAN_MSG_COUNT_:
     default:
@@ -302,6 +314,24 @@ sva_can_status_t sva_can_encode(const sva_can_msg_t* msg, sva_can_frame_t* out)
     out->dlc = 8u;
     for (i = 0; i < 8u; ++i) {
         out->data[i] = d[i];
+    }
+    return SVA_CAN_OK;
+}
+
+sva_can_status_t sva_can_frame_check(const sva_can_frame_t* frame, int expected_counter)
+{
+    if (frame == NULL) {
+        return SVA_CAN_ERR_ARGUMENT;
+    }
+    if ((frame->dlc != 8u) || ((frame->flags & SVA_CAN_FLAG_FD) != 0u)) {
+        return SVA_CAN_ERR_DLC;
+    }
+    if (sva_can_frame_crc8(frame->id, frame->data) != frame->data[7]) {
+        return SVA_CAN_ERR_CRC;
+    }
+    if ((expected_counter >= 0) && (expected_counter <= 15) &&
+        ((unsigned)(frame->data[0] & 0x0Fu) != (unsigned)expected_counter)) {
+        return SVA_CAN_ERR_COUNTER;
     }
     return SVA_CAN_OK;
 }
@@ -410,6 +440,9 @@ sva_can_status_t sva_can_decode(const sva_can_frame_t* frame, sva_can_msg_t* out
         if (m.u.fuel.uav_id == 0u) {
             return SVA_CAN_ERR_VALUE;
         }
+        break;
+    case SVA_CAN_MSG_MISSION_CLOCK:
+        m.u.clock.tick = (uint32_t)sva_can_get_bits(d, 8u, 24u);
         break;
     case SVA_CAN_MSG_NONE:
     case SVA_CAN_MSG_COUNT_:

@@ -99,7 +99,7 @@ static sva_can_status_t on_begin(sva_can_receiver_t* self, const sva_can_msg_t* 
     if (m->u.begin.version != SVA_CAN_PROTOCOL_VERSION) {
         ++self->stats.bad_version;
         send_ack(self, SVA_CAN_ACK_BAD_VERSION, m->u.begin.plan_id, 0u);
-        return SVA_CAN_ERR_VALUE;
+        return SVA_CAN_ERR_VERSION;
     }
     if (m->u.begin.item_count > SVA_CAN_MAX_ITEMS) {
         ++self->stats.too_large;
@@ -191,6 +191,7 @@ sva_can_status_t sva_can_receiver_on_frame(sva_can_receiver_t* self, const sva_c
     case SVA_CAN_ERR_NAME:
     case SVA_CAN_ERR_UNSUPPORTED:
     case SVA_CAN_ERR_STATE:
+    case SVA_CAN_ERR_VERSION:
     default:
         ++self->stats.ignored;
         return SVA_CAN_IGNORED;

@@ -141,6 +141,7 @@ static sva_json_result_t parse_event(const json_t* doc, const char* path, sva_ev
         {"at", "type", "target", NULL},
         {"at", "type", "target", NULL},
         {"at", "type", "target", NULL},
+        {"at", "type", "uav", "x", "y", "fuel", NULL},
     };
     memset(e, 0, sizeof *e);
     if (!json_is_object(doc)) {
@@ -151,15 +152,15 @@ static sva_json_result_t parse_event(const json_t* doc, const char* path, sva_ev
         sva_event_type_from_name(json_string_value(type), &e->type) != SVA_OK) {
         return fail(err, size,
                     "%s.type: must be one of clock, uav_lost, uav_back, fuel, target_added, "
-                    "target_cancelled, "
-                    "target_changed",
+                    "target_cancelled, target_changed, position",
                     path);
     }
     if (known_keys(doc, path, keys[e->type], err, size) != SVA_JSON_OK ||
         member_int(doc, path, "at", false, &e->at_ticks, err, size) != SVA_JSON_OK) {
         return SVA_JSON_BAD_INPUT;
     }
-    const bool back = e->type == SVA_EVENT_UAV_BACK;
+    // uav_back and position carry a place and a fuel reading.
+    const bool back = e->type == SVA_EVENT_UAV_BACK || e->type == SVA_EVENT_POSITION;
     const bool uav = back || e->type == SVA_EVENT_FUEL || e->type == SVA_EVENT_UAV_LOST;
     if ((uav && member_int(doc, path, "uav", false, &e->uav_id, err, size) != SVA_JSON_OK) ||
         (back && member_int(doc, path, "x", false, &e->x, err, size) != SVA_JSON_OK) ||

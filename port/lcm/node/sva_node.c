@@ -69,15 +69,20 @@ static void usage(FILE* out)
             "                         at most %ld; SPEC section 12.4)\n"
             "  -f, --fleet-reports    while a live mission runs, a fleet message is a report\n"
             "                         checked against the plan in force (a UAV unavailable:\n"
-            "                         uav_lost; fuel below its route's need: a fuel event)\n"
-            "                         instead of a new fleet to plan from scratch\n"
+            "                         uav_lost; off its track: a position event; fuel below\n"
+            "                         its route's need: a fuel event) instead of a new\n"
+            "                         fleet to plan from scratch\n"
+            "  -t, --track-tolerance N with --fleet-reports: cells (Manhattan) a reported\n"
+            "                         UAV may be from the plan's position before it is off\n"
+            "                         its track (default %d, at most %d)\n"
             "  -s, --status-ms MS     status period in milliseconds (default 1000)\n"
             "  -e, --exit-on-eof      stop when the provider ends (file:// logs)\n"
             "  -r, --rt-priority N    run under SCHED_FIFO priority N (1..99), LCM's receive\n"
             "                         thread included (needs CAP_SYS_NICE or RLIMIT_RTPRIO)\n"
             "  -m, --mlock            lock every page in RAM (mlockall current and future)\n"
             "  -h, --help             this text\n",
-            RECV_BUF_BYTES, (long)SVA_MAX_CHANGE_PENALTY);
+            RECV_BUF_BYTES, (long)SVA_MAX_CHANGE_PENALTY, SVA_LCM_TRACK_TOLERANCE_DEFAULT,
+            SVA_LCM_TRACK_TOLERANCE_MAX);
 }
 
 // Appends recv_buf_size to a udpm URL that has none (LCM's default is 2 MiB).
@@ -148,6 +153,7 @@ int main(int argc, char** argv)
     long status_ms = 1000;
     long change_penalty = 0;
     int fleet_reports = 0;
+    long track_tolerance = SVA_LCM_TRACK_TOLERANCE_DEFAULT;
     long rt_priority = 0;
     int lock_memory = 0;
     int exit_on_eof = 0;
@@ -174,6 +180,11 @@ int main(int argc, char** argv)
             }
         } else if (((strcmp(a, "-r") == 0) || (strcmp(a, "--rt-priority") == 0)) && has_value) {
             if (!integer_option("--rt-priority", argv[++i], 1, 99, &rt_priority)) {
+                return 2;
+            }
+        } else if (((strcmp(a, "-t") == 0) || (strcmp(a, "--track-tolerance") == 0)) && has_value) {
+            if (!integer_option("--track-tolerance", argv[++i], 0, SVA_LCM_TRACK_TOLERANCE_MAX,
+                                &track_tolerance)) {
                 return 2;
             }
         } else if ((strcmp(a, "-f") == 0) || (strcmp(a, "--fleet-reports") == 0)) {
@@ -234,6 +245,7 @@ int main(int argc, char** argv)
     node.log = log_stderr;
     node.change_penalty = (int32_t)change_penalty;
     node.fleet_reports = (fleet_reports != 0);
+    node.track_tolerance_cells = (int32_t)track_tolerance;
 
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);

@@ -25,8 +25,8 @@ SVA_LCM_STATIC_ASSERT(SVA_LCM_REJECT_COUNT_ <= 32, reasons_fit_logged_mask);
 SVA_LCM_STATIC_ASSERT(SVA_LCM_PLAN_BYTES + SVA_LCM_CHANNEL_SIZE <= 65499, plan_one_datagram);
 SVA_LCM_STATIC_ASSERT(SVA_LCM_REPLAN_BYTES + SVA_LCM_CHANNEL_SIZE <= 65499, replan_one_datagram);
 // event_t's TYPE_* are sva_event_type_t's numbers.
-SVA_LCM_STATIC_ASSERT(SVA_LCM_EVENT_T_TYPE_TARGET_CHANGED == (int)SVA_EVENT_TARGET_CHANGED &&
-                          SVA_EVENT_COUNT_ == 7,
+SVA_LCM_STATIC_ASSERT(SVA_LCM_EVENT_T_TYPE_POSITION == (int)SVA_EVENT_POSITION &&
+                          SVA_EVENT_COUNT_ == 8,
                       event_type_numbers);
 SVA_LCM_STATIC_ASSERT(SVA_LCM_REPLAN_T_MAX_CHANGES <= 32767, changes_fit_int16);
 // Counts travel as int16_t.
@@ -87,6 +87,7 @@ sva_status_t sva_lcm_node_init(sva_lcm_node_t* self, lcm_t* lcm, const char* pre
     sva_mission_init(&self->priv.mission);
     self->priv.fleet_revision = -1;
     self->priv.mission_revision = -1;
+    self->track_tolerance_cells = SVA_LCM_TRACK_TOLERANCE_DEFAULT;
     return sva_planner_init(&self->priv.planner);
 }
 
@@ -835,9 +836,16 @@ static void replan_live(sva_lcm_node_t* self)
 
 // A fleet report while a live mission runs (fleet_reports set): each UAV in service
 // whose report contradicts the plan in force becomes an event at the live mission's
-// now: health not OK -> uav_lost; fuel below what its route in force still needs (the
-// flight model's fuel now less its fuel at the route's end) -> a fuel event. With at
-// least one applied, one replan is published (event_seq -1, event_type the last one).
+// now: health not OK -> uav_lost; more than track_tolerance_cells (Manhattan) from the
+// flight model's position now -> a position event (the reported cell and fuel); fuel
+// below what its route in force still needs (the flight model's fuel now less its fuel
+// at the route's end) -> a fuel event. With at least one applied, one replan is
+// published (event_seq -1, event_type the last one).
+static int64_t sva_lcm_abs64(int64_t v)
+{
+    return (v < 0) ? -v : v;
+}
+
 static void fleet_report(sva_lcm_node_t* self)
 {
     const sva_lcm_fleet_state_t* f = &self->priv.fleet_rx;
@@ -868,8 +876,14 @@ static void fleet_report(sva_lcm_node_t* self)
         memset(&ev, 0, sizeof ev);
         ev.at_ticks = live->now_ticks;
         ev.uav_id = w->id;
+        const int64_t off = sva_lcm_abs64((int64_t)w->x - x) + sva_lcm_abs64((int64_t)w->y - y);
         if (w->health != SVA_LCM_UAV_STATE_T_HEALTH_OK) {
             ev.type = SVA_EVENT_UAV_LOST;
+        } else if (off > (int64_t)self->track_tolerance_cells) {
+            ev.type = SVA_EVENT_POSITION;
+            ev.x = w->x;
+            ev.y = w->y;
+            ev.fuel = w->fuel;
         } else {
             int32_t end_fuel = 0;
             if (!sva_live_uav_at(live, (uint16_t)u, (int32_t)SVA_MAX_TICK, &x, &y, &end_fuel,

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Builds the initramfs of the SocketCAN VM test.
 # Usage: build_initramfs.sh OUTDIR NODE_BIN BRIDGE_BIN MISSION_JSON
+# OUTDIR/clock_tick and OUTDIR/bad_begin.frame (written by run_vm_test.sh) go in too.
 # Writes OUTDIR/initrd.gz and OUTDIR/kernel (path of the kernel image to boot).
 # Contents: busybox-static (shell, insmod, ip), the CAN modules of the kernel that
 # Debian's linux-image-amd64 installs (can, can-raw, can-dev, vcan, in dependency
-# order), candump from can-utils with the shared libraries ldd lists, the two
+# order), candump and cansend from can-utils with the shared libraries ldd lists, the two
 # statically linked test programs, the mission and /init.
 set -euo pipefail
 out=$1 node=$2 bridge=$3 mission=$4
@@ -51,16 +52,21 @@ for m in "${order[@]}"; do
     echo "$m" >> "$root/modules.order"
 done
 
-# candump and its shared libraries (path-preserving copy).
-cp "$(command -v candump)" "$root/bin/candump"
-for lib in $(ldd "$(command -v candump)" | grep -o '/[^ ]*'); do
-    mkdir -p "$root$(dirname "$lib")"
-    cp -L "$lib" "$root$lib"
+# candump, cansend and their shared libraries (path-preserving copy).
+command -v cansend >/dev/null || die "cansend not found (can-utils)"
+for tool in candump cansend; do
+    cp "$(command -v "$tool")" "$root/bin/$tool"
+    for lib in $(ldd "$(command -v "$tool")" | grep -o '/[^ ]*'); do
+        mkdir -p "$root$(dirname "$lib")"
+        cp -L "$lib" "$root$lib"
+    done
 done
 
 cp "$node" "$root/bin/sva_can_node"
 cp "$bridge" "$root/bin/can_vm_bridge"
 cp "$mission" "$root/mission.json"
+cp "$out/clock_tick" "$root/clock_tick"
+cp "$out/bad_begin.frame" "$root/bad_begin.frame"
 cp "$here/init.sh" "$root/init"
 chmod +x "$root/init"
 

@@ -1,12 +1,15 @@
 // The flight-side bridge stand-in for the VM test, on a real SocketCAN interface:
-// receives plans with sva_can_receiver (ACKs them), prints each applied plan as JSON,
-// then reports UAV 1 unavailable (VEHICLE_STATUS) to make the node replan, and exits 0
-// after the second applied plan. Exits 1 on any error or after 20 s.
+// receives plans with sva_can_receiver (ACKs them; refuses another protocol version),
+// prints each applied plan as JSON, then sends the mission clock (TICK, MISSION_CLOCK)
+// and reports UAV 1 unavailable (VEHICLE_STATUS) to make the node replan, and exits 0
+// after the second applied plan once it has refused one BEGIN of another version.
+// Exits 1 on any error or after 20 s.
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
 #include <poll.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -32,8 +35,8 @@ int main(int argc, char** argv)
     uint32_t t0;
     int applied = 0;
     unsigned heartbeats = 0;
-    if (argc != 2) {
-        fprintf(stderr, "usage: can_vm_bridge IFACE\n");
+    if (argc != 3) {
+        fprintf(stderr, "usage: can_vm_bridge IFACE TICK\n");
         return 2;
     }
     st = sva_can_socketcan_open(&sock, argv[1]);
@@ -73,6 +76,14 @@ int main(int argc, char** argv)
                 if (applied == 1) {
                     sva_can_msg_t vs;
                     sva_can_frame_t vf;
+                    vs.kind = SVA_CAN_MSG_MISSION_CLOCK;
+                    vs.counter = 0;
+                    vs.u.clock.tick = (uint32_t)strtoul(argv[2], NULL, 10);
+                    if ((sva_can_encode(&vs, &vf) != SVA_CAN_OK) ||
+                        (tp.send(tp.ctx, &vf) != SVA_CAN_OK)) {
+                        fprintf(stderr, "can_vm_bridge: cannot send the mission clock\n");
+                        return 1;
+                    }
                     vs.kind = SVA_CAN_MSG_VEHICLE_STATUS;
                     vs.counter = 0;
                     vs.u.vehicle.state = SVA_CAN_VEHICLE_UNAVAILABLE;
@@ -91,12 +102,14 @@ int main(int argc, char** argv)
             fprintf(stderr, "can_vm_bridge: read: %s\n", strerror(sock.last_errno));
             return 1;
         }
-        if (applied >= 2) {
+        if ((applied >= 2) && (rx.stats.bad_version >= 1)) {
             fprintf(stderr,
-                    "can_vm_bridge: 2 plans applied, %u heartbeats heard, %lu frames rejected\n",
+                    "can_vm_bridge: 2 plans applied, %u heartbeats heard, %lu frames rejected, "
+                    "%lu of another protocol version\n",
                     heartbeats,
                     (unsigned long)(rx.stats.bad_crc + rx.stats.bad_dlc + rx.stats.counter_jumps +
-                                    rx.stats.out_of_order + rx.stats.plan_crc_mismatch));
+                                    rx.stats.out_of_order + rx.stats.plan_crc_mismatch),
+                    (unsigned long)rx.stats.bad_version);
             sva_can_socketcan_close(&sock);
             return 0;
         }

@@ -20,7 +20,7 @@ def sections(text):
     return out
 
 
-def main(ser1, exp1, exp2):
+def main(ser1, exp1, exp2, tick):
     text = Path(ser1).read_text(errors="replace")
     sec = sections(text)
     fails = [k for k in sec if k.startswith("fail")]
@@ -51,8 +51,20 @@ def main(ser1, exp1, exp2):
         kinds[name] = kinds.get(name, 0) + 1
         db.decode_message(fid, data)
     assert kinds.get("SVA_HEARTBEAT", 0) >= 1, "no heartbeat in the capture"
-    assert kinds.get("SVA_PLAN_ACK", 0) >= 2, "no ACKs in the capture"
+    assert kinds.get("SVA_PLAN_ACK", 0) >= 3, "no ACKs in the capture"
     assert kinds.get("SVA_VEHICLE_STATUS", 0) == 1
+    assert kinds.get("SVA_MISSION_CLOCK", 0) == 1
+    # The plans on the bus are protocol version 2; the version-1 BEGIN was refused.
+    begins = [db.decode_message(fid, data) for fid, data in frames if fid == 0x101]
+    assert [b["version"] for b in begins] == [1, 2, 2], begins
+    acks = [db.decode_message(fid, data, decode_choices=False) for fid, data in frames if fid == 0x108]
+    assert [(a["result"], a["plan_id"]) for a in acks if a["result"] != 0] == [(4, 77)], acks
+    bridge_err = "\n".join(sec["bridge.err"])
+    assert "rejected frame 0x101: version" in bridge_err, bridge_err
+    # The clock frame put a visit under way; the loss was an event of the live mission.
+    node_err = "\n".join(sec["node.err"])
+    assert f"under_way at tick {tick}" in node_err, node_err
+    assert f"event uav_lost uav 1 at tick {tick}" in node_err, node_err
     print(f"check_vm_capture: {len(frames)} frames captured {dict(sorted(kinds.items()))}")
     for p in plans:
         print(f"check_vm_capture: plan {p['plan_id']}: {len(p['items'])} items, CRC-32 {p['plan_crc']:08X}, "
@@ -60,4 +72,4 @@ def main(ser1, exp1, exp2):
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:4])
+    main(*sys.argv[1:5])

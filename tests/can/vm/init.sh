@@ -14,8 +14,11 @@ ip link set up vcan0 || fail "ip link set up vcan0"
 candump -L vcan0 > /tmp/capture.log 2>/tmp/candump.err &
 cpid=$!
 sleep 0.5
-can_vm_bridge vcan0 > /tmp/bridge.out 2> /tmp/bridge.err &
+can_vm_bridge vcan0 "$(cat /clock_tick)" > /tmp/bridge.out 2> /tmp/bridge.err &
 bpid=$!
+sleep 0.2
+# A PLAN_BEGIN of protocol version 1: the bridge must refuse it (NACK BAD_VERSION).
+cansend vcan0 "$(cat /bad_begin.frame)" || fail "cansend"
 sleep 0.2
 sva_can_node --mission /mission.json --iface vcan0 --algorithm sva --print-plans \
     --exit-after-acks 2 --max-runtime-ms 20000 > /tmp/node.out 2> /tmp/node.err

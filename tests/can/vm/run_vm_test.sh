@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # The real SocketCAN test: boots Debian's kernel (linux-image-amd64) under
 # qemu-system-x86_64 (TCG, no network device) with an initramfs that loads the CAN
-# modules, creates vcan0, captures it with candump and runs sva_can_node against a
-# bridge stand-in (both statically linked). The capture comes back over the second
-# serial port and is decoded on the host with cantools; it must hold the plans the
-# core produces for the mission (and for the mission without UAV 1, after the bridge
-# reports it unavailable). Fails, never skips, when anything is missing.
+# modules, creates vcan0, captures it with candump and runs sva_can_node (a live
+# mission) against a bridge stand-in (both statically linked). The capture comes back
+# over the second serial port and is decoded on the host with cantools; it must hold
+# the plan the core produces for the mission, then the live mission's plan after the
+# bridge's clock frame (past the first window's start: a visit under way) and its loss
+# of UAV 1, and the bridge's NACK BAD_VERSION to a PLAN_BEGIN of protocol version 1.
+# Fails, never skips, when anything is missing.
 # Usage: run_vm_test.sh WORKDIR NODE_STATIC BRIDGE_STATIC FRAMES_TOOL MISSION PYTHON
 set -euo pipefail
 work=$1 node=$2 bridge=$3 tool=$4 mission=$5 python=$6
@@ -15,6 +17,13 @@ command -v qemu-system-x86_64 >/dev/null || die "qemu-system-x86_64 not found (a
 for f in "$node" "$bridge" "$tool" "$mission" "$python"; do [ -e "$f" ] || die "$f missing"; done
 
 mkdir -p "$work"
+# The clock frame's tick: one past the earliest window's start.
+"$python" -c 'import json, sys; print(min(t["start"] for t in json.load(open(sys.argv[1]))["targets"]) + 1)' \
+    "$mission" > "$work/clock_tick"
+tick=$(cat "$work/clock_tick")
+echo "encode SVA_PLAN_BEGIN counter=0 version=1 plan_id=77 item_count=1 algorithm=0 plan_status=1 route_count=1" \
+    | "$tool" codec > "$work/bad_begin.frame"
+grep -q '^101#' "$work/bad_begin.frame" || die "cannot encode the version-1 BEGIN"
 t0=$(date +%s.%N)
 "$here/build_initramfs.sh" "$work" "$node" "$bridge" "$mission"
 t1=$(date +%s.%N)
@@ -30,16 +39,10 @@ t2=$(date +%s.%N)
 [ "$rc" -eq 0 ] || { tail -20 "$work/console.log" >&2 || true; die "qemu exited with $rc (124 = timeout)"; }
 [ -s "$work/ser1.log" ] || { tail -20 "$work/console.log" >&2 || true; die "no output on the second serial port"; }
 
-# What the core plans on the host for the same mission: plan 1 with every UAV,
-# plan 2 without UAV 1 (the bridge reported it unavailable).
+# What the core plans on the host for the same mission: plan 1 with every UAV;
+# plan 2, the live mission's replan after the clock frame and the loss of UAV 1.
 "$tool" plan "$mission" sva 1 > "$work/expected1.json"
-"$python" - "$mission" "$work/mission_no_uav1.json" <<'PY'
-import json, sys
-m = json.load(open(sys.argv[1]))
-m["uavs"] = [u for u in m["uavs"] if u["id"] != 1]
-json.dump(m, open(sys.argv[2], "w"))
-PY
-"$tool" plan "$work/mission_no_uav1.json" sva 2 > "$work/expected2.json"
+"$tool" live "$mission" sva "$tick" 1 > "$work/expected2.json"
 
-"$python" "$here/check_vm_capture.py" "$work/ser1.log" "$work/expected1.json" "$work/expected2.json"
+"$python" "$here/check_vm_capture.py" "$work/ser1.log" "$work/expected1.json" "$work/expected2.json" "$tick"
 awk -v a="$t0" -v b="$t1" -v c="$t2" 'BEGIN { printf "run_vm_test: initramfs %.1f s, VM boot+test %.1f s\n", b-a, c-b }'

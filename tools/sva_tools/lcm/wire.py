@@ -200,10 +200,11 @@ def plan_document(plan, mission_name: str) -> dict:
 # --- live missions: event JSON -> event_t, replan_t -> JSON -------------------------------
 
 EVENT_TYPES = ["clock", "uav_lost", "uav_back", "fuel", "target_added", "target_cancelled",
-               "target_changed"]  # sva_event_type_t order == event_t.TYPE_*
+               "target_changed", "position"]  # sva_event_type_t order == event_t.TYPE_*
 _EVENT_KEYS = {"clock": set(), "uav_lost": {"uav"}, "uav_back": {"uav", "x", "y", "fuel"},
                "fuel": {"uav", "fuel"}, "target_added": {"target"},
-               "target_cancelled": {"target"}, "target_changed": {"target"}}
+               "target_cancelled": {"target"}, "target_changed": {"target"},
+               "position": {"uav", "x", "y", "fuel"}}
 
 
 def event_message(doc: Any, seq: int, path: str = "event."):

@@ -1,12 +1,8 @@
 /// sva_can.h -- the CAN port of sva: a project-defined protocol (port/can/sva.dbc),
 /// its codec, the plan sender and receiver state machines, and transports.
 ///
-/// ## Why a project-defined protocol
-/// PX4 and ArduPilot take mission commands over MAVLink or DDS; DroneCAN on both is for
-/// peripherals and has no mission message. This port therefore speaks its own protocol,
-/// described by the checked-in DBC file, and a bridge on the flight side (for example an
-/// ArduPilot Lua script with CAN_Dx_PROTOCOL set to scripting) turns it into commands.
-/// See docs/can.md.
+/// Its own protocol (no flight stack has a CAN mission message; a bridge on the flight
+/// side turns it into commands): docs/can.md says why and how.
 ///
 /// ## Pipeline
 ///   sva_plan() -> sva_can_plan_from_core() -> sva_can_plan_t (wire items)
@@ -15,13 +11,11 @@
 ///   -> sva_can_receiver_*: checks CRC-8, counter, DLC, order, CRC-32, timeout;
 ///      applies a plan only when it is complete and intact, then ACKs.
 ///
-/// ## Frames (all 11-bit ids, classic CAN, DLC 8, little-endian signals)
+/// ## Frames (all 11-bit ids, classic CAN, DLC 8, little-endian signals; sva.dbc)
 /// Every frame: bits 0..3 rolling counter, byte 7 CRC-8 (SAE J1850: poly 0x1D, init
-/// 0xFF, xorout 0xFF, not reflected) over the id as two little-endian bytes
-/// (id & 0xFF, id >> 8) followed by data bytes 0..6. COMMIT carries a CRC-32
-/// (ISO-HDLC / zlib: poly 0x04C11DB7 reflected, init and xorout 0xFFFFFFFF) over data
-/// bytes 0..6 of BEGIN and of every ITEM and ITEM_TIME frame, in transfer order, each
-/// with its counter nibble (byte 0 bits 0..3) cleared. Field layout: sva.dbc.
+/// 0xFF, xorout 0xFF, not reflected) over the id as two little-endian bytes then data
+/// bytes 0..6. COMMIT carries a CRC-32 (ISO-HDLC / zlib) over data bytes 0..6 of BEGIN
+/// and every ITEM and ITEM_TIME frame in transfer order, counter nibbles cleared.
 ///
 /// ## Where every byte lives
 /// Nothing is allocated. The caller owns every struct (sender, receiver, loopback bus,
@@ -59,8 +53,9 @@ extern "C" {
 #define SVA_CAN_VERSION_MAJOR 0
 #define SVA_CAN_VERSION_MINOR 1
 #define SVA_CAN_VERSION_PATCH 0
-/// Protocol version carried in PLAN_BEGIN; a receiver rejects any other.
-#define SVA_CAN_PROTOCOL_VERSION 1
+/// Protocol version (the DBC's VERSION "sva-can N") carried in PLAN_BEGIN; a receiver
+/// refuses any other (SVA_CAN_ERR_VERSION, NACK BAD_VERSION). 2: SVA_MISSION_CLOCK.
+#define SVA_CAN_PROTOCOL_VERSION 2
 
 #if defined(__GNUC__) || defined(__clang__)
 #    define SVA_CAN_NODISCARD __attribute__((warn_unused_result))
@@ -120,6 +115,7 @@ typedef enum {
     SVA_CAN_ERR_NAME = -11,         ///< interface name empty or too long for IFNAMSIZ
     SVA_CAN_ERR_UNSUPPORTED = -12,  ///< SocketCAN on a non-Linux build
     SVA_CAN_ERR_STATE = -13,        ///< call not valid in the current state
+    SVA_CAN_ERR_VERSION = -14,      ///< PLAN_BEGIN of another protocol version
 } sva_can_status_t;
 
 /// A short constant name for a status ("ok", "crc", ...). Never NULL.
@@ -151,6 +147,7 @@ typedef struct {
 #define SVA_CAN_ID_HEARTBEAT      0x110u
 #define SVA_CAN_ID_VEHICLE_STATUS 0x120u
 #define SVA_CAN_ID_VEHICLE_FUEL   0x121u
+#define SVA_CAN_ID_MISSION_CLOCK  0x122u
 
 /// Heartbeat period and the silence after which peers treat the planner as offline.
 #define SVA_CAN_HEARTBEAT_PERIOD_MS 1000u
@@ -167,6 +164,7 @@ typedef enum {
     SVA_CAN_MSG_PLAN_ACK,
     SVA_CAN_MSG_VEHICLE_STATUS,
     SVA_CAN_MSG_VEHICLE_FUEL,
+    SVA_CAN_MSG_MISSION_CLOCK,
     SVA_CAN_MSG_COUNT_
 } sva_can_msg_kind_t;
 
@@ -287,6 +285,11 @@ typedef struct {
     uint32_t fuel;  ///< remaining fuel (SPEC units)
 } sva_can_vehicle_fuel_t;
 
+/// The flight stack's mission clock: the live mission's tick (SPEC section 12.1).
+typedef struct {
+    uint32_t tick;  ///< 0..SVA_CAN_MAX_TICK
+} sva_can_mission_clock_t;
+
 /// A decoded message: kind, rolling counter and the fields of that kind.
 typedef struct {
     sva_can_msg_kind_t kind;
@@ -301,6 +304,7 @@ typedef struct {
         sva_can_ack_t ack;
         sva_can_vehicle_status_t vehicle;
         sva_can_vehicle_fuel_t fuel;
+        sva_can_mission_clock_t clock;
     } u;
 } sva_can_msg_t;
 
@@ -326,6 +330,15 @@ SVA_CAN_NODISCARD sva_can_status_t sva_can_encode(const sva_can_msg_t* msg, sva_
 /// ranges (SVA_CAN_ERR_VALUE: enums, ids 0, version, arrive_by >= hold_until).
 /// Reserved bits are ignored. *out is written only on SVA_CAN_OK. Allocates nothing; O(1).
 SVA_CAN_NODISCARD sva_can_status_t sva_can_decode(const sva_can_frame_t* frame, sva_can_msg_t* out);
+
+/// The frame checks a receiver makes before it reads a field, for bridges that decode
+/// with their own code (e.g. from the DBC): DLC 8 and not FD (SVA_CAN_ERR_DLC), the
+/// CRC-8 (SVA_CAN_ERR_CRC), then the rolling counter (SVA_CAN_ERR_COUNTER) when
+/// expected_counter is 0..15 (any counter passes for -1). Returns the first check that
+/// fails, SVA_CAN_OK when all pass, or SVA_CAN_ERR_ARGUMENT for NULL. Ids are not
+/// checked. Allocates nothing; O(1).
+SVA_CAN_NODISCARD sva_can_status_t sva_can_frame_check(const sva_can_frame_t* frame,
+                                                       int expected_counter);
 
 /// The message kind of an 11-bit id, SVA_CAN_MSG_NONE when it is not ours.
 sva_can_msg_kind_t sva_can_kind_of_id(uint32_t id);

@@ -33,9 +33,11 @@
 /// unchanged). A refusal is also counted (REJECT_VALUE for the version, the type and
 /// "no live mission"; REJECT_INVALID for the core's verdict).
 /// With fleet_reports set, a fleet message that arrives while a live mission runs is
-/// a report: a UAV in service reported with health not OK becomes uav_lost, one whose
-/// fuel is below what its route in force still needs becomes a fuel event (both at the
-/// live mission's now); if any applied, one replan (event_seq -1) is published.
+/// a report: a UAV in service reported with health not OK becomes uav_lost, one more than
+/// track_tolerance_cells (Manhattan) from where the flight model puts it becomes a
+/// position event (the reported cell and fuel), one whose fuel is below what its route
+/// in force still needs becomes a fuel event (all at the live mission's now); if any
+/// applied, one replan (event_seq -1) is published.
 ///
 /// ## Where every byte lives
 /// Everything is in sva_lcm_node_t, which the caller owns (the node program declares it
@@ -104,6 +106,10 @@ extern "C" {
 /// Subscription queue capacity set on both input channels (LCM's default is 30 and it
 /// drops silently beyond it): room for a burst of 1000 messages and then some.
 #define SVA_LCM_QUEUE_CAPACITY 4096
+/// Default sva_lcm_node_t.track_tolerance_cells (the node's --track-tolerance).
+#define SVA_LCM_TRACK_TOLERANCE_DEFAULT 2
+/// Largest track tolerance: the grid's widest Manhattan distance.
+#define SVA_LCM_TRACK_TOLERANCE_MAX 131070
 
 /// Why an input message was refused (node_status_t.rejected[] index; equal to the
 /// REJECT_* constants of node_status_t.lcm).
@@ -203,6 +209,10 @@ typedef struct {
     /// checked against the plan in force (see "The live mission"): no replan from
     /// scratch; contradictions become events and one replan on REPLAN.
     bool fleet_reports;
+    /// With fleet_reports: a UAV reported more than this many cells (Manhattan) from the
+    /// flight model's position is off its track (a position event). Default
+    /// SVA_LCM_TRACK_TOLERANCE_DEFAULT; >= 0.
+    int32_t track_tolerance_cells;
     sva_lcm_counters_t counters;
     sva_lcm_reject_t last_reject;  ///< valid after a SVA_LCM_REJECTED verdict
     sva_diag_t last_diag;          ///< the last COUNT/VALUE/INVALID/PLANNER diagnostic
