@@ -160,7 +160,10 @@ flow planners). The planning core is C99 with static allocation only.
 This package holds the sva command-line tool, the LCM and CAN nodes with their
 systemd units, the core and port libraries with headers, CMake and pkg-config
 files, and the LCM message definitions and CAN DBC.")
-# Run-time dependencies (libc6, libglib2.0-0, libjansson4, libproj) from the programs'
-# ELF dependencies with dpkg-shlibdeps.
+# Run-time dependencies (libc6, libglib2.0-0, libjansson4) from the programs' ELF
+# dependencies with dpkg-shlibdeps. No program here calls the frame's geodesy, so none
+# needs PROJ at run time; a consumer linking the installed sva::frame needs PROJ's
+# development files.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libproj-dev")
 include(CPack)
