@@ -39,6 +39,7 @@ if(TARGET sva_can)
     set_target_properties(sva_can PROPERTIES EXPORT_NAME can)
     install(TARGETS sva_can EXPORT sva_canTargets ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}")
     install(FILES "${PROJECT_SOURCE_DIR}/port/can/include/sva/sva_can.h"
+                  "${PROJECT_SOURCE_DIR}/port/can/include/sva/sva_can_frame.h"
             DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/sva")
     install(EXPORT sva_canTargets NAMESPACE sva:: DESTINATION "${SVA_CMAKE_INSTALL_DIR}")
     configure_file("${_pkg}/pkgconfig/sva-can.pc.in" "${_pc_out}/sva-can.pc" @ONLY)
