@@ -195,6 +195,7 @@ def test_frame_message_round_trip():
     (dict(FRAME, t0="2026-02-30T08:00:00Z"), "frame.t0: \"2026-02-30T08:00:00Z\" is not a calendar"),
     (dict(FRAME, datum="WGS84"), "frame.datum: unknown key"),
     ({k: v for k, v in FRAME.items() if k != "t0"}, "frame.t0: missing key"),
+    ([47.4, 8.5], "frame: must be an object, got list"),
 ])
 def test_frame_errors_name_field_rule_limit(frame, message):
     with pytest.raises(wire.InputError) as e:

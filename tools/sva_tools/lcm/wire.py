@@ -151,6 +151,8 @@ def frame_message(doc: Any):
     w = t.frame_t()
     if doc is None:
         return w
+    if not isinstance(doc, dict):
+        raise InputError(f"frame: must be an object, got {type(doc).__name__}")
     _keys(doc, _FRAME_KEYS, "frame.")
     missing = sorted(_FRAME_KEYS - set(doc))
     if missing:
