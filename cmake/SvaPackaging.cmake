@@ -22,11 +22,24 @@ install(EXPORT svaTargets NAMESPACE sva:: DESTINATION "${SVA_CMAKE_INSTALL_DIR}"
 configure_file("${_pkg}/pkgconfig/sva.pc.in" "${_pc_out}/sva.pc" @ONLY)
 install(FILES "${_pc_out}/sva.pc" DESTINATION "${SVA_PC_INSTALL_DIR}")
 
+# --- mission frame (sva::frame: PROJ, found with pkg-config) ----------------------------
+if(TARGET sva_frame)
+    set_target_properties(sva_frame PROPERTIES EXPORT_NAME frame)
+    install(TARGETS sva_frame EXPORT sva_frameTargets ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}")
+    install(FILES "${PROJECT_SOURCE_DIR}/port/frame/include/sva/sva_frame.h"
+            DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/sva")
+    install(EXPORT sva_frameTargets NAMESPACE sva:: DESTINATION "${SVA_CMAKE_INSTALL_DIR}")
+    configure_file("${_pkg}/pkgconfig/sva-frame.pc.in" "${_pc_out}/sva-frame.pc" @ONLY)
+    install(FILES "${_pc_out}/sva-frame.pc" DESTINATION "${SVA_PC_INSTALL_DIR}")
+    list(APPEND SVA_INSTALLED_COMPONENTS frame)
+endif()
+
 # --- CAN port (sva::can), its node and the DBC -----------------------------------------
 if(TARGET sva_can)
     set_target_properties(sva_can PROPERTIES EXPORT_NAME can)
     install(TARGETS sva_can EXPORT sva_canTargets ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}")
     install(FILES "${PROJECT_SOURCE_DIR}/port/can/include/sva/sva_can.h"
+                  "${PROJECT_SOURCE_DIR}/port/can/include/sva/sva_can_frame.h"
             DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/sva")
     install(EXPORT sva_canTargets NAMESPACE sva:: DESTINATION "${SVA_CMAKE_INSTALL_DIR}")
     configure_file("${_pkg}/pkgconfig/sva-can.pc.in" "${_pc_out}/sva-can.pc" @ONLY)
@@ -149,6 +162,9 @@ This package holds the sva command-line tool, the LCM and CAN nodes with their
 systemd units, the core and port libraries with headers, CMake and pkg-config
 files, and the LCM message definitions and CAN DBC.")
 # Run-time dependencies (libc6, libglib2.0-0, libjansson4) from the programs' ELF
-# dependencies with dpkg-shlibdeps.
+# dependencies with dpkg-shlibdeps. No program here calls the frame's geodesy, so none
+# needs PROJ at run time; a consumer linking the installed sva::frame needs PROJ's
+# development files.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libproj-dev")
 include(CPack)

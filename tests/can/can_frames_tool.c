@@ -19,6 +19,7 @@
 #include "mission_file.h"
 #include "sva/sva.h"
 #include "sva/sva_can.h"
+#include "sva/sva_can_frame.h"
 
 typedef struct {
     char key[32];
@@ -261,6 +262,15 @@ static void do_decode(const char* text)
     printf(" crc=%u\n", f.data[7]);
 }
 
+static void print_frame(const sva_can_frame_t* f, const char* sep)
+{
+    int k;
+    printf("%s%03lX#", sep, (unsigned long)f->id);
+    for (k = 0; k < 8; ++k) {
+        printf("%02X", f->data[k]);
+    }
+}
+
 static sva_mission_t mission;
 static sva_planner_t planner;
 static sva_plan_t plan;
@@ -280,7 +290,10 @@ static int do_plan(const char* path, const char* algo_name, const char* id_text)
         fprintf(stderr, "plan_id: must be in [1, 65535]\n");
         return 2;
     }
-    if (sva_can_mission_load(path, &mission, NULL, 0, err, sizeof err) != 0) {
+    sva_can_mission_frame_t mframe;
+    bool has_frame = false;
+    if (sva_can_mission_load_frame(path, &mission, NULL, 0, &mframe, &has_frame, err, sizeof err) !=
+        0) {
         fprintf(stderr, "%s: %s\n", path, err);
         return 1;
     }
@@ -322,6 +335,21 @@ static int print_wire(uint32_t covered, int64_t cost)
                "\"hold_until\": %lu}",
                (i == 0) ? "" : ", ", it->uav_id, it->target_id, it->x, it->y,
                (unsigned long)it->arrive_by_ticks, (unsigned long)it->hold_until_ticks);
+    }
+    printf("], \"frame_frames\": [");
+    if (has_frame) {
+        // what sva_can_node sends before the plan (counters from 0)
+        sva_can_frame_t parts[4];
+        int p;
+        if (sva_can_frame_encode(&mframe, 0u, parts) != SVA_CAN_OK) {
+            fprintf(stderr, "frame encoding failed\n");
+            return 1;
+        }
+        for (p = 0; p < 4; ++p) {
+            printf("%s\"", (p == 0) ? "" : ", ");
+            print_frame(&parts[p], "");
+            printf("\"");
+        }
     }
     printf("], \"frames\": [");
     while (sva_can_loopback_take(&bus, 1, &f) == SVA_CAN_OK) {
@@ -375,9 +403,77 @@ static int do_live(const char* path, const char* algo_name, const char* tick_tex
     return print_wire(live.result.covered, live.result.plan->cost);
 }
 
+// "frame LAT_E7 LON_E7 ALT_CM CELL_CM TICK_MS T0_MS COUNTER": the four frames of a
+// mission frame (sva_can_frame_encode), or "error <status>".
+static int do_frame_encode(char** v)
+{
+    sva_can_mission_frame_t mf;
+    sva_can_frame_t out[4];
+    int i;
+    mf.lat_e7 = (int32_t)strtol(v[0], NULL, 10);
+    mf.lon_e7 = (int32_t)strtol(v[1], NULL, 10);
+    mf.alt_cm = (int32_t)strtol(v[2], NULL, 10);
+    mf.cell_cm = (int32_t)strtol(v[3], NULL, 10);
+    mf.tick_ms = (int32_t)strtol(v[4], NULL, 10);
+    mf.t0_ms = (int64_t)strtoll(v[5], NULL, 10);
+    const sva_can_status_t st = sva_can_frame_encode(&mf, (uint8_t)strtoul(v[6], NULL, 10), out);
+    if (st != SVA_CAN_OK) {
+        printf("error %s\n", sva_can_status_name(st));
+        return 1;
+    }
+    for (i = 0; i < 4; ++i) {
+        print_frame(&out[i], (i == 0) ? "" : " ");
+    }
+    printf("\n");
+    return 0;
+}
+
+// "frame-rx ID#HEX ...": each frame through one receiver; prints every status and, when
+// a group completes, the frame's six integers.
+static int do_frame_rx(int n, char** v)
+{
+    sva_can_frame_rx_t rx;
+    sva_can_mission_frame_t mf;
+    int i;
+    sva_can_frame_rx_init(&rx);
+    for (i = 0; i < n; ++i) {
+        sva_can_frame_t f;
+        const char* hash = strchr(v[i], '#');
+        size_t k;
+        size_t len;
+        if (hash == NULL) {
+            printf("error syntax\n");
+            return 2;
+        }
+        memset(&f, 0, sizeof f);
+        f.id = (uint32_t)strtoul(v[i], NULL, 16);
+        len = strspn(hash + 1, "0123456789abcdefABCDEF") / 2u;
+        for (k = 0; k < len && k < 8u; ++k) {
+            char b[3] = {hash[1 + 2 * k], hash[2 + 2 * k], '\0'};
+            f.data[k] = (uint8_t)strtoul(b, NULL, 16);
+        }
+        f.dlc = (uint8_t)len;
+        const sva_can_status_t st = sva_can_frame_rx(&rx, &f, &mf);
+        printf("%s%s", (i == 0) ? "" : " ", sva_can_status_name(st));
+        if (st == SVA_CAN_APPLIED) {
+            printf(" lat_e7=%ld lon_e7=%ld alt_cm=%ld cell_cm=%ld tick_ms=%ld t0_ms=%lld",
+                   (long)mf.lat_e7, (long)mf.lon_e7, (long)mf.alt_cm, (long)mf.cell_cm,
+                   (long)mf.tick_ms, (long long)mf.t0_ms);
+        }
+    }
+    printf("\n");
+    return 0;
+}
+
 int main(int argc, char** argv)
 {
     char line[1024];
+    if ((argc == 9) && (strcmp(argv[1], "frame") == 0)) {
+        return do_frame_encode(argv + 2);
+    }
+    if ((argc >= 3) && (strcmp(argv[1], "frame-rx") == 0)) {
+        return do_frame_rx(argc - 2, argv + 2);
+    }
     if ((argc == 5) && (strcmp(argv[1], "plan") == 0)) {
         return do_plan(argv[2], argv[3], argv[4]);
     }
@@ -386,7 +482,8 @@ int main(int argc, char** argv)
     }
     if ((argc != 2) || (strcmp(argv[1], "codec") != 0)) {
         fprintf(stderr, "usage: can_frames_tool codec | plan MISSION ALGORITHM PLAN_ID | live "
-                        "MISSION ALGORITHM TICK LOST_UAV\n");
+                        "MISSION ALGORITHM TICK LOST_UAV | frame LAT_E7 LON_E7 ALT_CM CELL_CM "
+                        "TICK_MS T0_MS COUNTER | frame-rx FRAME...\n");
         return 2;
     }
     while (fgets(line, sizeof line, stdin) != NULL) {

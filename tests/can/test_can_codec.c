@@ -9,6 +9,7 @@
 #include <cmocka.h>
 
 #include "sva/sva_can.h"
+#include "sva/sva_can_frame.h"
 
 static sva_can_frame_t enc(const sva_can_msg_t* m)
 {
@@ -382,6 +383,83 @@ static void test_decode_rejects_values(void** state)
     }
 }
 
+// The mission frame: four frames with consecutive counters; a group decodes to the same
+// integers at every range bound; a break in the group, a bad CRC or DLC, an out-of-range
+// value and a foreign id are each refused as their status says.
+static void test_mission_frame_round_trip(void** state)
+{
+    (void)state;
+    static const sva_can_mission_frame_t cases[] = {
+        {473977419, 85455939, 3000, 1000, 1000, 1780300800125LL},
+        {-850000000, -1800000000, 0, 10, 1, 0},
+        {850000000, 1800000000, 1000000, 1000000, 3600000, 253402300799999LL},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+        sva_can_frame_t out[4];
+        const uint8_t first = (uint8_t)(13u + c) & 15u;  // wraps past 15
+        assert_int_equal(sva_can_frame_encode(&cases[c], first, out), SVA_CAN_OK);
+        sva_can_frame_rx_t rx;
+        sva_can_mission_frame_t got;
+        sva_can_frame_rx_init(&rx);
+        for (unsigned p = 0; p < 4u; ++p) {
+            assert_int_equal(out[p].id, SVA_CAN_ID_MISSION_FRAME_A + p);
+            assert_int_equal(out[p].dlc, 8);
+            assert_int_equal(out[p].data[0] & 15u, (first + p) & 15u);
+            assert_int_equal(sva_can_kind_of_id(out[p].id),
+                             SVA_CAN_MSG_NONE);  // plan path ignores it
+            assert_int_equal(sva_can_frame_rx(&rx, &out[p], &got),
+                             p < 3u ? SVA_CAN_OK : SVA_CAN_APPLIED);
+        }
+        assert_memory_equal(&got, &cases[c], sizeof got);
+    }
+    sva_can_mission_frame_t bad = cases[0];
+    sva_can_frame_t out[4];
+    bad.cell_cm = 9;
+    assert_int_equal(sva_can_frame_encode(&bad, 0, out), SVA_CAN_ERR_ARGUMENT);
+    bad = cases[0];
+    bad.t0_ms = -1;
+    assert_int_equal(sva_can_frame_encode(&bad, 0, out), SVA_CAN_ERR_ARGUMENT);
+    assert_int_equal(sva_can_frame_encode(&cases[0], 16, out), SVA_CAN_ERR_ARGUMENT);
+
+    sva_can_frame_rx_t rx;
+    sva_can_mission_frame_t got;
+    assert_int_equal(sva_can_frame_encode(&cases[0], 5, out), SVA_CAN_OK);
+    sva_can_frame_rx_init(&rx);
+    // B without A, then A and C (B missing): sequence errors, nothing taken
+    assert_int_equal(sva_can_frame_rx(&rx, &out[1], &got), SVA_CAN_ERR_SEQUENCE);
+    assert_int_equal(sva_can_frame_rx(&rx, &out[0], &got), SVA_CAN_OK);
+    assert_int_equal(sva_can_frame_rx(&rx, &out[2], &got), SVA_CAN_ERR_SEQUENCE);
+    // a part of another group (its counter does not follow A's)
+    sva_can_frame_t other[4];
+    assert_int_equal(sva_can_frame_encode(&cases[1], 9, other), SVA_CAN_OK);
+    assert_int_equal(sva_can_frame_rx(&rx, &out[0], &got), SVA_CAN_OK);
+    assert_int_equal(sva_can_frame_rx(&rx, &other[1], &got), SVA_CAN_ERR_SEQUENCE);
+    // CRC, DLC, foreign ids
+    sva_can_frame_t f = out[0];
+    f.data[3] ^= 0x10u;
+    assert_int_equal(sva_can_frame_rx(&rx, &f, &got), SVA_CAN_ERR_CRC);
+    f = out[0];
+    f.dlc = 7;
+    assert_int_equal(sva_can_frame_rx(&rx, &f, &got), SVA_CAN_ERR_DLC);
+    f = out[0];
+    f.id = SVA_CAN_ID_PLAN_BEGIN;
+    assert_int_equal(sva_can_frame_rx(&rx, &f, &got), SVA_CAN_IGNORED);
+    f = out[0];
+    f.flags = SVA_CAN_FLAG_EXTENDED;
+    assert_int_equal(sva_can_frame_rx(&rx, &f, &got), SVA_CAN_IGNORED);
+    // a tick of 0 on the wire (22 bits hold it): out of range when the group completes
+    f = out[3];
+    f.data[0] = (uint8_t)(f.data[0] & 0x0Fu);
+    f.data[1] = 0u;
+    f.data[2] = 0u;
+    f.data[3] = (uint8_t)(f.data[3] & 0xFCu);
+    f.data[7] = sva_can_frame_crc8(f.id, f.data);
+    assert_int_equal(sva_can_frame_rx(&rx, &out[0], &got), SVA_CAN_OK);
+    assert_int_equal(sva_can_frame_rx(&rx, &out[1], &got), SVA_CAN_OK);
+    assert_int_equal(sva_can_frame_rx(&rx, &out[2], &got), SVA_CAN_OK);
+    assert_int_equal(sva_can_frame_rx(&rx, &f, &got), SVA_CAN_ERR_VALUE);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -393,6 +471,7 @@ int main(void)
         cmocka_unit_test(test_decode_rejects_dlc_fd_crc),
         cmocka_unit_test(test_decode_ignores_foreign_frames),
         cmocka_unit_test(test_decode_rejects_values),
+        cmocka_unit_test(test_mission_frame_round_trip),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -16,9 +16,30 @@ HERE = Path(__file__).resolve().parent
 SEED = int(os.environ.get("SVA_CAN_SEED", "20260521"))
 
 
+FRAME_MESSAGES = ["SVA_MISSION_FRAME_A", "SVA_MISSION_FRAME_B", "SVA_MISSION_FRAME_C",
+                  "SVA_MISSION_FRAME_D"]
+
+
+class PlanMessages:
+    """The DBC as the generic codec (sva_can_encode/decode) sees it: every message but the
+    mission frame's, which has a codec of its own (sva_can_frame.h; tested below)."""
+
+    def __init__(self, db):
+        self._db = db
+        self.messages = [m for m in db.messages if m.name not in FRAME_MESSAGES]
+
+    def __getattr__(self, name):
+        return getattr(self._db, name)
+
+
 @pytest.fixture(scope="module")
-def db():
+def full_db():
     return can_wire.load_db()
+
+
+@pytest.fixture(scope="module")
+def db(full_db):
+    return PlanMessages(full_db)
 
 
 @pytest.fixture(scope="module")
@@ -235,3 +256,87 @@ def test_frame_check_against_cantools_frames(db, codec):
     # A corrupted CRC is reported before a wrong counter.
     assert check(status.frame_id, bad_crc, 6) == "crc"
     print(f"frame check: {checked} cantools frames in sequence, 7 faults caught")
+
+
+# --- the mission frame (SVA_MISSION_FRAME_A..D, sva_can_frame.h) ------------------------
+
+FRAMES = [(473977419, 85455939, 3000, 1000, 1000, 1780300800125, 3),
+          (-850000000, -1800000000, 0, 10, 1, 0, 14),
+          (850000000, 1800000000, 1000000, 1000000, 3600000, 253402300799999, 15)]
+
+
+def test_dbc_describes_the_mission_frame(full_db):
+    ids = [full_db.get_message_by_name(n).frame_id for n in FRAME_MESSAGES]
+    assert ids == [0x130, 0x131, 0x132, 0x133]
+    for n in FRAME_MESSAGES:
+        msg = full_db.get_message_by_name(n)
+        assert msg.length == 8 and msg.senders == ["PLANNER"]
+        assert (msg.get_signal_by_name("counter").start, msg.get_signal_by_name("crc").start) == (0, 56)
+
+
+@pytest.mark.parametrize("values", FRAMES)
+def test_c_mission_frame_decodes_with_cantools(full_db, values):
+    line = subprocess.run([TOOL, "frame", *map(str, values)], check=True, capture_output=True,
+                          text=True, timeout=30).stdout.split()
+    assert len(line) == 4
+    got = {}
+    for k, text in enumerate(line):
+        fid, data = can_wire.parse_frame(text)
+        assert fid == 0x130 + k and data[7] == can_wire.crc8(fid, data)
+        d = full_db.decode_message(fid, data)
+        assert d["counter"] == (values[6] + k) % 16
+        got.update({n: v for n, v in d.items() if n not in ("counter", "crc")})
+    names = ["lat_e7", "lon_e7", "alt_cm", "cell_cm", "tick_ms", "t0_ms"]
+    assert got == dict(zip(names, values[:6]))
+
+
+@pytest.mark.parametrize("values", FRAMES)
+def test_cantools_mission_frame_decodes_in_c(full_db, values):
+    lat, lon, alt, cell, tick, t0, c = values
+    sig = [{"lat_e7": lat, "alt_cm": alt}, {"lon_e7": lon, "cell_cm": cell}, {"t0_ms": t0},
+           {"tick_ms": tick}]
+    frames = []
+    for k, (name, fields) in enumerate(zip(FRAME_MESSAGES, sig)):
+        msg = full_db.get_message_by_name(name)
+        data = can_wire.with_crc(msg.frame_id, msg.encode(dict(fields, counter=(c + k) % 16, crc=0),
+                                                          strict=True))
+        frames.append(f"{msg.frame_id:03X}#{data.hex().upper()}")
+    out = subprocess.run([TOOL, "frame-rx", *frames], check=True, capture_output=True, text=True,
+                         timeout=30).stdout.strip()
+    assert out == (f"ok ok ok applied lat_e7={lat} lon_e7={lon} alt_cm={alt} cell_cm={cell} "
+                   f"tick_ms={tick} t0_ms={t0}")
+    # out of order (B before A) and a value outside the DBC's range are refused
+    out = subprocess.run([TOOL, "frame-rx", frames[1], *frames], check=True, capture_output=True,
+                         text=True, timeout=30).stdout.split()
+    assert out[:5] == ["sequence", "ok", "ok", "ok", "applied"]
+    bad = full_db.get_message_by_name("SVA_MISSION_FRAME_B")
+    data = can_wire.with_crc(bad.frame_id, bad.encode({"counter": (c + 1) % 16, "lon_e7": lon,
+                                                       "cell_cm": 9, "crc": 0}, strict=False))
+    out = subprocess.run([TOOL, "frame-rx", frames[0], f"131#{data.hex()}", *frames[2:]], check=True,
+                         capture_output=True, text=True, timeout=30).stdout.split()
+    assert out == ["ok", "ok", "ok", "value"]
+
+
+def test_framed_mission_sends_its_frame_before_the_plan(full_db, tmp_path):
+    """A mission with a frame: the four frame messages (as sva_can_node sends them before
+    each plan) decode with cantools to the frame's integers; a mission without one sends
+    none."""
+    doc = json.loads((HERE / "data" / "mission_25x5.json").read_text())
+    doc["frame"] = {"lat": 47.3977419, "lon": 8.5455939, "alt_m": 30.25, "cell_m": 12.5,
+                    "tick_s": 0.5, "t0": "2026-06-01T08:00:00.125Z"}
+    path = tmp_path / "framed.json"
+    path.write_text(json.dumps(doc))
+    plan = json.loads(subprocess.run([TOOL, "plan", str(path), "sva", "3"], check=True,
+                                     capture_output=True, text=True, timeout=60).stdout)
+    got = {}
+    for k, text in enumerate(plan["frame_frames"]):
+        fid, data = can_wire.parse_frame(text)
+        assert fid == 0x130 + k
+        got.update({n: v for n, v in full_db.decode_message(fid, data).items()
+                    if n not in ("counter", "crc")})
+    assert got == {"lat_e7": 473977419, "lon_e7": 85455939, "alt_cm": 3025, "cell_cm": 1250,
+                   "tick_ms": 500, "t0_ms": 1780300800125}
+    plain = json.loads(subprocess.run([TOOL, "plan", str(HERE / "data" / "mission_25x5.json"), "sva",
+                                       "3"], check=True, capture_output=True, text=True,
+                                      timeout=60).stdout)
+    assert plain["frame_frames"] == [] and plain["items"] == plan["items"]

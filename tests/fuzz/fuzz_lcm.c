@@ -1,5 +1,6 @@
 // Fuzz target: the LCM message path of port/lcm (sva_lcm_on_fleet / sva_lcm_on_mission:
-// size and fingerprint checks, lcm-gen's decoder, count and value checks, conversion,
+// size and fingerprint checks, lcm-gen's decoder, the version, count, value and frame
+// checks, conversion,
 // sva_plan, plan encoding). The input is a sequence of up to 8 messages:
 //   byte  kind: bit 0 = 0 fleet, 1 mission; bit 1 = 1 "exact": the next bytes are
 //         zero-padded or cut to the type's one valid size (so the fuzzer reaches the
@@ -25,6 +26,7 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size);
 static sva_lcm_node_t node;
 static sva_lcm_plan_t decoded;
 static sva_mission_t before;
+static sva_lcm_frame_t frame_before;
 static uint8_t message[SVA_LCM_MISSION_BYTES > SVA_LCM_FLEET_BYTES ? SVA_LCM_MISSION_BYTES
                                                                    : SVA_LCM_FLEET_BYTES];
 static unsigned published;
@@ -114,6 +116,7 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
         // The algorithm varies with the kind byte so that every planner sees inputs.
         node.algorithm = (sva_algorithm_t)((kind >> 2U) % (unsigned)SVA_ALGO_COUNT_);
         before = node.priv.mission;
+        frame_before = node.priv.frame;
         const bool had_fleet = node.priv.have_fleet;
         const bool had_mission = node.priv.have_mission;
         const unsigned published_before = published;
@@ -121,10 +124,14 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
                                                : sva_lcm_on_fleet(&node, message, n);
         if (v != SVA_LCM_ACCEPTED) {
             if (memcmp(&before, &node.priv.mission, sizeof before) != 0 ||
+                memcmp(&frame_before, &node.priv.frame, sizeof frame_before) != 0 ||
                 had_fleet != node.priv.have_fleet || had_mission != node.priv.have_mission ||
                 published != published_before) {
                 fail("a refused or unchanged message changed the node's inputs");
             }
+        } else if (is_mission && (node.priv.frame.present != 0) &&
+                   (node.priv.frame.cell_cm < 10 || node.priv.frame.tick_ms < 1)) {
+            fail("an accepted mission carries a frame sva_frame_check refuses");
         } else if (node.priv.have_fleet && node.priv.have_mission &&
                    published != published_before + 1U) {
             fail("an accepted change with both inputs present published no plan");

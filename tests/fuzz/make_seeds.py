@@ -6,7 +6,8 @@ the build's generated Python types):
     SVA_LCM_PYTHON_TYPES=build/port/lcm/python PYTHONPATH=tools \\
         .venv/bin/python tests/fuzz/make_seeds.py
 mission/  a few fixtures (valid and invalid) and hand-made edge missions;
-lcm/      fleet + mission messages in fuzz_lcm.c's record format;
+lcm/      fleet + mission messages in fuzz_lcm.c's record format (one mission with a
+          frame, one of another version);
 can/      frame records (fuzz_can.c's format) of whole plan transfers, built with the
           DBC (cantools) and left to the harness's counter and CRC fix-up bits.
 """
@@ -61,6 +62,15 @@ def lcm():
         # a raw (length-prefixed) mission cut short, then the fleet twice (unchanged)
         (d / f"{src.stem}_raw.bin").write_bytes(
             bytes([0x01]) + struct.pack("<H", 100) + m[:100] + bytes([0x02]) + f + bytes([0x02]) + f)
+    # a mission with a frame, then the same of mission_t version 1 (refused: version)
+    doc = json.loads((ROOT / "fixtures" / "missions" / "rand_7_2.json").read_text())
+    doc["frame"] = {"lat": 47.3977419, "lon": 8.5455939, "alt_m": 30, "cell_m": 10,
+                    "tick_s": 1, "t0": "2026-06-01T08:00:00Z"}
+    _, fleet, mission = wire.mission_messages(doc, 1, 1)
+    f, m = fleet.encode(), mission.encode()
+    mission.version = 1
+    (d / "frame.bin").write_bytes(bytes([0x02]) + f + bytes([0x03]) + m + bytes([0x03])
+                                  + mission.encode())
 
 
 def can():

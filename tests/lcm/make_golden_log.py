@@ -7,8 +7,8 @@ The mission is the bundled fixtures/missions/rand_7_2.json (a mid-mission fleet
 state: UAVs away from the depot, ready times, one stranded UAV). Events on channel
 prefix GOLD_, in order: fleet (rev 1), truncated fleet, mission
 (rev 1) -> plan 1; mission with a wrong fingerprint; mission with target_count 257;
-fleet with a UAV at x = 40000; the same mission again (unchanged); a fleet of rev 2
-with UAV 3 unavailable -> plan 2.
+fleet with a UAV at x = 40000; the same mission again (unchanged); a mission of
+mission_t version 1; a fleet of rev 2 with UAV 3 unavailable -> plan 2.
 """
 import json
 import sys
@@ -28,12 +28,15 @@ m2 = wire.mission_messages(doc, 1, 1)[2]
 m2.target_count = 257
 _, f_val, _ = wire.mission_messages(doc, 1, 1)
 f_val.uavs[1].x = 40000
+m_v1 = wire.mission_messages(doc, 3, 3)[2]
+m_v1.version = 1
 _, f2, _ = wire.mission_messages(doc, 2, 2)
 f2.uavs[2].health = f2.uavs[2].HEALTH_UNAVAILABLE
 
 events = [("GOLD_FLEET", fb), ("GOLD_FLEET", fb[:100]), ("GOLD_MISSION", mb),
           ("GOLD_MISSION", bad_fp), ("GOLD_MISSION", m2.encode()),
-          ("GOLD_FLEET", f_val.encode()), ("GOLD_MISSION", mb), ("GOLD_FLEET", f2.encode())]
+          ("GOLD_FLEET", f_val.encode()), ("GOLD_MISSION", mb), ("GOLD_MISSION", m_v1.encode()),
+          ("GOLD_FLEET", f2.encode())]
 out = Path(sys.argv[1]) if len(sys.argv) > 1 else here / "data" / "golden.lcmlog"
 log = lcm.EventLog(str(out), "w", overwrite=True)
 for i, (ch, data) in enumerate(events):

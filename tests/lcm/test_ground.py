@@ -28,7 +28,8 @@ def test_mission_round_trip_through_the_codec():
     assert m2.target_count == 7 and (m2.targets[6].id, m2.targets[6].need) == (7, 2)
     assert (m2.targets[6].start_ticks, m2.targets[6].end_ticks) == (44, 61)
     assert m2.hover_fuel == 2 and m2.overlap_percent == 70
-    assert len(fleet.encode()) == 1362 and len(mission.encode()) == 6182
+    assert (f2.version, m2.version, m2.frame.present) == (2, 2, 0)  # no frame in the file
+    assert len(fleet.encode()) == 1363 and len(mission.encode()) == 6212
 
 
 def test_defaults_apply():
@@ -60,6 +61,7 @@ def test_bad_mission_files(edit, message):
 def test_plan_document_and_diag_text():
     t = wire.types()
     p = t.plan_t()
+    p.version = t.plan_t.VERSION
     p.status, p.algorithm, p.covered, p.cost = p.STATUS_PARTIAL, 1, 1, 30
     p.uncovered_count, p.uncovered[0] = 1, 9
     p.route_count = 2
@@ -73,7 +75,7 @@ def test_plan_document_and_diag_text():
                              {"uav": 5, "targets": [], "distance": 0, "fuel_used": 0}]
     assert doc["stranded"] == [5] and doc["uncovered"] == [9]
     assert (doc["status"], doc["algorithm"]) == ("partial", "ga")
-    assert len(p.encode()) == 18976  # SVA_LCM_PLAN_BYTES
+    assert len(p.encode()) == 18977  # SVA_LCM_PLAN_BYTES
     assert not {"lower_bound", "optimal", "flow_incomplete"} & set(doc["stats"])  # no bound
     p.algorithm, p.has_bound, p.lower_bound, p.optimal, p.flow_incomplete = 4, 1, 27, 0, 1
     doc = wire.plan_document(t.plan_t.decode(p.encode()), "m")
@@ -142,16 +144,63 @@ def test_replan_document_and_version():
     another version is refused naming both."""
     t = wire.types()
     r = t.replan_t()
-    r.version, r.event_seq, r.event_type, r.accepted = 1, 3, 1, 0
+    r.version, r.event_seq, r.event_type, r.accepted = t.replan_t.VERSION, 3, 1, 0
     r.now_ticks, r.revision = 14, 2
     r.diag_text = list(b"SVA_EVENT: event.at: 3 is before now (14)".ljust(160, b"\0"))
     r = t.replan_t.decode(r.encode())
     assert wire.replan_document(r, "m") == {
         "event_seq": 3, "event": "uav_lost", "accepted": False, "now": 14, "revision": 2,
         "error": "SVA_EVENT: event.at: 3 is before now (14)"}
-    r.version = 2
-    with pytest.raises(wire.InputError, match=r"replan_t.version is 2, this tool speaks version 1"):
+    r.version = 1
+    with pytest.raises(wire.InputError, match=r"replan_t.version is 1, this tool speaks version 2"):
         wire.replan_document(r, "m")
+    p = t.plan_t()
+    p.version = 1
+    with pytest.raises(wire.InputError, match=r"plan_t.version is 1, this tool speaks version 2"):
+        wire.plan_document(p, "m")
+
+
+FRAME = {"lat": -33.8567844, "lon": 151.2152967, "alt_m": 120.005, "cell_m": 0.125,
+         "tick_s": 0.001, "t0": "2026-06-01T10:00:00.0005+02:00"}
+
+
+def test_frame_message_round_trip():
+    """A mission's frame to frame_t: rounded half away from zero to the wire's resolution
+    as sva_frame_from_units rounds, t0 in UTC ms; back to JSON at that resolution.
+    Missions without a frame send present 0 and every field 0."""
+    t = wire.types()
+    _, fleet, mission = wire.mission_messages(dict(small(), frame=FRAME), 1, 1)
+    assert (fleet.version, mission.version) == (2, 2)
+    m = t.mission_t.decode(mission.encode())
+    f = m.frame
+    assert (f.present, f.lat_e7, f.lon_e7, f.alt_cm, f.cell_cm, f.tick_ms) == (
+        1, -338567844, 1512152967, 12001, 13, 1)
+    assert f.t0_ms == 1780300800001  # 08:00:00.0005Z rounds up to .001
+    assert wire.frame_document(f) == {"lat": -33.8567844, "lon": 151.2152967, "alt_m": 120.01,
+                                      "cell_m": 0.13, "tick_s": 0.001,
+                                      "t0": "2026-06-01T08:00:00.001Z"}
+    back = wire.mission_document(fleet, m, "x")
+    assert back["frame"] == wire.frame_document(f)
+    _, _, plain = wire.mission_messages(small(), 1, 1)
+    assert plain.frame.present == 0 and plain.frame.t0_ms == 0 and plain.frame.cell_cm == 0
+    assert "frame" not in wire.mission_document(fleet, plain, "x")
+
+
+@pytest.mark.parametrize("frame, message", [
+    (dict(FRAME, cell_m=0.05), "frame.cell_m: 0.05 is outside [0.1, 10000] m"),
+    (dict(FRAME, lat=85.5), "frame.lat: 85.5 is outside [-85, 85] degrees"),
+    (dict(FRAME, tick_s=4000), "frame.tick_s: 4000 is outside [0.001, 3600] s"),
+    (dict(FRAME, alt_m="30"), "frame.alt_m: must be a number, got '30'"),
+    (dict(FRAME, t0="2026-06-01 08:00"), "frame.t0: must be an ISO 8601 date-time with a UTC"),
+    (dict(FRAME, t0="2026-02-30T08:00:00Z"), "frame.t0: \"2026-02-30T08:00:00Z\" is not a calendar"),
+    (dict(FRAME, datum="WGS84"), "frame.datum: unknown key"),
+    ({k: v for k, v in FRAME.items() if k != "t0"}, "frame.t0: missing key"),
+    ([47.4, 8.5], "frame: must be an object, got list"),
+])
+def test_frame_errors_name_field_rule_limit(frame, message):
+    with pytest.raises(wire.InputError) as e:
+        wire.mission_messages(dict(small(), frame=frame), 1, 1)
+    assert str(e.value).startswith(message)
 
 
 def test_scenario_file_errors_without_network(tmp_path, capsys):

@@ -70,6 +70,7 @@ static int replans_seen;
 static sva_lcm_replan_t got_replan;
 static int status_seen;
 static int log_lines[SVA_LCM_REJECT_COUNT_ + 1];
+static char last_log[400];
 
 static int capture(void* user, const char* channel, const void* data, unsigned int size)
 {
@@ -93,6 +94,7 @@ static int capture(void* user, const char* channel, const void* data, unsigned i
 static void count_log(void* user, const char* line)
 {
     (void)user;
+    (void)snprintf(last_log, sizeof last_log, "%s", line);
     for (int r = 0; r < (int)SVA_LCM_REJECT_COUNT_; ++r) {
         char key[32];
         (void)snprintf(key, sizeof key, "(%s;", sva_lcm_reject_name((sva_lcm_reject_t)r));
@@ -109,6 +111,7 @@ static void make_inputs(int64_t revision)
 {
     memset(&fleet, 0, sizeof fleet);
     memset(&mission, 0, sizeof mission);
+    fleet.version = SVA_LCM_FLEET_STATE_T_VERSION;
     fleet.revision = revision;
     fleet.uav_count = 5;
     for (int i = 0; i < 5; ++i) {
@@ -118,6 +121,7 @@ static void make_inputs(int64_t revision)
     }
     fleet.uavs[4].x = 3;
     fleet.uavs[4].ready_at_ticks = 4;
+    mission.version = SVA_LCM_MISSION_T_VERSION;
     mission.revision = revision;
     mission.ticks_per_cell = 1;
     mission.hover_fuel = 2;
@@ -821,7 +825,8 @@ static void test_live_events(void** state)
     assert_int_equal(got_replan.diag_rule, (int)SVA_RULE_UNKNOWN);
     assert_int_equal(got_replan.diag_value, 99);
     assert_memory_equal(&node.priv.live, &before, sizeof before);
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_VALUE], 3);
+    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_VALUE], 2);
+    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_VERSION], 1);
     assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_INVALID], 1);
 
     // A loss at tick 11: the same event on a copy of the live mission, replanned by
@@ -857,6 +862,107 @@ static void test_live_events(void** state)
     assert_int_equal(got_replan.plan.route_count, (int16_t)res.plan->route_count);
     assert_int_equal(got_replan.plan.plan_id, 2);  // after the mission's plan
     assert_int_equal(node.counters.replans_published, 5);
+    // every message of the replan names its version; the mission had no frame
+    assert_int_equal(got_replan.version, SVA_LCM_REPLAN_T_VERSION);
+    assert_int_equal(got_replan.residual_fleet.version, SVA_LCM_FLEET_STATE_T_VERSION);
+    assert_int_equal(got_replan.residual_mission.version, SVA_LCM_MISSION_T_VERSION);
+    assert_int_equal(got_replan.plan.version, SVA_LCM_PLAN_T_VERSION);
+    assert_int_equal(got_replan.residual_mission.frame.present, 0);
+}
+
+// Versions: a fleet or a mission of another version is refused (REJECT_VERSION, one log
+// line naming both versions) and changes nothing; plans and status carry theirs.
+static void test_versions(void** state)
+{
+    (void)state;
+    node_setup(SVA_ALGO_SVA);
+    make_inputs(5);
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
+    decode_last_plan();
+    assert_int_equal(got_plan.version, SVA_LCM_PLAN_T_VERSION);
+    make_inputs(6);
+    fleet.version = 1;
+    expect_reject(true, fleet_buf, (size_t)enc_fleet(), SVA_LCM_REJECT_VERSION);
+    assert_string_equal(last_log,
+                        "rejected (version; further ones only counted in T_STATUS): T_FLEET: "
+                        "fleet_state_t.version is 1, this node speaks version 2");
+    mission.version = 3;
+    expect_reject(false, mission_buf, (size_t)enc_mission(), SVA_LCM_REJECT_VERSION);
+    assert_int_equal(log_lines[SVA_LCM_REJECT_VERSION], 1);  // logged once
+    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_VERSION], 2);
+    static sva_lcm_node_status_t s;
+    assert_int_equal(sva_lcm_publish_status(&node, 1), SVA_OK);
+    assert_int_equal(
+        sva_lcm_node_status_t_decode(node.priv.status_buf, 0, SVA_LCM_STATUS_BYTES, &s),
+        SVA_LCM_STATUS_BYTES);
+    assert_int_equal(s.version, SVA_LCM_NODE_STATUS_T_VERSION);
+    assert_int_equal(s.rejected[SVA_LCM_NODE_STATUS_T_REJECT_VERSION], 2);
+    assert_string_equal(sva_lcm_reject_name(SVA_LCM_REJECT_VERSION), "version");
+}
+
+static void set_frame(void)
+{
+    mission.frame.present = 1;
+    mission.frame.lat_e7 = 473977419;  // 47.3977419
+    mission.frame.lon_e7 = 85455939;   // 8.5455939
+    mission.frame.alt_cm = 3000;
+    mission.frame.cell_cm = 1000;
+    mission.frame.tick_ms = 1000;
+    mission.frame.t0_ms = 1780300800000LL;  // 2026-06-01T08:00:00Z
+}
+
+// The frame: checked by sva_frame_check (REJECT_VALUE with its message), kept by the
+// node and carried by the residual mission of every replan.
+static void test_frame_round_trip(void** state)
+{
+    (void)state;
+    node_setup(SVA_ALGO_SVA);
+    make_inputs(5);
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+
+    make_inputs(6);
+    set_frame();
+    mission.frame.cell_cm = 5;
+    expect_reject(false, mission_buf, (size_t)enc_mission(), SVA_LCM_REJECT_VALUE);
+    assert_string_equal(last_log,
+                        "rejected (value; further ones only counted in T_STATUS): T_MISSION: "
+                        "frame.cell_m: 0.05 is outside [0.1, 10000] m");
+    set_frame();
+    mission.frame.lat_e7 = 850000001;
+    expect_reject(false, mission_buf, (size_t)enc_mission(), SVA_LCM_REJECT_VALUE);
+    set_frame();
+    mission.frame.t0_ms = -1;
+    expect_reject(false, mission_buf, (size_t)enc_mission(), SVA_LCM_REJECT_VALUE);
+    set_frame();
+    mission.frame.present = 2;
+    expect_reject(false, mission_buf, (size_t)enc_mission(), SVA_LCM_REJECT_VALUE);
+    memset(&mission.frame, 0, sizeof mission.frame);
+    mission.frame.tick_ms = 1000;  // present 0 with a field set
+    expect_reject(false, mission_buf, (size_t)enc_mission(), SVA_LCM_REJECT_VALUE);
+    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_VALUE], 5);
+
+    set_frame();
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
+    assert_int_equal(plans_seen, 1);
+    static sva_lcm_event_t e;
+    memset(&e, 0, sizeof e);
+    e.version = SVA_LCM_EVENT_T_VERSION;
+    e.seq = 1;
+    e.type = SVA_LCM_EVENT_T_TYPE_CLOCK;
+    e.at_ticks = 2;
+    assert_int_equal(send_event(&e), SVA_LCM_ACCEPTED);
+    assert_int_equal(got_replan.accepted, 1);
+    assert_memory_equal(&got_replan.residual_mission.frame, &mission.frame, sizeof mission.frame);
+    // the same mission without its frame is a change: it replans
+    memset(&mission.frame, 0, sizeof mission.frame);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
+    assert_int_equal(plans_seen, 2);
+    assert_int_equal(send_event(&e), SVA_LCM_ACCEPTED);
+    assert_int_equal(got_replan.residual_mission.frame.present, 0);
 }
 
 // fleet_reports: while a live mission runs, a fleet message is a report. A UAV reported
@@ -1030,6 +1136,8 @@ int main(void)
         cmocka_unit_test(test_plan_too_large),
         cmocka_unit_test(test_status),
         cmocka_unit_test(test_live_events),
+        cmocka_unit_test(test_versions),
+        cmocka_unit_test(test_frame_round_trip),
         cmocka_unit_test(test_fleet_reports),
         cmocka_unit_test(test_zero_allocations_per_message),
     };

@@ -124,9 +124,9 @@ static void test_golden_replay(void** state)
     sva_lcm_node_unsubscribe(&node);
     lcm_destroy(lcm);
 
-    assert_int_equal(events, 8);
+    assert_int_equal(events, 9);
     assert_int_equal(node.counters.fleet_rx, 4);
-    assert_int_equal(node.counters.mission_rx, 4);
+    assert_int_equal(node.counters.mission_rx, 5);
     assert_int_equal(node.counters.unchanged, 1);
     assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_TRUNCATED], 1);
     assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_TRAILING], 0);
@@ -134,9 +134,11 @@ static void test_golden_replay(void** state)
     assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_COUNT], 1);
     assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_VALUE], 1);
     assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_INVALID], 0);
+    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_VERSION], 1);
     assert_int_equal(plan_count, 2);
 
     load_mission(json);
+    assert_int_equal(got[0].version, SVA_LCM_PLAN_T_VERSION);
     assert_int_equal(got[0].plan_id, 1);
     assert_int_equal(got[0].fleet_revision, 1);
     assert_int_equal(got[0].mission_revision, 1);

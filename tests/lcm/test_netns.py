@@ -37,6 +37,12 @@ ALLOC_LIB = os.environ.get("SVA_ALLOC_LIB", "")
 SMALL = MISSIONS / "rand_7_2.json"
 
 
+# A frame (docs/flight-stack.md) and its wire integers (frame_t, present first).
+FRAME = {"lat": 47.3977419, "lon": 8.5455939, "alt_m": 30.25, "cell_m": 12.5, "tick_s": 0.5,
+         "t0": "2026-06-01T08:00:00.125Z"}
+FRAME_WIRE = [1, 473977419, 85455939, 3025, 1250, 500, 1780300800125]
+
+
 def mission_doc(path=SMALL):
     return json.loads(Path(path).read_text())
 
@@ -305,11 +311,16 @@ def test_malformed_traffic_and_flood(node):
     mval.targets[2].need = 0
     _, _, mover = wire.mission_messages(doc, 1, 1)
     mover.target_count = 300
+    _, fv1, mv1 = wire.mission_messages(doc, 1, 1)
+    fv1.version, mv1.version = 1, 3
+    _, _, mframe = wire.mission_messages(dict(doc, frame=FRAME), 1, 1)
+    mframe.frame.tick_ms = 0
     bad = [  # (channel, bytes, reason index)
         (F, fb[:-1], 0), (M, mb[:9], 0), (F, b"", 0), (F, fb + b"\0", 1),
         (F, bytes([fb[0] ^ 1]) + fb[1:], 2), (M, mb[:8][::-1] + mb[8:], 2),
         (F, over.encode(), 3), (M, mover.encode(), 3), (F, val.encode(), 4),
-        (M, mval.encode(), 4), (F, mb, 1), (M, fb, 0),
+        (M, mval.encode(), 4), (F, mb, 1), (M, fb, 0), (F, fv1.encode(), 8),
+        (M, mv1.encode(), 8), (M, mframe.encode(), 4),
     ]
     node.pub.publish(F, fb)
     node.pub.publish(M, mb)
@@ -317,7 +328,7 @@ def test_malformed_traffic_and_flood(node):
     for ch, data, _ in bad:
         node.pub.publish(ch, data)
     s = node.fresh_status()
-    want = [0] * 8
+    want = [0] * len(wire.REJECT_REASONS)
     for _, _, why in bad:
         want[why] += 1
     assert list(s.rejected) == want
@@ -369,13 +380,17 @@ def test_record_and_replay(tmp_path):
     log = tmp_path / "session.lcmlog"
     plan_json = tmp_path / "plan.json"
     n = Node(prefix, "--algorithm", "flow")
+    # the mission travels with a frame: every layer must carry it as the JSON says
+    doc = dict(mission_doc(), frame=FRAME)
+    framed = tmp_path / "framed.json"
+    framed.write_text(json.dumps(doc))
     rec = subprocess.Popen([str(SVA_TOOLS), "lcm", "record", "-o", str(log),
                             "--url", URL, "--channels", prefix + ".*"])
     try:
         # the recorder listens once the node's 1 Hz status reaches the log
         assert wait_until(lambda: prefix + "STATUS" in logged_channels(log), 30), \
             "lcm record wrote no status of the node within 30 s"
-        r = send(prefix, SMALL, "--revision", "77", "-o", str(plan_json))
+        r = send(prefix, framed, "--revision", "77", "-o", str(plan_json))
         assert r.returncode == 0, r.stderr
         assert wait_until(lambda: prefix + "PLAN" in logged_channels(log), 30), \
             "lcm record wrote no plan within 30 s"
@@ -395,7 +410,6 @@ def test_record_and_replay(tmp_path):
     # sent, and agree with the plan the Python tool decoded.
     java_events = java_dump(log, prefix)
     plan = json.loads(plan_json.read_text())
-    doc = mission_doc()
     jplan = [e for e in java_events if e["channel"] == "PLAN"]
     assert len(jplan) == 1 and jplan[0]["plan_id"] == plan["stats"]["plan_id"]
     assert (jplan[0]["fleet_revision"], jplan[0]["mission_revision"]) == (77, 77)
@@ -409,6 +423,9 @@ def test_record_and_replay(tmp_path):
     assert [e["uavs"] for e in java_events if e["channel"] == "FLEET"] == [[u["id"] for u in doc["uavs"]]]
     assert [e["targets"] for e in java_events if e["channel"] == "MISSION"] == [
         [t["id"] for t in doc["targets"]]]
+    assert [e["frame"] for e in java_events if e["channel"] == "MISSION"] == [FRAME_WIRE]
+    versions = {(e["channel"], e["version"]) for e in java_events}
+    assert versions == {("FLEET", 2), ("MISSION", 2), ("PLAN", 2), ("STATUS", 2)}, versions
     assert max(e["plans_published"] for e in java_events if e["channel"] == "STATUS") == 1
 
     # a fresh node answers the replayed inputs with a plan for the recorded revisions
@@ -530,7 +547,7 @@ def test_lcm_spy_decodes_node_traffic_headless(tmp_path):
         x.wait(timeout=10)
     assert node_rc[0] == 0, node_rc[1]
     text = out.read_text()
-    assert "Found 9 LCM types" in text, text
+    assert "Found 10 LCM types" in text, text
     # lcm-spy's class scan reports classes of the wheel's own jars it cannot load
     # ("ClassDiscoverer: ..." and two indented lines): noise, not ours. Nothing else
     # may mention an exception or error (decode failures print "Spy.messageReceived ex").
@@ -800,10 +817,33 @@ def test_live_event_version_and_no_mission_refused(node):
     ok = wire.replan_document(next(r for r in node.replans if r.event_seq == 43), "m")
     assert ok["accepted"] is True and ok["revision"] == 1 and ok["now"] == 1
     r42.version = 3
-    with pytest.raises(wire.InputError, match=r"replan_t.version is 3, this tool speaks version 1"):
+    with pytest.raises(wire.InputError, match=r"replan_t.version is 3, this tool speaks version 2"):
         wire.replan_document(r42, "m")
     status = node.fresh_status()
-    assert status.rejected[wire.REJECT_REASONS.index("value")] >= 2
+    assert status.rejected[wire.REJECT_REASONS.index("value")] >= 1
+    assert status.rejected[wire.REJECT_REASONS.index("version")] == 1
+
+
+def test_frame_travels_to_the_residual_mission(node):
+    """A mission's frame reaches the node and comes back in the residual mission of a
+    replan as the JSON wrote it; a mission of another version changes nothing."""
+    _, fleet, mission = wire.mission_messages(dict(LIVE_MISSION, frame=FRAME), 6, 6)
+    node.pub.publish(node.prefix + "FLEET", fleet.encode())
+    mission.version = 1
+    node.pub.publish(node.prefix + "MISSION", mission.encode())
+    mission.version = wire.types().mission_t.VERSION
+    node.pub.publish(node.prefix + "MISSION", mission.encode())
+    assert node.wait(lambda: node.plans)
+    assert len(node.plans) == 1 and node.plans[0].version == 2
+    node.pub.publish(node.prefix + "EVENT", wire.event_message({"at": 2, "type": "clock"}, 5).encode())
+    assert node.wait(lambda: any(r.event_seq == 5 for r in node.replans))
+    doc = wire.replan_document(next(r for r in node.replans if r.event_seq == 5), "m")
+    assert doc["accepted"] is True
+    assert doc["residual"]["frame"] == FRAME
+    assert node.fresh_status().rejected[wire.REJECT_REASONS.index("version")] == 1
+    rc, err = node.stop()
+    assert rc == 0
+    assert f"{node.prefix}MISSION: mission_t.version is 1, this node speaks version 2" in err
 
 
 def test_fleet_reports_turn_contradictions_into_replans():

@@ -49,6 +49,10 @@ installed_files() {  # the files every install must have, relative to the prefix
     echo "bin/sva include/sva/sva.h include/sva/sva_config.h include/sva_build_config.h"
     echo "$lib/libsva_core.a $lib/cmake/sva/svaConfig.cmake $lib/cmake/sva/svaConfigVersion.cmake"
     echo "$lib/cmake/sva/svaTargets.cmake $lib/pkgconfig/sva.pc share/doc/sva/copyright"
+    if has frame; then
+        echo "include/sva/sva_frame.h $lib/libsva_frame.a $lib/pkgconfig/sva-frame.pc"
+        echo "$lib/cmake/sva/sva_frameTargets.cmake"
+    fi
     if has can; then
         echo "bin/sva_can_node include/sva/sva_can.h $lib/libsva_can.a $lib/pkgconfig/sva-can.pc"
         echo "$lib/cmake/sva/sva_canTargets.cmake share/sva/sva.dbc lib/systemd/system/sva-can-node.service"
@@ -57,13 +61,14 @@ installed_files() {  # the files every install must have, relative to the prefix
         echo "bin/sva_node include/sva/sva_lcm.h include/sva/sva_lcm_plan_t.h $lib/libsva_lcm.a"
         echo "$lib/libsva_lcm_types.a $lib/pkgconfig/sva-lcm.pc $lib/cmake/sva/sva_lcmTargets.cmake"
         echo "share/sva/lcm/mission_t.lcm share/sva/lcm/fleet_state_t.lcm share/sva/lcm/plan_t.lcm"
-        echo "share/sva/lcm/node_status_t.lcm lib/systemd/system/sva-node.service"
+        echo "share/sva/lcm/node_status_t.lcm share/sva/lcm/frame_t.lcm"
+        echo "lib/systemd/system/sva-node.service"
     fi
 }
 
 run_consumers() {  # runs every consumer program built in $1
     local dir="$1" p n=0
-    for p in consumer_core consumer_can consumer_lcm readme_example; do
+    for p in consumer_core consumer_frame consumer_can consumer_lcm readme_example; do
         if [ -x "$dir/$p" ]; then run "$dir/$p" || fail "$p exited $?"; n=$((n + 1)); fi
     done
     local want=2  # core and the README example, and one per port
@@ -165,6 +170,7 @@ deb)
     for p in libc6 libjansson4 $(has lcm && echo libglib2.0-0); do
         [[ ", $depends" == *", $p "* || ", $depends," == *", $p,"* ]] || fail "Depends lacks $p"
     done
+    [[ "$(dpkg-deb -f "$deb" Suggests)" == *libproj-dev* ]] || fail "Suggests lacks libproj-dev"
     [ -n "$(dpkg-deb -f "$deb" Maintainer)" ] || fail "no Maintainer"
     # A fresh dpkg database in a throw-away root. --force-depends: that database knows
     # none of the host's packages (libc6, libjansson4, ...), which the programs then use
@@ -176,6 +182,11 @@ deb)
     dpkg --root="$root" -s sva | grep -q '^Status: install ok installed' || fail "dpkg -s sva in $root"
     # shellcheck disable=SC2046
     expect_files "$root/usr" $(installed_files lib)
+    # PROJ: an installed program that links it at run time makes Depends name libprojNN;
+    # the static sva::frame needs libproj-dev to be linked by a consumer (Suggests).
+    if objdump -p "$root"/usr/bin/* 2>/dev/null | grep -q 'NEEDED.*libproj'; then
+        [[ "$depends" =~ (^|,\ )libproj[0-9]+ ]] || fail "a program links PROJ, Depends lacks libproj"
+    fi
     out=$("$root/usr/bin/sva" --version) || fail "installed sva --version"
     [[ "$out" == "sva $version "* ]] || fail "sva --version says '$out'"
     "$root/usr/bin/sva" plan --algo sva "$src/fixtures/missions/hand_5_3.json" > "$d/plan.json" || fail "installed sva plan"

@@ -269,10 +269,15 @@ static int parse_options(const char* command, const struct option* options, int 
     return EXIT_PLANNED;
 }
 
+// The loaded mission's frame (docs/flight-stack.md), when it has one.
+static sva_frame_t g_frame;
+static bool g_has_frame;
+
 static int load(const char* path, char name[SVA_JSON_NAME_MAX + 1])
 {
     char err[SVA_JSON_ERROR_SIZE];
-    sva_json_result_t result = sva_json_load_mission(path, &g_mission, name, err, sizeof err);
+    sva_json_result_t result = sva_json_load_mission_frame(path, &g_mission, name, &g_frame,
+                                                           &g_has_frame, err, sizeof err);
     if (result != SVA_JSON_OK) {
         return error_exit(result == SVA_JSON_BAD_INPUT ? EXIT_BAD_INPUT : EXIT_FAILED, "%s", err);
     }
@@ -342,6 +347,16 @@ static int plan_failed(sva_status_t status, const sva_diag_t* diag)
     return error_exit(EXIT_FAILED, "planner failed with status %d", (int)status);
 }
 
+// The mission's frame, echoed into its plan as the mission wrote it (last key).
+static bool echo_frame(json_t* doc, const sva_frame_t* frame)
+{
+    if (frame == NULL) {
+        return true;
+    }
+    json_t* f = sva_json_frame(frame);
+    return f != NULL && json_object_set_new(doc, "frame", f) == 0;
+}
+
 static int print_plan(const options_t* opt, const char* name, int64_t solve_us)
 {
     if (opt->schedule) {
@@ -351,6 +366,10 @@ static int print_plan(const options_t* opt, const char* name, int64_t solve_us)
         return EXIT_PLANNED;
     }
     json_t* doc = sva_json_plan(&g_mission, name, &g_plan, solve_us);
+    if (doc != NULL && !echo_frame(doc, g_has_frame ? &g_frame : NULL)) {
+        json_decref(doc);
+        doc = NULL;
+    }
     if (doc == NULL) {
         return error_exit(EXIT_FAILED, "building the plan JSON: out of memory");
     }
@@ -459,7 +478,7 @@ static sva_status_t timed_replan(sva_algorithm_t algorithm, sva_live_result_t* r
 
 static int write_residual(const char* path, const sva_mission_t* residual, const char* name)
 {
-    json_t* doc = sva_json_mission(residual, name);
+    json_t* doc = sva_json_mission_framed(residual, name, g_doc.has_frame ? &g_doc.frame : NULL);
     FILE* out = doc != NULL ? fopen(path, "w") : NULL;
     if (out == NULL) {
         json_decref(doc);
@@ -529,6 +548,10 @@ static int replay(const options_t* opt, sva_algorithm_t algorithm)
         }
     }
     json_t* doc = sva_json_replan(&g_live, &result, g_doc.name, solve_us);
+    if (doc != NULL && !echo_frame(doc, g_doc.has_frame ? &g_doc.frame : NULL)) {
+        json_decref(doc);
+        doc = NULL;
+    }
     if (doc == NULL) {
         return error_exit(EXIT_FAILED, "building the plan JSON: out of memory");
     }

@@ -3,9 +3,11 @@
 #ifndef SVA_CAN_MISSION_FILE_H
 #define SVA_CAN_MISSION_FILE_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "sva/sva.h"
+#include "sva/sva_can_frame.h"
 
 /// Parses `path` strictly (unknown keys, wrong types, missing keys, values outside
 /// int32 or a list longer than its bound are errors), then runs sva_mission_validate()
@@ -13,5 +15,11 @@
 /// Returns 0, or -1 with a one-line message naming the field and the rule in err.
 int sva_can_mission_load(const char* path, sva_mission_t* mission, char* name, size_t name_size,
                          char* err, size_t err_size);
+
+/// sva_can_mission_load that also returns the mission's frame (docs/flight-stack.md) in
+/// its wire integers: *has_frame false when the mission has none.
+int sva_can_mission_load_frame(const char* path, sva_mission_t* mission, char* name,
+                               size_t name_size, sva_can_mission_frame_t* frame, bool* has_frame,
+                               char* err, size_t err_size);
 
 #endif

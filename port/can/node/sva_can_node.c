@@ -51,6 +51,34 @@ static uint32_t now_ms(void)
 static sva_mission_t g_mission;  // the mission file: the live mission's start
 static sva_can_live_t g_live;
 static sva_can_sender_t g_sender;
+// The mission's frame, sent (SVA_MISSION_FRAME_A..D) before each plan when it has one.
+static sva_can_mission_frame_t g_frame;
+static bool g_has_frame;
+static uint8_t g_frame_counter;
+static sva_can_transport_t* g_tp;
+
+// Sends the mission frame's four CAN frames. Returns the fault bits.
+static uint8_t send_frame(void)
+{
+    sva_can_frame_t out[SVA_CAN_MISSION_FRAME_PARTS];
+    unsigned p;
+    if (!g_has_frame) {
+        return 0u;
+    }
+    if (sva_can_frame_encode(&g_frame, g_frame_counter, out) != SVA_CAN_OK) {
+        return SVA_CAN_FAULT_TX_ERRORS;
+    }
+    g_frame_counter = (uint8_t)((g_frame_counter + SVA_CAN_MISSION_FRAME_PARTS) & 15u);
+    for (p = 0; p < SVA_CAN_MISSION_FRAME_PARTS; ++p) {
+        const sva_can_status_t st = g_tp->send(g_tp->ctx, &out[p]);
+        if (st != SVA_CAN_OK) {
+            fprintf(stderr, "sva_can_node: sending the mission frame: %s\n",
+                    sva_can_status_name(st));
+            return SVA_CAN_FAULT_TX_ERRORS;
+        }
+    }
+    return 0u;
+}
 
 static uint32_t elapsed(uint32_t now, uint32_t then)
 {
@@ -92,6 +120,9 @@ static uint8_t send_plan(uint32_t t, int print)
             2u * g_live.wire.item_count + 2u);
     if (print) {
         sva_can_plan_print(&g_live.wire);
+    }
+    if (send_frame() != 0u) {
+        return SVA_CAN_FAULT_TX_ERRORS;
     }
     cst = sva_can_sender_start(&g_sender, &g_live.wire, t);
     if ((cst != SVA_CAN_OK) && (cst != SVA_CAN_AGAIN)) {
@@ -190,7 +221,8 @@ int main(int argc, char** argv)
                 sva_text_escape(shown_arg, sizeof shown_arg, algo_name));
         return 2;
     }
-    if (sva_can_mission_load(mission_path, &g_mission, name, sizeof name, err, sizeof err) != 0) {
+    if (sva_can_mission_load_frame(mission_path, &g_mission, name, sizeof name, &g_frame,
+                                   &g_has_frame, err, sizeof err) != 0) {
         fprintf(stderr, "sva_can_node: %s: %s\n",
                 sva_text_escape(shown_arg, sizeof shown_arg, mission_path), err);
         return 1;
@@ -230,6 +262,7 @@ int main(int argc, char** argv)
             g_mission.target_count, sva_text_escape(shown_arg, sizeof shown_arg, iface),
             sva_algorithm_name(algo));
 
+    g_tp = &tp;
     t0 = now_ms();
     last_hb = t0 - SVA_CAN_HEARTBEAT_PERIOD_MS;  // first heartbeat at once
     faults |= send_plan(t0, print);

@@ -205,6 +205,10 @@ static sva_json_result_t parse_live(const json_t* root, sva_json_live_t* live, c
         SVA_JSON_OK) {
         return fail(err, size, "%s%s", strncmp(inner, "mission", 7) == 0 ? "" : "mission.", inner);
     }
+    if (sva_json_mission_frame(mission, &live->frame, &live->has_frame, inner, sizeof inner) !=
+        SVA_JSON_OK) {
+        return fail(err, size, "mission.%s", inner);
+    }
     sva_diag_t diag;
     if (sva_mission_validate(&live->mission, &diag) != SVA_OK) {
         (void)sva_diag_format(&diag, inner, sizeof inner);

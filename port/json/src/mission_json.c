@@ -23,12 +23,17 @@ typedef struct {
 static const key_spec_t MISSION_KEYS[] = {
     {"name", false, 0},      {"depot", false, 0},           {"ticks_per_cell", true, 1},
     {"hover_fuel", true, 0}, {"overlap_percent", true, 70}, {"change_penalty", true, 0},
-    {"uavs", false, 0},      {"targets", false, 0},         {NULL, false, 0},
+    {"uavs", false, 0},      {"targets", false, 0},         {"frame", true, 0},
+    {NULL, false, 0},
 };
 static const key_spec_t DEPOT_KEYS[] = {{"x", false, 0}, {"y", false, 0}, {NULL, false, 0}};
 static const key_spec_t UAV_KEYS[] = {
     {"id", false, 0},   {"x", false, 0},       {"y", false, 0},
     {"fuel", false, 0}, {"ready_at", true, 0}, {NULL, false, 0},
+};
+static const key_spec_t FRAME_KEYS[] = {
+    {"lat", false, 0},    {"lon", false, 0}, {"alt_m", false, 0}, {"cell_m", false, 0},
+    {"tick_s", false, 0}, {"t0", false, 0},  {NULL, false, 0},
 };
 static const key_spec_t TARGET_KEYS[] = {
     {"id", false, 0},  {"x", false, 0},    {"y", false, 0},  {"start", false, 0},
@@ -282,8 +287,52 @@ static bool parse_targets(const json_t* root, sva_mission_t* mission, const sink
     return true;
 }
 
+static bool get_number(const json_t* object, const char* key, double* out, const sink_t* err)
+{
+    const json_t* value = json_object_get(object, key);
+    if (!json_is_number(value)) {
+        return fail(err, "frame.%s: must be a number, got %s", key, type_name(value));
+    }
+    *out = json_number_value(value);
+    return true;
+}
+
+// The optional frame (docs/flight-stack.md): its shape here, its values by
+// sva_frame_from_units (rounded to the stored resolution, ranges named).
+static bool parse_frame(const json_t* root, sva_frame_t* frame, bool* present, const sink_t* err)
+{
+    *present = false;
+    const json_t* value = json_object_get(root, "frame");
+    if (value == NULL) {
+        return true;
+    }
+    if (!json_is_object(value)) {
+        return fail(err, "frame: must be an object, got %s", type_name(value));
+    }
+    sva_frame_units_t units;
+    memset(&units, 0, sizeof units);
+    if (!check_keys(value, "frame", FRAME_KEYS, err) ||
+        !get_number(value, "lat", &units.lat, err) || !get_number(value, "lon", &units.lon, err) ||
+        !get_number(value, "alt_m", &units.alt_m, err) ||
+        !get_number(value, "cell_m", &units.cell_m, err) ||
+        !get_number(value, "tick_s", &units.tick_s, err)) {
+        return false;
+    }
+    const json_t* t0 = json_object_get(value, "t0");
+    if (!json_is_string(t0)) {
+        return fail(err, "frame.t0: must be a string, got %s", type_name(t0));
+    }
+    units.t0 = json_string_value(t0);
+    char line[SVA_FRAME_ERROR_SIZE];
+    if (!sva_frame_from_units(&units, frame, line, sizeof line)) {
+        return fail(err, "%s", line);
+    }
+    *present = true;
+    return true;
+}
+
 static bool parse_root(const json_t* root, sva_mission_t* mission, char name[SVA_JSON_NAME_MAX + 1],
-                       const sink_t* err)
+                       sva_frame_t* frame, bool* present, const sink_t* err)
 {
     const json_t* depot = NULL;
     if (!json_is_object(root)) {
@@ -298,7 +347,8 @@ static bool parse_root(const json_t* root, sva_mission_t* mission, char name[SVA
            get_int(root, "", MISSION_KEYS, "hover_fuel", &mission->hover_fuel, err) &&
            get_int(root, "", MISSION_KEYS, "overlap_percent", &mission->overlap_percent, err) &&
            get_int(root, "", MISSION_KEYS, "change_penalty", &mission->change_penalty, err) &&
-           parse_uavs(root, mission, err) && parse_targets(root, mission, err);
+           parse_uavs(root, mission, err) && parse_targets(root, mission, err) &&
+           parse_frame(root, frame, present, err);
 }
 
 static bool is_blank(const char* text, size_t len)
@@ -311,11 +361,13 @@ static bool is_blank(const char* text, size_t len)
     return true;
 }
 
-sva_json_result_t sva_json_parse_mission(const char* text, size_t len, const char* source,
-                                         sva_mission_t* mission, char name[SVA_JSON_NAME_MAX + 1],
-                                         char* err, size_t err_size)
+// sva_json_parse_mission with the frame.
+static sva_json_result_t parse_text(const char* text, size_t len, const char* source,
+                                    sva_mission_t* mission, char name[SVA_JSON_NAME_MAX + 1],
+                                    sva_frame_t* frame, bool* present, char* err, size_t err_size)
 {
     const sink_t sink = {err, err_size};
+    *present = false;
     sva_mission_init(mission);
     name[0] = '\0';
     if (is_blank(text, len)) {
@@ -340,21 +392,41 @@ sva_json_result_t sva_json_parse_mission(const char* text, size_t len, const cha
         fail(&sink, "%s:%d:%d: invalid JSON: %s", source, error.line, error.column, error.text);
         return SVA_JSON_BAD_INPUT;
     }
-    bool ok = parse_root(root, mission, name, &sink);
+    bool ok = parse_root(root, mission, name, frame, present, &sink);
     json_decref(root);
     if (!ok) {
         // All-or-nothing: a rejected document leaves no half-filled mission behind.
         sva_mission_init(mission);
         name[0] = '\0';
+        *present = false;
         return SVA_JSON_BAD_INPUT;
     }
     return SVA_JSON_OK;
+}
+
+sva_json_result_t sva_json_parse_mission(const char* text, size_t len, const char* source,
+                                         sva_mission_t* mission, char name[SVA_JSON_NAME_MAX + 1],
+                                         char* err, size_t err_size)
+{
+    sva_frame_t frame;
+    bool present;
+    return parse_text(text, len, source, mission, name, &frame, &present, err, err_size);
 }
 
 sva_json_result_t sva_json_load_mission(const char* path, sva_mission_t* mission,
                                         char name[SVA_JSON_NAME_MAX + 1], char* err,
                                         size_t err_size)
 {
+    sva_frame_t frame;
+    bool present;
+    return sva_json_load_mission_frame(path, mission, name, &frame, &present, err, err_size);
+}
+
+sva_json_result_t sva_json_load_mission_frame(const char* path, sva_mission_t* mission,
+                                              char name[SVA_JSON_NAME_MAX + 1], sva_frame_t* frame,
+                                              bool* present, char* err, size_t err_size)
+{
+    *present = false;
     char* text;
     size_t len;
     sva_json_result_t result = sva_json_read_input(path, &text, &len, err, err_size);
@@ -362,7 +434,7 @@ sva_json_result_t sva_json_load_mission(const char* path, sva_mission_t* mission
         return result;
     }
     const char* source = strcmp(path, "-") == 0 ? SVA_JSON_STDIN_NAME : path;
-    result = sva_json_parse_mission(text, len, source, mission, name, err, err_size);
+    result = parse_text(text, len, source, mission, name, frame, present, err, err_size);
     free(text);
     if (result != SVA_JSON_OK) {
         return result;
@@ -384,12 +456,48 @@ sva_json_result_t sva_json_mission_from(const json_t* root, sva_mission_t* missi
     const sink_t sink = {err, err_size};
     sva_mission_init(mission);
     name[0] = '\0';
-    if (!parse_root(root, mission, name, &sink)) {
+    sva_frame_t frame;
+    bool present;
+    if (!parse_root(root, mission, name, &frame, &present, &sink)) {
         sva_mission_init(mission);
         name[0] = '\0';
         return SVA_JSON_BAD_INPUT;
     }
     return SVA_JSON_OK;
+}
+
+sva_json_result_t sva_json_mission_frame(const json_t* root, sva_frame_t* frame, bool* present,
+                                         char* err, size_t err_size)
+{
+    const sink_t sink = {err, err_size};
+    *present = false;
+    if (!json_is_object(root)) {
+        fail(&sink, "mission: must be an object, got %s", type_name(root));
+        return SVA_JSON_BAD_INPUT;
+    }
+    sva_frame_t read;
+    if (!parse_frame(root, &read, present, &sink)) {
+        *present = false;
+        return SVA_JSON_BAD_INPUT;
+    }
+    if (*present) {
+        *frame = read;
+    }
+    return SVA_JSON_OK;
+}
+
+json_t* sva_json_frame(const sva_frame_t* frame)
+{
+    char t0[SVA_FRAME_UTC_SIZE];
+    if (!sva_frame_format_utc(frame->t0_ms, t0, sizeof t0)) {
+        return NULL;
+    }
+    // Each value at its stored resolution; sva_json_write_plan prints 15 significant
+    // digits, which gives these decimals back exactly.
+    return json_pack("{s:f, s:f, s:f, s:f, s:f, s:s}", "lat", (double)frame->lat_e7 / 1e7, "lon",
+                     (double)frame->lon_e7 / 1e7, "alt_m", (double)frame->alt_cm / 100.0, "cell_m",
+                     (double)frame->cell_cm / 100.0, "tick_s", (double)frame->tick_ms / 1000.0,
+                     "t0", t0);
 }
 
 bool sva_json_target_from(const json_t* object, const char* prefix, sva_target_t* target, char* err,
@@ -416,6 +524,11 @@ json_t* sva_json_target(const sva_target_t* t)
 }
 
 json_t* sva_json_mission(const sva_mission_t* m, const char* name)
+{
+    return sva_json_mission_framed(m, name, NULL);
+}
+
+json_t* sva_json_mission_framed(const sva_mission_t* m, const char* name, const sva_frame_t* frame)
 {
     json_t* doc = json_pack("{s:s, s:{s:i, s:i}, s:i, s:i, s:i}", "name", name, "depot", "x",
                             (json_int_t)m->depot_x, "y", (json_int_t)m->depot_y, "ticks_per_cell",
@@ -445,6 +558,10 @@ json_t* sva_json_mission(const sva_mission_t* m, const char* name)
     if (ok) {
         ok = json_object_set_new(doc, "targets", targets) == 0;
         targets = NULL;
+    }
+    if (ok && frame != NULL) {
+        json_t* f = sva_json_frame(frame);
+        ok = f != NULL && json_object_set_new(doc, "frame", f) == 0;
     }
     json_decref(uavs);
     json_decref(targets);

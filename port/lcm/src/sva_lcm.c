@@ -1,6 +1,8 @@
 // sva_lcm.c -- the LCM adapter: checks, converts and answers (contract in sva_lcm.h).
 #include "sva/sva_lcm.h"
 
+#include "sva/sva_frame.h"
+
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
@@ -19,6 +21,8 @@ SVA_LCM_STATIC_ASSERT(SVA_LCM_PLAN_T_MAX_ROUTE_ITEMS >= SVA_MAX_ROUTE_TARGETS,
 SVA_LCM_STATIC_ASSERT(SVA_LCM_NODE_STATUS_T_NUM_REASONS == SVA_LCM_REJECT_COUNT_, reasons);
 SVA_LCM_STATIC_ASSERT(SVA_LCM_NODE_STATUS_T_REJECT_TOO_LARGE == SVA_LCM_REJECT_TOO_LARGE,
                       reason_values);
+SVA_LCM_STATIC_ASSERT(SVA_LCM_NODE_STATUS_T_REJECT_VERSION == SVA_LCM_REJECT_VERSION,
+                      reason_version);
 SVA_LCM_STATIC_ASSERT(SVA_LCM_REJECT_COUNT_ <= 32, reasons_fit_logged_mask);
 // The plan must fit one udpm datagram (65499 bytes) with the longest channel name, so
 // that it is never fragmented (fragments are allocated by the receiver).
@@ -35,7 +39,8 @@ SVA_LCM_STATIC_ASSERT(SVA_LCM_PLAN_T_MAX_ROUTE_ITEMS <= 32767, items_fit_int16);
 SVA_LCM_STATIC_ASSERT(SVA_ALGO_FLOW == 4 && SVA_ALGO_COUNT_ == 5, algorithm_numbers);
 
 static const char* const reject_names[SVA_LCM_REJECT_COUNT_] = {
-    "truncated", "trailing", "fingerprint", "count", "value", "invalid", "planner", "too_large",
+    "truncated", "trailing", "fingerprint", "count",   "value",
+    "invalid",   "planner",  "too_large",   "version",
 };
 
 const char* sva_lcm_reject_name(sva_lcm_reject_t reason)
@@ -269,6 +274,20 @@ static sva_lcm_verdict_t check_frame(sva_lcm_node_t* self, const char* channel, 
     return SVA_LCM_ACCEPTED;
 }
 
+// A decoded message's version field against the type's VERSION: a refusal names both.
+static bool version_ok(sva_lcm_node_t* self, const char* channel, const char* type, int version,
+                       int want, sva_lcm_verdict_t* verdict)
+{
+    if (version == want) {
+        return true;
+    }
+    char what[160];
+    (void)snprintf(what, sizeof what, "%.63s: %s.version is %d, this node speaks version %d",
+                   channel, type, version, want);
+    *verdict = reject(self, SVA_LCM_REJECT_VERSION, what);
+    return false;
+}
+
 // ---------------------------------------------------------------------------------
 // Planning and publishing.
 
@@ -354,6 +373,7 @@ static void replan(sva_lcm_node_t* self)
     // Every array is encoded in full: clear what the last plan left behind.
     memset(p, 0, sizeof(*p));
     self->priv.plan_id += 1;
+    p->version = SVA_LCM_PLAN_T_VERSION;
     p->plan_id = self->priv.plan_id;
     p->fleet_revision = self->priv.fleet_revision;
     p->mission_revision = self->priv.mission_revision;
@@ -479,6 +499,33 @@ static bool check_mission(sva_lcm_node_t* self, sva_lcm_reject_t* reason)
     return true;
 }
 
+// A mission's frame: present 0 with every field 0, or present 1 with a frame that
+// sva_frame_check accepts. False with one line in err naming the field, rule and limit.
+static bool check_frame_fields(const sva_lcm_frame_t* w, char* err, size_t err_size)
+{
+    if (w->present == 0) {
+        if ((w->lat_e7 != 0) || (w->lon_e7 != 0) || (w->alt_cm != 0) || (w->cell_cm != 0) ||
+            (w->tick_ms != 0) || (w->t0_ms != 0)) {
+            (void)snprintf(err, err_size, "frame: present is 0, every other field must be 0");
+            return false;
+        }
+        return true;
+    }
+    if (w->present != 1) {
+        (void)snprintf(err, err_size, "frame.present: must be 0 (no frame) or 1, got %d",
+                       (int)w->present);
+        return false;
+    }
+    sva_frame_t f;
+    f.lat_e7 = w->lat_e7;
+    f.lon_e7 = w->lon_e7;
+    f.alt_cm = w->alt_cm;
+    f.cell_cm = w->cell_cm;
+    f.tick_ms = w->tick_ms;
+    f.t0_ms = w->t0_ms;
+    return sva_frame_check(&f, err, err_size);
+}
+
 sva_lcm_verdict_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_t size)
 {
     self->counters.fleet_rx += 1U;
@@ -489,6 +536,10 @@ sva_lcm_verdict_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_
     }
     if (sva_lcm_fleet_state_t_decode(data, 0, (int)size, &self->priv.fleet_rx) != (int)size) {
         return reject(self, SVA_LCM_REJECT_TRUNCATED, "fleet: decoder refused the bytes");
+    }
+    if (!version_ok(self, self->channel_fleet, "fleet_state_t", self->priv.fleet_rx.version,
+                    SVA_LCM_FLEET_STATE_T_VERSION, &v)) {
+        return v;
     }
     sva_lcm_reject_t reason = SVA_LCM_REJECT_VALUE;
     int32_t bad_health = -1;
@@ -544,9 +595,19 @@ sva_lcm_verdict_t sva_lcm_on_mission(sva_lcm_node_t* self, const void* data, siz
     if (sva_lcm_mission_t_decode(data, 0, (int)size, &self->priv.mission_rx) != (int)size) {
         return reject(self, SVA_LCM_REJECT_TRUNCATED, "mission: decoder refused the bytes");
     }
+    if (!version_ok(self, self->channel_mission, "mission_t", self->priv.mission_rx.version,
+                    SVA_LCM_MISSION_T_VERSION, &v)) {
+        return v;
+    }
     sva_lcm_reject_t reason = SVA_LCM_REJECT_VALUE;
     if (!check_mission(self, &reason)) {
         return reject_diag(self, reason, self->channel_mission);
+    }
+    char frame_err[SVA_FRAME_ERROR_SIZE];
+    if (!check_frame_fields(&self->priv.mission_rx.frame, frame_err, sizeof frame_err)) {
+        char what[240];
+        (void)snprintf(what, sizeof what, "%.63s: %.159s", self->channel_mission, frame_err);
+        return reject(self, SVA_LCM_REJECT_VALUE, what);
     }
     if (self->priv.have_mission && (memcmp(self->priv.mission_raw, data, size) == 0)) {
         self->counters.unchanged += 1U;
@@ -570,6 +631,7 @@ sva_lcm_verdict_t sva_lcm_on_mission(sva_lcm_node_t* self, const void* data, siz
         m->targets[i].end_ticks = t->end_ticks;
         m->targets[i].need = t->need;
     }
+    self->priv.frame = w->frame;
     self->priv.mission_revision = w->revision;
     self->priv.have_mission = true;
     if (self->priv.have_fleet) {
@@ -616,6 +678,7 @@ static sva_lcm_verdict_t refuse_event(sva_lcm_node_t* self, sva_lcm_reject_t rea
         r->diag_text[i] = (int8_t)text[i];
     }
     r->plan.status = SVA_LCM_PLAN_T_STATUS_REJECTED;
+    r->plan.version = SVA_LCM_PLAN_T_VERSION;
     r->plan.algorithm = (int8_t)self->algorithm;
     r->plan.fleet_revision = self->priv.fleet_revision;
     r->plan.mission_revision = self->priv.mission_revision;
@@ -625,9 +688,11 @@ static sva_lcm_verdict_t refuse_event(sva_lcm_node_t* self, sva_lcm_reject_t rea
 }
 
 // The residual mission as wire messages (stamped with the live revision).
-static void fill_residual(sva_lcm_replan_t* r, const sva_mission_t* m, int64_t revision)
+static void fill_residual(sva_lcm_replan_t* r, const sva_mission_t* m, int64_t revision,
+                          const sva_lcm_frame_t* frame)
 {
     sva_lcm_fleet_state_t* f = &r->residual_fleet;
+    f->version = SVA_LCM_FLEET_STATE_T_VERSION;
     f->revision = revision;
     f->uav_count = (int16_t)m->uav_count;
     for (uint16_t u = 0; u < m->uav_count; ++u) {
@@ -640,6 +705,7 @@ static void fill_residual(sva_lcm_replan_t* r, const sva_mission_t* m, int64_t r
         w->health = SVA_LCM_UAV_STATE_T_HEALTH_OK;
     }
     sva_lcm_mission_t* w = &r->residual_mission;
+    w->version = SVA_LCM_MISSION_T_VERSION;
     w->revision = revision;
     w->depot_x = m->depot_x;
     w->depot_y = m->depot_y;
@@ -656,6 +722,7 @@ static void fill_residual(sva_lcm_replan_t* r, const sva_mission_t* m, int64_t r
         t->end_ticks = m->targets[i].end_ticks;
         t->need = m->targets[i].need;
     }
+    w->frame = *frame;
 }
 
 static const sva_route_t* route_of(const sva_plan_t* plan, int32_t uav_id)
@@ -703,6 +770,15 @@ static int16_t list_changes(const sva_plan_t* from, const sva_plan_t* to, const 
 
 static void replan_live(sva_lcm_node_t* self);
 
+// Every message a replan carries names its version, also when it is empty.
+static void stamp_replan_versions(sva_lcm_replan_t* r)
+{
+    r->version = SVA_LCM_REPLAN_T_VERSION;
+    r->residual_fleet.version = SVA_LCM_FLEET_STATE_T_VERSION;
+    r->residual_mission.version = SVA_LCM_MISSION_T_VERSION;
+    r->plan.version = SVA_LCM_PLAN_T_VERSION;
+}
+
 sva_lcm_verdict_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_t size)
 {
     self->counters.event_rx += 1U;
@@ -718,7 +794,7 @@ sva_lcm_verdict_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_
     sva_lcm_replan_t* r = &self->priv.replan_tx;
     // Every array is encoded in full: clear what the last answer left behind.
     memset(r, 0, sizeof(*r));
-    r->version = SVA_LCM_REPLAN_T_VERSION;
+    stamp_replan_versions(r);
     r->event_seq = e->seq;
     r->event_type = e->type;
     r->change_penalty = self->change_penalty;
@@ -731,7 +807,7 @@ sva_lcm_verdict_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_
         (void)snprintf(text, sizeof text,
                        "%.63s: event_t.version is %d, this node speaks version %d",
                        self->channel_event, (int)e->version, (int)SVA_LCM_EVENT_T_VERSION);
-        return refuse_event(self, SVA_LCM_REJECT_VALUE, NULL, text);
+        return refuse_event(self, SVA_LCM_REJECT_VERSION, NULL, text);
     }
     if (!self->priv.live_active) {
         (void)snprintf(text, sizeof text,
@@ -785,6 +861,7 @@ static void replan_live(sva_lcm_node_t* self)
     r->accepted = 1;
     self->priv.plan_id += 1;
     sva_lcm_plan_t* p = &r->plan;
+    p->version = SVA_LCM_PLAN_T_VERSION;
     p->plan_id = self->priv.plan_id;
     p->fleet_revision = self->priv.fleet_revision;
     p->mission_revision = self->priv.mission_revision;
@@ -821,7 +898,7 @@ static void replan_live(sva_lcm_node_t* self)
         list_changes(res->previous, res->plan, res->residual, r->dropped_uav, r->dropped_target);
     r->added_listed =
         list_changes(res->plan, res->previous, res->residual, r->added_uav, r->added_target);
-    fill_residual(r, res->residual, r->revision);
+    fill_residual(r, res->residual, r->revision, &self->priv.frame);
     if (!fill_plan(p, res->plan, res->residual)) {
         memset(p->routes, 0, sizeof p->routes);
         memset(p->route_targets, 0, sizeof p->route_targets);
@@ -852,7 +929,7 @@ static void fleet_report(sva_lcm_node_t* self)
     sva_live_t* live = &self->priv.live;
     sva_lcm_replan_t* r = &self->priv.replan_tx;
     memset(r, 0, sizeof(*r));
-    r->version = SVA_LCM_REPLAN_T_VERSION;
+    stamp_replan_versions(r);
     r->event_seq = -1;
     r->change_penalty = self->change_penalty;
     uint32_t applied = 0;
@@ -911,6 +988,7 @@ sva_status_t sva_lcm_publish_status(sva_lcm_node_t* self, int64_t utime)
     sva_lcm_node_status_t* s = &self->priv.status_tx;
     memset(s, 0, sizeof(*s));
     self->counters.status_seq += 1U;
+    s->version = SVA_LCM_NODE_STATUS_T_VERSION;
     s->utime = utime;
     s->seq = (int64_t)self->counters.status_seq;
     s->state = (self->priv.have_fleet && self->priv.have_mission)

@@ -12,6 +12,7 @@ import java.io.IOException;
 
 import lcm.logging.Log;
 import sva_lcm.fleet_state_t;
+import sva_lcm.frame_t;
 import sva_lcm.mission_t;
 import sva_lcm.node_status_t;
 import sva_lcm.plan_t;
@@ -31,6 +32,7 @@ public final class SvaLcmDump {
     private static String plan(plan_t p) {
         StringBuilder b = new StringBuilder();
         b.append("\"plan_id\": ").append(p.plan_id)
+         .append(", \"version\": ").append(p.version)
          .append(", \"fleet_revision\": ").append(p.fleet_revision)
          .append(", \"mission_revision\": ").append(p.mission_revision)
          .append(", \"algorithm\": ").append(p.algorithm)
@@ -87,19 +89,24 @@ public final class SvaLcmDump {
                     for (int i = 0; i < f.uav_count; i++) {
                         ids[i] = f.uavs[i].id;
                     }
-                    body = "\"revision\": " + f.revision + ", \"uavs\": " + ints(ids, ids.length);
+                    body = "\"version\": " + f.version + ", \"revision\": " + f.revision
+                         + ", \"uavs\": " + ints(ids, ids.length);
                 } else if (kind.equals("MISSION")) {
                     mission_t m = new mission_t(e.data);
                     int[] ids = new int[m.target_count];
                     for (int i = 0; i < m.target_count; i++) {
                         ids[i] = m.targets[i].id;
                     }
-                    body = "\"revision\": " + m.revision + ", \"targets\": " + ints(ids, ids.length);
+                    frame_t g = m.frame;
+                    body = "\"version\": " + m.version + ", \"revision\": " + m.revision
+                         + ", \"targets\": " + ints(ids, ids.length) + ", \"frame\": [" + g.present
+                         + ", " + g.lat_e7 + ", " + g.lon_e7 + ", " + g.alt_cm + ", " + g.cell_cm
+                         + ", " + g.tick_ms + ", " + g.t0_ms + "]";
                 } else if (kind.equals("PLAN")) {
                     body = plan(new plan_t(e.data));
                 } else if (kind.equals("STATUS")) {
                     node_status_t s = new node_status_t(e.data);
-                    body = "\"seq\": " + s.seq + ", \"fleet_rx\": " + s.fleet_rx + ", \"mission_rx\": "
+                    body = "\"version\": " + s.version + ", \"seq\": " + s.seq + ", \"fleet_rx\": " + s.fleet_rx + ", \"mission_rx\": "
                          + s.mission_rx + ", \"plans_published\": " + s.plans_published
                          + ", \"last_plan_id\": " + s.last_plan_id;
                 } else {

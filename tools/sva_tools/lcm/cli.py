@@ -96,6 +96,11 @@ def _send(args) -> int:
             return 3
         lc.handle_timeout(max(1, int(left * 1000)))
     plan = answer[0]
+    try:
+        wire.check_version(plan, "plan_t")
+    except wire.InputError as e:
+        print(shown(f"sva-tools lcm send: {args.prefix}PLAN: {e}"), file=sys.stderr)
+        return 1
     if plan.status not in (plan.STATUS_COMPLETE, plan.STATUS_PARTIAL):
         what = {plan.STATUS_REJECTED: "rejected the mission",
                 plan.STATUS_FAILED: f"failed to plan (status {plan.error_code})",
@@ -189,6 +194,10 @@ def _scenario(args) -> int:
     if not wait(lambda: plans, "plan"):
         return 3
     plan = plans[0]
+    try:
+        wire.check_version(plan, "plan_t")
+    except wire.InputError as e:
+        return _fail(f"{args.prefix}PLAN: {e}", 1)
     if plan.status not in (plan.STATUS_COMPLETE, plan.STATUS_PARTIAL):
         return _fail(f"the node did not plan the mission (status {plan.status}): "
                      f"{wire.diag_text(plan)}", 1)

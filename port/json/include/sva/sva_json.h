@@ -5,6 +5,9 @@
 /// Missions: the layer checks the shape of the document (object, keys, types, list
 /// lengths, int32 range); every value rule (ranges, ids, windows) is the core's, so
 /// callers run sva_mission_validate() afterwards (sva_json_load_mission() does).
+/// A mission may carry a frame (docs/flight-stack.md): every reader here checks it
+/// (shape, then sva_frame_from_units: "frame.cell_m: 0.05 is outside [0.1, 10000] m");
+/// the *_frame functions also return it.
 /// Messages follow SPEC section 4: "<json path>: <rule>", e.g.
 ///   targets[0]: missing key "need"
 ///   targets[0].need: must be an integer, got string
@@ -25,6 +28,7 @@
 
 #include <jansson.h>
 #include <sva/sva.h>
+#include <sva/sva_frame.h>
 #include <sva/sva_text.h>
 
 #ifdef __cplusplus
@@ -61,6 +65,18 @@ sva_json_result_t sva_json_mission_from(const json_t* root, sva_mission_t* missi
                                         char name[SVA_JSON_NAME_MAX + 1], char* err,
                                         size_t err_size);
 
+/// The optional "frame" of the mission object `root`: *present false when it has none,
+/// else the frame in integers (sva_frame_from_units). On error (frame unchanged, present
+/// false) one line in err naming the field, the rule and the limit, and
+/// SVA_JSON_BAD_INPUT.
+sva_json_result_t sva_json_mission_frame(const json_t* root, sva_frame_t* frame, bool* present,
+                                         char* err, size_t err_size);
+
+/// A frame as the mission JSON writes it: lat, lon, alt_m, cell_m, tick_s (numbers at
+/// their stored resolution) and t0 (sva_frame_format_utc). New reference, or NULL when
+/// memory runs out or t0 is out of range.
+json_t* sva_json_frame(const sva_frame_t* frame);
+
 /// One target object (SPEC section 3 keys) into *target; `prefix` names it in messages
 /// ("events[2].target"). False with one line in err when the shape is wrong.
 bool sva_json_target_from(const json_t* object, const char* prefix, sva_target_t* target, char* err,
@@ -74,6 +90,10 @@ json_t* sva_json_target(const sva_target_t* target);
 /// or NULL when memory runs out.
 json_t* sva_json_mission(const sva_mission_t* mission, const char* name);
 
+/// sva_json_mission with the mission's frame last (none when frame is NULL).
+json_t* sva_json_mission_framed(const sva_mission_t* mission, const char* name,
+                                const sva_frame_t* frame);
+
 /// Reads the mission at `path` ("-" for standard input), parses it and runs
 /// sva_mission_validate(). Returns SVA_JSON_OK, SVA_JSON_BAD_INPUT (unreadable
 /// path, empty or oversized input, malformed document, broken rule) or
@@ -81,6 +101,12 @@ json_t* sva_json_mission(const sva_mission_t* mission, const char* name);
 sva_json_result_t sva_json_load_mission(const char* path, sva_mission_t* mission,
                                         char name[SVA_JSON_NAME_MAX + 1], char* err,
                                         size_t err_size);
+
+/// sva_json_load_mission that also returns the mission's frame (*present false when it
+/// has none).
+sva_json_result_t sva_json_load_mission_frame(const char* path, sva_mission_t* mission,
+                                              char name[SVA_JSON_NAME_MAX + 1], sva_frame_t* frame,
+                                              bool* present, char* err, size_t err_size);
 
 /// How input read from standard input is named in messages.
 #define SVA_JSON_STDIN_NAME "<stdin>"
@@ -97,7 +123,8 @@ sva_json_result_t sva_json_load_mission(const char* path, sva_mission_t* mission
 json_t* sva_json_plan(const sva_mission_t* mission, const char* name, const sva_plan_t* plan,
                       int64_t solve_us);
 
-/// Writes `plan` indented by 2, keys in insertion order, and a final newline.
+/// Writes `plan` indented by 2, keys in insertion order, reals with 15 significant
+/// digits (a frame's values come back as written), and a final newline.
 /// Returns 0, or -1 when writing fails (errno tells why).
 int sva_json_write_plan(FILE* out, const json_t* plan);
 
@@ -148,6 +175,8 @@ typedef struct {
     size_t event_count;
     int32_t now_ticks;
     bool has_now;
+    bool has_frame;     ///< the mission has a frame (docs/flight-stack.md)
+    sva_frame_t frame;  ///< valid when has_frame
 } sva_json_live_t;
 
 /// Reads and checks the shape of a LIVE.json document at `path` ("-": standard input);

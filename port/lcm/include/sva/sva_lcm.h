@@ -14,8 +14,9 @@
 ///
 /// ## Pipeline of one input message (sva_lcm_on_fleet / sva_lcm_on_mission)
 ///   size check (exact fixed size) -> fingerprint check -> decode into a static struct
-///   -> counts and value ranges (sva_config.h) -> unchanged? (byte compare) -> convert
-///   into the node's sva_mission_t -> if fleet and mission are both present: sva_plan
+///   -> version (the type's VERSION, else REJECT_VERSION) -> counts and value ranges
+///   (sva_config.h; a mission's frame through sva_frame_check) -> unchanged? (byte compare) ->
+///   convert into the node's sva_mission_t -> if fleet and mission are both present: sva_plan
 ///   -> sva_lcm_plan_t -> encode into a static buffer -> publish.
 /// A refused message is counted per reason (sva_lcm_reject_t), logged once per reason
 /// and leaves the node's inputs as they were (all-or-nothing). The core validates the
@@ -30,8 +31,8 @@
 /// and every event that passes the fingerprint check is answered on REPLAN, accepted
 /// (the residual mission, the new plan in force and the changed visits) or refused
 /// (accepted 0, the diagnostic as sva_diag_t fields and text; the live mission is
-/// unchanged). A refusal is also counted (REJECT_VALUE for the version, the type and
-/// "no live mission"; REJECT_INVALID for the core's verdict).
+/// unchanged). A refusal is also counted (REJECT_VERSION for the version, REJECT_VALUE
+/// for the type and "no live mission"; REJECT_INVALID for the core's verdict).
 /// With fleet_reports set, a fleet message that arrives while a live mission runs is
 /// a report: a UAV in service reported with health not OK becomes uav_lost, one more than
 /// track_tolerance_cells (Manhattan) from where the flight model puts it becomes a
@@ -80,16 +81,21 @@ extern "C" {
 #define SVA_LCM_UAV_STATE_BYTES 21
 #define SVA_LCM_TARGET_BYTES    24
 #define SVA_LCM_ROUTE_BYTES     23
-#define SVA_LCM_FLEET_BYTES     (8 + 8 + 2 + SVA_LCM_FLEET_STATE_T_MAX_UAVS * SVA_LCM_UAV_STATE_BYTES)
-#define SVA_LCM_MISSION_BYTES \
-    (8 + 8 + 20 + 2 + SVA_LCM_MISSION_T_MAX_TARGETS * SVA_LCM_TARGET_BYTES)
-/// The plan: fingerprint, ids and times (32 + 4), algorithm/status/error_code (3), flow's
-/// certificate (11), diag (22), covered and cost (10), uncovered (2 + 4 per target),
-/// routes (2 + 23 per UAV), route items (2 + 4 each): 18976 bytes.
-#define SVA_LCM_PLAN_BYTES                                                       \
-    (8 + 32 + 4 + 3 + 11 + 22 + 2 + 8 + 2 + 4 * SVA_LCM_PLAN_T_MAX_TARGETS + 2 + \
+/// The frame: present (1), five int32 (20), t0_ms (8).
+#define SVA_LCM_FRAME_BYTES 29
+#define SVA_LCM_FLEET_BYTES \
+    (8 + 1 + 8 + 2 + SVA_LCM_FLEET_STATE_T_MAX_UAVS * SVA_LCM_UAV_STATE_BYTES)
+/// The mission: fingerprint, version, revision, constants (20), targets, frame.
+#define SVA_LCM_MISSION_BYTES                                                    \
+    (8 + 1 + 8 + 20 + 2 + SVA_LCM_MISSION_T_MAX_TARGETS * SVA_LCM_TARGET_BYTES + \
+     SVA_LCM_FRAME_BYTES)
+/// The plan: fingerprint, version (1), ids and times (32 + 4), algorithm/status/error_code
+/// (3), flow's certificate (11), diag (22), covered and cost (10), uncovered (2 + 4 per
+/// target), routes (2 + 23 per UAV), route items (2 + 4 each): 18977 bytes.
+#define SVA_LCM_PLAN_BYTES                                                           \
+    (8 + 1 + 32 + 4 + 3 + 11 + 22 + 2 + 8 + 2 + 4 * SVA_LCM_PLAN_T_MAX_TARGETS + 2 + \
      SVA_LCM_PLAN_T_MAX_UAVS * SVA_LCM_ROUTE_BYTES + 2 + 4 * SVA_LCM_PLAN_T_MAX_ROUTE_ITEMS)
-#define SVA_LCM_STATUS_BYTES (8 + 8 * 9 + 2 + 4 * SVA_LCM_NODE_STATUS_T_NUM_REASONS)
+#define SVA_LCM_STATUS_BYTES (8 + 1 + 8 * 9 + 2 + 4 * SVA_LCM_NODE_STATUS_T_NUM_REASONS)
 /// The event: fingerprint, version, seq, type (10), at/uav/x/y/fuel (20), a target (24).
 #define SVA_LCM_EVENT_BYTES (8 + 10 + 20 + SVA_LCM_TARGET_BYTES)
 /// The replan: fingerprint, header (40), changes (8 + 2 lists of pairs), diag (18 + the
@@ -122,6 +128,7 @@ typedef enum {
     SVA_LCM_REJECT_INVALID,        ///< the core's validation of fleet + mission
     SVA_LCM_REJECT_PLANNER,        ///< planner limit (bfa) or solver error
     SVA_LCM_REJECT_TOO_LARGE,      ///< the plan needs more than MAX_ROUTE_ITEMS items
+    SVA_LCM_REJECT_VERSION,        ///< a version field other than the type's VERSION
     SVA_LCM_REJECT_COUNT_          ///< number of reasons (not a reason)
 } sva_lcm_reject_t;
 
@@ -164,6 +171,9 @@ typedef struct {
     int64_t fleet_revision;
     int64_t mission_revision;
     int64_t plan_id;
+    /// The frame of the mission in force (present 0: none); the residual missions of
+    /// the replans carry it.
+    sva_lcm_frame_t frame;
     /// Raw bytes of the current inputs (change detection).
     uint8_t fleet_raw[SVA_LCM_FLEET_BYTES];
     uint8_t mission_raw[SVA_LCM_MISSION_BYTES];
@@ -263,7 +273,7 @@ SVA_NODISCARD sva_status_t sva_lcm_publish_status(sva_lcm_node_t* self, int64_t 
 SVA_NODISCARD sva_status_t sva_lcm_channel_escape(const char* name, char* out, size_t size);
 
 /// The reason's name ("truncated", "trailing", "fingerprint", "count", "value",
-/// "invalid", "planner", "too_large"), or "" when out of range. Never NULL.
+/// "invalid", "planner", "too_large", "version"), or "" when out of range. Never NULL.
 const char* sva_lcm_reject_name(sva_lcm_reject_t reason);
 
 #ifdef __cplusplus
