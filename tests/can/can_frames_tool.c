@@ -278,7 +278,7 @@ static sva_can_plan_t wire;
 static sva_can_loopback_t bus;
 static sva_can_sender_t sender;
 
-static int print_wire(uint32_t covered, int64_t cost);
+static int print_wire(uint32_t covered, int64_t cost, const sva_can_mission_frame_t* frame);
 
 static int do_plan(const char* path, const char* algo_name, const char* id_text)
 {
@@ -307,11 +307,12 @@ static int do_plan(const char* path, const char* algo_name, const char* id_text)
         fprintf(stderr, "planning failed\n");
         return 1;
     }
-    return print_wire(plan.covered, plan.cost);
+    return print_wire(plan.covered, plan.cost, has_frame ? &mframe : NULL);
 }
 
-// The wire plan as JSON with the transfer's frames (first attempt, counter from 0).
-static int print_wire(uint32_t covered, int64_t cost)
+// The wire plan as JSON with the mission frame's frames (none when frame is NULL) and the
+// transfer's frames (first attempt, counter from 0).
+static int print_wire(uint32_t covered, int64_t cost, const sva_can_mission_frame_t* frame)
 {
     sva_can_transport_t tp;
     sva_can_frame_t f;
@@ -337,11 +338,11 @@ static int print_wire(uint32_t covered, int64_t cost)
                (unsigned long)it->arrive_by_ticks, (unsigned long)it->hold_until_ticks);
     }
     printf("], \"frame_frames\": [");
-    if (has_frame) {
+    if (frame != NULL) {
         // what sva_can_node sends before the plan (counters from 0)
         sva_can_frame_t parts[4];
         int p;
-        if (sva_can_frame_encode(&mframe, 0u, parts) != SVA_CAN_OK) {
+        if (sva_can_frame_encode(frame, 0u, parts) != SVA_CAN_OK) {
             fprintf(stderr, "frame encoding failed\n");
             return 1;
         }
@@ -400,7 +401,7 @@ static int do_live(const char* path, const char* algo_name, const char* tick_tex
         return 1;
     }
     wire = live.wire;
-    return print_wire(live.result.covered, live.result.plan->cost);
+    return print_wire(live.result.covered, live.result.plan->cost, NULL);
 }
 
 // "frame LAT_E7 LON_E7 ALT_CM CELL_CM TICK_MS T0_MS COUNTER": the four frames of a
