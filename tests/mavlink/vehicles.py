@@ -1,0 +1,109 @@
+"""Vehicle sides for the MAVLink tests, independent of the bridge's code.
+
+MavsdkVehicle: MAVSDK's MissionRawServer (the `mavsdk` wheel's libcmavsdk) acting as an
+autopilot on a UDP port; it records every mission uploaded to it.
+PymavlinkVehicle: a scripted vehicle on pymavlink that can refuse a mission
+(MISSION_ACK with an error) or hold a mission item limit (MAV_MISSION_NO_SPACE).
+"""
+from __future__ import annotations
+
+import socket
+import threading
+import time
+from typing import List, Optional
+
+
+def free_udp_port() -> int:
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class MavsdkVehicle:
+    """An autopilot (system `sysid`, component 1) listening on udp 127.0.0.1:port."""
+
+    def __init__(self, port: int, sysid: int = 1):
+        from mavsdk.mavsdk import Configuration, Mavsdk
+        from mavsdk.plugins.mission_raw_server.mission_raw_server import MissionRawServer
+
+        self.port = port
+        self.missions: List[list] = []
+        self._cond = threading.Condition()
+        cfg = Configuration.create_manual(sysid, 1, True)
+        self._mavsdk = Mavsdk(cfg)
+        result = self._mavsdk.add_any_connection(f"udpin://127.0.0.1:{port}")
+        if int(result) != 0 and "SUCCESS" not in str(result).upper():
+            raise RuntimeError(f"mavsdk: cannot listen on {port}: {result}")
+        self._server = MissionRawServer(self._mavsdk.server_component())
+        self._sub = self._server.subscribe_incoming_mission(self._on_mission)
+
+    def _on_mission(self, result, plan, _ud) -> None:
+        with self._cond:
+            self.missions.append((int(result), list(plan.mission_items)))
+            self._cond.notify_all()
+
+    def wait_missions(self, n: int, timeout: float = 20.0) -> list:
+        end = time.monotonic() + timeout
+        with self._cond:
+            while len(self.missions) < n:
+                left = end - time.monotonic()
+                if left <= 0:
+                    break
+                self._cond.wait(left)
+            return list(self.missions)
+
+    def close(self) -> None:
+        self._mavsdk.destroy()
+
+
+class PymavlinkVehicle(threading.Thread):
+    """Answers a mission upload on udp 127.0.0.1:port as system `sysid`: requests every
+    item, then MISSION_ACK `final` (0 accepted); with max_items, a MISSION_COUNT above
+    it gets MAV_MISSION_NO_SPACE at once."""
+
+    def __init__(self, port: int, sysid: int = 1, final: int = 0,
+                 max_items: Optional[int] = None):
+        super().__init__(daemon=True)
+        from pymavlink import mavutil
+        self.mavutil = mavutil
+        self.conn = mavutil.mavlink_connection(f"udpin:127.0.0.1:{port}", source_system=sysid,
+                                               source_component=1, dialect="common")
+        self.final = final
+        self.max_items = max_items
+        self.counts: List[int] = []
+        self.items: List[list] = []
+        self._stop = threading.Event()
+        self.start()
+
+    def run(self) -> None:
+        m = self.mavutil.mavlink
+        cur: list = []
+        want = 0
+        peer = (0, 0)
+        while not self._stop.is_set():
+            msg = self.conn.recv_match(blocking=True, timeout=0.1)
+            if msg is None:
+                continue
+            t = msg.get_type()
+            if t == "MISSION_COUNT":
+                self.counts.append(msg.count)
+                peer = (msg.get_srcSystem(), msg.get_srcComponent())
+                if self.max_items is not None and msg.count > self.max_items:
+                    self.conn.mav.mission_ack_send(*peer, m.MAV_MISSION_NO_SPACE, 0)
+                    continue
+                cur, want = [], msg.count
+                self.conn.mav.mission_request_int_send(*peer, 0, 0)
+            elif t == "MISSION_ITEM_INT" and want:
+                if msg.seq == len(cur):
+                    cur.append(msg)
+                if len(cur) < want:
+                    self.conn.mav.mission_request_int_send(*peer, len(cur), 0)
+                else:
+                    self.items.append(cur)
+                    want = 0
+                    self.conn.mav.mission_ack_send(*peer, self.final, 0)
+
+    def close(self) -> None:
+        self._stop.set()
+        self.join(2)
+        self.conn.close()
