@@ -128,9 +128,10 @@ def plan_mission(mission: dict, tmp) -> dict:
     return json.loads(out)
 
 
-def tool_input(mission: dict, fr: dict, plan: dict, vehicles: Dict[int, str]) -> str:
+def tool_input(mission: dict, fr: dict, plan: dict, vehicles: Dict[int, str],
+               timeout: str = "") -> str:
     fi = frame_ints(fr)
-    lines = [f"frame {fi['lat_e7']} {fi['lon_e7']} {fi['alt_cm']} {fi['cell_cm']} "
+    lines = ([f"timeout {timeout}"] if timeout else []) + [f"frame {fi['lat_e7']} {fi['lon_e7']} {fi['alt_cm']} {fi['cell_cm']} "
              f"{fi['tick_ms']} {fi['t0_ms']}", f"tpc {mission.get('ticks_per_cell', 1)}"]
     by_id = {t["id"]: t for t in mission["targets"]}
     for r in plan["routes"]:

@@ -6,6 +6,7 @@
 //   route UAV_ID X Y READY_AT         (then its targets in visit order)
 //   target ID X Y START END
 //   vehicle UAV_ID=udp:HOST:PORT[:SYSID]
+//   timeout MS RETRIES                (for the vehicles given after it)
 // Output: `item UAV SEQ COMMAND FRAME P1 P2 P3 P4 X Y Z`, `result UAV ok N` or
 // `result UAV error MESSAGE`. Exit 0 when every upload succeeded, 1 otherwise, 2 on bad
 // input.
@@ -31,6 +32,8 @@ int main(void)
     sva_frame_t frame;
     memset(&frame, 0, sizeof frame);
     int32_t tpc = 1;
+    int32_t timeout_ms = SVA_MAVLINK_TIMEOUT_MS;
+    int32_t retries = SVA_MAVLINK_RETRIES;
     size_t nroutes = 0;
     char line[512];
     char err[SVA_MAVLINK_ERROR_SIZE];
@@ -45,6 +48,9 @@ int main(void)
             frame.cell_cm = (int32_t)a[3];
             frame.tick_ms = (int32_t)a[4];
             frame.t0_ms = a[5];
+        } else if (sscanf(line, "timeout %lld %lld", &a[0], &a[1]) == 2) {
+            timeout_ms = (int32_t)a[0];
+            retries = (int32_t)a[1];
         } else if (sscanf(line, "tpc %lld", &a[0]) == 1) {
             tpc = (int32_t)a[0];
         } else if (sscanf(line, "route %lld %lld %lld %lld", &a[0], &a[1], &a[2], &a[3]) == 4) {
@@ -91,6 +97,8 @@ int main(void)
                 fprintf(stderr, "mavlink_tool: %s\n", err);
                 return 2;
             }
+            vehicles[i].upload.timeout_ms = timeout_ms;
+            vehicles[i].upload.retries = retries;
             has_vehicle[i] = true;
         }
     }

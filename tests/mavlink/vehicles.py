@@ -64,6 +64,8 @@ class PymavlinkVehicle(threading.Thread):
     def __init__(self, port: int, sysid: int = 1, final: int = 0,
                  max_items: Optional[int] = None):
         super().__init__(daemon=True)
+        import os
+        os.environ["MAVLINK20"] = "1"
         from pymavlink import mavutil
         self.mavutil = mavutil
         self.conn = mavutil.mavlink_connection(f"udpin:127.0.0.1:{port}", source_system=sysid,
@@ -72,7 +74,7 @@ class PymavlinkVehicle(threading.Thread):
         self.max_items = max_items
         self.counts: List[int] = []
         self.items: List[list] = []
-        self._stop = threading.Event()
+        self._halt = threading.Event()
         self.start()
 
     def run(self) -> None:
@@ -80,7 +82,7 @@ class PymavlinkVehicle(threading.Thread):
         cur: list = []
         want = 0
         peer = (0, 0)
-        while not self._stop.is_set():
+        while not self._halt.is_set():
             msg = self.conn.recv_match(blocking=True, timeout=0.1)
             if msg is None:
                 continue
@@ -104,6 +106,6 @@ class PymavlinkVehicle(threading.Thread):
                     self.conn.mav.mission_ack_send(*peer, self.final, 0)
 
     def close(self) -> None:
-        self._stop.set()
+        self._halt.set()
         self.join(2)
         self.conn.close()

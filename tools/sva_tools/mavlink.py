@@ -224,6 +224,8 @@ def upload(host: str, port: int, sysid: int, items: List[Item], timeout_ms: int 
            retries: int = RETRIES) -> Optional[str]:
     """The MAVLink mission protocol, sender side, with pymavlink. None when the vehicle
     accepted the mission, else the reason."""
+    import os
+    os.environ["MAVLINK20"] = "1"  # MAVLink 2: mission_type, before pymavlink loads its dialect
     from pymavlink import mavutil
     conn = mavutil.mavlink_connection(f"udpout:{host}:{port}", source_system=OWN_SYSTEM,
                                       source_component=OWN_COMPONENT, dialect="common")
@@ -263,7 +265,8 @@ def upload(host: str, port: int, sysid: int, items: List[Item], timeout_ms: int 
                                   blocking=True, timeout=0.05)
             if msg is None or msg.get_srcSystem() != sysid:
                 continue
-            if getattr(msg, "target_system", OWN_SYSTEM) != OWN_SYSTEM or msg.mission_type != 0:
+            if getattr(msg, "target_system", OWN_SYSTEM) != OWN_SYSTEM or \
+                    getattr(msg, "mission_type", 0) != 0:
                 continue
             if msg.get_type() == "MISSION_ACK":
                 if msg.type != 0:
@@ -388,6 +391,8 @@ def run(args) -> int:
             why = upload(host, port, sysid, items, args.timeout_ms, args.retries)
         except OSError as e:
             why = f"udp: {e.strerror or e}"
+        except Exception as e:  # noqa: BLE001 -- one vehicle's fault must not stop the others
+            why = f"{type(e).__name__}: {shown(e)}"
         results[uid] = f"uploaded {len(items)} items" if why is None else f"error: {why}"
 
     threads = [threading.Thread(target=one, args=w) for w in work]
@@ -399,5 +404,5 @@ def run(args) -> int:
         line = results[uid]
         if line.startswith("error"):
             status = 1
-        print(f"uav {uid}: udp:{shown(vehicles[uid][3])}: {line}")
+        print(f"uav {uid}: {shown(vehicles[uid][3])}: {line}")
     return status
