@@ -39,6 +39,10 @@ TWO = {"name": "two", "depot": {"x": 0, "y": 0}, "frame": FRAME_MIDNIGHT,
 ADDED = {"id": 3, "x": 12, "y": 4, "start": 40, "end": 50, "need": 1}
 
 
+def by_id(mission, tid):
+    return next(t for t in mission["targets"] if t["id"] == tid)
+
+
 def fleet_msg(mission, revision=1):
     f = sva_lcm.fleet_state_t()
     if hasattr(f, "version"):
@@ -194,6 +198,30 @@ def test_a_replan_uploads_to_the_changed_vehicle_only(lc, tmp_path):
         assert problems == [], "\n".join(problems)
         time.sleep(1.0)
         assert len(vehicles[other_uav].missions) == 1  # it got nothing new
+
+        # at tick 25 both first targets are under way: the residual mission holds target 3
+        # alone, the UAVs stand at their targets until 30. The changed UAV's remaining
+        # route [3] is the end of what it has, the other's is empty: nothing to upload.
+        at = {changed_uav: by_id(TWO, after[changed_uav][0]), other_uav: by_id(TWO, after[other_uav][0])}
+        fleet3 = dict(TWO, uavs=[dict(u, x=at[u["id"]]["x"], y=at[u["id"]]["y"], ready_at=30)
+                                 for u in TWO["uavs"]])
+        residual3 = dict(fleet3, name="two_at_25", targets=[ADDED])
+        plan3 = C.plan_mission(residual3, tmp_path)
+        assert {r["uav"]: r["targets"] for r in plan3["routes"]} == {changed_uav: [3], other_uav: []}
+        rp3 = sva_lcm.replan_t()
+        rp3.version = rp3.VERSION
+        rp3.event_seq = 2
+        rp3.accepted = 1
+        rp3.now_ticks = 25
+        rp3.residual_fleet = fleet_msg(residual3, 1)
+        rp3.residual_mission = mission_msg(residual3, 1)
+        rp3.plan = plan_msg(plan3, 3)
+        lc.publish("SVA_REPLAN", rp3.encode())
+        lines = bridge.wait_for(done_lines(3, 2))
+        assert sum(1 for x in lines if x.startswith("plan 3: ") and
+                   x.endswith("route unchanged, not uploaded")) == 2, lines
+        time.sleep(1.0)
+        assert len(vehicles[changed_uav].missions) == 2 and len(vehicles[other_uav].missions) == 1
     finally:
         bridge.stop()
         va.close()

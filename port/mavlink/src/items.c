@@ -138,8 +138,11 @@ bool sva_mavlink_build(const sva_frame_t* frame, sva_frame_geodesy_t* geodesy,
         // the window's end rounded up to a whole second: the hold never ends early
         int64_t end_s = (end_ms + 999) / 1000;
         int64_t tod = end_s % 86400;
-        (void)put(items, capacity, &n, MAV_CMD_NAV_DELAY, MAV_FRAME_MISSION, -1.0f,
-                  (float)(tod / 3600), (float)((tod / 60) % 60), (float)(tod % 60), 0, 0, 0.0f);
+        int64_t hour = tod / 3600;
+        int64_t minute = (tod / 60) % 60;
+        int64_t second = tod % 60;
+        (void)put(items, capacity, &n, MAV_CMD_NAV_DELAY, MAV_FRAME_MISSION, -1.0f, (float)hour,
+                  (float)minute, (float)second, 0, 0, 0.0f);
         at_x = t->x;
         at_y = t->y;
         departure = t->end;
@@ -150,15 +153,18 @@ bool sva_mavlink_build(const sva_frame_t* frame, sva_frame_geodesy_t* geodesy,
     return true;
 }
 
+// Equal values, or both NaN (the yaw parameters are NaN on purpose).
+static bool same_float(float a, float b)
+{
+    return (a <= b && a >= b) || (isnan(a) && isnan(b));
+}
+
 static bool same_item(const sva_mavlink_item_t* a, const sva_mavlink_item_t* b)
 {
-    // bitwise: NaN params compare equal to themselves
-    return a->command == b->command && a->frame == b->frame &&
-           memcmp(&a->param1, &b->param1, sizeof a->param1) == 0 &&
-           memcmp(&a->param2, &b->param2, sizeof a->param2) == 0 &&
-           memcmp(&a->param3, &b->param3, sizeof a->param3) == 0 &&
-           memcmp(&a->param4, &b->param4, sizeof a->param4) == 0 && a->x == b->x && a->y == b->y &&
-           memcmp(&a->z, &b->z, sizeof a->z) == 0;
+    return a->command == b->command && a->frame == b->frame && same_float(a->param1, b->param1) &&
+           same_float(a->param2, b->param2) && same_float(a->param3, b->param3) &&
+           same_float(a->param4, b->param4) && a->x == b->x && a->y == b->y &&
+           same_float(a->z, b->z);
 }
 
 bool sva_mavlink_same_remaining(const sva_mavlink_item_t* a, size_t a_count,
