@@ -189,3 +189,42 @@ def test_c_library_reports_each_failing_vehicle_and_uploads_the_others(tmp_path,
     judge(mission, mission["frame"], rs[0], good.wait_missions(1))
     assert len(deny.items) == 1
     assert small.items == []
+
+
+def pymavlink_items(msgs):
+    assert all(m.get_type() == "MISSION_ITEM_INT" for m in msgs)
+    return [(m.command, m.frame, m.param1, m.param2, m.param3, m.param4, m.x, m.y, m.z)
+            for m in msgs]
+
+
+def test_c_library_answers_a_fussy_vehicle(tmp_path, vehicles):
+    """A lost MISSION_COUNT (resent after the timeout), MISSION_REQUEST instead of
+    MISSION_REQUEST_INT, items asked for backwards and twice each."""
+    mission = CASES[0]
+    plan = C.plan_mission(mission, tmp_path)
+    r = routed(plan, 1)[0]
+    port, v = vehicles("pymavlink", 5, fussy=True)
+    _, results, rc, err = C.run_tool(C.tool_input(mission, mission["frame"], plan,
+                                                  {r["uav"]: f"udp:127.0.0.1:{port}:5"},
+                                                  timeout="300 2"))
+    assert rc == 0, err
+    assert results[r["uav"]] == f"ok {3 + 2 * len(r['targets'])}"
+    assert len(v.counts) == 2 and len(v.items) == 1
+    problems = C.check_route(pymavlink_items(v.items[0]), mission, mission["frame"], r["uav"],
+                             r["targets"])
+    assert problems == [], "\n".join(problems)
+
+
+def test_host_tool_answers_a_fussy_vehicle(tmp_path, vehicles):
+    mission = CASES[0]
+    plan = C.plan_mission(mission, tmp_path)
+    r = routed(plan, 1)[0]
+    port, v = vehicles("pymavlink", 5, fussy=True)
+    p = sva_tools(write(tmp_path, "plan.json", plan), "--mission",
+                  write(tmp_path, "m.json", mission), "--vehicle",
+                  f"{r['uav']}=udp:127.0.0.1:{port}:5", *FAST)
+    assert p.returncode == 0, p.stderr + p.stdout
+    assert len(v.counts) == 2 and len(v.items) == 1
+    problems = C.check_route(pymavlink_items(v.items[0]), mission, mission["frame"], r["uav"],
+                             r["targets"])
+    assert problems == [], "\n".join(problems)

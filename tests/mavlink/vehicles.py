@@ -59,10 +59,12 @@ class MavsdkVehicle:
 class PymavlinkVehicle(threading.Thread):
     """Answers a mission upload on udp 127.0.0.1:port as system `sysid`: requests every
     item, then MISSION_ACK `final` (0 accepted); with max_items, a MISSION_COUNT above
-    it gets MAV_MISSION_NO_SPACE at once."""
+    it gets MAV_MISSION_NO_SPACE at once. A fussy vehicle ignores the first MISSION_COUNT
+    (the sender must resend it), asks with the older MISSION_REQUEST, and asks for the
+    items from the last to the first, each twice."""
 
     def __init__(self, port: int, sysid: int = 1, final: int = 0,
-                 max_items: Optional[int] = None):
+                 max_items: Optional[int] = None, fussy: bool = False):
         super().__init__(daemon=True)
         import os
         os.environ["MAVLINK20"] = "1"
@@ -72,6 +74,7 @@ class PymavlinkVehicle(threading.Thread):
                                                source_component=1, dialect="common")
         self.final = final
         self.max_items = max_items
+        self.fussy = fussy
         self.counts: List[int] = []
         self.items: List[list] = []
         self._halt = threading.Event()
@@ -79,9 +82,17 @@ class PymavlinkVehicle(threading.Thread):
 
     def run(self) -> None:
         m = self.mavutil.mavlink
-        cur: list = []
+        cur: dict = {}
         want = 0
         peer = (0, 0)
+        order: List[int] = []
+
+        def ask():
+            if self.fussy:
+                self.conn.mav.mission_request_send(*peer, order[0], 0)
+            else:
+                self.conn.mav.mission_request_int_send(*peer, order[0], 0)
+
         while not self._halt.is_set():
             msg = self.conn.recv_match(blocking=True, timeout=0.1)
             if msg is None:
@@ -89,19 +100,26 @@ class PymavlinkVehicle(threading.Thread):
             t = msg.get_type()
             if t == "MISSION_COUNT":
                 self.counts.append(msg.count)
+                if self.fussy and len(self.counts) == 1:
+                    continue  # lost: the sender's timeout must resend it
                 peer = (msg.get_srcSystem(), msg.get_srcComponent())
                 if self.max_items is not None and msg.count > self.max_items:
                     self.conn.mav.mission_ack_send(*peer, m.MAV_MISSION_NO_SPACE, 0)
                     continue
-                cur, want = [], msg.count
-                self.conn.mav.mission_request_int_send(*peer, 0, 0)
-            elif t == "MISSION_ITEM_INT" and want:
-                if msg.seq == len(cur):
-                    cur.append(msg)
-                if len(cur) < want:
-                    self.conn.mav.mission_request_int_send(*peer, len(cur), 0)
+                cur, want = {}, msg.count
+                order = list(range(want))
+                if self.fussy:
+                    order = [k for k in reversed(order) for _ in (0, 1)]
+                ask()
+            elif t in ("MISSION_ITEM_INT", "MISSION_ITEM") and want and order:
+                if msg.seq != order[0]:
+                    continue
+                cur[msg.seq] = msg
+                order.pop(0)
+                if order:
+                    ask()
                 else:
-                    self.items.append(cur)
+                    self.items.append([cur[k] for k in range(want)])
                     want = 0
                     self.conn.mav.mission_ack_send(*peer, self.final, 0)
 

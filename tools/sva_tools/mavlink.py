@@ -245,7 +245,7 @@ def upload(host: str, port: int, sysid: int, items: List[Item], timeout_ms: int 
 
         resend, what = send_count, "MISSION_COUNT"
         resend()
-        tries, last_seq = 0, -1
+        tries, sent = 0, set()
         deadline = time.monotonic() + timeout_ms / 1000.0
         next_hb = time.monotonic() + 1.0
         while True:
@@ -272,13 +272,14 @@ def upload(host: str, port: int, sysid: int, items: List[Item], timeout_ms: int 
                 if msg.type != 0:
                     name = _ACK_NAMES.get(msg.type, "an unknown MAV_MISSION_RESULT")
                     return f"MISSION_ACK: the vehicle refused the mission: {name} ({msg.type})"
-                if last_seq + 1 == len(items):
+                if len(sent) == len(items):
                     return None
-                return f"MISSION_ACK: MAV_MISSION_ACCEPTED before item {last_seq + 1} of {len(items)} was sent"
+                return (f"MISSION_ACK: MAV_MISSION_ACCEPTED after {len(sent)} of {len(items)} "
+                        f"items were sent")
             if 0 <= msg.seq < len(items):
                 seq = msg.seq
                 send_item(seq)
-                last_seq = seq
+                sent.add(seq)
                 resend, what = (lambda s=seq: send_item(s)), f"MISSION_ITEM_INT {seq}"
                 tries = 0
                 deadline = time.monotonic() + timeout_ms / 1000.0

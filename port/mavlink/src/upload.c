@@ -31,6 +31,10 @@ static void send_item(sva_mavlink_upload_t* up, uint16_t seq, sva_mavlink_frame_
     finish(&msg, out);
     up->last_seq = seq;
     up->sent_items++;
+    if ((up->sent[seq / 8] & (1u << (seq % 8))) == 0) {
+        up->sent[seq / 8] = (uint8_t)(up->sent[seq / 8] | (1u << (seq % 8)));
+        up->distinct_sent++;
+    }
 }
 
 static void fail(sva_mavlink_upload_t* up, const char* text)
@@ -85,6 +89,8 @@ bool sva_mavlink_upload_start(sva_mavlink_upload_t* up, const sva_mavlink_item_t
     up->error[0] = '\0';
     up->tries = 0;
     up->sent_items = 0;
+    up->distinct_sent = 0;
+    memset(up->sent, 0, sizeof up->sent);
     up->last_seq = 0;
     if (up->timeout_ms <= 0) {
         up->timeout_ms = SVA_MAVLINK_TIMEOUT_MS;
@@ -92,9 +98,10 @@ bool sva_mavlink_upload_start(sva_mavlink_upload_t* up, const sva_mavlink_item_t
     if (up->retries < 0) {
         up->retries = 0;
     }
-    if (count == 0 || count > 65535) {
+    if (count == 0 || count > SVA_MAVLINK_MAX_ITEMS) {
         up->count = 0;
-        snprintf(up->error, sizeof up->error, "mission: %zu items, must be in [1, 65535]", count);
+        snprintf(up->error, sizeof up->error, "mission: %zu items, must be in [1, %d]", count,
+                 SVA_MAVLINK_MAX_ITEMS);
         up->state = SVA_MAVLINK_UPLOAD_FAILED;
         return false;
     }
@@ -142,14 +149,13 @@ bool sva_mavlink_upload_on_message(sva_mavlink_upload_t* up, const mavlink_messa
             return false;
         }
         if (a.type == MAV_MISSION_ACCEPTED) {
-            if (up->state == SVA_MAVLINK_UPLOAD_ITEMS && up->last_seq + 1 == up->count) {
+            if (up->distinct_sent == up->count) {
                 up->state = SVA_MAVLINK_UPLOAD_DONE;
             } else {
                 char text[SVA_MAVLINK_ERROR_SIZE];
                 snprintf(text, sizeof text,
-                         "MISSION_ACK: MAV_MISSION_ACCEPTED before item %u of %u was sent",
-                         (unsigned)(up->state == SVA_MAVLINK_UPLOAD_ITEMS ? up->last_seq + 1 : 0),
-                         (unsigned)up->count);
+                         "MISSION_ACK: MAV_MISSION_ACCEPTED after %u of %u items were sent",
+                         (unsigned)up->distinct_sent, (unsigned)up->count);
                 fail(up, text);
             }
         } else {

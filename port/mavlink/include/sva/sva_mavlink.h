@@ -122,10 +122,12 @@ typedef struct sva_mavlink_upload {
     sva_mavlink_upload_state_t state;
     const sva_mavlink_item_t* items;
     uint16_t count;
-    uint16_t last_seq;    ///< the item sent last (ITEMS)
-    int32_t tries;        ///< resends of the current message
-    int64_t deadline_ms;  ///< when the current message is resent
-    uint16_t sent_items;  ///< MISSION_ITEM_INT messages sent (resends included)
+    uint16_t last_seq;       ///< the item sent last (ITEMS)
+    int32_t tries;           ///< resends of the current message
+    int64_t deadline_ms;     ///< when the current message is resent
+    uint16_t sent_items;     ///< MISSION_ITEM_INT messages sent (resends included)
+    uint16_t distinct_sent;  ///< items sent at least once: an ACK before all is an error
+    uint8_t sent[(SVA_MAVLINK_MAX_ITEMS + 7) / 8];  ///< a bit per item: sent at least once
     char error[SVA_MAVLINK_ERROR_SIZE];
 } sva_mavlink_upload_t;
 
@@ -136,7 +138,7 @@ typedef struct sva_mavlink_frame {
 } sva_mavlink_frame_t;
 
 /// Starts an upload of items[0..count) at now_ms: *out is the MISSION_COUNT to send.
-/// False (state FAILED) when count is 0 or over 65535.
+/// False (state FAILED) when count is 0 or over SVA_MAVLINK_MAX_ITEMS.
 bool sva_mavlink_upload_start(sva_mavlink_upload_t* up, const sva_mavlink_item_t* items,
                               size_t count, int64_t now_ms, sva_mavlink_frame_t* out);
 
