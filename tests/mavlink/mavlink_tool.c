@@ -7,6 +7,7 @@
 //   target ID X Y START END
 //   vehicle UAV_ID=udp:HOST:PORT[:SYSID]
 //   timeout MS RETRIES                (for the vehicles given after it)
+//   ardupilot                         (a home item 0 first: sva_mavlink_prepend_home)
 // Output: `item UAV SEQ COMMAND FRAME P1 P2 P3 P4 X Y Z`, `result UAV ok N` or
 // `result UAV error MESSAGE`. Exit 0 when every upload succeeded, 1 otherwise, 2 on bad
 // input.
@@ -34,6 +35,7 @@ int main(void)
     int32_t tpc = 1;
     int32_t timeout_ms = SVA_MAVLINK_TIMEOUT_MS;
     int32_t retries = SVA_MAVLINK_RETRIES;
+    bool ardupilot = false;
     size_t nroutes = 0;
     char line[512];
     char err[SVA_MAVLINK_ERROR_SIZE];
@@ -48,6 +50,8 @@ int main(void)
             frame.cell_cm = (int32_t)a[3];
             frame.tick_ms = (int32_t)a[4];
             frame.t0_ms = a[5];
+        } else if (strncmp(line, "ardupilot", 9) == 0) {
+            ardupilot = true;
         } else if (sscanf(line, "timeout %lld %lld", &a[0], &a[1]) == 2) {
             timeout_ms = (int32_t)a[0];
             retries = (int32_t)a[1];
@@ -119,6 +123,13 @@ int main(void)
         if (!built[i]) {
             printf("result %d error %s\n", (int)routes[i].uav_id, err);
             status = 1;
+            continue;
+        }
+        if (ardupilot && item_counts[i] > 0 &&
+            !sva_mavlink_prepend_home(items[i], SVA_MAVLINK_MAX_ITEMS, &item_counts[i])) {
+            printf("result %d error no room for the home item\n", (int)routes[i].uav_id);
+            status = 1;
+            built[i] = false;
             continue;
         }
         for (size_t k = 0; k < item_counts[i]; k++) {

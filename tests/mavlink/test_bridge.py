@@ -24,7 +24,7 @@ import sva_lcm  # noqa: E402
 
 import mavcheck as C  # noqa: E402
 from test_items import FRAME_MIDNIGHT  # noqa: E402
-from test_upload import FOUR, as_tuples  # noqa: E402
+from test_upload import FOUR, as_tuples, judge  # noqa: E402
 from vehicles import MavsdkVehicle, PymavlinkVehicle, free_udp_port  # noqa: E402
 
 URL = "udpm://239.255.76.67:7667?ttl=0"
@@ -283,3 +283,19 @@ def test_failing_vehicles_are_reported_and_the_others_uploaded(lc, tmp_path):
         good.close()
         deny.close()
         small.close()
+
+
+def test_ardupilot_home_item(lc, tmp_path):
+    plan = C.plan_mission(TWO, tmp_path)
+    r = next(r for r in plan["routes"] if r["uav"] == 1)
+    pa = free_udp_port()
+    va = MavsdkVehicle(pa, 1)
+    bridge = Bridge({1: f"udp:127.0.0.1:{pa}:1"}, "--ardupilot")
+    try:
+        publish_start(lc, TWO, plan, plan_id=11)
+        lines = bridge.wait_for(done_lines(11, 1))
+        assert f"plan 11: uav 1 (udp:127.0.0.1:{pa}): uploaded {4 + 2 * len(r['targets'])} items" in lines
+        judge(TWO, TWO["frame"], r, va.wait_missions(1), home=True)
+    finally:
+        bridge.stop()
+        va.close()

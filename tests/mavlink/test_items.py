@@ -122,3 +122,30 @@ def test_a_route_over_the_item_limit_is_refused():
     _, results, rc, _ = C.run_tool("\n".join(lines) + "\n")
     assert rc == 1
     assert results[7] == "error uav 7: route: 257 targets need 517 mission items, more than the limit 515"
+
+
+def test_ardupilot_home_item_comes_first(tmp_path):
+    """With a home item 0 the rest is the same mission, shifted by one; 256 targets
+    (515 items + home) still fit."""
+    mission = CASES[0]
+    plan = C.plan_mission(mission, tmp_path)
+    text = C.tool_input(mission, mission["frame"], plan, {})
+    plain, _, rc, err = C.run_tool(text)
+    assert rc == 0, err
+    homed, _, rc, err = C.run_tool("ardupilot\n" + text)
+    assert rc == 0, err
+    for r in plan["routes"]:
+        a, b = plain.get(r["uav"], []), homed.get(r["uav"], [])
+        if not a:
+            assert b == []
+            continue
+        assert [repr(i) for i in b[1:]] == [repr(i) for i in a]  # repr: NaN equals NaN
+        assert (b[0][0], b[0][1], b[0][6], b[0][7], b[0][8]) == (C.NAV_WAYPOINT, C.FRAME_GLOBAL_REL_ALT_INT,
+                                                                  a[0][6], a[0][7], 0.0)
+    lines = ["ardupilot", "frame 473977419 85455938 5000 2500 1000 1764115200000", "tpc 1",
+             "route 7 0 0 0"]
+    for k in range(256):
+        lines.append(f"target {k + 1} 0 {k % 2} {2 * k + 1} {2 * k + 2}")
+    items, results, rc, err = C.run_tool("\n".join(lines) + "\n")
+    assert rc == 0, err
+    assert len(items[7]) == 516

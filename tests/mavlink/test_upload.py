@@ -55,15 +55,20 @@ def routed(plan, n):
     return rs[:n]
 
 
-def judge(mission, frame, route, got):
+def judge(mission, frame, route, got, home=False):
     assert len(got) == 1, f"uav {route['uav']}: {len(got)} missions received"
     result, items = got[0]
     assert result == 1  # MissionRawServerResult.SUCCESS
-    problems = C.check_route(as_tuples(items), mission, frame, route["uav"], route["targets"])
+    items = as_tuples(items)
+    if home:  # ArduPilot's item 0: a waypoint where the take-off is, altitude 0
+        assert (items[0][0], items[0][6], items[0][7], items[0][8]) == \
+            (C.NAV_WAYPOINT, items[1][6], items[1][7], 0.0)
+        items = items[1:]
+    problems = C.check_route(items, mission, frame, route["uav"], route["targets"])
     assert problems == [], "\n".join(problems)
 
 
-@pytest.mark.parametrize("frame_in", ["mission", "plan"])
+@pytest.mark.parametrize("frame_in", ["mission", "plan", "ardupilot"])
 def test_host_tool_uploads_to_mavsdk_vehicles(frame_in, tmp_path, vehicles):
     mission = CASES[0]
     plan = C.plan_mission(mission, tmp_path)
@@ -73,18 +78,19 @@ def test_host_tool_uploads_to_mavsdk_vehicles(frame_in, tmp_path, vehicles):
         mission = dict(mission, frame=dict(mission["frame"], lat=10.0, lon=20.0))
     a, b = routed(plan, 2)
     (pa, va), (pb, vb) = vehicles("mavsdk", 1), vehicles("mavsdk", 7)
+    home = frame_in == "ardupilot"
     p = sva_tools(write(tmp_path, "plan.json", plan), "--mission",
                   write(tmp_path, "mission.json", mission),
                   "--vehicle", f"{a['uav']}=udp:127.0.0.1:{pa}",
-                  "--vehicle", f"{b['uav']}=udp:127.0.0.1:{pb}:7")
+                  "--vehicle", f"{b['uav']}=udp:127.0.0.1:{pb}:7", *(["--ardupilot"] if home else []))
     assert p.returncode == 0, p.stderr + p.stdout
-    n_a, n_b = 3 + 2 * len(a["targets"]), 3 + 2 * len(b["targets"])
+    n_a, n_b = 3 + home + 2 * len(a["targets"]), 3 + home + 2 * len(b["targets"])
     assert p.stdout.splitlines() == [
         f"uav {a['uav']}: udp:127.0.0.1:{pa}: uploaded {n_a} items",
         f"uav {b['uav']}: udp:127.0.0.1:{pb}:7: uploaded {n_b} items"]
     frame = plan.get("frame", mission["frame"])
-    judge(mission, frame, a, va.wait_missions(1))
-    judge(mission, frame, b, vb.wait_missions(1))
+    judge(mission, frame, a, va.wait_missions(1), home)
+    judge(mission, frame, b, vb.wait_missions(1), home)
 
 
 @pytest.mark.parametrize("mission", CASES, ids=lambda m: m["name"])

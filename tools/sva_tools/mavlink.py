@@ -211,6 +211,13 @@ def build_items(frame: Frame, m: M.Mission, uav: M.Uav, target_ids: List[int]) -
     return items
 
 
+def prepend_home(takeoff: Item) -> Item:
+    """ArduPilot's item 0 (it overwrites it with its home): a waypoint at the take-off's
+    position, altitude 0 (sva_mavlink_prepend_home)."""
+    return Item(MAV_CMD_NAV_WAYPOINT, takeoff.frame, takeoff.param1, takeoff.param2,
+                takeoff.param3, 0.0, takeoff.x, takeoff.y, 0.0)
+
+
 _ACK_NAMES = {0: "MAV_MISSION_ACCEPTED", 1: "MAV_MISSION_ERROR", 2: "MAV_MISSION_UNSUPPORTED_FRAME",
               3: "MAV_MISSION_UNSUPPORTED", 4: "MAV_MISSION_NO_SPACE", 5: "MAV_MISSION_INVALID",
               6: "MAV_MISSION_INVALID_PARAM1", 7: "MAV_MISSION_INVALID_PARAM2",
@@ -331,6 +338,8 @@ def add_parser(sub) -> None:
     up.add_argument("--vehicle", action="append", required=True, metavar="UAV_ID=udp:HOST:PORT[:SYSID]")
     up.add_argument("--timeout-ms", type=int, default=TIMEOUT_MS,
                     help=f"wait per message before resending (default {TIMEOUT_MS})")
+    up.add_argument("--ardupilot", action="store_true",
+                    help="put a home item 0 first (ArduPilot overwrites item 0 with home)")
     up.add_argument("--retries", type=int, default=RETRIES,
                     help=f"resends of one message before giving up (default {RETRIES})")
     up.set_defaults(func=run)
@@ -384,6 +393,8 @@ def run(args) -> int:
         if not items:
             results[uid] = "nothing to upload: the plan gives it no targets"
             continue
+        if args.ardupilot:
+            items = [prepend_home(items[0])] + items
         work.append((uid, items))
 
     def one(uid: int, items: List[Item]) -> None:

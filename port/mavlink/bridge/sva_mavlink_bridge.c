@@ -49,6 +49,7 @@ static bool have_mission;
 static sva_lcm_plan_t pending_plan;  // a plan whose inputs have not arrived yet
 static bool have_pending;
 static sva_lcm_replan_t replan;
+static bool ardupilot;  // --ardupilot: a home item 0 first
 static sva_mavlink_target_t route_targets[SVA_MAVLINK_MAX_ROUTE_TARGETS];
 static sva_mavlink_item_t built[SVA_MAVLINK_MAX_ITEMS];
 
@@ -57,12 +58,13 @@ static void usage(FILE* f)
     fprintf(f,
             "usage: sva_mavlink_bridge --vehicle UAV_ID=udp:HOST:PORT[:SYSID] [--vehicle ...]\n"
             "                          [--url URL] [--prefix P] [--system N] [--timeout-ms N]\n"
-            "                          [--retries N]\n"
+            "                          [--retries N] [--ardupilot]\n"
             "  --url         LCM URL (default %s)\n"
             "  --prefix      channel prefix (default %s): <prefix>FLEET, MISSION, PLAN, REPLAN\n"
             "  --system      this side's MAVLink system id, [1, 255] (default 250)\n"
             "  --timeout-ms  wait per message before resending, [1, 600000] (default %d)\n"
-            "  --retries     resends of one message before giving up, [0, 100] (default %d)\n",
+            "  --retries     resends of one message before giving up, [0, 100] (default %d)\n"
+            "  --ardupilot   put a home item 0 first (ArduPilot overwrites item 0 with home)\n",
             DEFAULT_URL, DEFAULT_PREFIX, SVA_MAVLINK_TIMEOUT_MS, SVA_MAVLINK_RETRIES);
 }
 
@@ -113,12 +115,15 @@ static void start_upload(vehicle_slot_t* s, const sva_mavlink_item_t* items, siz
 {
     memcpy(s->link.items, items, count * sizeof items[0]);
     s->link.item_count = count;
+    if (ardupilot) {
+        (void)sva_mavlink_prepend_home(s->link.items, SVA_MAVLINK_MAX_ITEMS, &s->link.item_count);
+    }
     memcpy(s->flown, items, count * sizeof items[0]);
     s->flown_count = count;
     s->plan_id = plan_id;
     s->reported = false;
     char text[64];
-    snprintf(text, sizeof text, "uploading %zu items", count);
+    snprintf(text, sizeof text, "uploading %zu items", s->link.item_count);
     say_vehicle(s, plan_id, text);
     (void)sva_mavlink_vehicle_start(&s->link, sva_mavlink_now_ms());
 }
@@ -356,6 +361,10 @@ int main(int argc, char** argv)
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             usage(stdout);
             return 0;
+        }
+        if (strcmp(a, "--ardupilot") == 0) {
+            ardupilot = true;
+            continue;
         }
         if (i + 1 >= argc) {
             fprintf(stderr, "sva_mavlink_bridge: error: %.40s: unknown option or missing value\n",

@@ -59,6 +59,9 @@ static size_t items_needed(size_t targets)
     return 3 + 2 * targets;
 }
 
+/// The builder's own bound (SVA_MAVLINK_MAX_ITEMS keeps one more for ArduPilot's home).
+#define ROUTE_ITEMS_MAX (3 + 2 * SVA_MAVLINK_MAX_ROUTE_TARGETS)
+
 bool sva_mavlink_build(const sva_frame_t* frame, sva_frame_geodesy_t* geodesy,
                        const sva_mavlink_route_t* route, sva_mavlink_item_t* items, size_t capacity,
                        size_t* count, char* err, size_t err_size)
@@ -72,9 +75,7 @@ bool sva_mavlink_build(const sva_frame_t* frame, sva_frame_geodesy_t* geodesy,
         snprintf(err, err_size,
                  "uav %d: route: %zu targets need %zu mission items, more than the limit %zu",
                  (int)route->uav_id, route->target_count, items_needed(route->target_count),
-                 capacity < items_needed(SVA_MAVLINK_MAX_ROUTE_TARGETS)
-                     ? capacity
-                     : (size_t)items_needed(SVA_MAVLINK_MAX_ROUTE_TARGETS));
+                 capacity < (size_t)ROUTE_ITEMS_MAX ? capacity : (size_t)ROUTE_ITEMS_MAX);
         return false;
     }
     if (route->ticks_per_cell < 1) {
@@ -203,5 +204,19 @@ bool sva_mavlink_same_items(const sva_mavlink_item_t* a, size_t a_count,
             return false;
         }
     }
+    return true;
+}
+
+bool sva_mavlink_prepend_home(sva_mavlink_item_t* items, size_t capacity, size_t* count)
+{
+    if (*count == 0 || *count >= capacity) {
+        return false;
+    }
+    memmove(&items[1], &items[0], *count * sizeof items[0]);
+    items[0] = items[1];
+    items[0].command = MAV_CMD_NAV_WAYPOINT;
+    items[0].param4 = 0.0f;
+    items[0].z = 0.0f;
+    (*count)++;
     return true;
 }

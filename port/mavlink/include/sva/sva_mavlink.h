@@ -27,8 +27,9 @@ extern "C" {
 
 /// Targets of one route: the core's default SVA_MAX_ROUTE_TARGETS.
 #define SVA_MAVLINK_MAX_ROUTE_TARGETS 256
-/// Items of one route: take-off, speed, two per target, return.
-#define SVA_MAVLINK_MAX_ITEMS (3 + 2 * SVA_MAVLINK_MAX_ROUTE_TARGETS)
+/// Items of one route: take-off, speed, two per target, return; one more for ArduPilot's
+/// home item (sva_mavlink_prepend_home).
+#define SVA_MAVLINK_MAX_ITEMS (4 + 2 * SVA_MAVLINK_MAX_ROUTE_TARGETS)
 /// A hold may last less than a day: MAV_CMD_NAV_DELAY names a time of day.
 #define SVA_MAVLINK_MAX_HOLD_MS 86400000LL
 /// The smallest radius of curvature of the WGS84 ellipsoid (b^2 / a), metres: a path at
@@ -85,6 +86,12 @@ float sva_mavlink_speed(const sva_frame_t* frame, int32_t ticks_per_cell);
 bool sva_mavlink_build(const sva_frame_t* frame, sva_frame_geodesy_t* geodesy,
                        const sva_mavlink_route_t* route, sva_mavlink_item_t* items, size_t capacity,
                        size_t* count, char* err, size_t err_size);
+
+/// For ArduPilot, which takes mission item 0 as its home position and overwrites it:
+/// shifts items[0..*count) up by one and puts a MAV_CMD_NAV_WAYPOINT at the take-off's
+/// position (altitude 0) first, so the take-off stays item 1. False (nothing changed)
+/// when *count is 0 or the array is full.
+bool sva_mavlink_prepend_home(sva_mavlink_item_t* items, size_t capacity, size_t* count);
 
 /// True when the route items b are the same mission as a from some target on: b's
 /// waypoints, holds and return equal the last ones of a (take-off and speed are not
