@@ -61,7 +61,7 @@ def test_python_items_match_the_plan_and_the_c_items(mission, tmp_path):
     c_items, _, rc, err = C.run_tool(C.tool_input(mission, mission["frame"], plan, {}))
     assert rc == 0, err
     m = sio.mission_from_json({k: v for k, v in mission.items() if k != "frame"})
-    frame = SM.frame_from_json(mission["frame"], "frame")
+    frame = SM.frame_from_json(mission["frame"])
     uavs = {u.id: u for u in m.uavs}
     for r in plan["routes"]:
         py = [(i.command, i.frame, i.param1, i.param2, i.param3, i.param4, i.x, i.y, i.z)

@@ -14,7 +14,6 @@ frame, command line, a route the items cannot carry).
 from __future__ import annotations
 
 import argparse
-import datetime as dt
 import math
 import re
 import struct
@@ -24,6 +23,7 @@ import time
 from dataclasses import dataclass
 from typing import Dict, List, Optional, Tuple
 
+from . import frame as F
 from . import io
 from . import model as M
 from .check import check_plan
@@ -46,7 +46,7 @@ RETRIES = 5
 OWN_SYSTEM = 250
 OWN_COMPONENT = 190                    # MAV_COMP_ID_MISSIONPLANNER
 
-# Ranges of sva_frame.h (docs/flight-stack.md).
+# The last instant a frame names (sva_frame.h SVA_FRAME_MAX_T0_MS).
 MAX_T0_MS = 253402300799999
 
 
@@ -80,59 +80,13 @@ def _round_half_away(v: float) -> int:
     return int(math.floor(abs(v) + 0.5)) * (1 if v >= 0 else -1)
 
 
-_UTC = re.compile(r"^(\d{4})-(\d{2})-(\d{2})T(\d{2}):(\d{2}):(\d{2})(\.\d+)?(Z|[+-]\d{2}:\d{2})$")
-
-
-def parse_utc_ms(text: object, field: str) -> int:
-    if not isinstance(text, str):
-        raise io.InputError(f"{field}: must be a string, got {type(text).__name__}")
-    m = _UTC.match(text)
-    if not m:
-        raise io.InputError(f"{field}: must be an ISO 8601 UTC date-time "
-                            f"(YYYY-MM-DDTHH:MM:SS[.fff]Z), got \"{shown(text)[:40]}\"")
-    y, mo, d, h, mi, s = (int(m.group(i)) for i in range(1, 7))
-    try:
-        base = dt.datetime(y, mo, d, h, mi, s, tzinfo=dt.timezone.utc)
-    except ValueError as e:
-        raise io.InputError(f"{field}: not a date-time: {e}") from None
-    ms = int(base.timestamp()) * 1000
-    if m.group(7):
-        frac = m.group(7)[1:]
-        ms += _round_half_away(float("0." + frac) * 1000)
-    if m.group(8) != "Z":
-        sign = 1 if m.group(8)[0] == "+" else -1
-        ms -= sign * (int(m.group(8)[1:3]) * 60 + int(m.group(8)[4:6])) * 60_000
-    return ms
-
-
-def frame_from_json(doc: object, where: str) -> Frame:
-    """The frame object of a mission or plan, in integers, range-checked as
-    sva_frame_from_units does (messages name the field, the rule and the limit)."""
-    if not isinstance(doc, dict):
-        raise io.InputError(f"{where}: must be an object, got {type(doc).__name__}")
-    keys = ("lat", "lon", "alt_m", "cell_m", "tick_s", "t0")
-    for k in doc:
-        if k not in keys:
-            raise io.InputError(f"{where}: unknown key \"{shown(k)}\"")
-    for k in keys:
-        if k not in doc:
-            raise io.InputError(f"{where}: missing key \"{k}\"")
-    ranges = {"lat": (-85, 85, "degrees"), "lon": (-180, 180, "degrees"),
-              "alt_m": (0, 10000, "m"), "cell_m": (0.1, 10000, "m"),
-              "tick_s": (0.001, 3600, "s")}
-    for k, (lo, hi, unit) in ranges.items():
-        v = doc[k]
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-            raise io.InputError(f"{where}.{k}: must be a number, got {type(v).__name__}")
-        if not lo <= v <= hi:
-            raise io.InputError(f"{where}.{k}: {v} is outside [{lo}, {hi}] {unit}")
-    t0 = parse_utc_ms(doc["t0"], f"{where}.t0")
-    if not 0 <= t0 <= MAX_T0_MS:
-        raise io.InputError(f"{where}.t0: must be from 1970-01-01T00:00:00Z to "
-                            f"9999-12-31T23:59:59.999Z")
-    return Frame(_round_half_away(doc["lat"] * 1e7), _round_half_away(doc["lon"] * 1e7),
-                 _round_half_away(doc["alt_m"] * 100), _round_half_away(doc["cell_m"] * 100),
-                 _round_half_away(doc["tick_s"] * 1000), t0)
+def frame_from_json(doc: dict) -> Frame:
+    """The integers of a frame that passed validation (the mission and plan schemas and
+    SPEC section 4's t0 rules, sva_tools.frame), as sva_frame_t holds them."""
+    f = F.Frame.from_json(doc)
+    return Frame(_round_half_away(f.lat * 1e7), _round_half_away(f.lon * 1e7),
+                 _round_half_away(f.alt_m * 100), _round_half_away(f.cell_m * 100), f.tick_ms,
+                 f.t0_ms)
 
 
 def _f32(v: float) -> float:
@@ -307,24 +261,16 @@ def parse_vehicle(text: str) -> Tuple[int, str, int, int]:
     return int(m.group(1)), m.group(2), int(m.group(3)), int(m.group(4) or 1)
 
 
-def _split_frame(path: str, kind: str):
-    """The document of path without its `frame` (validated like any file of its kind)
-    and the frame object (None when absent)."""
+def _load(path: str, kind: str):
+    """The mission or plan in path, validated with its frame (SPEC sections 3 and 4),
+    and its frame object (None when it has none)."""
     try:
         doc = io.read_json(path)
-    except io.InputError as e:
-        e.path = path
-        raise
-    frame = None
-    if isinstance(doc, dict) and "frame" in doc:
-        doc = dict(doc)
-        frame = doc.pop("frame")
-    try:
         parsed = io.mission_from_json(doc) if kind == "mission" else io.plan_from_json(doc)
     except io.InputError as e:
         e.path = path
         raise
-    return parsed, frame
+    return parsed, doc.get("frame")
 
 
 def add_parser(sub) -> None:
@@ -359,17 +305,14 @@ def run(args) -> int:
         if uid in vehicles:
             return io.fail("mavlink upload", io.InputError(f"--vehicle: UAV {uid} given twice"))
         vehicles[uid] = (host, port, sysid, text.split("=", 1)[1])
-    mission, mframe = _split_frame(args.mission, "mission")
-    plan, pframe = _split_frame(args.plan, "plan")
-    src, where = (args.plan, pframe) if pframe is not None else (args.mission, mframe)
+    mission, mframe = _load(args.mission, "mission")
+    plan, pframe = _load(args.plan, "plan")
+    where = pframe if pframe is not None else mframe
     if where is None:
         return io.fail(args.plan, io.InputError(
             "frame: missing: neither the plan nor the mission has a \"frame\" (lat, lon, alt_m, "
             "cell_m, tick_s, t0): cells and ticks cannot be placed on the Earth"))
-    try:
-        frame = frame_from_json(where, "frame")
-    except io.InputError as e:
-        return io.fail(src, e)
+    frame = frame_from_json(where)
     problems = check_plan(mission, plan)
     if problems:
         return io.fail(args.plan, io.InputError(f"plan: does not fit {shown(args.mission)}: "
