@@ -1,0 +1,301 @@
+"""sva_mavlink_bridge driven through LCM inside a private network namespace
+(tests/lcm/netns_run.sh): fleet, mission (with its frame) and plan messages go in as
+sva_node sends them (the build's lcm-gen Python types), missions go out to MAVSDK
+vehicles (and a pymavlink one that refuses) over UDP on loopback. A replan that changes
+one UAV's route uploads to that vehicle only; failures are reported per vehicle while the
+other uploads go on."""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import threading
+import time
+
+import pytest
+
+if not os.environ.get("SVA_LCM_NETNS"):
+    pytest.skip("run through tests/lcm/netns_run.sh (multicast only in a private netns)",
+                allow_module_level=True)
+
+sys.path.insert(0, os.environ["SVA_LCM_PYTHON_TYPES"])
+import lcm  # noqa: E402
+import sva_lcm  # noqa: E402
+
+import mavcheck as C  # noqa: E402
+from test_items import FRAME_MIDNIGHT  # noqa: E402
+from test_upload import FOUR, as_tuples, judge  # noqa: E402
+from vehicles import MavsdkVehicle, PymavlinkVehicle, free_udp_port  # noqa: E402
+
+URL = "udpm://239.255.76.67:7667?ttl=0"
+BRIDGE = os.environ["SVA_MAVLINK_BRIDGE"]
+MAV_MISSION_DENIED = 14
+
+TWO = {"name": "two", "depot": {"x": 0, "y": 0}, "frame": FRAME_MIDNIGHT,
+       "uavs": [{"id": 1, "x": 0, "y": 0, "fuel": 1000}, {"id": 2, "x": 0, "y": 0, "fuel": 1000}],
+       "targets": [{"id": 1, "x": 10, "y": 0, "start": 20, "end": 30, "need": 1},
+                   {"id": 2, "x": 0, "y": 10, "start": 20, "end": 30, "need": 1}]}
+# The replan's residual mission: a target near target 1 after its window.
+ADDED = {"id": 3, "x": 12, "y": 4, "start": 40, "end": 50, "need": 1}
+
+
+def by_id(mission, tid):
+    return next(t for t in mission["targets"] if t["id"] == tid)
+
+
+def fleet_msg(mission, revision=1):
+    f = sva_lcm.fleet_state_t()
+    if hasattr(f, "version"):
+        f.version = f.VERSION
+    f.revision = revision
+    f.uav_count = len(mission["uavs"])
+    for k, u in enumerate(mission["uavs"]):
+        s = f.uavs[k]
+        s.id, s.x, s.y, s.fuel, s.ready_at_ticks = u["id"], u["x"], u["y"], u["fuel"], u.get("ready_at", 0)
+    return f
+
+
+def mission_msg(mission, revision=1, with_frame=True):
+    m = sva_lcm.mission_t()
+    m.version = m.VERSION
+    m.revision = revision
+    m.depot_x, m.depot_y = mission["depot"]["x"], mission["depot"]["y"]
+    m.ticks_per_cell = mission.get("ticks_per_cell", 1)
+    m.overlap_percent = 70
+    m.target_count = len(mission["targets"])
+    for k, t in enumerate(mission["targets"]):
+        g = m.targets[k]
+        g.id, g.x, g.y, g.start_ticks, g.end_ticks, g.need = (t["id"], t["x"], t["y"], t["start"],
+                                                              t["end"], t["need"])
+    if with_frame and "frame" in mission:
+        fi = C.frame_ints(mission["frame"])
+        fr = m.frame
+        fr.present = 1
+        fr.lat_e7, fr.lon_e7, fr.alt_cm = fi["lat_e7"], fi["lon_e7"], fi["alt_cm"]
+        fr.cell_cm, fr.tick_ms, fr.t0_ms = fi["cell_cm"], fi["tick_ms"], fi["t0_ms"]
+    return m
+
+
+def plan_msg(plan, plan_id, revision=1):
+    p = sva_lcm.plan_t()
+    if hasattr(p, "version"):
+        p.version = p.VERSION
+    p.plan_id = plan_id
+    p.fleet_revision = p.mission_revision = revision
+    p.status = p.STATUS_COMPLETE if plan["status"] == "complete" else p.STATUS_PARTIAL
+    p.covered = plan["covered"]
+    p.cost = plan["cost"]
+    p.route_count = len(plan["routes"])
+    n = 0
+    for k, r in enumerate(plan["routes"]):
+        p.routes[k].uav_id = r["uav"]
+        p.routes[k].target_count = len(r["targets"])
+        p.routes[k].distance_cells = r["distance"]
+        p.routes[k].fuel_used = r["fuel_used"]
+        for t in r["targets"]:
+            p.route_targets[n] = t
+            n += 1
+    p.item_count = n
+    return p
+
+
+class Bridge:
+    def __init__(self, specs, *extra):
+        args = [BRIDGE, "--url", URL, "--timeout-ms", "300", "--retries", "2", *extra]
+        for uid, spec in specs.items():
+            args += ["--vehicle", f"{uid}={spec}"]
+        self.proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                     text=True)
+        self.lines = []
+        self._cond = threading.Condition()
+        threading.Thread(target=self._read, daemon=True).start()
+        self.wait_for(lambda ls: any("listening" in x for x in ls), 10)
+
+    def _read(self):
+        for line in self.proc.stdout:
+            with self._cond:
+                self.lines.append(line.rstrip("\n"))
+                self._cond.notify_all()
+
+    def wait_for(self, pred, timeout=20.0):
+        end = time.monotonic() + timeout
+        with self._cond:
+            while not pred(self.lines):
+                left = end - time.monotonic()
+                if left <= 0:
+                    raise AssertionError("bridge output so far:\n" + "\n".join(self.lines))
+                self._cond.wait(left)
+            return list(self.lines)
+
+    def stop(self):
+        self.proc.terminate()
+        out = self.proc.wait(10)
+        assert out == 0, self.proc.stderr.read()
+
+
+@pytest.fixture
+def lc():
+    return lcm.LCM(URL)
+
+
+def publish_start(lc, mission, plan, plan_id=1, with_frame=True):
+    lc.publish("SVA_FLEET", fleet_msg(mission).encode())
+    lc.publish("SVA_MISSION", mission_msg(mission, with_frame=with_frame).encode())
+    time.sleep(0.2)
+    lc.publish("SVA_PLAN", plan_msg(plan, plan_id).encode())
+
+
+def done_lines(plan_id, n):
+    return lambda ls: sum(1 for x in ls if x.startswith(f"plan {plan_id}: ") and
+                          ("uploaded" in x or "error" in x or "unchanged" in x)) >= n
+
+
+def test_a_replan_uploads_to_the_changed_vehicle_only(lc, tmp_path):
+    plan = C.plan_mission(TWO, tmp_path)
+    assert all(len(r["targets"]) == 1 for r in plan["routes"])
+    pa, pb = free_udp_port(), free_udp_port()
+    va, vb = MavsdkVehicle(pa, 1), MavsdkVehicle(pb, 2)
+    vehicles = {1: va, 2: vb}
+    bridge = Bridge({1: f"udp:127.0.0.1:{pa}:1", 2: f"udp:127.0.0.1:{pb}:2"})
+    try:
+        publish_start(lc, TWO, plan)
+        bridge.wait_for(done_lines(1, 2))
+        for r in plan["routes"]:
+            got = vehicles[r["uav"]].wait_missions(1)
+            assert len(got) == 1 and got[0][0] == 1
+            problems = C.check_route(as_tuples(got[0][1]), TWO, TWO["frame"], r["uav"], r["targets"])
+            assert problems == [], "\n".join(problems)
+
+        # the replan: target 3 added; the residual mission carries no frame (the
+        # bridge keeps the mission's)
+        residual = dict(TWO, targets=TWO["targets"] + [ADDED])
+        plan2 = C.plan_mission(dict(residual, name="two_replan"), tmp_path)
+        changed = [r for r in plan2["routes"] if ADDED["id"] in r["targets"]]
+        assert len(changed) == 1
+        changed_uav = changed[0]["uav"]
+        other_uav = 3 - changed_uav
+        before = {r["uav"]: r["targets"] for r in plan["routes"]}
+        after = {r["uav"]: r["targets"] for r in plan2["routes"]}
+        assert after[other_uav] == before[other_uav]
+        rp = sva_lcm.replan_t()
+        rp.version = rp.VERSION
+        rp.event_seq = 1
+        rp.event_type = 4
+        rp.accepted = 1
+        rp.added = rp.added_listed = 1
+        rp.added_uav[0], rp.added_target[0] = changed_uav, ADDED["id"]
+        rp.residual_fleet = fleet_msg(TWO, 1)
+        rp.residual_mission = mission_msg(residual, 1, with_frame=False)
+        rp.plan = plan_msg(plan2, 2)
+        lc.publish("SVA_REPLAN", rp.encode())
+        lines = bridge.wait_for(done_lines(2, 2))
+        assert (f"plan 2: uav {other_uav} (udp:127.0.0.1:{(pa, pb)[other_uav - 1]}): route "
+                f"unchanged, not uploaded") in lines
+        got = vehicles[changed_uav].wait_missions(2)
+        assert len(got) == 2 and got[1][0] == 1
+        problems = C.check_route(as_tuples(got[1][1]), residual, TWO["frame"], changed_uav,
+                                 after[changed_uav])
+        assert problems == [], "\n".join(problems)
+        time.sleep(1.0)
+        assert len(vehicles[other_uav].missions) == 1  # it got nothing new
+
+        # at tick 25 both first targets are under way: the residual mission holds target 3
+        # alone, the UAVs stand at their targets until 30. The changed UAV's remaining
+        # route [3] is the end of what it has, the other's is empty: nothing to upload.
+        at = {changed_uav: by_id(TWO, after[changed_uav][0]), other_uav: by_id(TWO, after[other_uav][0])}
+        fleet3 = dict(TWO, uavs=[dict(u, x=at[u["id"]]["x"], y=at[u["id"]]["y"], ready_at=30)
+                                 for u in TWO["uavs"]])
+        residual3 = dict(fleet3, name="two_at_25", targets=[ADDED])
+        plan3 = C.plan_mission(residual3, tmp_path)
+        assert {r["uav"]: r["targets"] for r in plan3["routes"]} == {changed_uav: [3], other_uav: []}
+        rp3 = sva_lcm.replan_t()
+        rp3.version = rp3.VERSION
+        rp3.event_seq = 2
+        rp3.accepted = 1
+        rp3.now_ticks = 25
+        rp3.residual_fleet = fleet_msg(residual3, 1)
+        rp3.residual_mission = mission_msg(residual3, 1)
+        rp3.plan = plan_msg(plan3, 3)
+        lc.publish("SVA_REPLAN", rp3.encode())
+        lines = bridge.wait_for(done_lines(3, 2))
+        assert sum(1 for x in lines if x.startswith("plan 3: ") and
+                   x.endswith("route unchanged, not uploaded")) == 2, lines
+        time.sleep(1.0)
+        assert len(vehicles[changed_uav].missions) == 2 and len(vehicles[other_uav].missions) == 1
+    finally:
+        bridge.stop()
+        va.close()
+        vb.close()
+
+
+def test_a_plan_without_a_frame_is_an_error_per_vehicle(lc, tmp_path):
+    plan = C.plan_mission(TWO, tmp_path)
+    pa = free_udp_port()
+    va = MavsdkVehicle(pa, 1)
+    bridge = Bridge({1: f"udp:127.0.0.1:{pa}:1", 2: "udp:127.0.0.1:9:2"})
+    try:
+        publish_start(lc, TWO, plan, plan_id=5, with_frame=False)
+        lines = bridge.wait_for(done_lines(5, 2))
+        for uid, port in ((1, pa), (2, 9)):
+            assert (f"plan 5: uav {uid} (udp:127.0.0.1:{port}): error: frame: the mission has "
+                    f"none (mission_t.frame.present 0): cells and ticks cannot be placed on the "
+                    f"Earth; nothing uploaded") in lines
+        time.sleep(0.5)
+        assert va.missions == []
+    finally:
+        bridge.stop()
+        va.close()
+
+
+def test_failing_vehicles_are_reported_and_the_others_uploaded(lc, tmp_path):
+    plan = C.plan_mission(FOUR, tmp_path)
+    rs = [r for r in plan["routes"] if r["targets"]]
+    assert len(rs) == 4
+    good_port, deny_port, small_port, silent_port = (free_udp_port() for _ in range(4))
+    good = MavsdkVehicle(good_port, 1)
+    deny = PymavlinkVehicle(deny_port, 3, final=MAV_MISSION_DENIED)
+    small = PymavlinkVehicle(small_port, 4, max_items=3)
+    specs = {rs[0]["uav"]: f"udp:127.0.0.1:{good_port}:1",
+             rs[1]["uav"]: f"udp:127.0.0.1:{silent_port}:2",
+             rs[2]["uav"]: f"udp:127.0.0.1:{deny_port}:3",
+             rs[3]["uav"]: f"udp:127.0.0.1:{small_port}:4"}
+    bridge = Bridge(specs)
+    try:
+        publish_start(lc, FOUR, plan, plan_id=9)
+        lines = bridge.wait_for(done_lines(9, 4), 30)
+
+        def line(r, text):
+            port = specs[r["uav"]].split(":")[2]
+            return f"plan 9: uav {r['uav']} (udp:127.0.0.1:{port}): {text}"
+        assert line(rs[0], f"uploaded {3 + 2 * len(rs[0]['targets'])} items") in lines
+        assert line(rs[1], "error: timeout: no answer to MISSION_COUNT after 3 tries of 300 ms") in lines
+        assert line(rs[2], "error: MISSION_ACK: the vehicle refused the mission: "
+                           "MAV_MISSION_DENIED (14)") in lines
+        assert line(rs[3], "error: MISSION_ACK: the vehicle refused the mission: "
+                           "MAV_MISSION_NO_SPACE (4)") in lines
+        got = good.wait_missions(1)
+        problems = C.check_route(as_tuples(got[0][1]), FOUR, FOUR["frame"], rs[0]["uav"],
+                                 rs[0]["targets"])
+        assert problems == [], "\n".join(problems)
+        assert len(deny.items) == 1 and small.items == []
+    finally:
+        bridge.stop()
+        good.close()
+        deny.close()
+        small.close()
+
+
+def test_ardupilot_home_item(lc, tmp_path):
+    plan = C.plan_mission(TWO, tmp_path)
+    r = next(r for r in plan["routes"] if r["uav"] == 1)
+    pa = free_udp_port()
+    va = MavsdkVehicle(pa, 1)
+    bridge = Bridge({1: f"udp:127.0.0.1:{pa}:1"}, "--ardupilot")
+    try:
+        publish_start(lc, TWO, plan, plan_id=11)
+        lines = bridge.wait_for(done_lines(11, 1))
+        assert f"plan 11: uav 1 (udp:127.0.0.1:{pa}): uploaded {4 + 2 * len(r['targets'])} items" in lines
+        judge(TWO, TWO["frame"], r, va.wait_missions(1), home=True)
+    finally:
+        bridge.stop()
+        va.close()

@@ -1,0 +1,363 @@
+"""`sva-tools mavlink upload PLAN.json --mission MISSION.json --vehicle UAV_ID=udp:HOST:PORT[:SYSID] ...`:
+a plan's routes as MAVLink missions, uploaded to the vehicles (docs/mavlink.md).
+
+Per UAV with a vehicle: MAV_CMD_NAV_TAKEOFF at its start cell, MAV_CMD_DO_CHANGE_SPEED
+to the plan's ground speed, per target a MAV_CMD_NAV_WAYPOINT at the target cell
+(MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, the frame's alt_m) and a MAV_CMD_NAV_DELAY until the
+UTC time of day of the window's end, then MAV_CMD_NAV_RETURN_TO_LAUNCH. The frame comes
+from the plan's `frame` when it has one, else from the mission's. Each vehicle gets the
+MAVLink mission protocol (MISSION_COUNT, MISSION_REQUEST_INT -> MISSION_ITEM_INT,
+MISSION_ACK) with pymavlink, all vehicles at once; one line per vehicle tells how it
+went. Exit 0 when every upload was accepted, 1 when one failed, 2 on bad input (files,
+frame, command line, a route the items cannot carry).
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import re
+import struct
+import sys
+import threading
+import time
+from dataclasses import dataclass
+from typing import Dict, List, Optional, Tuple
+
+from . import frame as F
+from . import io
+from . import model as M
+from .check import check_plan
+from .text import shown
+
+# MAVLink common.xml values (pymavlink.dialects.v20.common has the same names).
+MAV_CMD_NAV_WAYPOINT = 16
+MAV_CMD_NAV_RETURN_TO_LAUNCH = 20
+MAV_CMD_NAV_TAKEOFF = 22
+MAV_CMD_NAV_DELAY = 93
+MAV_CMD_DO_CHANGE_SPEED = 178
+MAV_FRAME_MISSION = 2
+MAV_FRAME_GLOBAL_RELATIVE_ALT_INT = 6
+
+MAX_ROUTE_TARGETS = 256                # SVA_MAVLINK_MAX_ROUTE_TARGETS
+MAX_HOLD_MS = 86_400_000               # SVA_MAVLINK_MAX_HOLD_MS
+MIN_RADIUS_M = 6335439.327             # SVA_MAVLINK_MIN_RADIUS_M: b^2 / a of WGS84
+TIMEOUT_MS = 1500                      # the MAVLink mission protocol's defaults
+RETRIES = 5
+OWN_SYSTEM = 250
+OWN_COMPONENT = 190                    # MAV_COMP_ID_MISSIONPLANNER
+
+# The last instant a frame names (sva_frame.h SVA_FRAME_MAX_T0_MS).
+MAX_T0_MS = 253402300799999
+
+
+@dataclass(frozen=True)
+class Frame:
+    lat_e7: int
+    lon_e7: int
+    alt_cm: int
+    cell_cm: int
+    tick_ms: int
+    t0_ms: int
+
+    def tick_utc_ms(self, tick: int) -> int:
+        return self.t0_ms + tick * self.tick_ms
+
+
+@dataclass(frozen=True)
+class Item:
+    command: int
+    frame: int
+    param1: float
+    param2: float
+    param3: float
+    param4: float
+    x: int
+    y: int
+    z: float
+
+
+def _round_half_away(v: float) -> int:
+    return int(math.floor(abs(v) + 0.5)) * (1 if v >= 0 else -1)
+
+
+def frame_from_json(doc: dict) -> Frame:
+    """The integers of a frame that passed validation (the mission and plan schemas and
+    SPEC section 4's t0 rules, sva_tools.frame), as sva_frame_t holds them."""
+    f = F.Frame.from_json(doc)
+    return Frame(_round_half_away(f.lat * 1e7), _round_half_away(f.lon * 1e7),
+                 _round_half_away(f.alt_m * 100), _round_half_away(f.cell_m * 100), f.tick_ms,
+                 f.t0_ms)
+
+
+def _f32(v: float) -> float:
+    return struct.unpack("<f", struct.pack("<f", v))[0]
+
+
+def _f32_up(v: float) -> float:
+    """v rounded up to a float32."""
+    f = _f32(v)
+    if f < v:
+        bits = struct.unpack("<I", struct.pack("<f", f))[0]
+        bits = bits + 1 if f >= 0 else bits - 1
+        f = struct.unpack("<f", struct.pack("<I", bits))[0]
+    return f
+
+
+def speed_m_s(frame: Frame, ticks_per_cell: int) -> float:
+    """The commanded ground speed: cell / (ticks_per_cell * tick), times
+    (1 + alt / MIN_RADIUS_M), rounded up to a float32 (docs/mavlink.md)."""
+    v = (frame.cell_cm / 100.0) / (ticks_per_cell * frame.tick_ms / 1000.0)
+    return _f32_up(v * (1.0 + (frame.alt_cm / 100.0) / MIN_RADIUS_M))
+
+
+def cell_to_geo(frame: Frame, x: int, y: int) -> Tuple[int, int]:
+    """Cell (x, y) in 1e-7 degree: x * cell east and y * cell north of the origin in its
+    local East-North-Up plane (pymap3d.enu2geodetic, WGS84)."""
+    import pymap3d
+    cell = frame.cell_cm / 100.0
+    lat, lon, _ = pymap3d.enu2geodetic(x * cell, y * cell, 0.0, frame.lat_e7 / 1e7,
+                                       frame.lon_e7 / 1e7, 0.0)
+    return _round_half_away(float(lat) * 1e7), _round_half_away(float(lon) * 1e7)
+
+
+def build_items(frame: Frame, m: M.Mission, uav: M.Uav, target_ids: List[int]) -> List[Item]:
+    """The items of one UAV's route (none when it has no targets). InputError naming the
+    UAV and the rule when the route cannot be carried."""
+    if not target_ids:
+        return []
+    if len(target_ids) > MAX_ROUTE_TARGETS:
+        raise io.InputError(f"uav {uav.id}: route: {len(target_ids)} targets need "
+                            f"{3 + 2 * len(target_ids)} mission items, more than the limit "
+                            f"{3 + 2 * MAX_ROUTE_TARGETS}")
+    by_id = m.target_by_id()
+    alt = _f32(frame.alt_cm / 100.0)
+    nan = float("nan")
+    lat, lon = cell_to_geo(frame, uav.x, uav.y)
+    items = [Item(MAV_CMD_NAV_TAKEOFF, MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, 0, 0, 0, nan, lat, lon, alt),
+             Item(MAV_CMD_DO_CHANGE_SPEED, MAV_FRAME_MISSION, 1, speed_m_s(frame, m.ticks_per_cell),
+                  -1, 0, 0, 0, 0)]
+    at, departure = (uav.x, uav.y), uav.ready_at
+    for i, tid in enumerate(target_ids):
+        t = by_id[tid]
+        travel = (abs(t.x - at[0]) + abs(t.y - at[1])) * m.ticks_per_cell
+        if departure + travel > t.start:
+            raise io.InputError(f"uav {uav.id}: targets[{i}] (id {t.id}): leaving at tick "
+                                f"{departure} and flying {travel} ticks arrives after the "
+                                f"window's start {t.start}")
+        end_ms = frame.tick_utc_ms(t.end)
+        if end_ms > MAX_T0_MS:
+            raise io.InputError(f"uav {uav.id}: targets[{i}] (id {t.id}).end: tick {t.end} is "
+                                f"outside the frame's UTC range (1970 to 9999)")
+        hold = end_ms - frame.tick_utc_ms(departure)
+        if hold >= MAX_HOLD_MS:
+            raise io.InputError(f"uav {uav.id}: targets[{i}] (id {t.id}): from the departure at "
+                                f"tick {departure} to the window's end {t.end} is {hold} ms, "
+                                f"must be < 86400000 (MAV_CMD_NAV_DELAY holds until a UTC "
+                                f"time of day)")
+        lat, lon = cell_to_geo(frame, t.x, t.y)
+        items.append(Item(MAV_CMD_NAV_WAYPOINT, MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, 0, 0, 0, nan,
+                          lat, lon, alt))
+        tod = ((end_ms + 999) // 1000) % 86400
+        items.append(Item(MAV_CMD_NAV_DELAY, MAV_FRAME_MISSION, -1, tod // 3600, (tod // 60) % 60,
+                          tod % 60, 0, 0, 0))
+        at, departure = (t.x, t.y), t.end
+    items.append(Item(MAV_CMD_NAV_RETURN_TO_LAUNCH, MAV_FRAME_MISSION, 0, 0, 0, 0, 0, 0, 0))
+    return items
+
+
+def prepend_home(takeoff: Item) -> Item:
+    """ArduPilot's item 0 (it overwrites it with its home): a waypoint at the take-off's
+    position, altitude 0 (sva_mavlink_prepend_home)."""
+    return Item(MAV_CMD_NAV_WAYPOINT, takeoff.frame, takeoff.param1, takeoff.param2,
+                takeoff.param3, 0.0, takeoff.x, takeoff.y, 0.0)
+
+
+_ACK_NAMES = {0: "MAV_MISSION_ACCEPTED", 1: "MAV_MISSION_ERROR", 2: "MAV_MISSION_UNSUPPORTED_FRAME",
+              3: "MAV_MISSION_UNSUPPORTED", 4: "MAV_MISSION_NO_SPACE", 5: "MAV_MISSION_INVALID",
+              6: "MAV_MISSION_INVALID_PARAM1", 7: "MAV_MISSION_INVALID_PARAM2",
+              8: "MAV_MISSION_INVALID_PARAM3", 9: "MAV_MISSION_INVALID_PARAM4",
+              10: "MAV_MISSION_INVALID_PARAM5_X", 11: "MAV_MISSION_INVALID_PARAM6_Y",
+              12: "MAV_MISSION_INVALID_PARAM7", 13: "MAV_MISSION_INVALID_SEQUENCE",
+              14: "MAV_MISSION_DENIED", 15: "MAV_MISSION_OPERATION_CANCELLED"}
+
+
+def upload(host: str, port: int, sysid: int, items: List[Item], timeout_ms: int = TIMEOUT_MS,
+           retries: int = RETRIES) -> Optional[str]:
+    """The MAVLink mission protocol, sender side, with pymavlink. None when the vehicle
+    accepted the mission, else the reason."""
+    import os
+    os.environ["MAVLINK20"] = "1"  # MAVLink 2: mission_type, before pymavlink loads its dialect
+    from pymavlink import mavutil
+    conn = mavutil.mavlink_connection(f"udpout:{host}:{port}", source_system=OWN_SYSTEM,
+                                      source_component=OWN_COMPONENT, dialect="common")
+    mav = conn.mav
+    try:
+        mav.heartbeat_send(mavutil.mavlink.MAV_TYPE_GCS, mavutil.mavlink.MAV_AUTOPILOT_INVALID,
+                           0, 0, mavutil.mavlink.MAV_STATE_ACTIVE)
+
+        def send_count():
+            mav.mission_count_send(sysid, 1, len(items), 0)
+
+        def send_item(seq: int):
+            it = items[seq]
+            mav.mission_item_int_send(sysid, 1, seq, it.frame, it.command, 1 if seq == 0 else 0,
+                                      1, it.param1, it.param2, it.param3, it.param4, it.x, it.y,
+                                      it.z, 0)
+
+        resend, what = send_count, "MISSION_COUNT"
+        resend()
+        tries, sent = 0, set()
+        deadline = time.monotonic() + timeout_ms / 1000.0
+        next_hb = time.monotonic() + 1.0
+        while True:
+            now = time.monotonic()
+            if now >= deadline:
+                if tries >= retries:
+                    return f"timeout: no answer to {what} after {tries + 1} tries of {timeout_ms} ms"
+                tries += 1
+                resend()
+                deadline = now + timeout_ms / 1000.0
+            if now >= next_hb:
+                mav.heartbeat_send(mavutil.mavlink.MAV_TYPE_GCS,
+                                   mavutil.mavlink.MAV_AUTOPILOT_INVALID, 0, 0,
+                                   mavutil.mavlink.MAV_STATE_ACTIVE)
+                next_hb = now + 1.0
+            msg = conn.recv_match(type=["MISSION_REQUEST_INT", "MISSION_REQUEST", "MISSION_ACK"],
+                                  blocking=True, timeout=0.05)
+            if msg is None or msg.get_srcSystem() != sysid:
+                continue
+            if getattr(msg, "target_system", OWN_SYSTEM) != OWN_SYSTEM or \
+                    getattr(msg, "mission_type", 0) != 0:
+                continue
+            if msg.get_type() == "MISSION_ACK":
+                if msg.type != 0:
+                    name = _ACK_NAMES.get(msg.type, "an unknown MAV_MISSION_RESULT")
+                    return f"MISSION_ACK: the vehicle refused the mission: {name} ({msg.type})"
+                if len(sent) == len(items):
+                    return None
+                return (f"MISSION_ACK: MAV_MISSION_ACCEPTED after {len(sent)} of {len(items)} "
+                        f"items were sent")
+            if 0 <= msg.seq < len(items):
+                seq = msg.seq
+                send_item(seq)
+                sent.add(seq)
+                resend, what = (lambda s=seq: send_item(s)), f"MISSION_ITEM_INT {seq}"
+                tries = 0
+                deadline = time.monotonic() + timeout_ms / 1000.0
+    finally:
+        conn.close()
+
+
+_VEHICLE = re.compile(r"^([1-9][0-9]{0,9})=udp:([^:]+):([0-9]{1,5})(?::([0-9]{1,3}))?$")
+
+
+def parse_vehicle(text: str) -> Tuple[int, str, int, int]:
+    m = _VEHICLE.match(text)
+    if not m or int(m.group(1)) > M.SVA_MAX_ID or not 1 <= int(m.group(3)) <= 65535 or \
+            (m.group(4) is not None and not 1 <= int(m.group(4)) <= 255):
+        raise io.InputError(f"--vehicle: must be UAV_ID=udp:HOST:PORT[:SYSID] (UAV_ID in "
+                            f"[1, {M.SVA_MAX_ID}], PORT in [1, 65535], SYSID in [1, 255]), "
+                            f"got \"{shown(text)[:60]}\"")
+    return int(m.group(1)), m.group(2), int(m.group(3)), int(m.group(4) or 1)
+
+
+def _load(path: str, kind: str):
+    """The mission or plan in path, validated with its frame (SPEC sections 3 and 4),
+    and its frame object (None when it has none)."""
+    try:
+        doc = io.read_json(path)
+        parsed = io.mission_from_json(doc) if kind == "mission" else io.plan_from_json(doc)
+    except io.InputError as e:
+        e.path = path
+        raise
+    return parsed, doc.get("frame")
+
+
+def add_parser(sub) -> None:
+    ap = sub.add_parser("mavlink", help="upload a plan's routes as MAVLink missions",
+                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    msub = ap.add_subparsers(dest="mavlink_command", metavar="COMMAND")
+    msub.required = True
+    up = msub.add_parser("upload", help="upload the routes to the vehicles (MAVLink over UDP)")
+    up.add_argument("plan", metavar="PLAN.json")
+    up.add_argument("--mission", required=True, metavar="MISSION.json")
+    up.add_argument("--vehicle", action="append", required=True, metavar="UAV_ID=udp:HOST:PORT[:SYSID]")
+    up.add_argument("--timeout-ms", type=int, default=TIMEOUT_MS,
+                    help=f"wait per message before resending (default {TIMEOUT_MS})")
+    up.add_argument("--ardupilot", action="store_true",
+                    help="put a home item 0 first (ArduPilot overwrites item 0 with home)")
+    up.add_argument("--retries", type=int, default=RETRIES,
+                    help=f"resends of one message before giving up (default {RETRIES})")
+    up.set_defaults(func=run)
+
+
+def run(args) -> int:
+    if not 1 <= args.timeout_ms <= 600_000 or not 0 <= args.retries <= 100:
+        print("sva-tools: error: mavlink upload: --timeout-ms must be in [1, 600000] and "
+              "--retries in [0, 100]", file=sys.stderr)
+        return 2
+    vehicles: Dict[int, Tuple[str, int, int, str]] = {}
+    for text in args.vehicle:
+        try:
+            uid, host, port, sysid = parse_vehicle(text)
+        except io.InputError as e:
+            return io.fail("mavlink upload", e)
+        if uid in vehicles:
+            return io.fail("mavlink upload", io.InputError(f"--vehicle: UAV {uid} given twice"))
+        vehicles[uid] = (host, port, sysid, text.split("=", 1)[1])
+    mission, mframe = _load(args.mission, "mission")
+    plan, pframe = _load(args.plan, "plan")
+    where = pframe if pframe is not None else mframe
+    if where is None:
+        return io.fail(args.plan, io.InputError(
+            "frame: missing: neither the plan nor the mission has a \"frame\" (lat, lon, alt_m, "
+            "cell_m, tick_s, t0): cells and ticks cannot be placed on the Earth"))
+    frame = frame_from_json(where)
+    problems = check_plan(mission, plan)
+    if problems:
+        return io.fail(args.plan, io.InputError(f"plan: does not fit {shown(args.mission)}: "
+                                                f"{problems[0]}"))
+    uavs = {u.id: u for u in mission.uavs}
+    routes = {r.uav: r.targets for r in plan.routes}
+    for uid in vehicles:
+        if uid not in uavs:
+            return io.fail("mavlink upload", io.InputError(
+                f"--vehicle: UAV {uid} is not in the mission"))
+    work: List[Tuple[int, List[Item]]] = []
+    results: Dict[int, str] = {}
+    status = 0
+    for uid in sorted(vehicles, key=lambda u: [x.id for x in mission.uavs].index(u)):
+        try:
+            items = build_items(frame, mission, uavs[uid], routes.get(uid, []))
+        except io.InputError as e:
+            results[uid] = f"error: {e}"
+            status = 1
+            continue
+        if not items:
+            results[uid] = "nothing to upload: the plan gives it no targets"
+            continue
+        if args.ardupilot:
+            items = [prepend_home(items[0])] + items
+        work.append((uid, items))
+
+    def one(uid: int, items: List[Item]) -> None:
+        host, port, sysid, _ = vehicles[uid]
+        try:
+            why = upload(host, port, sysid, items, args.timeout_ms, args.retries)
+        except OSError as e:
+            why = f"udp: {e.strerror or e}"
+        except Exception as e:  # noqa: BLE001 -- one vehicle's fault must not stop the others
+            why = f"{type(e).__name__}: {shown(e)}"
+        results[uid] = f"uploaded {len(items)} items" if why is None else f"error: {why}"
+
+    threads = [threading.Thread(target=one, args=w) for w in work]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for uid in vehicles:
+        line = results[uid]
+        if line.startswith("error"):
+            status = 1
+        print(f"uav {uid}: {shown(vehicles[uid][3])}: {line}")
+    return status
