@@ -9,7 +9,8 @@ from typing import List, Optional
 from . import io
 from .text import Parser, shown
 
-SUBCOMMANDS = ("gen", "check", "validate", "ref", "ih", "peer", "bench", "plot", "sim")
+SUBCOMMANDS = ("gen", "check", "validate", "ref", "ih", "peer", "bench", "plot", "sim",
+               "campaign")
 
 
 def _lcm(argv: List[str]) -> int:
