@@ -20,12 +20,12 @@ import os
 import sys
 import time
 import uuid
-from typing import Callable, Dict, List, Optional
+from typing import Dict, List, Optional
 
 from ..text import shown
-from . import spec as S
-from .store import Store
-from .tasks import run_task
+
+# The Dask, Parquet and schema modules are imported when a campaign runs, not when the
+# `sva-tools` parser is built for another subcommand.
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 
@@ -50,8 +50,11 @@ class _Cluster:
                 self.client = Client(self.scheduler, timeout="30s")
             else:
                 n = self.workers or min(2, os.cpu_count() or 1)
+                # On loopback; no dashboard, and the scheduler's HTTP server (health
+                # checks) on a free port rather than 8787, which may be taken.
                 self.cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                            dashboard_address=None)
+                                            host="127.0.0.1", dashboard_address=None,
+                                            scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
                 self.client = Client(self.cluster)
         return self.client
 
@@ -65,9 +68,10 @@ class _Cluster:
                 self.cluster.close()
 
 
-def _execute(cl: _Cluster, tasks: List[dict], store: Store, stored: set, stats: dict, progress: bool,
+def _execute(cl: _Cluster, tasks: List[dict], store, stored: set, stats: dict, progress: bool,
              label: str) -> None:
     from distributed import as_completed
+    from .tasks import run_task
     todo = [t for t in tasks if t["key"] not in stored]
     stats["tasks"] += len(tasks)
     stats["stored"] += len(tasks) - len(todo)
@@ -102,11 +106,13 @@ def _execute(cl: _Cluster, tasks: List[dict], store: Store, stored: set, stats: 
 
 
 def run(spec: dict, out: str, scheduler: Optional[str] = None, workers: Optional[int] = None,
-        progress: bool = True, client=None) -> dict:
+        progress: bool = True, client=None, flush_rows: int = 64) -> dict:
     """Runs the campaign; returns {"run", "tasks", "stored", "computed", "failed", "wall_s",
     "compute_s" (first submission to last result, cluster start excluded), "workers", "rows" (key -> stored row of every task of the spec), "task_list"}."""
+    from . import spec as S
+    from .store import Store
     run_id = new_run_id()
-    store = Store(out, run_id)
+    store = Store(out, run_id, flush_rows=flush_rows)
     stored = store.keys()
     stats: Dict = {"run": run_id, "tasks": 0, "stored": 0, "computed": 0, "failed": [], "workers": 0,
                    "compute_s": 0.0}
@@ -140,13 +146,16 @@ def add_parser(sub) -> None:
     ap.add_argument("--workers", type=int, metavar="N",
                     help="LocalCluster worker processes (default 2 or the CPU count if lower)")
     ap.add_argument("--out", metavar="DIR", help="result folder (default build/campaigns/NAME)")
+    ap.add_argument("--flush-rows", type=int, default=64, metavar="N",
+                    help="results per Parquet file (default 64; also written every 2 s): at most "
+                         "this many finished results are lost when the client dies")
     ap.add_argument("--no-progress", action="store_true", help="no progress bar")
     ap.add_argument("--no-report", action="store_true", help="skip OUT/report.html")
     ap.set_defaults(func=main)
 
 
 def main(args) -> int:
-    from . import report
+    from . import report, spec as S
     if args.workers is not None and args.workers < 1:
         print("sva-tools: error: campaign: --workers: must be >= 1, got "
               f"{args.workers}", file=sys.stderr)
@@ -155,13 +164,17 @@ def main(args) -> int:
         print("sva-tools: error: campaign: --workers is for the embedded LocalCluster; "
               "with --scheduler the cluster's own workers run the tasks", file=sys.stderr)
         return 2
+    if args.flush_rows < 1:
+        print(f"sva-tools: error: campaign: --flush-rows: must be >= 1, got {args.flush_rows}", file=sys.stderr)
+        return 2
     try:
         spec = S.load(args.spec)
     except S.SpecError as e:
         print(f"sva-tools: error: campaign: {shown(args.spec)}: {shown(e)}", file=sys.stderr)
         return 2
     out = args.out or os.path.join(REPO, "build", "campaigns", spec["name"])
-    stats = run(spec, out, args.scheduler, args.workers, progress=not args.no_progress)
+    stats = run(spec, out, args.scheduler, args.workers, progress=not args.no_progress,
+                flush_rows=args.flush_rows)
     metrics = report.metrics(spec, stats["rows"])
     report.write_metrics(metrics, out)
     print(report.summary(spec, stats, metrics))

@@ -12,6 +12,7 @@ import os
 import statistics
 from typing import Dict, List
 
+from . import spec as S
 from . import tasks as T
 
 
@@ -84,7 +85,7 @@ def write_metrics(records: List[dict], out: str) -> str:
 
 def groups(spec: dict, records: List[dict]) -> List[dict]:
     """The summary rows: per set and tool (and change_penalty for live)."""
-    order = [S["label"] if S.get("label") else f"{S['targets']}x{S['uavs']}" for S in spec["sets"]]
+    order = [S.set_label(s) for s in spec["sets"]]
     keyf = (lambda r: (r["set"], r["tool"], r["penalty"])) if spec["kind"] == "live" else \
         (lambda r: (r["set"], r["tool"]))
     by: Dict[tuple, List[dict]] = {}
@@ -157,7 +158,7 @@ def markdown(rows: List[List[str]]) -> str:
 
 def summary(spec: dict, stats: dict, records: List[dict]) -> str:
     units = "missions" if spec["kind"] == "plan" else "scenarios"
-    n = len(spec["sets"]) * spec["seeds"]["count"] * spec["count"]
+    n = S.missions(spec)
     wall = stats.get("wall_s") or 0.0
     head = (f"campaign {spec['name']}: {stats['tasks']} tasks for {n} {units}; {stats['stored']} already stored, "
             f"{stats['computed']} computed, {len(stats['failed'])} failed; {wall:.1f} s, of which "

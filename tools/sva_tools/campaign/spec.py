@@ -84,21 +84,21 @@ def validate(doc: Any) -> dict:
         raise SpecError(_message(errs[0]))
     spec = json.loads(json.dumps(doc))
     if spec["kind"] == "plan" and "penalties" in spec:
-        raise SpecError("spec.penalties: only for kind \"live\" (a live scenario's change_penalty), got kind \"plan\"")
+        raise SpecError("penalties: only for kind \"live\" (a live scenario's change_penalty), got kind \"plan\"")
     for i, s in enumerate(spec["sets"]):
         if spec["kind"] == "plan" and ("events" in s or "ref_count" in s):
             key = "events" if "events" in s else "ref_count"
-            raise SpecError(f"spec.sets[{i}].{key}: only for kind \"live\", got kind \"plan\"")
+            raise SpecError(f"sets[{i}].{key}: only for kind \"live\", got kind \"plan\"")
         for r in ("width", "need"):
             if isinstance(s.get(r), list) and s[r][0] > s[r][1]:
-                raise SpecError(f"spec.sets[{i}].{r}: must be [LO, HI] with LO <= HI, got {json.dumps(s[r])}")
-        if s.get("ref_count", 0) > spec.get("count", 1):
-            raise SpecError(f"spec.sets[{i}].ref_count: must be <= spec.count ({spec.get('count', 1)}), "
-                            f"got {s['ref_count']}")
+                raise SpecError(f"sets[{i}].{r}: must be [LO, HI] with LO <= HI, got {json.dumps(s[r])}")
+        n = s.get("count", spec.get("count", 1))
+        if s.get("ref_count", 0) > n:
+            raise SpecError(f"sets[{i}].ref_count: must be <= the set's count ({n}), got {s['ref_count']}")
     labels = [set_label(s) for s in spec["sets"]]
     for i, label in enumerate(labels):
         if label in labels[:i]:
-            raise SpecError(f"spec.sets[{i}]: label {label!r} already names spec.sets[{labels.index(label)}]; "
+            raise SpecError(f"sets[{i}]: label {label!r} already names sets[{labels.index(label)}]; "
                             "give one of them a distinct label")
     spec.setdefault("count", 1)
     spec.setdefault("seeds", {"first": 1})
@@ -138,6 +138,11 @@ def gen_kwargs(s: dict) -> dict:
         if k in s:
             kw[k] = s[k]
     return kw
+
+
+def missions(spec: dict) -> int:
+    """Missions (kind plan) or scenarios (kind live) the spec names."""
+    return sum(s.get("count", spec["count"]) for s in spec["sets"]) * spec["seeds"]["count"]
 
 
 def set_label(s: dict) -> str:
@@ -180,7 +185,7 @@ def first_tasks(spec: dict, run: str) -> List[dict]:
     for s in spec["sets"]:
         kw = gen_kwargs(s)
         for seed in seeds:
-            for i in range(spec["count"]):
+            for i in range(s.get("count", spec["count"])):
                 base = _base(spec, run, s, seed, i)
                 if spec["kind"] == "plan":
                     doc = gen.generate(s["targets"], s["uavs"], seed=seed, index=i, **kw).to_json()
@@ -208,7 +213,7 @@ def ref_tasks(spec: dict, run: str, flights: List[dict], logs: Dict[str, dict]) 
     out, seen = [], set()
     for f in flights:
         s = by_set[f["set"]]
-        if f["index"] >= s.get("ref_count", spec["count"]) or f["key"] not in logs:
+        if f["index"] >= s.get("ref_count", s.get("count", spec["count"])) or f["key"] not in logs:
             continue
         for doc in T.residuals(logs[f["key"]]):
             if len(doc["targets"]) > spec["ref"]["max_targets"]:
