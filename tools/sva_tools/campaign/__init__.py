@@ -9,7 +9,8 @@ keyed by the mission's content hash, the tool, its settings and its version: a t
 already stored is not submitted again, so an interrupted or extended campaign resumes
 where it stopped. Then OUT/metrics.parquet (coverage, cost, gap to ref, solve time per
 planner result) and OUT/report.html (tables and plots, self-contained).
-Exit status: 0 when every task has a stored result, 1 when some failed, 2 on a bad spec.
+Exit status: 0 when every task has a stored result, 1 when some failed, 2 on a bad spec
+or option, or a scheduler that cannot be reached.
 """
 from __future__ import annotations
 
@@ -35,6 +36,10 @@ def new_run_id() -> str:
     return now.strftime("%Y%m%dT%H%M%S") + "-" + uuid.uuid4().hex[:8]
 
 
+class CampaignError(RuntimeError):
+    pass
+
+
 class _Cluster:
     """The Dask client, connected (and the LocalCluster started) only when a task is to
     be submitted: a campaign whose results are all stored starts no cluster."""
@@ -47,7 +52,11 @@ class _Cluster:
         if self.client is None:
             from distributed import Client, LocalCluster
             if self.scheduler:
-                self.client = Client(self.scheduler, timeout="30s")
+                try:
+                    self.client = Client(self.scheduler, timeout="30s")
+                except (OSError, TimeoutError) as e:
+                    raise CampaignError(f"--scheduler {self.scheduler}: cannot connect within 30 s "
+                                        f"({type(e).__name__}: {e})") from None
             else:
                 n = self.workers or min(2, os.cpu_count() or 1)
                 # On loopback; no dashboard, and the scheduler's HTTP server (health
@@ -173,8 +182,12 @@ def main(args) -> int:
         print(f"sva-tools: error: campaign: {shown(args.spec)}: {shown(e)}", file=sys.stderr)
         return 2
     out = args.out or os.path.join(REPO, "build", "campaigns", spec["name"])
-    stats = run(spec, out, args.scheduler, args.workers, progress=not args.no_progress,
-                flush_rows=args.flush_rows)
+    try:
+        stats = run(spec, out, args.scheduler, args.workers, progress=not args.no_progress,
+                    flush_rows=args.flush_rows)
+    except CampaignError as e:
+        print(f"sva-tools: error: campaign: {shown(e)}", file=sys.stderr)
+        return 2
     metrics = report.metrics(spec, stats["rows"])
     report.write_metrics(metrics, out)
     print(report.summary(spec, stats, metrics))

@@ -41,7 +41,7 @@ def metrics(spec: dict, rows: Dict[str, dict]) -> List[dict]:
         if r["task"] in ("plan", "ref"):
             if spec["kind"] == "live":
                 continue  # live: ref rows are judged through the flights
-            q = refs.get(r["mission_hash"])
+            q = refs.get(r["mission_hash"]) if r["task"] == "plan" else None  # ref: not against itself
             base.update(ref_covered=q["covered"] if q else None, ref_cost=q["cost"] if q else None,
                         ref_optimal=q["optimal"] if q else None)
             if q and not r["error"]:
