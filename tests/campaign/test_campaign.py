@@ -294,3 +294,14 @@ def test_cli_refuses_a_bad_spec_before_running_anything(tmp_path):
     assert r.stderr == f"sva-tools: error: campaign: {p}: sets[0].uavs: must be <= 64 (SVA_MAX_UAVS), got 65\n"
     assert r.stdout == ""
     assert not (tmp_path / "out").exists()  # refused before anything ran or was written
+
+
+def test_worker_of_another_build_refuses_the_task(tmp_path):
+    """A task keyed with another version (here: another C CLI binary) is refused, not
+    stored under a key its result does not belong to."""
+    spec = S.load(str(write_spec(tmp_path, 1)))
+    task = next(t for t in S.first_tasks(spec, "direct") if t["tool"] == "flow")
+    assert T.run_task(task)["covered"] is not None
+    other = dict(task, version=dict(task["version"], sva="0" * 64))
+    with pytest.raises(RuntimeError, match="differs from the client's"):
+        T.run_task(other)

@@ -115,9 +115,11 @@ def _execute(cl: _Cluster, tasks: List[dict], store, stored: set, stats: dict, p
 
 
 def run(spec: dict, out: str, scheduler: Optional[str] = None, workers: Optional[int] = None,
-        progress: bool = True, client=None, flush_rows: int = 64) -> dict:
+        progress: bool = True, client=None, flush_rows: int = 64,
+        columns: Optional[List[str]] = None) -> dict:
     """Runs the campaign; returns {"run", "tasks", "stored", "computed", "failed", "wall_s",
-    "compute_s" (first submission to last result, cluster start excluded), "workers", "rows" (key -> stored row of every task of the spec), "task_list"}."""
+    "compute_s" (first submission to last result, cluster start excluded), "workers",
+    "rows" (key -> stored row, the given columns or all, of every task of the spec), "task_list"}."""
     from . import spec as S
     from .store import Store
     run_id = new_run_id()
@@ -141,9 +143,14 @@ def run(spec: dict, out: str, scheduler: Optional[str] = None, workers: Optional
         stats["wall_s"] = time.perf_counter() - t0
     finally:
         cl.close()
-    stats["rows"] = store.rows(t["key"] for t in all_tasks)
+    stats["rows"] = store.rows((t["key"] for t in all_tasks), columns)
     stats["task_list"] = all_tasks
     return stats
+
+
+def store_columns() -> List[str]:
+    from .tasks import ROW_FIELDS
+    return list(ROW_FIELDS)
 
 
 def add_parser(sub) -> None:
@@ -183,8 +190,11 @@ def main(args) -> int:
         return 2
     out = args.out or os.path.join(REPO, "build", "campaigns", spec["name"])
     try:
+        # The figures need neither the missions nor (kind plan) the plans: a large
+        # campaign's report does not load them.
+        keep = [c for c in store_columns() if c != "mission" and (c != "result" or spec["kind"] == "live")]
         stats = run(spec, out, args.scheduler, args.workers, progress=not args.no_progress,
-                    flush_rows=args.flush_rows)
+                    flush_rows=args.flush_rows, columns=keep)
     except CampaignError as e:
         print(f"sva-tools: error: campaign: {shown(e)}", file=sys.stderr)
         return 2

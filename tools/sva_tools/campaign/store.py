@@ -65,8 +65,9 @@ class Store:
     def keys(self) -> set:
         return set(self.table(["key"]).column("key").to_pylist())
 
-    def rows(self, keys: Optional[Iterable[str]] = None) -> Dict[str, dict]:
-        t = self.table()
+    def rows(self, keys: Optional[Iterable[str]] = None, columns: Optional[List[str]] = None) -> Dict[str, dict]:
+        """key -> row (only the given columns, key always included)."""
+        t = self.table(None if columns is None else ["key"] + [c for c in columns if c != "key"])
         wanted = set(keys) if keys is not None else None
         return {r["key"]: r for r in t.to_pylist() if wanted is None or r["key"] in wanted}
 
