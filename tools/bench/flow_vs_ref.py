@@ -2,13 +2,17 @@
 """flow against the exact optimum (sva-tools ref) on generated missions.
 
 Usage (from the repository root, after scripts/setup.sh and scripts/build.sh):
-    .venv/bin/python tools/bench/flow_vs_ref.py [--results] TARGETS UAVS COUNT [sva-tools gen options]
+    .venv/bin/python tools/bench/flow_vs_ref.py [--results] [--scheduler=tcp://HOST:PORT] TARGETS UAVS COUNT
+                                                [sva-tools gen options]
     e.g. .venv/bin/python tools/bench/flow_vs_ref.py 25 5 30 --width 10:20 --need 1 --hover 2 --fuel 120
 --results also writes the set's part of docs/results.md (docs/results/flow_vs_ref.<set>.md,
 tools/bench/results.py). Environment: FLOW_WORK=N passes --flow-work N to the planner; FLOW_REPEAT=N passes
 --repeat N (flow's time is then its fastest of N runs in one process, memory warm); REF_DET (default 10) is
-ref's deterministic limit (load-independent; docs/tools.md). Missions and ref plans are
-cached under build/flow_vs_ref/ (delete a folder to recompute its ref plans).
+ref's deterministic limit (load-independent; docs/tools.md). It is a campaign
+(`sva-tools campaign`, docs/campaigns.md): flow and ref run as tasks on a Dask
+LocalCluster of two workers, or on the cluster of --scheduler; results are stored in
+build/flow_vs_ref/<set>/campaign/ (Parquet, keyed by mission content and tool version),
+so a re-run solves only what is not stored (delete the folder to recompute).
 Prints: missions where flow's coverage equals, is below or above ref's; the mean and
 largest cost gap at equal coverage; how many flow plans are proven optimal; flow's
 median and p95 solve time; the gap to the proven optima alone; flow's own certified
@@ -16,7 +20,6 @@ gap; on how many proven optima fuel matters (flow's optimum of the same mission 
 fuel no route can use up differs from ref's: the protocol's fuel is calibrated by it,
 about a third at fuel 105); and any bound above a proven optimum (must be none).
 """
-import concurrent.futures
 import json
 import os
 import re
@@ -27,23 +30,12 @@ import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SVA = os.path.join(ROOT, "build", "bin", "sva")
-TOOLS = os.path.join(ROOT, "tools", "sva-tools")
 
 
-def plan(path, algo):
-    cmd = [SVA, "plan", "--algo", algo]
-    if algo == "flow" and os.environ.get("FLOW_WORK"):
-        cmd += ["--flow-work", os.environ["FLOW_WORK"]]
-    if algo == "flow" and os.environ.get("FLOW_REPEAT"):
-        cmd += ["--repeat", os.environ["FLOW_REPEAT"]]
-    return json.loads(subprocess.run(cmd + [path], capture_output=True, text=True, check=True).stdout)
-
-
-def fuel_free(path):
-    """(covered, cost) of flow's plan for the mission at path with fuel no route uses up
+def fuel_free(doc):
+    """(covered, cost) of flow's plan for the mission doc with fuel no route uses up
     (every leg at most the grid's width plus height), or None if flow does not prove it."""
-    with open(path) as f:
-        doc = json.load(f)
+    doc = json.loads(json.dumps(doc))
     xs = [doc["depot"]["x"]] + [p["x"] for p in doc["uavs"] + doc["targets"]]
     ys = [doc["depot"]["y"]] + [p["y"] for p in doc["uavs"] + doc["targets"]]
     leg = (max(xs) - min(xs)) + (max(ys) - min(ys))
@@ -58,43 +50,61 @@ def fuel_free(path):
     return (out["covered"], out["cost"]) if out["stats"]["optimal"] else None
 
 
+def campaign_spec(tag, targets, uavs, count, gen_args):
+    """The campaign of this set: the first COUNT missions of `sva-tools gen --seed 7 GEN_ARGS`,
+    flow (with FLOW_WORK, FLOW_REPEAT) and ref (REF_DET, one worker) on each."""
+    sys.path.insert(0, os.path.join(ROOT, "tools"))
+    from sva_tools import gen
+    from sva_tools.text import Parser
+    sub = Parser(prog="flow_vs_ref.py").add_subparsers()
+    gen.add_parser(sub)
+    a = sub.choices["gen"].parse_args(gen_args)
+    s = {"targets": targets, "uavs": uavs, "width": list(a.width), "need": list(a.need), "ratio": a.ratio,
+         "max_coord": a.max_coord, "fuel": a.fuel, "hover": a.hover, "ticks_per_cell": a.ticks_per_cell,
+         "overlap_percent": a.overlap_percent}
+    spec = {"name": "flow_vs_ref_" + re.sub(r"[^A-Za-z0-9_.-]+", "_", tag)[:50], "kind": "plan", "sets": [s],
+            "seeds": {"first": 7, "count": 1}, "count": count, "algorithms": ["flow"],
+            "ref": {"det_limit": float(os.environ.get("REF_DET", "10")), "max_targets": 1000}}
+    if os.environ.get("FLOW_WORK"):
+        spec["flow_work"] = int(os.environ["FLOW_WORK"])
+    if os.environ.get("FLOW_REPEAT"):
+        spec["repeat"] = int(os.environ["FLOW_REPEAT"])
+    return spec
+
+
 def main(argv):
     write_results = "--results" in argv
     load_start = " ".join(f"{x:.2f}" for x in os.getloadavg())
-    argv = [a for a in argv if a != "--results"]
+    scheduler = next((a.split("=", 1)[1] for a in argv if a.startswith("--scheduler=")), None)
+    argv = [a for a in argv if a != "--results" and not a.startswith("--scheduler=")]
     if len(argv) < 3:
         sys.exit(__doc__)
     targets, uavs, count, gen_args = int(argv[0]), int(argv[1]), int(argv[2]), argv[3:]
     tag = "_".join([str(targets), str(uavs)] + [a.strip("-").replace(":", "-") for a in gen_args])
     folder = os.path.join(ROOT, "build", "flow_vs_ref", tag)
     os.makedirs(folder, exist_ok=True)
-    subprocess.run([TOOLS, "gen", "--targets", str(targets), "--uavs", str(uavs), "--count", str(count),
-                    "--seed", "7", "-o", folder] + gen_args, check=True, capture_output=True)
-    # The first COUNT missions of the seed (gen names them ..._s7_<index>.json); the folder
-    # may hold more from an earlier run with a larger COUNT.
-    index = re.compile(r"_s7_(\d+)\.json$")
-    missions = sorted(f for f in os.listdir(folder)
-                      if not f.endswith(".ref.json") and index.search(f) and int(index.search(f).group(1)) < count)
-
-    def run(name):
-        path = os.path.join(folder, name)
-        ref_path = path[:-5] + ".ref.json"
-        if not os.path.exists(ref_path):
-            ref = subprocess.run([TOOLS, "ref", "--det-limit", os.environ.get("REF_DET", "10"),
-                                  "--workers", "1", path], capture_output=True, text=True, check=True)
-            with open(ref_path, "w") as f:
-                f.write(ref.stdout)
-        with open(ref_path) as f:
-            return name, plan(path, "flow"), json.load(f)
-
-    with concurrent.futures.ThreadPoolExecutor(2) as pool:
-        results = list(pool.map(run, missions))
+    sys.path.insert(0, os.path.join(ROOT, "tools"))
+    import sva_tools.campaign as campaign  # noqa: E402
+    from sva_tools.campaign import spec as cspec  # noqa: E402
+    spec = cspec.validate(campaign_spec(tag, targets, uavs, count, gen_args))
+    stats = campaign.run(spec, os.path.join(folder, "campaign"), scheduler, None if scheduler else 2)
+    if stats["failed"]:
+        sys.exit("flow_vs_ref: tasks failed: " + "; ".join(stats["failed"][:5]))
+    rows = stats["rows"].values()
+    refs = {r["mission_hash"]: r for r in rows if r["tool"] == "ref"}
+    for r in rows:
+        if r["error"]:
+            sys.exit(f"flow_vs_ref: {r['tool']} on {r['mission_name']}: {r['error']}")
+    # The first COUNT missions of seed 7, in gen's order (`sva-tools gen --seed 7` names them ..._s7_<index>).
+    results = [(r["mission_name"], json.loads(r["result"]), json.loads(refs[r["mission_hash"]]["result"]))
+               for r in sorted(rows, key=lambda r: r["index"]) if r["tool"] == "flow"]
+    missions = {r["mission_name"]: json.loads(r["mission"]) for r in rows if r["tool"] == "flow"}
     equal = [r for r in results if r[1]["covered"] == r[2]["covered"]]
     below = [(n, fl["covered"], ref["covered"]) for n, fl, ref in results if fl["covered"] < ref["covered"]]
     above = [(n, fl["covered"], ref["covered"]) for n, fl, ref in results if fl["covered"] > ref["covered"]]
     gaps = [100.0 * (fl["cost"] - ref["cost"]) / ref["cost"] for _, fl, ref in equal if ref["cost"] > 0]
     exact = [(fl, ref) for _, fl, ref in results if ref["stats"].get("optimal")]
-    free = [fuel_free(os.path.join(folder, n)) for n, _, ref in results if ref["stats"].get("optimal")]
+    free = [fuel_free(missions[n]) for n, _, ref in results if ref["stats"].get("optimal")]
     fuel_matters = sum(1 for (_, ref), f in zip(exact, free) if f is not None and f != (ref["covered"], ref["cost"]))
     exact_gaps = [100.0 * (fl["cost"] - ref["cost"]) / ref["cost"] for fl, ref in exact
                   if fl["covered"] == ref["covered"] and ref["cost"] > 0]
@@ -141,7 +151,9 @@ def main(argv):
             f"{len(results)} missions `sva-tools gen --targets {targets} --uavs {uavs} --count {count} --seed 7 "
             f"{' '.join(gen_args)}`; flow work budget {os.environ.get('FLOW_WORK', 'default')}; "
             f"ref with deterministic limit {os.environ.get('REF_DET', '10')}, one worker. "
-            f"Time: `stats.solve_us`, {timing}; the script plans two missions at once.", "",
+            f"Time: `stats.solve_us`, {timing}; " + ("the script plans two missions at once (a campaign, "
+            "docs/campaigns.md, on two local workers)." if not scheduler else "a campaign on a Dask cluster "
+            "(docs/campaigns.md)."), "",
             "| fuel matters on | coverage vs ref | cost gap at equal coverage | cost gap to the proven optima "
             "| certified gap | proven optimal | median | p95 |",
             "|---|---|---|---|---|---|---|---|",

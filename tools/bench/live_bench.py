@@ -23,21 +23,24 @@ Goals: flow covers as many targets as ref on at least 99 % of the residual missi
 flow at 25 x 5 replans in p50 < 1 ms and p99 < 10 ms.
 
 --node measures the node instead (root: the bench re-runs itself in a network namespace
-made with tests/lcm/netns_run.sh): every scenario is flown in process (cached as above)
-and again with `sva-tools sim --via lcm`'s planner, a real sva_node per flight over LCM
-multicast; ref is not run. Its table gives per algorithm and penalty: flights whose
-coverage equals the in-process flight's, the replan round trip (event_t published to
+made with tests/lcm/netns_run.sh): every scenario is flown in process (a campaign task,
+as above) and again with `sva-tools sim --via lcm`'s planner, a real sva_node per flight
+over LCM multicast, in the bench's process (cached under --work/<set>/logs/); ref is not
+run. Its table gives per algorithm and penalty: flights whose coverage equals the in-process flight's, the replan round trip (event_t published to
 replan_t received, monotonic clock, nearest-rank p50 / p99 over every event and clock
 message) and the node's solve time (plan_t.solve_us of those replans). Goal: a replan
 round trip through the node at 25 x 5 in p99 < 20 ms. --node --results writes
 docs/results/live.node.md (a part of the same section).
 
-Scenarios, flight logs and ref results are kept under --work (default build/live_bench/):
-ref results by a hash of the residual mission, so a re-run only solves new ones (delete
-the folder to recompute). --results writes docs/results/live.md (tools/bench/results.py).
+It is a campaign (`sva-tools campaign`, docs/campaigns.md): the flights and the ref
+solves run as tasks on a Dask LocalCluster of --jobs workers, or on the cluster of
+--scheduler. Results are stored under --work (default build/live_bench/) in campaign/
+(Parquet, keyed by scenario or residual mission content and tool version), so a re-run
+only flies and solves what is not stored (delete the folder to recompute); the flight
+logs are also written to --work/<set>/logs/. --results writes docs/results/live.md
+(tools/bench/results.py).
 """
 import argparse
-import concurrent.futures
 import hashlib
 import json
 import os
@@ -46,11 +49,13 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-TOOLS = [sys.executable, "-m", "sva_tools"]  # this Python (.venv), tools/ on PYTHONPATH
-ENV = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "tools") + os.pathsep + os.environ.get("PYTHONPATH", ""))
+# The host tools, here and in the Dask workers this process starts.
+os.environ["PYTHONPATH"] = os.path.join(ROOT, "tools") + os.pathsep + os.environ.get("PYTHONPATH", "")
 sys.path.insert(0, os.path.join(ROOT, "tools"))
 
+import sva_tools.campaign as campaign  # noqa: E402
 from sva_tools import sim  # noqa: E402
+from sva_tools.campaign import spec as cspec, tasks as T  # noqa: E402
 
 GOAL_EQUAL = 99.0       # % of residual missions where flow covers as many targets as ref
 GOAL_P50_MS = 1.0       # flow at 25 x 5
@@ -81,23 +86,21 @@ def percentile(sorted_values, p):
     return sorted_values[int(k) - 1]
 
 
-def scenarios(folder, targets, uavs, count, args):
-    os.makedirs(folder, exist_ok=True)
-    subprocess.run(TOOLS + ["gen", "--targets", str(targets), "--uavs", str(uavs),
-                    "--events", str(args.events), "--count", str(count), "--seed", str(args.seed),
-                    "--name", "live", "-o", folder] + args.gen, check=True, capture_output=True, env=ENV)
-    return [os.path.join(folder, f"live_{i:04d}.json") for i in range(count)]
-
-
-def fly(path, algo, penalty, log_path):
-    if os.path.exists(log_path):
-        with open(log_path, encoding="utf-8") as f:
-            return json.load(f)
-    mission, events, _ = sim.load_scenario(path)
-    log = sim.simulate(mission, events, penalty, algo)
-    with open(log_path, "w", encoding="utf-8") as f:
-        json.dump(log, f)
-    return log
+def campaign_spec(sets, algos, penalties, args):
+    """One campaign for every set: its scenarios flown with each algorithm and penalty, ref
+    on the replans' residual missions of the set's first ref_count scenarios."""
+    from sva_tools import gen
+    from sva_tools.text import Parser
+    sub = Parser(prog="live_bench.py --gen").add_subparsers()
+    gen.add_parser(sub)
+    a = sub.choices["gen"].parse_args(args.gen)
+    specs = []
+    for t, u, n, k in sets:
+        specs.append({"label": f"{t}x{u}_n{n}_k{k}", "targets": t, "uavs": u, "events": args.events,
+                      "count": n, "ref_count": k, "width": list(a.width), "need": list(a.need), "ratio": a.ratio,
+                      "max_coord": a.max_coord, "fuel": a.fuel, "hover": a.hover,
+                      "ticks_per_cell": a.ticks_per_cell, "overlap_percent": a.overlap_percent})
+    return specs
 
 
 def fly_node(path, algo, penalty, log_path):
@@ -165,23 +168,6 @@ def node_section(targets, uavs, count, paths, folder, logs, algos, penalties, ar
 def ref_key(residual):
     doc = {k: v for k, v in residual.items() if k not in ("change_penalty", "name")}
     return hashlib.sha256(json.dumps(doc, sort_keys=True).encode()).hexdigest()[:24]
-
-
-def ref(residual, folder, det_limit):
-    """ref's plan of a residual mission (cached in folder by the mission's hash)."""
-    key = ref_key(residual)
-    out = os.path.join(folder, key + ".ref.json")
-    if not os.path.exists(out):
-        src = os.path.join(folder, key + ".json")
-        with open(src, "w", encoding="utf-8") as f:
-            json.dump({k: v for k, v in residual.items() if k != "change_penalty"}, f)
-        r = subprocess.run(TOOLS + ["ref", "--det-limit", str(det_limit), "--workers", "1", src],
-                           capture_output=True, text=True, check=True, env=ENV)
-        with open(out + ".tmp", "w", encoding="utf-8") as f:
-            f.write(r.stdout)
-        os.replace(out + ".tmp", out)
-    with open(out, encoding="utf-8") as f:
-        return json.load(f)
 
 
 def figures(logs, refs, ref_count):
@@ -268,9 +254,12 @@ def main(argv):
     ap.add_argument("--algos", default="sva,ga,hga,flow", help="comma-separated (default sva,ga,hga,flow)")
     ap.add_argument("--penalties", default="0,1000", help="change_penalty values, comma-separated (default 0,1000)")
     ap.add_argument("--det-limit", type=float, default=10.0, help="ref's deterministic limit (default 10)")
-    ap.add_argument("--jobs", type=int, default=2, help="ref processes at once (default 2)")
+    ap.add_argument("--jobs", type=int, default=2,
+                    help="Dask LocalCluster workers: tasks at once (default 2)")
+    ap.add_argument("--scheduler", metavar="tcp://HOST:PORT",
+                    help="run the tasks on this Dask scheduler's workers instead (docs/campaigns.md)")
     ap.add_argument("--work", default=os.path.join(ROOT, "build", "live_bench"),
-                    help="scenarios, flight logs and ref cache (default build/live_bench)")
+                    help="the campaign's results and the flight logs (default build/live_bench)")
     ap.add_argument("--gen", action="append", default=[], metavar="ARG",
                     help="an extra `sva-tools gen` argument, e.g. --gen=--need --gen=1:2 (repeatable)")
     ap.add_argument("--node", action="store_true",
@@ -284,39 +273,67 @@ def main(argv):
                   file=sys.stderr)
             return 2
         return subprocess.run([str(simnode.netns_helper()), sys.executable, os.path.abspath(__file__), *argv],
-                              env=ENV).returncode
+                              env=os.environ).returncode
     sets = args.sets or [(25, 5, 20, 20), (100, 20, 5, 5)]
+    if args.node:  # the node's figures need no ref
+        sets = [(t, u, n, 0) for t, u, n, _ in sets]
     algos = [a for a in args.algos.split(",") if a]
     penalties = [int(p) for p in args.penalties.split(",") if p]
     load_start = " ".join(f"{x:.2f}" for x in os.getloadavg())
     gen_tag = "_".join(a.strip("-").replace(":", "-") for a in args.gen)
     sections = []
+    # One campaign: each set a spec set with its own scenario count.
+    spec = cspec.validate({
+        "name": "live_bench", "kind": "live", "sets": campaign_spec(sets, algos, penalties, args),
+        "seeds": {"first": args.seed, "count": 1}, "count": 1, "algorithms": algos,
+        "penalties": penalties, "ref": {"det_limit": args.det_limit, "max_targets": 1000}})
+    stats = campaign.run(spec, os.path.join(args.work, "campaign"), args.scheduler,
+                         None if args.scheduler else args.jobs)
+    if stats["failed"]:
+        sys.exit("live_bench: tasks failed: " + "; ".join(stats["failed"][:5]))
+    rows = stats["rows"]
+    by_hash = {r["mission_hash"]: r for r in rows.values() if r["task"] == "ref"}
     for targets, uavs, count, ref_count in sets:
         tag = f"{targets}x{uavs}_e{args.events}_s{args.seed}" + (f"_{gen_tag}" if gen_tag else "")
         folder = os.path.join(args.work, tag)
-        paths = scenarios(os.path.join(folder, "scenarios"), targets, uavs, count, args)
         os.makedirs(os.path.join(folder, "logs"), exist_ok=True)
-        ref_dir = os.path.join(args.work, "ref")
-        os.makedirs(ref_dir, exist_ok=True)
+        label = f"{targets}x{uavs}_n{count}_k{ref_count}"
         logs = {}
         for algo in algos:
             for pen in penalties:
-                logs[algo, pen] = [fly(p, algo, pen, os.path.join(
-                    folder, "logs", f"{os.path.basename(p)[:-5]}.{algo}.p{pen}.json")) for p in paths]
-                print(f"{targets}x{uavs}: flown {algo} penalty {pen}", file=sys.stderr, flush=True)
+                flights = sorted((r for r in rows.values() if r["task"] == "fly" and r["set"] == label
+                                  and r["tool"] == algo and r["penalty"] == pen), key=lambda r: r["index"])
+                for r in flights:
+                    if r["error"]:
+                        sys.exit(f"live_bench: {algo} penalty {pen} on {r['mission_name']}: {r['error']}")
+                logs[algo, pen] = [json.loads(r["result"]) for r in flights]
+                for r, log in zip(flights, logs[algo, pen]):
+                    with open(os.path.join(folder, "logs", f"{r['mission_name']}.{algo}.p{pen}.json"), "w",
+                              encoding="utf-8") as f:
+                        json.dump(log, f)
+        refs = {}  # ref_key of a residual mission -> ref's plan of it
         if args.node:
+            # the scenarios as files for `sim --via lcm`, in the campaign's order
+            paths = []
+            os.makedirs(os.path.join(folder, "scenarios"), exist_ok=True)
+            for t in stats["task_list"]:
+                if t["task"] == "fly" and t["set"] == label and t["tool"] == algos[0] and t["penalty"] == penalties[0]:
+                    path = os.path.join(folder, "scenarios", f"{t['mission_name']}.json")
+                    with open(path, "w", encoding="utf-8") as f:
+                        f.write(t["mission"])
+                    paths.append((t["index"], path))
+            paths = [p for _, p in sorted(paths)]
             sections.append(node_section(targets, uavs, count, paths, folder, logs, algos, penalties, args))
             print(sections[-1] + "\n")
             continue
-        residuals = {}  # scenario by scenario, so an interrupted run leaves whole scenarios cached
         for i in range(ref_count):
             for ls in logs.values():
                 for r in ls[i]["replans"]:
                     if r["mission"]["targets"]:
-                        residuals.setdefault(ref_key(r["mission"]), r["mission"])
-        print(f"{targets}x{uavs}: {len(residuals)} distinct residual missions for ref", file=sys.stderr, flush=True)
-        with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
-            refs = dict(zip(residuals, pool.map(lambda m: ref(m, ref_dir, args.det_limit), residuals.values())))
+                        q = by_hash[T.mission_hash(T.residual_for_ref(r["mission"]))]
+                        if q["error"]:
+                            sys.exit(f"live_bench: ref on a residual mission: {q['error']}")
+                        refs[ref_key(r["mission"])] = json.loads(q["result"])
         by = {k: figures(v, refs, ref_count) for k, v in logs.items()}
         proven = sum(1 for q in refs.values() if q["stats"].get("optimal"))
         ref_s = sorted(q["stats"]["solve_us"] / 1e6 for q in refs.values()) or [0.0]

@@ -3,7 +3,7 @@
 
 Each benchmark writes its own fragment when run with `--results` (scripts/bench.sh,
 scripts/instructions.sh, tests/footprint/footprint.py results, tools/bench/flow_vs_ref.py,
-tools/bench/flow_vs_peer.py, tools/bench/live_bench.py, `sva-tools bench`,
+tools/bench/flow_vs_peer.py, tools/bench/live_bench.py, tools/bench/campaign_bench.py, `sva-tools bench`,
 port/lcm/bench/latency.sh), then this script assembles docs/results.md; re-running a bench
 rewrites only its own fragment.
 A fragment is docs/results/SECTION.md (the section's text) or docs/results/SECTION.PART.md
@@ -43,6 +43,7 @@ SECTIONS = [
     ("flow_vs_ref", "flow against the exact optimum"),
     ("flow_vs_peer", "flow against the OR-tools routing peer"),
     ("live", "Live missions"),
+    ("campaign", "Regression campaigns"),
     ("paper", "The paper's evaluation"),
     ("lcm_latency", "LCM latency"),
 ]

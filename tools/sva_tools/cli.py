@@ -10,7 +10,7 @@ from . import io
 from .text import Parser, shown
 
 SUBCOMMANDS = ("gen", "check", "validate", "ref", "ih", "peer", "bench", "plot", "sim", "ground", "geo",
-               "mavlink")
+               "mavlink", "campaign")
 
 
 def _lcm(argv: List[str]) -> int:

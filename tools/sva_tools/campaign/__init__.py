@@ -1,0 +1,209 @@
+"""`sva-tools campaign SPEC.yaml`: a regression campaign on a Dask cluster (docs/campaigns.md).
+
+The spec (YAML) names generator settings, how many missions or live scenarios, the
+algorithms and whether the exact reference (ref) solves them. Every task (one planner
+on one mission, ref on one mission, one flight of a live scenario) runs on a Dask
+worker: an embedded LocalCluster by default (--workers N processes, one thread each),
+or the cluster of --scheduler tcp://HOST:PORT. Results go to OUT/results/*.parquet,
+keyed by the mission's content hash, the tool, its settings and its version: a task
+already stored is not submitted again, so an interrupted or extended campaign resumes
+where it stopped. Then OUT/metrics.parquet (coverage, cost, gap to ref, solve time per
+planner result) and OUT/report.html (tables and plots, self-contained).
+Exit status: 0 when every task has a stored result, 1 when some failed, 2 on a bad spec
+or option, or a scheduler that cannot be reached.
+"""
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import os
+import sys
+import time
+import uuid
+from typing import Dict, List, Optional
+
+from ..text import shown
+
+# The Dask, Parquet and schema modules are imported when a campaign runs, not when the
+# `sva-tools` parser is built for another subcommand.
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+
+
+def new_run_id() -> str:
+    now = datetime.datetime.now(datetime.timezone.utc)
+    return now.strftime("%Y%m%dT%H%M%S") + "-" + uuid.uuid4().hex[:8]
+
+
+class CampaignError(RuntimeError):
+    pass
+
+
+class _Cluster:
+    """The Dask client, connected (and the LocalCluster started) only when a task is to
+    be submitted: a campaign whose results are all stored starts no cluster."""
+
+    def __init__(self, scheduler: Optional[str], workers: Optional[int], client=None):
+        self.scheduler, self.workers = scheduler, workers
+        self.client, self.cluster, self.own = client, None, client is None
+
+    def get(self):
+        if self.client is None:
+            from distributed import Client, LocalCluster
+            if self.scheduler:
+                try:
+                    self.client = Client(self.scheduler, timeout="30s")
+                except (OSError, TimeoutError) as e:
+                    raise CampaignError(f"--scheduler {self.scheduler}: cannot connect within 30 s "
+                                        f"({type(e).__name__}: {e})") from None
+            else:
+                n = self.workers or min(2, os.cpu_count() or 1)
+                # On loopback; no dashboard, and the scheduler's HTTP server (health
+                # checks) on a free port rather than 8787, which may be taken.
+                self.cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                            host="127.0.0.1", dashboard_address=None,
+                                            scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
+                self.client = Client(self.cluster)
+        return self.client
+
+    def n_workers(self) -> int:
+        return len(self.client.nthreads()) if self.client is not None else 0
+
+    def close(self) -> None:
+        if self.own and self.client is not None:
+            self.client.close()
+            if self.cluster is not None:
+                self.cluster.close()
+
+
+def _execute(cl: _Cluster, tasks: List[dict], store, stored: set, stats: dict, progress: bool,
+             label: str) -> None:
+    from distributed import as_completed
+    from .tasks import run_task
+    todo = [t for t in tasks if t["key"] not in stored]
+    stats["tasks"] += len(tasks)
+    stats["stored"] += len(tasks) - len(todo)
+    if not todo:
+        return
+    client = cl.get()
+    stats["workers"] = max(stats["workers"], cl.n_workers())
+    t0 = time.perf_counter()
+    futures = [client.submit(run_task, t, key=f"sva-{t['task']}-{t['key']}") for t in todo]
+    bar = None
+    if progress:
+        from tqdm import tqdm
+        bar = tqdm(total=len(futures), desc=label, unit="task", file=sys.stderr, dynamic_ncols=True)
+    try:
+        for fut in as_completed(futures):
+            try:
+                row = fut.result()
+            except Exception as e:  # noqa: BLE001 - a worker's refusal or a lost task: not stored
+                stats["failed"].append(f"{fut.key}: {type(e).__name__}: {e}")
+            else:
+                store.add(row)
+                stored.add(row["key"])
+                stats["computed"] += 1
+            if bar is not None:
+                bar.update(1)
+            fut.release()
+    finally:
+        store.flush()
+        stats["compute_s"] += time.perf_counter() - t0
+        if bar is not None:
+            bar.close()
+
+
+def run(spec: dict, out: str, scheduler: Optional[str] = None, workers: Optional[int] = None,
+        progress: bool = True, client=None, flush_rows: int = 64,
+        columns: Optional[List[str]] = None) -> dict:
+    """Runs the campaign; returns {"run", "tasks", "stored", "computed", "failed", "wall_s",
+    "compute_s" (first submission to last result, cluster start excluded), "workers",
+    "rows" (key -> stored row, the given columns or all, of every task of the spec), "task_list"}."""
+    from . import spec as S
+    from .store import Store
+    run_id = new_run_id()
+    store = Store(out, run_id, flush_rows=flush_rows)
+    stored = store.keys()
+    stats: Dict = {"run": run_id, "tasks": 0, "stored": 0, "computed": 0, "failed": [], "workers": 0,
+                   "compute_s": 0.0}
+    cl = _Cluster(scheduler, workers, client)
+    try:
+        t0 = time.perf_counter()
+        first = S.first_tasks(spec, run_id)
+        _execute(cl, first, store, stored, stats, progress, spec["name"])
+        all_tasks = list(first)
+        if spec["kind"] == "live":
+            flights = [t for t in first if t["task"] == "fly"]
+            rows = store.rows(t["key"] for t in flights)
+            logs = {k: json.loads(r["result"]) for k, r in rows.items() if r["result"]}
+            refs = S.ref_tasks(spec, run_id, flights, logs)
+            _execute(cl, refs, store, stored, stats, progress, spec["name"] + " ref")
+            all_tasks += refs
+        stats["wall_s"] = time.perf_counter() - t0
+    finally:
+        cl.close()
+    stats["rows"] = store.rows((t["key"] for t in all_tasks), columns)
+    stats["task_list"] = all_tasks
+    return stats
+
+
+def store_columns() -> List[str]:
+    from .tasks import ROW_FIELDS
+    return list(ROW_FIELDS)
+
+
+def add_parser(sub) -> None:
+    ap = sub.add_parser("campaign", help="regression campaign on a Dask cluster (docs/campaigns.md)",
+                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("spec", help="campaign spec, YAML (docs/campaigns.md)")
+    ap.add_argument("--scheduler", metavar="tcp://HOST:PORT",
+                    help="a running Dask scheduler (default: an embedded LocalCluster)")
+    ap.add_argument("--workers", type=int, metavar="N",
+                    help="LocalCluster worker processes (default 2 or the CPU count if lower)")
+    ap.add_argument("--out", metavar="DIR", help="result folder (default build/campaigns/NAME)")
+    ap.add_argument("--flush-rows", type=int, default=64, metavar="N",
+                    help="results per Parquet file (default 64; also written every 2 s): at most "
+                         "this many finished results are lost when the client dies")
+    ap.add_argument("--no-progress", action="store_true", help="no progress bar")
+    ap.add_argument("--no-report", action="store_true", help="skip OUT/report.html")
+    ap.set_defaults(func=main)
+
+
+def main(args) -> int:
+    from . import report, spec as S
+    if args.workers is not None and args.workers < 1:
+        print("sva-tools: error: campaign: --workers: must be >= 1, got "
+              f"{args.workers}", file=sys.stderr)
+        return 2
+    if args.workers is not None and args.scheduler:
+        print("sva-tools: error: campaign: --workers is for the embedded LocalCluster; "
+              "with --scheduler the cluster's own workers run the tasks", file=sys.stderr)
+        return 2
+    if args.flush_rows < 1:
+        print(f"sva-tools: error: campaign: --flush-rows: must be >= 1, got {args.flush_rows}", file=sys.stderr)
+        return 2
+    try:
+        spec = S.load(args.spec)
+    except S.SpecError as e:
+        print(f"sva-tools: error: campaign: {shown(args.spec)}: {shown(e)}", file=sys.stderr)
+        return 2
+    out = args.out or os.path.join(REPO, "build", "campaigns", spec["name"])
+    try:
+        # The figures need neither the missions nor (kind plan) the plans: a large
+        # campaign's report does not load them.
+        keep = [c for c in store_columns() if c != "mission" and (c != "result" or spec["kind"] == "live")]
+        stats = run(spec, out, args.scheduler, args.workers, progress=not args.no_progress,
+                    flush_rows=args.flush_rows, columns=keep)
+    except CampaignError as e:
+        print(f"sva-tools: error: campaign: {shown(e)}", file=sys.stderr)
+        return 2
+    metrics = report.metrics(spec, stats["rows"])
+    report.write_metrics(metrics, out)
+    print(report.summary(spec, stats, metrics))
+    if not args.no_report:
+        path = report.write_html(spec, stats, metrics, out)
+        print(f"report: {path}")
+    for f in stats["failed"][:10]:
+        print(f"failed: {shown(f)}", file=sys.stderr)
+    return 1 if stats["failed"] else 0
