@@ -49,9 +49,9 @@ def test_bad_messages_are_counted_warnings_and_change_nothing_else():
     assert g.warnings["count"] == 0 and len(g.uavs) == 3 and len(g.targets) == 4
     t = wire.types()
     bad_event = wire.event_message({"at": 1, "type": "clock"}, 1)
-    bad_event.version = 2
+    bad_event.version = t.event_t.VERSION + 1
     bad_replan = t.replan_t()
-    bad_replan.version = 3
+    bad_replan.version = t.replan_t.VERSION + 1
     for channel, data in [("SVA_FLEET", b"\x00\x01garbage"),            # wrong fingerprint
                           ("SVA_MISSION", mission.encode()[:100]),       # truncated
                           ("SVA_PLAN", b""),                              # empty
@@ -61,8 +61,10 @@ def test_bad_messages_are_counted_warnings_and_change_nothing_else():
         g.on_message(channel, data)
     assert g.warnings["count"] == 6
     texts = [w["text"] for w in g.warnings["recent"]]
-    assert "event_t.version is 2, this view speaks version 1" in texts
-    assert "replan_t.version is 3, this tool speaks version 1" in texts
+    assert (f"event_t.version is {t.event_t.VERSION + 1}, this view speaks version "
+            f"{t.event_t.VERSION}") in texts
+    assert (f"replan_t.version is {t.replan_t.VERSION + 1}, this tool speaks version "
+            f"{t.replan_t.VERSION}") in texts
     assert any(x.startswith("100 bytes that are not a mission_t") for x in texts)
     after = json.dumps({k: v for k, v in g.snapshot().items()
                         if k not in ("version", "log", "warnings", "counts")})

@@ -275,6 +275,7 @@ def main(argv):
         return subprocess.run([str(simnode.netns_helper()), sys.executable, os.path.abspath(__file__), *argv],
                               env=os.environ).returncode
     sets = args.sets or [(25, 5, 20, 20), (100, 20, 5, 5)]
+    asked_sets = sets
     if args.node:  # the node's figures need no ref
         sets = [(t, u, n, 0) for t, u, n, _ in sets]
     algos = [a for a in args.algos.split(",") if a]
@@ -356,7 +357,7 @@ def main(argv):
         sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
         import results as page  # tools/bench/results.py
         opts = []
-        for t, u, n, k in sets:
+        for t, u, n, k in asked_sets:
             opts += ["--set", f"{t}x{u}:{n}" + (f":{k}" if k != n else "")]
         if args.events != 10:
             opts += ["--events", str(args.events)]
