@@ -4,10 +4,16 @@ and `sva replan` echo it into the plan with the same six keys, each value at its
 stored resolution (1e-7 degree, cm, ms; t0 as UTC with milliseconds); `--residual`
 keeps it."""
 import json
+import sys
+from pathlib import Path
 
 import pytest
 
 from test_cli import assert_one_error_line, check_plan, mission, run
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
+from sva_tools import frame as F  # noqa: E402  (the frame's contract)
+from sva_tools import schema  # noqa: E402
 
 pytestmark = pytest.mark.sanitize  # cheap: also run against the ASan/UBSan build
 
@@ -55,25 +61,68 @@ def test_echo_is_a_fixed_point(tmp_path):
 
 
 @pytest.mark.parametrize("change, message", [
-    ({"lat": 85.5}, "frame.lat: 85.5 is outside [-85, 85] degrees"),
-    ({"lon": -180.25}, "frame.lon: -180.25 is outside [-180, 180] degrees"),
-    ({"alt_m": -1}, "frame.alt_m: -1 is outside [0, 10000] m"),
-    ({"cell_m": 0.05}, "frame.cell_m: 0.05 is outside [0.1, 10000] m"),
-    ({"cell_m": 20000}, "frame.cell_m: 20000 is outside [0.1, 10000] m"),
-    ({"tick_s": 0}, "frame.tick_s: 0 is outside [0.001, 3600] s"),
+    ({"lat": 85.5}, "frame.lat: must be <= 85, got 85.5"),
+    ({"lon": -180.25}, "frame.lon: must be >= -180, got -180.25"),
+    ({"alt_m": -1}, "frame.alt_m: must be >= 0, got -1"),
+    ({"alt_m": -1.0}, "frame.alt_m: must be >= 0, got -1.0"),
+    ({"cell_m": 0.05}, "frame.cell_m: must be >= 0.1, got 0.05"),
+    ({"cell_m": 20000}, "frame.cell_m: must be <= 10000, got 20000"),
+    ({"cell_m": 1e-5}, "frame.cell_m: must be >= 0.1, got 1e-05"),
+    ({"cell_m": 1e20}, "frame.cell_m: must be <= 10000, got 1e+20"),
+    ({"tick_s": 0}, "frame.tick_s: must be >= 0.001, got 0"),
+    ({"tick_s": 0.00049999}, "frame.tick_s: must be >= 0.001, got 0.00049999"),
     ({"t0": "2026-06-01 08:00:00"},
-     "frame.t0: must be an ISO 8601 date-time with a UTC offset, e.g. 2026-06-01T08:00:00Z"),
-    ({"t0": "2026-02-30T08:00:00Z"}, 'frame.t0: "2026-02-30T08:00:00Z" is not a calendar date and time'),
+     "frame.t0: must be an ISO 8601 date-time with a UTC offset (YYYY-MM-DDThh:mm:ss[.fff] "
+     'then Z or +hh:mm or -hh:mm), got "2026-06-01 08:00:00"'),
+    ({"t0": "8 \"h\"\\\u00e9\U0001f6f8\x01"},
+     "frame.t0: must be an ISO 8601 date-time with a UTC offset (YYYY-MM-DDThh:mm:ss[.fff] "
+     'then Z or +hh:mm or -hh:mm), got "8 \\"h\\"\\\\\\u00e9\\ud83d\\udef8\\u0001"'),
+    ({"t0": "2026-02-30T08:00:00Z"}, 'frame.t0: must be a date of the calendar, got "2026-02-30T08:00:00Z"'),
+    ({"t0": "2026-06-01T08:00:60Z"},
+     'frame.t0: must have a time of day within 00:00:00..23:59:59, got "2026-06-01T08:00:60Z"'),
+    ({"t0": "2026-06-01T08:00:00-00:60"},
+     'frame.t0: must have a UTC offset within -23:59..+23:59, got "2026-06-01T08:00:00-00:60"'),
     ({"t0": "1969-12-31T23:59:59Z"},
-     "frame.t0: must be between 1970-01-01T00:00:00Z and 9999-12-31T23:59:59.999Z"),
+     'frame.t0: must be >= 1970-01-01T00:00:00Z, got "1969-12-31T23:59:59Z"'),
+    ({"t0": "9999-12-31T23:59:59.9991Z"},
+     'frame.t0: must be <= 9999-12-31T23:59:59.999Z, got "9999-12-31T23:59:59.9991Z"'),
     ({"lat": "47.4"}, "frame.lat: must be a number, got string"),
     ({"t0": 0}, "frame.t0: must be a string, got integer"),
     ({"datum": "WGS84"}, 'frame: unknown key "datum"'),
 ])
 @pytest.mark.parametrize("command", [["validate"], ["plan"]])
 def test_bad_frame_field(tmp_path, change, message, command):
-    _, path = framed(tmp_path, {**FRAME, **change})
+    """The C CLI's message is the Python tools' (the contract, docs/flight-stack.md)."""
+    doc, path = framed(tmp_path, {**FRAME, **change})
+    assert schema.first_error(doc, "mission") == message
     assert assert_one_error_line(run([*command, str(path)]), 2) == message
+
+
+# Literals near a tie of their resolution (half away from zero on the decimal as
+# written), where the double is just below or just above the tie; 17 significant
+# digits where the shortest form and 15 digits part (47.123456749999995 reads
+# 47.12345675 at 15 digits, which would round up).
+TIES = [
+    {"lat": 47.12345675, "lon": 8.00000005, "alt_m": 0.125, "cell_m": 1.005, "tick_s": 1.0005},
+    {"lat": -47.12345675, "lon": -8.00000005, "alt_m": 2.675, "cell_m": 0.145, "tick_s": 0.0015},
+    {"lat": 47.123456749999995, "lon": 179.99999995, "alt_m": 9999.995, "cell_m": 9999.994,
+     "tick_s": 3599.9995},
+    {"lat": -5e-08, "lon": 4e-08, "alt_m": 0.004, "cell_m": 0.105, "tick_s": 1.0004},
+    {"lat": 0.30000000000000004, "lon": -0.1, "alt_m": 1e-2, "cell_m": 0.1, "tick_s": 1},
+    {"lat": 84.99999995, "lon": -179.99999995, "alt_m": 5, "cell_m": 10000, "tick_s": 3600},
+]
+T0S = ["2026-06-01T08:00:00.0005Z", "2026-06-01T08:00:00.00049999Z",
+       "2026-06-01T10:00:00.9995+02:00", "1970-01-01T00:00:00.0004Z", "9999-12-31T23:59:59.999Z",
+       "2026-06-01T08:00:00.123456789-05:30"]
+
+
+@pytest.mark.parametrize("case", range(len(TIES)))
+def test_the_echo_is_what_the_python_tools_make(tmp_path, case):
+    """`sva plan`'s echoed frame equals sva_tools.frame's rounding of the same mission."""
+    frame = {**TIES[case], "t0": T0S[case]}
+    doc, path = framed(tmp_path, frame)
+    plan = json.loads(run(["plan", str(path)]).stdout)
+    assert plan["frame"] == F.Frame.from_json(frame).to_json()
 
 
 @pytest.mark.parametrize("frame, message", [
@@ -104,4 +153,4 @@ def test_replan_echoes_the_frame_and_the_residual_keeps_it(tmp_path):
     assert json.loads(again.stdout)["frame"] == ECHO
     live.write_text(json.dumps({"mission": {**doc, "frame": {**FRAME, "tick_s": 0}}}))
     assert assert_one_error_line(run(["replan", str(live)]), 2) == (
-        "mission.frame.tick_s: 0 is outside [0.001, 3600] s")
+        "mission.frame.tick_s: must be >= 0.001, got 0")

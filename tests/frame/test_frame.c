@@ -6,6 +6,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <string.h>
 
 #include <cmocka.h>
@@ -15,7 +16,7 @@
 
 static sva_frame_units_t units(void)
 {
-    sva_frame_units_t u = {48.1372, 11.5755, 60.0, 100.0, 1.0, "2026-06-01T08:00:00Z"};
+    sva_frame_units_t u = {48.1372, 11.5755, 60.0, 100.0, 1.0, "2026-06-01T08:00:00Z", 0U};
     return u;
 }
 
@@ -26,7 +27,7 @@ static void check_fails(const sva_frame_units_t* u, const char* expected)
     memset(&f, 0x5a, sizeof f);
     const sva_frame_t before = f;
     assert_false(sva_frame_from_units(u, &f, err, sizeof err));
-    assert_non_null(strstr(err, expected));
+    assert_string_equal(err, expected);
     assert_memory_equal(&f, &before, sizeof f);
 }
 
@@ -39,7 +40,7 @@ static void test_units_round_half_away_from_zero(void** state)
     u.lat = -33.00000005;  // half a unit of 1e-7 degree: away from zero
     u.cell_m = 12.345;     // 1234.5 cm -> 1235
     u.tick_s = 0.0005;     // below the millisecond: out of range
-    check_fails(&u, "frame.tick_s: 0.0005 is outside [0.001, 3600] s");
+    check_fails(&u, "frame.tick_s: must be >= 0.001, got 0.0005");
     u.tick_s = 2.0005;
     assert_true(sva_frame_from_units(&u, &f, err, sizeof err));
     assert_int_equal(f.lat_e7, -330000001);
@@ -48,42 +49,157 @@ static void test_units_round_half_away_from_zero(void** state)
     assert_int_equal(f.alt_cm, 6000);
 }
 
+// Ties on the literal as written, where the double is just below the tie (value * scale
+// in floating point rounds the other way), and just above it.
+static void test_ties_round_on_the_decimal_text(void** state)
+{
+    (void)state;
+    static const struct {
+        double lat, lon, alt_m, cell_m, tick_s;
+        int32_t lat_e7, lon_e7, alt_cm, cell_cm, tick_ms;
+    } cases[] = {
+        {47.12345675, 8.00000005, 0.125, 1.005, 1.0005, 471234568, 80000001, 13, 101, 1001},
+        {-47.12345675, -8.00000005, 2.675, 0.145, 0.0015, -471234568, -80000001, 268, 15, 2},
+        {47.123456749999995, 179.99999995, 9999.995, 9999.994, 3599.9995, 471234567, 1800000000,
+         1000000, 999999, 3600000},
+        {-0.00000005, 0.00000004, 0.004, 0.105, 1.0004, -1, 0, 0, 11, 1000},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        sva_frame_units_t u = units();
+        char err[SVA_FRAME_ERROR_SIZE] = "";
+        sva_frame_t f;
+        u.lat = cases[i].lat;
+        u.lon = cases[i].lon;
+        u.alt_m = cases[i].alt_m;
+        u.cell_m = cases[i].cell_m;
+        u.tick_s = cases[i].tick_s;
+        assert_true(sva_frame_from_units(&u, &f, err, sizeof err));
+        assert_int_equal(f.lat_e7, cases[i].lat_e7);
+        assert_int_equal(f.lon_e7, cases[i].lon_e7);
+        assert_int_equal(f.alt_cm, cases[i].alt_cm);
+        assert_int_equal(f.cell_cm, cases[i].cell_cm);
+        assert_int_equal(f.tick_ms, cases[i].tick_ms);
+    }
+    // t0: the fraction past the millisecond on the text, half away from zero
+    int64_t ms = -1;
+    char err[SVA_FRAME_ERROR_SIZE] = "";
+    assert_true(sva_frame_parse_utc("1970-01-01T00:00:00.0005Z", "t0", &ms, err, sizeof err));
+    assert_int_equal(ms, 1);
+    assert_true(sva_frame_parse_utc("1970-01-01T00:00:00.00049999Z", "t0", &ms, err, sizeof err));
+    assert_int_equal(ms, 0);
+}
+
 static void test_every_range_is_named(void** state)
 {
     (void)state;
     sva_frame_units_t u = units();
     u.lat = 85.5;
-    check_fails(&u, "frame.lat: 85.5 is outside [-85, 85] degrees");
+    check_fails(&u, "frame.lat: must be <= 85, got 85.5");
+    u.lat = 85.0000001;
+    check_fails(&u, "frame.lat: must be <= 85, got 85.0000001");
+    u.lat = -86.0;
+    check_fails(&u, "frame.lat: must be >= -85, got -86.0");
+    u.integers = 1U;  // written as an integer
+    check_fails(&u, "frame.lat: must be >= -85, got -86");
     u = units();
     u.lon = -180.01;
-    check_fails(&u, "frame.lon: -180.01 is outside [-180, 180] degrees");
+    check_fails(&u, "frame.lon: must be >= -180, got -180.01");
     u = units();
-    u.alt_m = -1.0;
-    check_fails(&u, "frame.alt_m: -1 is outside [0, 10000] m");
+    u.lon = 1e300;
+    check_fails(&u, "frame.lon: must be <= 180, got 1e+300");
     u = units();
-    u.cell_m = 0.05;
-    check_fails(&u, "frame.cell_m: 0.05 is outside [0.1, 10000] m");
+    u.alt_m = -0.01;
+    check_fails(&u, "frame.alt_m: must be >= 0, got -0.01");
+    u = units();
+    u.alt_m = 10000.01;
+    check_fails(&u, "frame.alt_m: must be <= 10000, got 10000.01");
+    u = units();
+    u.cell_m = 0.00001;
+    check_fails(&u, "frame.cell_m: must be >= 0.1, got 1e-05");
+    u = units();
+    u.cell_m = 10001.0;
+    check_fails(&u, "frame.cell_m: must be <= 10000, got 10001.0");
+    u = units();
+    u.tick_s = 0.0;
+    u.integers = 1U << 4;
+    check_fails(&u, "frame.tick_s: must be >= 0.001, got 0");
+    u = units();
+    u.tick_s = 3600.001;
+    check_fails(&u, "frame.tick_s: must be <= 3600, got 3600.001");
     u = units();
     u.cell_m = NAN;
-    check_fails(&u, "frame.cell_m");
+    check_fails(&u, "frame.cell_m: must be a finite number, got nan");
     u = units();
     u.t0 = "1969-12-31T23:59:59Z";
-    check_fails(&u, "frame.t0: must be between 1970-01-01T00:00:00Z");
+    check_fails(&u, "frame.t0: must be >= 1970-01-01T00:00:00Z, got \"1969-12-31T23:59:59Z\"");
     u = units();
     u.t0 = NULL;
-    check_fails(&u, "frame.t0: missing");
+    check_fails(&u, "frame: missing key \"t0\"");
 
     // the integer form has the same ranges
     char err[SVA_FRAME_ERROR_SIZE] = "";
     sva_frame_t f = {0, 0, 0, SVA_FRAME_MAX_CELL_CM + 1, 1000, 0};
     assert_false(sva_frame_check(&f, err, sizeof err));
-    assert_string_equal(err, "frame.cell_m: 10000.01 is outside [0.1, 10000] m");
+    assert_string_equal(err, "frame.cell_m: must be <= 10000, got 10000.01");
     f.cell_cm = 100;
     f.tick_ms = 0;
     assert_false(sva_frame_check(&f, err, sizeof err));
-    assert_string_equal(err, "frame.tick_s: 0.000 is outside [0.001, 3600] s");
+    assert_string_equal(err, "frame.tick_s: must be >= 0.001, got 0");
     f.tick_ms = 1;
+    f.lat_e7 = -850000001;
+    assert_false(sva_frame_check(&f, err, sizeof err));
+    assert_string_equal(err, "frame.lat: must be >= -85, got -85.0000001");
+    f.lat_e7 = 0;
+    f.t0_ms = SVA_FRAME_MAX_T0_MS + 1;
+    assert_false(sva_frame_check(&f, err, sizeof err));
+    assert_string_equal(err, "frame.t0: must be <= 9999-12-31T23:59:59.999Z, got 253402300800000 "
+                             "ms after 1970-01-01T00:00:00Z");
+    f.t0_ms = 0;
     assert_true(sva_frame_check(&f, err, sizeof err));
+}
+
+// One message per rule of t0, in the Python tools' words, the first rule broken.
+static void test_t0_rules(void** state)
+{
+    (void)state;
+    static const struct {
+        const char* text;
+        const char* rule;
+    } cases[] = {
+        {"2026-06-01", SVA_FRAME_UTC_RULE},
+        {"2026-06-01T08:00:00", SVA_FRAME_UTC_RULE},
+        {"2026-06-01T08:00:00.Z", SVA_FRAME_UTC_RULE},
+        {"2026-06-01T08:00:00+ab:00", SVA_FRAME_UTC_RULE},
+        {"2026-02-29T08:00:00Z", "must be a date of the calendar"},
+        {"0000-01-01T00:00:00Z", "must be a date of the calendar"},
+        {"2026-02-29T24:00:00+24:00", "must be a date of the calendar"},
+        {"2026-06-01T24:00:00+24:00", "must have a time of day within 00:00:00..23:59:59"},
+        {"2026-06-01T08:00:60Z", "must have a time of day within 00:00:00..23:59:59"},
+        {"2026-06-01T08:00:00+24:00", "must have a UTC offset within -23:59..+23:59"},
+        {"2026-06-01T08:00:00-00:60", "must have a UTC offset within -23:59..+23:59"},
+        {"1970-01-01T00:30:00+01:00", "must be >= 1970-01-01T00:00:00Z"},
+        {"9999-12-31T23:59:59.9991Z", "must be <= 9999-12-31T23:59:59.999Z"},
+        {"9999-12-31T22:00:00-02:00", "must be <= 9999-12-31T23:59:59.999Z"},
+    };
+    char err[SVA_FRAME_ERROR_SIZE];
+    char want[SVA_FRAME_ERROR_SIZE];
+    int64_t ms = 7;
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        (void)snprintf(want, sizeof want, "frame.t0: %s, got \"%s\"", cases[i].rule, cases[i].text);
+        assert_false(sva_frame_parse_utc(cases[i].text, "frame.t0", &ms, err, sizeof err));
+        assert_string_equal(err, want);
+        assert_int_equal(ms, 7);
+    }
+    // the ends of the range are in it
+    assert_true(sva_frame_parse_utc("9999-12-31T23:59:59.9990Z", "t0", &ms, err, sizeof err));
+    assert_int_equal(ms, SVA_FRAME_MAX_T0_MS);
+    assert_true(sva_frame_parse_utc("1970-01-01T01:00:00+01:00", "t0", &ms, err, sizeof err));
+    assert_int_equal(ms, 0);
+    // a text that is no date is quoted as JSON writes it (json.dumps)
+    assert_false(sva_frame_parse_utc("8 \"h\"\\\n\x01\xc3\xa9\xf0\x9f\x9b\xb8", "frame.t0", &ms,
+                                     err, sizeof err));
+    assert_string_equal(err, "frame.t0: " SVA_FRAME_UTC_RULE
+                             ", got \"8 \\\"h\\\"\\\\\\n\\u0001\\u00e9\\ud83d\\udef8\"");
 }
 
 static void test_utc_text(void** state)
@@ -186,7 +302,9 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_units_round_half_away_from_zero),
+        cmocka_unit_test(test_ties_round_on_the_decimal_text),
         cmocka_unit_test(test_every_range_is_named),
+        cmocka_unit_test(test_t0_rules),
         cmocka_unit_test(test_utc_text),
         cmocka_unit_test(test_ticks_to_utc),
         cmocka_unit_test(test_cells_on_the_ellipsoid),

@@ -74,15 +74,56 @@ def test_bad_messages_are_counted_warnings_and_change_nothing_else():
     assert g.warnings["count"] == 6
 
 
+# FRAME as the view keeps it: at the frame's resolutions, t0 in UTC with milliseconds.
+FRAME_KEPT = {"lat": 43.6, "lon": 1.44, "alt_m": 150.0, "cell_m": 50.0, "tick_s": 2.0,
+              "t0": "2026-05-01T10:00:00.000Z"}
+
+
 def test_frame_rules_name_the_field():
-    assert gstate.check_frame(FRAME) == FRAME
-    for edit, message in [({"lat": 91}, "frame.lat: must be in [-90, 90], got 91"),
-                          ({"cell_m": 0}, "frame.cell_m: must be > 0, got 0"),
-                          ({"t0": 5}, "frame.t0: must be an ISO 8601 time string"),
-                          ({"x": 1}, "frame.x: unknown key"),
-                          ({"lon": "1"}, "frame.lon: must be a number")]:
-        with pytest.raises(gstate.FrameError, match=message.replace("[", r"\[").replace("]", r"\]")):
+    """The view checks a frame by the frame's contract, in the words of `sva validate`."""
+    assert gstate.check_frame(FRAME) == FRAME_KEPT
+    assert gstate.check_frame({**FRAME, "lat": 43.60000005})["lat"] == 43.6000001
+    for edit, message in [({"lat": 91}, "frame.lat: must be <= 85, got 91"),
+                          ({"cell_m": 0}, "frame.cell_m: must be >= 0.1, got 0"),
+                          ({"t0": 5}, "frame.t0: must be a string, got integer"),
+                          ({"t0": "2026-02-30T00:00:00Z"},
+                           'frame.t0: must be a date of the calendar, got "2026-02-30T00:00:00Z"'),
+                          ({"x": 1}, 'frame: unknown key "x"'),
+                          ({"lon": "1"}, "frame.lon: must be a number, got string")]:
+        with pytest.raises(gstate.FrameError) as e:
             gstate.check_frame({**FRAME, **edit})
+        assert str(e.value) == message
+    with pytest.raises(gstate.FrameError) as e:
+        gstate.check_frame({**FRAME, "tick_s": 0}, "f.json: mission: frame")
+    assert str(e.value) == "f.json: mission: frame.tick_s: must be >= 0.001, got 0"
+
+
+def test_the_missions_frame_on_the_link_wins_over_frame():
+    """A mission_t carrying a frame (present 1) sets the view's frame; a --frame that
+    differs is noted in the log; a mission without one falls back to --frame."""
+    doc = json.loads(SCENARIO.read_text())["mission"]
+    other = {**FRAME, "lat": 47.3655, "lon": 8.5461, "t0": "2026-06-01T10:00:00.0005+02:00"}
+
+    g = gstate.Ground("SVA_")  # no --frame
+    _, mission = messages_of({**doc, "frame": other})
+    g.on_message("SVA_MISSION", mission.encode())
+    assert g.snapshot()["frame"] == {"lat": 47.3655, "lon": 8.5461, "alt_m": 150.0,
+                                     "cell_m": 50.0, "tick_s": 2.0,
+                                     "t0": "2026-06-01T08:00:00.001Z"}
+
+    g = gstate.Ground("SVA_", gstate.check_frame(FRAME))
+    _, same = messages_of({**doc, "frame": FRAME})
+    g.on_message("SVA_MISSION", same.encode())
+    assert g.snapshot()["frame"] == FRAME_KEPT
+    assert not [e for e in g.snapshot()["log"] if e["kind"] == "frame"]
+    g.on_message("SVA_MISSION", mission.encode())
+    assert g.snapshot()["frame"]["lat"] == 47.3655
+    notes = [e for e in g.snapshot()["log"] if e["kind"] == "frame"]
+    assert len(notes) == 1 and "differs from --frame" in notes[0]["text"]
+    _, bare = messages_of({k: v for k, v in doc.items() if k != "frame"})
+    g.on_message("SVA_MISSION", bare.encode())
+    assert g.snapshot()["frame"] == FRAME_KEPT
+    assert g.warnings["count"] == 0
 
 
 def test_bad_command_lines(tmp_path):
@@ -90,7 +131,7 @@ def test_bad_command_lines(tmp_path):
     bad = tmp_path / "f.json"
     bad.write_text(json.dumps({"mission": {"frame": {**FRAME, "tick_s": -1}}}))
     for args, message in [(["--speed", "0"], "--speed: must be > 0, got 0.0"),
-                          (["--frame", str(bad)], "frame.tick_s: must be > 0, got -1"),
+                          (["--frame", str(bad)], "frame.tick_s: must be >= 0.001, got -1"),
                           (["--flight-log", str(tmp_path / "none.json")], "No such file"),
                           (["--flight-log", str(bad)], "not a flight log"),
                           (["--lcm-log", str(tmp_path / "none.lcmlog")], "none.lcmlog"),

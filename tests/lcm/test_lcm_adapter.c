@@ -928,7 +928,7 @@ static void test_frame_round_trip(void** state)
     expect_reject(false, mission_buf, (size_t)enc_mission(), SVA_LCM_REJECT_VALUE);
     assert_string_equal(last_log,
                         "rejected (value; further ones only counted in T_STATUS): T_MISSION: "
-                        "frame.cell_m: 0.05 is outside [0.1, 10000] m");
+                        "frame.cell_m: must be >= 0.1, got 0.05");
     set_frame();
     mission.frame.lat_e7 = 850000001;
     expect_reject(false, mission_buf, (size_t)enc_mission(), SVA_LCM_REJECT_VALUE);

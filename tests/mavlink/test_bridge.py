@@ -132,6 +132,13 @@ class Bridge:
         out = self.proc.wait(10)
         assert out == 0, self.proc.stderr.read()
 
+    def stop_and_stderr(self) -> str:
+        self.proc.terminate()
+        out = self.proc.wait(10)
+        err = self.proc.stderr.read()
+        assert out == 0, err
+        return err
+
 
 @pytest.fixture
 def lc():
@@ -226,6 +233,59 @@ def test_a_replan_uploads_to_the_changed_vehicle_only(lc, tmp_path):
         bridge.stop()
         va.close()
         vb.close()
+
+
+def test_messages_of_another_version_are_refused_with_a_line_each(lc, tmp_path):
+    """A fleet, mission, plan or replan (or a message inside a replan) whose `version` is
+    not its type's VERSION is ignored with one line naming both (docs/flight-stack.md
+    "Wire versions"); a refused plan also drops the one held back."""
+    plan = C.plan_mission(TWO, tmp_path)
+    pa = free_udp_port()
+    va = MavsdkVehicle(pa, 1)
+    bridge = Bridge({1: f"udp:127.0.0.1:{pa}:1"})
+    err = ""
+    try:
+        old_fleet, old_mission = fleet_msg(TWO), mission_msg(TWO)
+        old_fleet.version, old_mission.version = 1, 1
+        lc.publish("SVA_FLEET", old_fleet.encode())
+        lc.publish("SVA_MISSION", old_mission.encode())
+        time.sleep(0.2)
+        lc.publish("SVA_PLAN", plan_msg(plan, 7).encode())  # held back: no fleet, no mission
+        old_plan = plan_msg(plan, 8)
+        old_plan.version = 3
+        lc.publish("SVA_PLAN", old_plan.encode())  # refused, and plan 7 is no longer held
+        time.sleep(0.2)
+        lc.publish("SVA_FLEET", fleet_msg(TWO).encode())
+        lc.publish("SVA_MISSION", mission_msg(TWO).encode())
+        time.sleep(0.2)
+        rp = sva_lcm.replan_t()
+        rp.version = rp.VERSION
+        rp.event_seq, rp.accepted = 1, 1
+        rp.residual_fleet = fleet_msg(TWO)
+        rp.residual_mission = mission_msg(TWO)
+        rp.residual_mission.version = 1
+        rp.plan = plan_msg(plan, 9)
+        lc.publish("SVA_REPLAN", rp.encode())
+        rp.residual_mission.version = rp.residual_mission.VERSION
+        rp.version = 1
+        rp.plan = plan_msg(plan, 11)
+        lc.publish("SVA_REPLAN", rp.encode())
+        time.sleep(1.0)
+        lc.publish("SVA_PLAN", plan_msg(plan, 10).encode())  # this version: uploaded
+        lines = bridge.wait_for(done_lines(10, 1))
+        assert not [x for x in lines if x.startswith(("plan 7:", "plan 8:", "plan 9:", "plan 11:"))]
+        assert len(va.wait_missions(1)) == 1
+    finally:
+        err = bridge.stop_and_stderr()
+        va.close()
+    t = sva_lcm
+    for kind, what, got, want in [("FLEET", "fleet_state_t", 1, t.fleet_state_t.VERSION),
+                                  ("MISSION", "mission_t", 1, t.mission_t.VERSION),
+                                  ("PLAN", "plan_t", 3, t.plan_t.VERSION),
+                                  ("REPLAN", "replan_t.residual_mission", 1, t.mission_t.VERSION),
+                                  ("REPLAN", "replan_t", 1, t.replan_t.VERSION)]:
+        assert (f"sva_mavlink_bridge: {kind}: {what}.version is {got}, this bridge speaks "
+                f"version {want}; ignored") in err.splitlines(), err
 
 
 def test_a_plan_without_a_frame_is_an_error_per_vehicle(lc, tmp_path):

@@ -22,9 +22,12 @@ GOLDEN = sorted((FIXTURES / "golden").glob("*/*.json"))
 INVALID = sorted((FIXTURES / "invalid").glob("*.json"))
 C_ALGOS = ("sva", "ga", "hga", "bfa", "flow")
 # Invalid fixtures that only the rules beyond the schema reject (docs/SPEC.md section 4):
-# they are valid JSON Schema instances.
+# they are valid JSON Schema instances. The frame's t0: its calendar, time of day, UTC
+# offset and range.
 BEYOND_SCHEMA = {"duplicate_target_id", "duplicate_uav_id", "start_after_end", "start_equals_end",
-                 "too_many_targets", "too_many_uavs", "need_over_max_uavs"}
+                 "too_many_targets", "too_many_uavs", "need_over_max_uavs",
+                 "frame_t0_not_a_date", "frame_t0_hour_24", "frame_t0_offset_24",
+                 "frame_t0_before_1970", "frame_t0_after_9999"}
 
 
 def _load(path):

@@ -2,6 +2,7 @@
 #define _DEFAULT_SOURCE  // timegm() and gmtime_r() (glibc, musl and the BSDs have them)
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -15,76 +16,281 @@ static bool fail(char* err, size_t err_size, const char* text)
     return false;
 }
 
-bool sva_frame_check(const sva_frame_t* f, char* err, size_t err_size)
-{
-    char line[SVA_FRAME_ERROR_SIZE];
-    const int64_t lat_max = (int64_t)SVA_FRAME_MAX_LAT_DEG * 10000000LL;
-    const int64_t lon_max = (int64_t)SVA_FRAME_MAX_LON_DEG * 10000000LL;
+// --- numbers as text -----------------------------------------------------------------
 
-    if (((int64_t)f->lat_e7 < -lat_max) || ((int64_t)f->lat_e7 > lat_max)) {
-        (void)snprintf(line, sizeof line, "frame.lat: %.7f is outside [-%d, %d] degrees",
-                       (double)f->lat_e7 / 1e7, SVA_FRAME_MAX_LAT_DEG, SVA_FRAME_MAX_LAT_DEG);
-        return fail(err, err_size, line);
+// The shortest decimal that reads back as v (at most 17 significant digits): its digits
+// without a point (no trailing zeros) into d, and e such that v = 0.d * 10^e. v finite.
+static void shortest(double v, char d[24], int* e)
+{
+    char text[40];
+    for (int p = 1; p <= 17; p++) {
+        (void)snprintf(text, sizeof text, "%.*e", p - 1, v);
+        if ((strtod(text, NULL) == v) || (p == 17)) {
+            break;
+        }
     }
-    if (((int64_t)f->lon_e7 < -lon_max) || ((int64_t)f->lon_e7 > lon_max)) {
-        (void)snprintf(line, sizeof line, "frame.lon: %.7f is outside [-%d, %d] degrees",
-                       (double)f->lon_e7 / 1e7, SVA_FRAME_MAX_LON_DEG, SVA_FRAME_MAX_LON_DEG);
-        return fail(err, err_size, line);
+    // text is "[-]D[.DDD]e[+-]XX"
+    const char* t = (text[0] == '-') ? (text + 1) : text;
+    int n = 0;
+    for (; (*t != 'e') && (*t != '\0'); t++) {
+        if ((*t >= '0') && (*t <= '9')) {
+            d[n++] = *t;
+        }
     }
-    if ((f->alt_cm < 0) || (f->alt_cm > SVA_FRAME_MAX_ALT_CM)) {
-        (void)snprintf(line, sizeof line, "frame.alt_m: %.2f is outside [0, %d] m",
-                       (double)f->alt_cm / 100.0, SVA_FRAME_MAX_ALT_CM / 100);
-        return fail(err, err_size, line);
+    d[n] = '\0';
+    *e = (*t == 'e') ? ((int)strtol(t + 1, NULL, 10) + 1) : 1;
+    while ((n > 1) && (d[n - 1] == '0')) {
+        d[--n] = '\0';
     }
-    if ((f->cell_cm < SVA_FRAME_MIN_CELL_CM) || (f->cell_cm > SVA_FRAME_MAX_CELL_CM)) {
-        (void)snprintf(line, sizeof line, "frame.cell_m: %.2f is outside [0.1, %d] m",
-                       (double)f->cell_cm / 100.0, SVA_FRAME_MAX_CELL_CM / 100);
-        return fail(err, err_size, line);
+    if ((n == 1) && (d[0] == '0')) {
+        *e = 1;
     }
-    if ((f->tick_ms < SVA_FRAME_MIN_TICK_MS) || (f->tick_ms > SVA_FRAME_MAX_TICK_MS)) {
-        (void)snprintf(line, sizeof line, "frame.tick_s: %.3f is outside [0.001, %d] s",
-                       (double)f->tick_ms / 1000.0, SVA_FRAME_MAX_TICK_MS / 1000);
-        return fail(err, err_size, line);
-    }
-    if ((f->t0_ms < 0) || (f->t0_ms > SVA_FRAME_MAX_T0_MS)) {
-        return fail(err, err_size,
-                    "frame.t0: must be between 1970-01-01T00:00:00Z and 9999-12-31T23:59:59.999Z");
-    }
-    return true;
 }
 
-// value * scale rounded half away from zero into [lo, hi]; false when it is not finite
-// or falls outside (the caller names the field).
-static bool scaled(double value, double scale, double lo, double hi, int64_t* out)
+// v as Python's repr() writes a float (the Python tools' messages): positional with at
+// least one fraction digit from 1e-4 up to 1e16, else "d.ddde+XX".
+static void float_text(double v, char* out, size_t size)
 {
-    if (!isfinite(value) || (value < lo) || (value > hi)) {
-        return false;
+    char d[24];
+    int e = 0;
+    if (!isfinite(v)) {
+        (void)snprintf(out, size, "%s", isnan(v) ? "nan" : ((v < 0) ? "-inf" : "inf"));
+        return;
     }
-    *out = (int64_t)llround(value * scale);
+    shortest(v, d, &e);
+    const int n = (int)strlen(d);
+    const int x = e - 1;  // v = d.ddd * 10^x
+    char body[48];
+    size_t k = 0;
+    if ((x < -4) || (x >= 16)) {
+        (void)snprintf(body, sizeof body, "%c%s%se%c%02d", d[0], (n > 1) ? "." : "", d + 1,
+                       (x < 0) ? '-' : '+', (x < 0) ? -x : x);
+    } else {
+        // positional: the digits with the point after the first e of them (zeros pad)
+        if (e <= 0) {
+            body[k++] = '0';
+            body[k++] = '.';
+            for (int i = 0; i < -e; i++) {
+                body[k++] = '0';
+            }
+            for (int i = 0; i < n; i++) {
+                body[k++] = d[i];
+            }
+        } else {
+            for (int i = 0; i < e; i++) {
+                body[k++] = (i < n) ? d[i] : '0';
+            }
+            body[k++] = '.';
+            if (e >= n) {
+                body[k++] = '0';
+            }
+            for (int i = e; i < n; i++) {
+                body[k++] = d[i];
+            }
+        }
+        body[k] = '\0';
+    }
+    (void)snprintf(out, size, "%s%s", signbit(v) ? "-" : "", body);
+}
+
+// v rounded half away from zero to `places` decimals, on its shortest decimal form (the
+// literal as written, for up to 15 significant digits): v * 10^places as an integer.
+// |v| * 10^places must fit an int64 (the ranges are checked first).
+static int64_t rounded(double v, int places)
+{
+    char d[24];
+    int e = 0;
+    shortest(v, d, &e);
+    const int keep = e + places;  // digits of d before the rounding point
+    const int n = (int)strlen(d);
+    int64_t r = 0;
+    for (int i = 0; i < keep; i++) {
+        r = (r * 10) + ((i < n) ? (d[i] - '0') : 0);
+    }
+    if ((keep >= 0) && (keep < n) && (d[keep] >= '5')) {
+        r++;
+    }
+    return signbit(v) ? -r : r;
+}
+
+// A scaled integer as its exact decimal: 850000001 at 7 places is "85.0000001".
+static void scaled_text(int64_t v, int places, char* out, size_t size)
+{
+    int64_t unit = 1;
+    for (int i = 0; i < places; i++) {
+        unit *= 10;
+    }
+    const uint64_t a = (v < 0) ? (uint64_t)(-(v + 1)) + 1U : (uint64_t)v;
+    char frac[24];
+    uint64_t rest = a % (uint64_t)unit;
+    for (int i = places - 1; i >= 0; i--) {
+        frac[i] = (char)('0' + (int)(rest % 10U));
+        rest /= 10U;
+    }
+    frac[places] = '\0';
+    int n = places;
+    while ((n > 0) && (frac[n - 1] == '0')) {
+        frac[--n] = '\0';
+    }
+    (void)snprintf(out, size, "%s%llu%s%s", (v < 0) ? "-" : "",
+                   (unsigned long long)(a / (uint64_t)unit), (n > 0) ? "." : "", frac);
+}
+
+// text as a JSON string with every byte outside printable ASCII escaped (the Python
+// tools' json.dumps). text is UTF-8; a byte that does not decode is written as \u00XX.
+static void quoted(const char* text, char* out, size_t size)
+{
+    size_t o = 0;
+    const unsigned char* p = (const unsigned char*)text;
+    char piece[16];
+    if (size < 3U) {
+        if (size > 0U) {
+            out[0] = '\0';
+        }
+        return;
+    }
+    out[o++] = '"';
+    while (*p != '\0') {
+        uint32_t c = *p;
+        int len = 1;
+        if ((c >= 0xC0U) && (c < 0xE0U) && ((p[1] & 0xC0U) == 0x80U)) {
+            c = ((c & 0x1FU) << 6) | (p[1] & 0x3FU);
+            len = 2;
+        } else if ((c >= 0xE0U) && (c < 0xF0U) && ((p[1] & 0xC0U) == 0x80U) &&
+                   ((p[2] & 0xC0U) == 0x80U)) {
+            c = ((c & 0x0FU) << 12) | ((uint32_t)(p[1] & 0x3FU) << 6) | (p[2] & 0x3FU);
+            len = 3;
+        } else if ((c >= 0xF0U) && (c < 0xF8U) && ((p[1] & 0xC0U) == 0x80U) &&
+                   ((p[2] & 0xC0U) == 0x80U) && ((p[3] & 0xC0U) == 0x80U)) {
+            c = ((c & 0x07U) << 18) | ((uint32_t)(p[1] & 0x3FU) << 12) |
+                ((uint32_t)(p[2] & 0x3FU) << 6) | (p[3] & 0x3FU);
+            len = 4;
+        }
+        if (c == '"') {
+            (void)snprintf(piece, sizeof piece, "\\\"");
+        } else if (c == '\\') {
+            (void)snprintf(piece, sizeof piece, "\\\\");
+        } else if (c == '\n') {
+            (void)snprintf(piece, sizeof piece, "\\n");
+        } else if (c == '\r') {
+            (void)snprintf(piece, sizeof piece, "\\r");
+        } else if (c == '\t') {
+            (void)snprintf(piece, sizeof piece, "\\t");
+        } else if (c == '\b') {
+            (void)snprintf(piece, sizeof piece, "\\b");
+        } else if (c == '\f') {
+            (void)snprintf(piece, sizeof piece, "\\f");
+        } else if ((c >= 0x20U) && (c < 0x7FU)) {
+            (void)snprintf(piece, sizeof piece, "%c", (char)c);
+        } else if (c >= 0x10000U) {
+            c -= 0x10000U;
+            (void)snprintf(piece, sizeof piece, "\\u%04x\\u%04x", 0xD800U + (c >> 10),
+                           0xDC00U + (c & 0x3FFU));
+        } else {
+            (void)snprintf(piece, sizeof piece, "\\u%04x", (unsigned)c);
+        }
+        const size_t k = strlen(piece);
+        if ((o + k + 2U) > size) {
+            break;  // the message keeps what fits
+        }
+        memcpy(out + o, piece, k);
+        o += k;
+        p += len;
+    }
+    out[o++] = '"';
+    out[o] = '\0';
+}
+
+// --- ranges ---------------------------------------------------------------------------
+
+// The numbers of a frame: name, decimals of the resolution, range in those units.
+typedef struct {
+    const char* name;
+    int places;
+    int64_t lo;
+    int64_t hi;
+    const char* lo_text;
+    const char* hi_text;
+} field_t;
+
+static const field_t FIELDS[5] = {
+    {"lat", 7, -(int64_t)SVA_FRAME_MAX_LAT_DEG * 10000000LL,
+     (int64_t)SVA_FRAME_MAX_LAT_DEG * 10000000LL, "-85", "85"},
+    {"lon", 7, -(int64_t)SVA_FRAME_MAX_LON_DEG * 10000000LL,
+     (int64_t)SVA_FRAME_MAX_LON_DEG * 10000000LL, "-180", "180"},
+    {"alt_m", 2, 0, SVA_FRAME_MAX_ALT_CM, "0", "10000"},
+    {"cell_m", 2, SVA_FRAME_MIN_CELL_CM, SVA_FRAME_MAX_CELL_CM, "0.1", "10000"},
+    {"tick_s", 3, SVA_FRAME_MIN_TICK_MS, SVA_FRAME_MAX_TICK_MS, "0.001", "3600"},
+};
+
+static bool out_of_range(const field_t* f, bool below, const char* got, char* err, size_t err_size)
+{
+    char line[SVA_FRAME_ERROR_SIZE];
+    (void)snprintf(line, sizeof line, "frame.%s: must be %s %s, got %s", f->name,
+                   below ? ">=" : "<=", below ? f->lo_text : f->hi_text, got);
+    return fail(err, err_size, line);
+}
+
+static bool t0_failure(const char* field, const char* rule, const char* text, char* err,
+                       size_t err_size)
+{
+    char line[SVA_FRAME_ERROR_SIZE];
+    char got[SVA_FRAME_ERROR_SIZE / 2];
+    quoted(text, got, sizeof got);
+    (void)snprintf(line, sizeof line, "%s: %s, got %s", field, rule, got);
+    return fail(err, err_size, line);
+}
+
+bool sva_frame_check(const sva_frame_t* f, char* err, size_t err_size)
+{
+    const int64_t v[5] = {f->lat_e7, f->lon_e7, f->alt_cm, f->cell_cm, f->tick_ms};
+    char got[48];
+
+    for (int i = 0; i < 5; i++) {
+        if ((v[i] < FIELDS[i].lo) || (v[i] > FIELDS[i].hi)) {
+            scaled_text(v[i], FIELDS[i].places, got, sizeof got);
+            return out_of_range(&FIELDS[i], v[i] < FIELDS[i].lo, got, err, err_size);
+        }
+    }
+    if ((f->t0_ms < 0) || (f->t0_ms > SVA_FRAME_MAX_T0_MS)) {
+        char line[SVA_FRAME_ERROR_SIZE];
+        (void)snprintf(line, sizeof line, "frame.t0: must be %s, got %lld ms after %s",
+                       (f->t0_ms < 0) ? ">= " SVA_FRAME_T0_MIN : "<= " SVA_FRAME_T0_MAX,
+                       (long long)f->t0_ms, SVA_FRAME_T0_MIN);
+        return fail(err, err_size, line);
+    }
     return true;
 }
 
 bool sva_frame_from_units(const sva_frame_units_t* u, sva_frame_t* frame, char* err,
                           size_t err_size)
 {
-    char line[SVA_FRAME_ERROR_SIZE];
     sva_frame_t f;
     int64_t v[5];
-    static const char* const names[5] = {"lat", "lon", "alt_m", "cell_m", "tick_s"};
-    static const char* const units[5] = {"degrees", "degrees", "m", "m", "s"};
     const double values[5] = {u->lat, u->lon, u->alt_m, u->cell_m, u->tick_s};
-    const double scale[5] = {1e7, 1e7, 100.0, 100.0, 1000.0};
-    const double lo[5] = {-SVA_FRAME_MAX_LAT_DEG, -SVA_FRAME_MAX_LON_DEG, 0.0, 0.1, 0.001};
-    const double hi[5] = {SVA_FRAME_MAX_LAT_DEG, SVA_FRAME_MAX_LON_DEG,
-                          SVA_FRAME_MAX_ALT_CM / 100.0, SVA_FRAME_MAX_CELL_CM / 100.0,
-                          SVA_FRAME_MAX_TICK_MS / 1000.0};
+    char got[48];
 
     for (int i = 0; i < 5; i++) {
-        if (!scaled(values[i], scale[i], lo[i], hi[i], &v[i])) {
-            (void)snprintf(line, sizeof line, "frame.%s: %g is outside [%g, %g] %s", names[i],
-                           values[i], lo[i], hi[i], units[i]);
+        const field_t* fd = &FIELDS[i];
+        // The range applies to the value as written; every limit is a multiple of the
+        // resolution, so the rounded value stays in range.
+        const double lo = strtod(fd->lo_text, NULL);
+        const double hi = strtod(fd->hi_text, NULL);
+        if ((u->integers & (1U << i)) != 0U) {
+            (void)snprintf(got, sizeof got, "%.0f", values[i]);
+        } else {
+            float_text(values[i], got, sizeof got);
+        }
+        if (!isfinite(values[i])) {
+            char line[SVA_FRAME_ERROR_SIZE];
+            (void)snprintf(line, sizeof line, "frame.%s: must be a finite number, got %s", fd->name,
+                           got);
             return fail(err, err_size, line);
         }
+        if ((values[i] < lo) || (values[i] > hi)) {
+            return out_of_range(fd, values[i] < lo, got, err, err_size);
+        }
+        v[i] = rounded(values[i], fd->places);
     }
     f.lat_e7 = (int32_t)v[0];
     f.lon_e7 = (int32_t)v[1];
@@ -92,7 +298,7 @@ bool sva_frame_from_units(const sva_frame_units_t* u, sva_frame_t* frame, char* 
     f.cell_cm = (int32_t)v[3];
     f.tick_ms = (int32_t)v[4];
     if (u->t0 == NULL) {
-        return fail(err, err_size, "frame.t0: missing (an ISO 8601 UTC date-time)");
+        return fail(err, err_size, "frame: missing key \"t0\"");
     }
     if (!sva_frame_parse_utc(u->t0, "frame.t0", &f.t0_ms, err, err_size)) {
         return false;
@@ -103,6 +309,8 @@ bool sva_frame_from_units(const sva_frame_units_t* u, sva_frame_t* frame, char* 
     *frame = f;
     return true;
 }
+
+// --- UTC text -------------------------------------------------------------------------
 
 static bool digits(const char* s, int n, int64_t* out)
 {
@@ -126,58 +334,58 @@ bool sva_frame_parse_utc(const char* text, const char* field, int64_t* ms, char*
                          size_t err_size)
 {
     static const int month_days[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
-    char line[SVA_FRAME_ERROR_SIZE];
-    int64_t y, mo, d, h, mi, s, frac = 0, off = 0;
+    int64_t y, mo, d, h, mi, s, frac = 0, oh = 0, om = 0;
+    bool finer = false;  // nonzero digits past the millisecond
+    bool round_up = false;
     const char* p = text;
 
-    (void)snprintf(line, sizeof line,
-                   "%s: must be an ISO 8601 date-time with a UTC offset, e.g. "
-                   "2026-06-01T08:00:00Z",
-                   field);
-    if ((strlen(text) < 20U) || !digits(p, 4, &y) || (p[4] != '-') || !digits(p + 5, 2, &mo) ||
-        (p[7] != '-') || !digits(p + 8, 2, &d) || (p[10] != 'T') || !digits(p + 11, 2, &h) ||
-        (p[13] != ':') || !digits(p + 14, 2, &mi) || (p[16] != ':') || !digits(p + 17, 2, &s)) {
-        return fail(err, err_size, line);
-    }
-    p += 19;
-    if (*p == '.') {
-        // milliseconds from the first three digits, the rest rounds half away from zero
-        int n = 0;
-        p++;
-        while ((*p >= '0') && (*p <= '9')) {
-            if (n < 3) {
-                frac = (frac * 10) + (*p - '0');
-            } else if ((n == 3) && (*p >= '5')) {
-                frac++;
-            }
-            n++;
+    // The form: YYYY-MM-DDThh:mm:ss[.f...] then Z or +hh:mm or -hh:mm.
+    bool form = (strlen(text) >= 20U) && digits(p, 4, &y) && (p[4] == '-') &&
+                digits(p + 5, 2, &mo) && (p[7] == '-') && digits(p + 8, 2, &d) && (p[10] == 'T') &&
+                digits(p + 11, 2, &h) && (p[13] == ':') && digits(p + 14, 2, &mi) &&
+                (p[16] == ':') && digits(p + 17, 2, &s);
+    if (form) {
+        p += 19;
+        if (*p == '.') {
+            int n = 0;
             p++;
-        }
-        if (n == 0) {
-            return fail(err, err_size, line);
-        }
-        for (; n < 3; n++) {
-            frac *= 10;
+            while ((*p >= '0') && (*p <= '9')) {
+                if (n < 3) {
+                    frac = (frac * 10) + (*p - '0');
+                } else {
+                    round_up = round_up || ((n == 3) && (*p >= '5'));
+                    finer = finer || (*p != '0');
+                }
+                n++;
+                p++;
+            }
+            form = n > 0;
+            for (; n < 3; n++) {
+                frac *= 10;
+            }
         }
     }
-    if ((p[0] == 'Z') && (p[1] == '\0')) {
-        off = 0;
-    } else if (((p[0] == '+') || (p[0] == '-')) && (strlen(p) == 6U) && (p[3] == ':')) {
-        int64_t oh, om;
-        if (!digits(p + 1, 2, &oh) || !digits(p + 4, 2, &om) || (oh > 23) || (om > 59)) {
-            return fail(err, err_size, line);
-        }
-        off = ((oh * 60) + om) * 60000LL * ((p[0] == '-') ? -1 : 1);
-    } else {
-        return fail(err, err_size, line);
+    const bool zulu = form && (p[0] == 'Z') && (p[1] == '\0');
+    if (form && !zulu) {
+        form = ((p[0] == '+') || (p[0] == '-')) && (strlen(p) == 6U) && digits(p + 1, 2, &oh) &&
+               (p[3] == ':') && digits(p + 4, 2, &om);
     }
-    if ((mo < 1) || (mo > 12) || (d < 1) ||
-        (d > (month_days[mo - 1] + (((mo == 2) && leap(y)) ? 1 : 0))) || (h > 23) || (mi > 59) ||
-        (s > 59)) {
-        (void)snprintf(line, sizeof line, "%s: \"%.40s\" is not a calendar date and time", field,
-                       text);
-        return fail(err, err_size, line);
+    if (!form) {
+        return t0_failure(field, SVA_FRAME_UTC_RULE, text, err, err_size);
     }
+    if ((y < 1) || (mo < 1) || (mo > 12) || (d < 1) ||
+        (d > (month_days[mo - 1] + (((mo == 2) && leap(y)) ? 1 : 0)))) {
+        return t0_failure(field, "must be a date of the calendar", text, err, err_size);
+    }
+    if ((h > 23) || (mi > 59) || (s > 59)) {
+        return t0_failure(field, "must have a time of day within 00:00:00..23:59:59", text, err,
+                          err_size);
+    }
+    if ((oh > 23) || (om > 59)) {
+        return t0_failure(field, "must have a UTC offset within -23:59..+23:59", text, err,
+                          err_size);
+    }
+    const int64_t off = ((oh * 60) + om) * 60000LL * ((p[0] == '-') ? -1 : 1);
     struct tm tm;
     memset(&tm, 0, sizeof tm);
     tm.tm_year = (int)y - 1900;
@@ -186,14 +394,15 @@ bool sva_frame_parse_utc(const char* text, const char* field, int64_t* ms, char*
     tm.tm_hour = (int)h;
     tm.tm_min = (int)mi;
     tm.tm_sec = (int)s;
+    // whole milliseconds; the exact instant is t plus `finer` digits below 1 ms
     const int64_t t = ((int64_t)timegm(&tm) * 1000) + frac - off;
-    if ((t < 0) || (t > SVA_FRAME_MAX_T0_MS)) {
-        (void)snprintf(line, sizeof line,
-                       "%s: must be between 1970-01-01T00:00:00Z and 9999-12-31T23:59:59.999Z",
-                       field);
-        return fail(err, err_size, line);
+    if (t < 0) {
+        return t0_failure(field, "must be >= " SVA_FRAME_T0_MIN, text, err, err_size);
     }
-    *ms = t;
+    if ((t > SVA_FRAME_MAX_T0_MS) || ((t == SVA_FRAME_MAX_T0_MS) && finer)) {
+        return t0_failure(field, "must be <= " SVA_FRAME_T0_MAX, text, err, err_size);
+    }
+    *ms = t + (round_up ? 1 : 0);  // half away from zero (t >= 0)
     return true;
 }
 

@@ -287,13 +287,18 @@ static bool parse_targets(const json_t* root, sva_mission_t* mission, const sink
     return true;
 }
 
-static bool get_number(const json_t* object, const char* key, double* out, const sink_t* err)
+// A number of the frame; bit `bit` of *integers set when it is written as an integer.
+static bool get_number(const json_t* object, const char* key, double* out, unsigned bit,
+                       unsigned* integers, const sink_t* err)
 {
     const json_t* value = json_object_get(object, key);
     if (!json_is_number(value)) {
         return fail(err, "frame.%s: must be a number, got %s", key, type_name(value));
     }
     *out = json_number_value(value);
+    if (json_is_integer(value)) {
+        *integers |= 1U << bit;
+    }
     return true;
 }
 
@@ -312,10 +317,11 @@ static bool parse_frame(const json_t* root, sva_frame_t* frame, bool* present, c
     sva_frame_units_t units;
     memset(&units, 0, sizeof units);
     if (!check_keys(value, "frame", FRAME_KEYS, err) ||
-        !get_number(value, "lat", &units.lat, err) || !get_number(value, "lon", &units.lon, err) ||
-        !get_number(value, "alt_m", &units.alt_m, err) ||
-        !get_number(value, "cell_m", &units.cell_m, err) ||
-        !get_number(value, "tick_s", &units.tick_s, err)) {
+        !get_number(value, "lat", &units.lat, 0, &units.integers, err) ||
+        !get_number(value, "lon", &units.lon, 1, &units.integers, err) ||
+        !get_number(value, "alt_m", &units.alt_m, 2, &units.integers, err) ||
+        !get_number(value, "cell_m", &units.cell_m, 3, &units.integers, err) ||
+        !get_number(value, "tick_s", &units.tick_s, 4, &units.integers, err)) {
         return false;
     }
     const json_t* t0 = json_object_get(value, "t0");

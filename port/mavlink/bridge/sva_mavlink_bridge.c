@@ -252,6 +252,20 @@ static void dispatch(const sva_lcm_plan_t* p, const sva_lcm_fleet_state_t* f,
     sva_frame_geodesy_close(geo);
 }
 
+// A message (or a message inside one, `what`) of its type's version: true; else one
+// line naming both versions on stderr and false (docs/flight-stack.md "Wire versions").
+static bool version_ok(const char* kind, const char* what, int got, int want)
+{
+    if (got == want) {
+        return true;
+    }
+    fprintf(stderr,
+            "sva_mavlink_bridge: %s: %s.version is %d, this bridge speaks version %d; "
+            "ignored\n",
+            kind, what, got, want);
+    return false;
+}
+
 static bool plan_usable(const sva_lcm_plan_t* p)
 {
     return p->status == SVA_LCM_PLAN_T_STATUS_COMPLETE ||
@@ -278,6 +292,10 @@ static void on_fleet(const lcm_recv_buf_t* rbuf, const char* channel, void* user
         have_fleet = false;
         return;
     }
+    if (!version_ok("FLEET", "fleet_state_t", fleet.version, SVA_LCM_FLEET_STATE_T_VERSION)) {
+        have_fleet = false;
+        return;
+    }
     have_fleet = true;
     try_pending();
 }
@@ -292,11 +310,7 @@ static void on_mission(const lcm_recv_buf_t* rbuf, const char* channel, void* us
         have_mission = false;
         return;
     }
-    if (mission.version != SVA_LCM_MISSION_T_VERSION) {
-        fprintf(stderr,
-                "sva_mavlink_bridge: MISSION: mission_t.version is %d, this bridge speaks "
-                "version %d; ignored\n",
-                (int)mission.version, (int)SVA_LCM_MISSION_T_VERSION);
+    if (!version_ok("MISSION", "mission_t", mission.version, SVA_LCM_MISSION_T_VERSION)) {
         have_mission = false;
         return;
     }
@@ -311,6 +325,11 @@ static void on_plan(const lcm_recv_buf_t* rbuf, const char* channel, void* user)
     if (sva_lcm_plan_t_decode(rbuf->data, 0, (int)rbuf->data_size, &pending_plan) !=
         (int)rbuf->data_size) {
         fprintf(stderr, "sva_mavlink_bridge: PLAN: not a plan_t of this build; ignored\n");
+        have_pending = false;
+        return;
+    }
+    if (!version_ok("PLAN", "plan_t", pending_plan.version, SVA_LCM_PLAN_T_VERSION)) {
+        have_pending = false;
         return;
     }
     if (!plan_usable(&pending_plan)) {
@@ -330,6 +349,14 @@ static void on_replan(const lcm_recv_buf_t* rbuf, const char* channel, void* use
     if (sva_lcm_replan_t_decode(rbuf->data, 0, (int)rbuf->data_size, &replan) !=
         (int)rbuf->data_size) {
         fprintf(stderr, "sva_mavlink_bridge: REPLAN: not a replan_t of this build; ignored\n");
+        return;
+    }
+    if (!version_ok("REPLAN", "replan_t", replan.version, SVA_LCM_REPLAN_T_VERSION) ||
+        !version_ok("REPLAN", "replan_t.residual_fleet", replan.residual_fleet.version,
+                    SVA_LCM_FLEET_STATE_T_VERSION) ||
+        !version_ok("REPLAN", "replan_t.residual_mission", replan.residual_mission.version,
+                    SVA_LCM_MISSION_T_VERSION) ||
+        !version_ok("REPLAN", "replan_t.plan", replan.plan.version, SVA_LCM_PLAN_T_VERSION)) {
         return;
     }
     if (!replan.accepted || !plan_usable(&replan.plan)) {

@@ -8,8 +8,8 @@
 
 int main(void)
 {
-    const sva_frame_units_t units = {47.3977419, 8.5455939, 30.0,
-                                     10.0,       1.0,       "2026-06-01T08:00:00Z"};
+    const sva_frame_units_t units = {47.3977419, 8.5455939, 30.0, 10.0, 1.0, "2026-06-01T08:00:00Z",
+                                     0U};
     sva_frame_t frame;
     char err[SVA_FRAME_ERROR_SIZE];
     if (!sva_frame_from_units(&units, &frame, err, sizeof err)) {

@@ -31,31 +31,18 @@ class FrameError(ValueError):
 
 
 def check_frame(frame: Any, where: str = "frame") -> dict:
-    """A mission frame {"lat", "lon", "alt_m", "cell_m", "tick_s", "t0"}: numbers (t0 a
-    string, ISO 8601 time of tick 0), lat in [-90, 90], lon in [-180, 180], cell_m and
-    tick_s > 0. FrameError names the field and the rule."""
-    if not isinstance(frame, dict):
-        raise FrameError(f"{where}: must be an object")
-    for k in frame:
-        if k not in FRAME_KEYS:
-            raise FrameError(f"{where}.{k}: unknown key (keys: {', '.join(FRAME_KEYS)})")
-    for k in FRAME_KEYS:
-        if k not in frame:
-            raise FrameError(f"{where}.{k}: missing key")
-    for k in ("lat", "lon", "alt_m", "cell_m", "tick_s"):
-        v = frame[k]
-        if isinstance(v, bool) or not isinstance(v, (int, float)):
-            raise FrameError(f"{where}.{k}: must be a number, got {v!r}")
-    if not isinstance(frame["t0"], str):
-        raise FrameError(f"{where}.t0: must be an ISO 8601 time string, got {frame['t0']!r}")
-    if not -90 <= frame["lat"] <= 90:
-        raise FrameError(f"{where}.lat: must be in [-90, 90], got {frame['lat']}")
-    if not -180 <= frame["lon"] <= 180:
-        raise FrameError(f"{where}.lon: must be in [-180, 180], got {frame['lon']}")
-    for k in ("cell_m", "tick_s"):
-        if not frame[k] > 0:
-            raise FrameError(f"{where}.{k}: must be > 0, got {frame[k]}")
-    return dict(frame)
+    """A mission frame {"lat", "lon", "alt_m", "cell_m", "tick_s", "t0"} checked by the
+    frame's contract (docs/flight-stack.md: the mission schema's `frame` and t0's rules,
+    sva_tools.frame), returned at its resolutions as `sva plan` echoes it (t0 in UTC with
+    milliseconds). FrameError in the words of `sva validate`, after where's file part
+    (`f.json: mission: frame.tick_s: must be >= 0.001, got -1`)."""
+    prefix = where[:-len("frame")] if where.endswith("frame") else f"{where}: "
+    if frame is None:
+        raise FrameError(f"{prefix}frame: must be an object, got null")
+    try:
+        return wire.frame_document(wire.frame_message(frame))
+    except wire.InputError as e:
+        raise FrameError(prefix + str(e)) from None
 
 
 class Ground:
@@ -64,6 +51,7 @@ class Ground:
         self.source = source
         self.version = 0           # bumps on every change (the server pushes when it moves)
         self.frame = frame
+        self.given_frame = frame   # --frame (or a flight log's); a mission_t's frame wins
         self.mission: Optional[dict] = None
         self.now = 0
         self.uavs: Dict[int, dict] = {}
@@ -145,6 +133,13 @@ class Ground:
             self._put_target(g)
         self.replans, self.plan, self.now, self.end = [], None, 0, None
         self._log("mission", f"mission revision {m.revision}: {m.target_count} targets")
+        # The frame the node plans with and the vehicles fly: the mission's when it has
+        # one (checked as every frame is), else the one the view was given.
+        link = check_frame(wire.frame_document(m.frame)) if m.frame.present else None
+        if link is not None and self.given_frame is not None and link != self.given_frame:
+            self._log("frame", "the mission's frame differs from --frame; showing the "
+                               f"mission's: {link}")
+        self.frame = link if link is not None else self.given_frame
 
     def _put_target(self, g) -> None:
         old = self.targets.get(g.id, {})

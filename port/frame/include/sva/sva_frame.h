@@ -29,8 +29,14 @@ extern "C" {
 #define SVA_FRAME_MAX_TICK_MS 3600000
 /// t0 from 1970-01-01T00:00:00Z to 9999-12-31T23:59:59.999Z, in ms since the epoch.
 #define SVA_FRAME_MAX_T0_MS 253402300799999LL
+/// The ends of t0's range and the rule of its form, as the messages write them.
+#define SVA_FRAME_T0_MIN "1970-01-01T00:00:00Z"
+#define SVA_FRAME_T0_MAX "9999-12-31T23:59:59.999Z"
+#define SVA_FRAME_UTC_RULE                             \
+    "must be an ISO 8601 date-time with a UTC offset " \
+    "(YYYY-MM-DDThh:mm:ss[.fff] then Z or +hh:mm or -hh:mm)"
 /// Room for any message this library writes, and for an ISO 8601 time it formats.
-#define SVA_FRAME_ERROR_SIZE 160
+#define SVA_FRAME_ERROR_SIZE 320
 #define SVA_FRAME_UTC_SIZE   32
 
 /// A mission frame in integers.
@@ -51,6 +57,9 @@ typedef struct sva_frame_units {
     double cell_m;
     double tick_s;
     const char* t0;
+    /// Bit i (lat 0, lon 1, alt_m 2, cell_m 3, tick_s 4) set: value i was written as an
+    /// integer. Only the messages use it (`got 86`, not `got 86.0`); 0 when unknown.
+    unsigned integers;
 } sva_frame_units_t;
 
 /// A geographic position: WGS84 degrees, altitude above home in metres.
@@ -61,18 +70,26 @@ typedef struct sva_frame_geo {
 } sva_frame_geo_t;
 
 /// Checks every field against its range. False with one line in err naming the field,
-/// the rule and the limit ("frame.cell_m: 0.05 is outside [0.1, 10000] m").
+/// the rule and the limit, as the Python tools word it ("frame.cell_m: must be >= 0.1,
+/// got 0.05"; the value is the exact decimal of the stored integer).
 bool sva_frame_check(const sva_frame_t* frame, char* err, size_t err_size);
 
-/// Converts units into *frame, rounding half away from zero to the stored resolution,
-/// then checks it. False with one line in err (frame unchanged) when a value is not
-/// finite, out of range, or t0 is not an ISO 8601 UTC date-time.
+/// Converts units into *frame, rounding half away from zero to the stored resolution on
+/// the value's shortest decimal form (the literal as written, for up to 15 significant
+/// digits: 47.12345675 -> 47.1234568), then checks it. Ranges apply to the value as
+/// written. False with one line in err (frame unchanged) when a value is not finite, out
+/// of range, or t0 breaks a rule of sva_frame_parse_utc; the messages are the Python
+/// tools' (docs/flight-stack.md), e.g. "frame.lat: must be <= 85, got 85.5".
 bool sva_frame_from_units(const sva_frame_units_t* units, sva_frame_t* frame, char* err,
                           size_t err_size);
 
 /// Parses "YYYY-MM-DDTHH:MM:SS[.fff...](Z|+hh:mm|-hh:mm)" into ms since the epoch
-/// (fractions past the millisecond rounded half away from zero). `field` names the
-/// value in the message. False with one line in err.
+/// (fractions past the millisecond rounded half away from zero; the range applies to the
+/// instant as written). `field` names the value in the message. False with one line in
+/// err naming the first rule broken, in this order: the form (SVA_FRAME_UTC_RULE), a
+/// date of the calendar, the time of day, the UTC offset, the range (SVA_FRAME_T0_MIN
+/// to SVA_FRAME_T0_MAX), e.g. `frame.t0: must be a date of the calendar, got
+/// "2026-02-29T08:00:00Z"`.
 bool sva_frame_parse_utc(const char* text, const char* field, int64_t* ms, char* err,
                          size_t err_size);
 

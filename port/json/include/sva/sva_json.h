@@ -6,7 +6,7 @@
 /// lengths, int32 range); every value rule (ranges, ids, windows) is the core's, so
 /// callers run sva_mission_validate() afterwards (sva_json_load_mission() does).
 /// A mission may carry a frame (docs/flight-stack.md): every reader here checks it
-/// (shape, then sva_frame_from_units: "frame.cell_m: 0.05 is outside [0.1, 10000] m");
+/// (shape, then sva_frame_from_units: "frame.cell_m: must be >= 0.1, got 0.05");
 /// the *_frame functions also return it.
 /// Messages follow SPEC section 4: "<json path>: <rule>", e.g.
 ///   targets[0]: missing key "need"
