@@ -13,6 +13,7 @@ sva_status_t sva_planner_init(sva_planner_t* self)
     self->on_transport = NULL;
     self->on_transport_user = NULL;
     self->flow_max_work = (uint32_t)SVA_FLOW_MAX_WORK;
+    self->flow_replan_work = (uint32_t)SVA_FLOW_REPLAN_WORK;
     self->standing = NULL;
     return SVA_OK;
 }

@@ -1,7 +1,8 @@
 // test_live_flow.c -- flow honours a live mission's change_penalty (docs/SPEC.md section
 // 12.4): given the plan in force carried over (sva_planner_t.standing) and a penalty,
 // flow keeps the standing visits that still fit and adds what it can; without either it
-// plans as sva_plan() always has.
+// plans as sva_plan() always has. Under its replan budget (flow_replan_work) it covers
+// as many targets as with its full budget.
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -198,9 +199,9 @@ static void test_pop_up_large_penalty_keeps_standing_visits(void** state)
     assert_int_equal(r.objective, r.plan->cost + LARGE_PENALTY);
 }
 
-// flow alone, the standing plan set or not: with no penalty it plans exactly as it
-// does without a standing plan, stats included (solve time aside).
-static void test_no_penalty_standing_changes_nothing(void** state)
+// flow alone, the standing plan set or not: with no penalty the standing plan only
+// seeds the search (under flow_replan_work), which still proves the same optimum.
+static void test_no_penalty_standing_only_seeds(void** state)
 {
     (void)state;
     sva_live_result_t r;
@@ -210,7 +211,10 @@ static void test_no_penalty_standing_changes_nothing(void** state)
     planner.standing = &carried;
     assert_int_equal(sva_plan(&planner, r.residual, SVA_ALGO_FLOW, &again, NULL), SVA_OK);
     planner.standing = NULL;
-    assert_memory_equal(&fresh, &again, sizeof(fresh));
+    assert_true(fresh.stats.optimal);
+    assert_true(again.stats.optimal);
+    assert_int_equal(again.covered, fresh.covered);
+    assert_int_equal(again.cost, fresh.cost);
     // With the penalty and no standing plan, the same again.
     mission = *r.residual;
     mission.change_penalty = LARGE_PENALTY;
@@ -320,12 +324,98 @@ static void test_random_large_penalty(void** state)
     assert_true(replans > 30);
 }
 
+// Random need-2 live missions where fuel binds, no penalty: after each event, flow's
+// plan of the residual mission with the carried plan standing (its replan budget,
+// flow_replan_work) covers as many targets as its full-budget plan without it.
+static void test_random_replan_budget_keeps_coverage(void** state)
+{
+    (void)state;
+    static sva_planner_t full;
+    const uint64_t seed = test_seed(20261125U);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    const test_gen_params_t params = {.targets = 18,
+                                      .uavs = 4,
+                                      .grid = 20,
+                                      .window_min = 4,
+                                      .window_max = 12,
+                                      .horizon = 150,
+                                      .need_max = 2,
+                                      .fuel_min = 60,
+                                      .fuel_max = 120,
+                                      .hover_fuel = 1,
+                                      .ticks_per_cell = 1,
+                                      .scattered = 0,
+                                      .start_min = 12};
+    int replans = 0;
+    int budget_bound = 0;
+    assert_int_equal(sva_planner_init(&full), SVA_OK);
+    for (int n = 0; n < 12; n++) {
+        test_gen_mission(&rng, &params, &mission);
+        if ((mission.target_count > SVA_MAX_TARGETS - 6) || (mission.uav_count > SVA_MAX_UAVS)) {
+            continue;
+        }
+        assert_int_equal(sva_planner_init(&planner), SVA_OK);
+        if (sva_plan(&planner, &mission, SVA_ALGO_GA, &plan, NULL) != SVA_OK) {
+            continue;
+        }
+        assert_int_equal(sva_live_init(&live, &mission, &plan, NULL), SVA_OK);
+        int32_t at = 0;
+        for (int k = 0; k < 6; k++) {
+            at += test_rng_range(&rng, 1, 15);
+            sva_event_t e = at_event((sva_event_type_t)test_rng_range(&rng, 0, 6), at);
+            e.uav_id = live.mission.uavs[test_rng_range(&rng, 0, live.mission.uav_count - 1)].id;
+            e.x = test_rng_range(&rng, 0, 20);
+            e.y = test_rng_range(&rng, 0, 20);
+            e.fuel = test_rng_range(&rng, 20, 100);
+            const int32_t start = at + test_rng_range(&rng, 1, 30);
+            e.target =
+                (sva_target_t){100 + k, e.x, e.y, start, start + 8, test_rng_range(&rng, 1, 2)};
+            if ((e.type == SVA_EVENT_TARGET_CANCELLED) || (e.type == SVA_EVENT_TARGET_CHANGED)) {
+                e.target.id =
+                    live.mission.targets[test_rng_range(&rng, 0, live.mission.target_count - 1)].id;
+            }
+            if (sva_live_apply(&live, &e, NULL) != SVA_OK) {
+                continue;
+            }
+            sva_live_result_t r;
+            assert_int_equal(sva_live_replan(&live, &planner, SVA_ALGO_FLOW, &r, NULL), SVA_OK);
+            (void)carry(r.residual, r.previous);
+            planner.standing = &carried;
+            assert_int_equal(sva_plan(&planner, r.residual, SVA_ALGO_FLOW, &fresh, NULL), SVA_OK);
+            planner.standing = NULL;
+            assert_int_equal(sva_plan(&full, r.residual, SVA_ALGO_FLOW, &again, NULL), SVA_OK);
+            char msg[200];
+            if (spec_check_plan(r.residual, &fresh, msg, sizeof msg) != 0) {
+                fail_msg("seed %llu mission %d event %d: %s", (unsigned long long)seed, n, k, msg);
+            }
+            if ((fresh.covered < again.covered) || (r.plan->covered < again.covered)) {
+                fail_msg("seed %llu mission %d event %d: with the standing plan flow covers %d "
+                         "(the replan %d), with the full budget %d",
+                         (unsigned long long)seed, n, k, (int)fresh.covered, (int)r.plan->covered,
+                         (int)again.covered);
+            }
+            budget_bound += (!fresh.stats.optimal &&
+                             (fresh.stats.flow_work >= (uint64_t)planner.flow_replan_work))
+                                ? 1
+                                : 0;
+            replans++;
+        }
+    }
+    printf("random need-2 live missions (seed %llu): %d replans checked, %d stopped by the "
+           "replan budget\n",
+           (unsigned long long)seed, replans, budget_bound);
+    assert_true(replans > 30);
+    assert_true(budget_bound > 0);  // the budget is what the check is about
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_pop_up_without_penalty_reshuffles),
         cmocka_unit_test(test_pop_up_large_penalty_keeps_standing_visits),
-        cmocka_unit_test(test_no_penalty_standing_changes_nothing),
+        cmocka_unit_test(test_no_penalty_standing_only_seeds),
+        cmocka_unit_test(test_random_replan_budget_keeps_coverage),
         cmocka_unit_test(test_random_large_penalty),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -387,21 +387,20 @@ typedef struct sva_planner {
     /// sva_planner_init sets SVA_FLOW_MAX_WORK; any value in [1000, SVA_FLOW_MAX_WORK]
     /// may be set between runs (others are clamped into that range).
     uint32_t flow_max_work;
+    /// flow's work budget when `standing` is a plan of the mission (a replan), if smaller:
+    /// sva_planner_init sets SVA_FLOW_REPLAN_WORK (clamped as flow_max_work).
+    uint32_t flow_replan_work;
     /// The plan in force over the mission being planned (a live mission's plan carried
     /// over, SPEC section 12.4), or NULL (sva_planner_init's value). Read by flow alone,
-    /// and only when mission.change_penalty > 0: flow then also repairs this plan as one
-    /// more seed, and returns, of the plans it offers, the one covering the most
-    /// targets, then with the least cost + change_penalty * changed visits against it
-    /// (a changed visit: a (UAV, target) pair in one plan and not the other). Its
-    /// search and lower_bound are unchanged: lower_bound bounds the cost alone, and
-    /// `optimal` holds only when the plan returned costs what the proven optimum does.
-    /// The other algorithms ignore it; with NULL or change_penalty 0 flow plans exactly
-    /// as without it. It must be a plan of this mission (route r for UAV r, every visit
-    /// in time and every target served by at most its need); flow ignores one that is
-    /// not, and ignores it past SVA_FLOW_MAX_COPIES (SVA_FLOW_OVER_COPIES) and when
-    /// compiled with SVA_FLOW_STANDING 0 (the tiny profile). Read, never
-    /// written, during sva_plan() only: the caller keeps it alive for the call.
-    /// sva_live_replan() sets it for its own sva_plan() call and clears it after.
+    /// which repairs it as its first seed and plans within flow_replan_work; with a
+    /// change_penalty it returns, of the plans it offers, the one covering the most targets, then
+    /// with the least cost + change_penalty * changed visits against it (a changed visit: a (UAV,
+    /// target) pair in one plan and not the other). lower_bound bounds the cost alone; `optimal`
+    /// holds only when the plan returned costs the proven optimum. It must be a plan of this
+    /// mission (route r for UAV r, every visit in time and every target served by at most its
+    /// need); flow ignores one that is not, past SVA_FLOW_MAX_COPIES and with SVA_FLOW_STANDING 0
+    /// (the tiny profile). Read, never written, during sva_plan() only: the caller keeps it alive
+    /// for the call. sva_live_replan() sets it for its own sva_plan() call and clears it after.
     /// Memory: two successor lists in the planner (sva_private.h); stack: no frame
     /// deeper than flow's deepest path (DESIGN.md section 6).
     const struct sva_plan* standing;

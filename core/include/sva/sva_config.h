@@ -186,6 +186,19 @@
 #    error "SVA_FLOW_MAX_WORK must be in [1000, 2000000000]"
 #endif
 
+/// Default work budget of flow given a standing plan (sva_planner_t.flow_replan_work:
+/// a live replan, which starts from that plan); at most SVA_FLOW_MAX_WORK.
+#ifndef SVA_FLOW_REPLAN_WORK
+#    if SVA_FLOW_MAX_WORK < 60000L
+#        define SVA_FLOW_REPLAN_WORK SVA_FLOW_MAX_WORK
+#    else
+#        define SVA_FLOW_REPLAN_WORK 60000L
+#    endif
+#endif
+#if (SVA_FLOW_REPLAN_WORK < 1000L) || (SVA_FLOW_REPLAN_WORK > SVA_FLOW_MAX_WORK)
+#    error "SVA_FLOW_REPLAN_WORK must be in [1000, SVA_FLOW_MAX_WORK]"
+#endif
+
 /// Labels kept per target by the resource-constrained shortest path of flow's
 /// Lagrangian bound (flow_lagrange.c): Pareto-best (reduced cost, fuel) pairs. Past it
 /// two labels merge into one that dominates both, which keeps the bound valid but

@@ -14,8 +14,10 @@
 //       fuel rule are skipped, as is the one keeping the whole route: adding targets
 //       never shortens a route (triangle inequality).
 // Every node's relaxation is rounded into a plan (flow_repair.c); the plans of `ga`
-// and `sva` are the first incumbents, so flow never plans worse than either. The
-// search gets a sixteenth of the work budget (SVA_FLOW_MAX_WORK units, deterministic);
+// and `sva` are the first incumbents, so flow never plans worse than either (a
+// replan's standing plan, repaired, comes before them: flow_standing.c). The search
+// gets a sixteenth of the work budget (SVA_FLOW_MAX_WORK units, deterministic; a
+// replan has its own, flow_replan_work, and gives the search half);
 // if it does not finish, the Lagrangian phase (flow_lagrange.c) improves the bound
 // and the plan, ruin and recreate (flow_repair.c) improves the plan, and the search
 // runs again on what is left. The bound comes from the nodes left open and from the
@@ -28,6 +30,10 @@
 
 #define BRANCH_TARGET 1U
 #define BRANCH_ROUTE  2U
+// The first search's share of the budget: 1/16, and 1/2 in a replan, whose incumbent
+// (the standing plan repaired) is good from the start.
+#define SEARCH_SHARE        16U
+#define REPLAN_SEARCH_SHARE 2U
 
 static uint32_t find_arc(const sva_flow_work_t* w, uint16_t tail, uint16_t head)
 {
@@ -408,11 +414,21 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     sva_planner_priv_t* priv = &self->priv;
     sva_flow_work_t* w = &priv->flow;
     sva_stats_t* stats = &plan->stats;
+    w->has_inc = false;
+    // A replan starts from the standing plan, under its own budget.
+#if SVA_FLOW_STANDING
+    const bool replan = sva_flow_standing_begin(priv, m, plan, self->standing);
+#else
+    const bool replan = false;  // the standing plan is ignored
+    (void)sva_flow_standing_begin(priv, m, plan, self->standing);
+#endif
+    const sva_plan_t* seed_plan = replan ? self->standing : NULL;
     uint64_t budget = self->flow_max_work;
+    if (replan && (self->flow_replan_work < budget)) {
+        budget = self->flow_replan_work;
+    }
     budget = (budget < 1000U) ? 1000U : budget;
     budget = (budget > (uint64_t)SVA_FLOW_MAX_WORK) ? (uint64_t)SVA_FLOW_MAX_WORK : budget;
-    w->has_inc = false;
-    sva_flow_standing_begin(priv, m, plan, self->standing);
     w->insert_backwards = false;
     w->work = 0U;
     w->local_work = budget / 2U;
@@ -428,11 +444,9 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     if (past || pooled_proven) {
         // Past the arc bound, no search: unless the pooled plan is proven, the seeds go
         // through the repair and the local search, then ruin and recreate.
+        sva_flow_seed_standing(priv, m, plan, seed_plan);
         if (!pooled_proven) {
             seed(self, m, plan);
-        }
-        sva_flow_seed_standing(priv, m, plan);
-        if (!pooled_proven) {
             (void)sva_flow_ruin_recreate(priv, m, plan, w->work + budget, -1);
         }
         finish(priv, m, plan, pooled, 0, false, over);
@@ -448,16 +462,18 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     bool root_solved = false;
     if (!root_is_plan(priv, m, plan, &root_solved)) {
         const uint64_t root_work = w->work - start;
-        // A sixteenth of the budget to the search; if it does not finish, the Lagrangian
-        // phase (fuel-aware bound, new plans), then the search again with the better
-        // incumbent. The phases' budgets count from here: seeding (two local searches at
-        // most, each within w->local_work) does not eat into the search.
+        // A sixteenth of the budget to the search (half in a replan); if it does not
+        // finish, the Lagrangian phase (fuel-aware bound, new plans), then the search
+        // again with the better incumbent. The phases' budgets count from here: seeding
+        // (three local searches at most, each within w->local_work) does not eat into
+        // the search.
+        sva_flow_seed_standing(priv, m, plan, seed_plan);
         seed(self, m, plan);
-        sva_flow_seed_standing(priv, m, plan);
         start = w->work - root_work;  // the root counts in the search's share, as before
-        open = search(priv, m, plan, start + (budget / 16U), root_solved, &incomplete);
+        const uint64_t share = replan ? REPLAN_SEARCH_SHARE : SEARCH_SHARE;
+        open = search(priv, m, plan, start + (budget / share), root_solved, &incomplete);
     } else {
-        sva_flow_seed_standing(priv, m, plan);
+        sva_flow_seed_standing(priv, m, plan, seed_plan);
     }
     if (open != INT64_MAX) {
         lagrange_bound = sva_flow_lagrange(priv, m, plan, start + (budget - (budget / 4U)),

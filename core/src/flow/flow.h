@@ -176,13 +176,15 @@ bool sva_flow_lp_dive(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
                       uint64_t budget);
 
 // flow_standing.c: the standing plan (sva_planner_t.standing; SVA_FLOW_STANDING).
-/// Sets w->standing to `standing` when the mission has a change_penalty and it is a
-/// plan of the mission (*plan fresh from sva_state_reset), else NULL; no plan kept yet.
-void sva_flow_standing_begin(sva_planner_priv_t* priv, const sva_mission_t* m,
+/// Whether `standing` is a plan of the mission (*plan fresh from sva_state_reset): a
+/// replan, which starts from it. Sets w->standing to it when it is and the mission has
+/// a change_penalty, else NULL; no plan kept yet.
+bool sva_flow_standing_begin(sva_planner_priv_t* priv, const sva_mission_t* m,
                              const sva_plan_t* plan, const sva_plan_t* standing);
-/// The standing plan repaired (sva_flow_repair) and offered, from and back to a reset
-/// state, stats kept; nothing without one.
-void sva_flow_seed_standing(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
+/// `standing` (NULL: none) repaired (sva_flow_repair) and offered, from and back to a
+/// reset state, stats kept.
+void sva_flow_seed_standing(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                            const sva_plan_t* standing);
 /// With a standing plan: the plan best against it into *plan (over the incumbent
 /// finish wrote), `optimal` kept only if it costs the incumbent's cost, lower_bound at
 /// most its cost.

@@ -1,7 +1,8 @@
 // flow_standing.c -- the standing plan (sva_planner_t.standing): a live mission's plan
-// in force carried over, against which flow counts changed visits when the mission has
-// a change_penalty (docs/SPEC.md section 12.4). It is checked, repaired as one more
-// seed, and the plan best against it (flow_incumbent.c keeps it) is the one returned.
+// in force carried over (docs/SPEC.md section 12.4). It is checked and repaired as the
+// first seed of a replan (flow.c gives it flow_replan_work); when the mission has a
+// change_penalty flow counts changed visits against it, and the plan best against it
+// (flow_incumbent.c keeps it) is the one returned.
 // Compiled out with SVA_FLOW_STANDING 0 (flow then ignores the standing plan).
 #include "flow.h"
 
@@ -45,20 +46,22 @@ static bool fits(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_pla
     return true;
 }
 
-void sva_flow_standing_begin(sva_planner_priv_t* priv, const sva_mission_t* m,
+bool sva_flow_standing_begin(sva_planner_priv_t* priv, const sva_mission_t* m,
                              const sva_plan_t* plan, const sva_plan_t* standing)
 {
     sva_flow_work_t* w = &priv->flow;
     w->has_pen = false;
     w->standing = NULL;
-    if ((standing != NULL) && (m->change_penalty > 0) && fits(priv, m, plan, standing)) {
-        w->standing = standing;
+    if ((standing == NULL) || !fits(priv, m, plan, standing)) {
+        return false;
     }
+    w->standing = (m->change_penalty > 0) ? standing : NULL;
+    return true;
 }
 
-void sva_flow_seed_standing(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+void sva_flow_seed_standing(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                            const sva_plan_t* standing)
 {
-    const sva_plan_t* standing = priv->flow.standing;
     if (standing == NULL) {
         return;
     }
@@ -97,7 +100,7 @@ void sva_flow_standing_finish(sva_planner_priv_t* priv, const sva_mission_t* m, 
 
 #else
 
-void sva_flow_standing_begin(sva_planner_priv_t* priv, const sva_mission_t* m,
+bool sva_flow_standing_begin(sva_planner_priv_t* priv, const sva_mission_t* m,
                              const sva_plan_t* plan, const sva_plan_t* standing)
 {
     (void)m;
@@ -105,13 +108,16 @@ void sva_flow_standing_begin(sva_planner_priv_t* priv, const sva_mission_t* m,
     (void)standing;
     priv->flow.standing = NULL;
     priv->flow.has_pen = false;
+    return false;
 }
 
-void sva_flow_seed_standing(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+void sva_flow_seed_standing(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                            const sva_plan_t* standing)
 {
     (void)priv;
     (void)m;
     (void)plan;
+    (void)standing;
 }
 
 void sva_flow_standing_finish(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
