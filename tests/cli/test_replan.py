@@ -5,6 +5,7 @@ Each printed plan is checked here against its residual mission (written with
 --residual) by the same independent checks as `sva plan`'s plans (test_cli.check_plan).
 """
 import json
+import os
 import sys
 from pathlib import Path
 
@@ -162,3 +163,22 @@ def test_the_spec_example(tmp_path):
     mission, plan = replan(tmp_path, doc, "--algo", "flow")
     assert plan["live"]["now"] == 20 and plan["live"]["revision"] == 2
     assert states(plan) == {1: "lost", 2: "waiting"} and plan["covered"] == 1
+
+
+def test_flow_work_is_the_budget_of_every_replan(tmp_path):
+    """A replan with a plan in force searches within SVA_FLOW_REPLAN_WORK (60,000 units;
+    the seeds come on top), far below the full search; --flow-work N is the search budget
+    of every replan, smaller or up to the full search. On a mission where the full search
+    runs to its budget (need 2, 25 x 5)."""
+    live = Path(os.environ["SVA_FIXTURES"]) / "scenarios" / "replan_budget.json"
+
+    def work(*options):
+        result = run(["replan", "--algo", "flow", *options, str(live)])
+        assert result.returncode == 0, result.stderr
+        return json.loads(result.stdout)["stats"]["flow_work"]
+
+    default, small, full = work(), work("--flow-work", "2000"), work("--flow-work", "2000000")
+    print(f"flow_work of the last replan: default {default}, --flow-work 2000 {small}, "
+          f"--flow-work 2000000 {full}")
+    assert small < default < full
+    assert default < 100000 and full > 1000000

@@ -84,10 +84,13 @@ static void print_usage(FILE* out)
             "validate   check the mission only; prints \"ok: NAME: N UAVs, M targets\"\n"
             "replan     replay a live mission (mission, plan in force, events) and print the\n"
             "           last replan: the plan of the residual mission with its changes\n"
+            "  --flow-work N    flow's budget for every replan (default: %lu with a plan in\n"
+            "                   force, SVA_FLOW_REPLAN_WORK; the most without one)\n"
             "  --residual FILE  write the residual mission the plan is for to FILE\n"
             "\n"
             "exit status: 0 planned or valid, 2 bad input (mission or usage), 1 other errors\n",
-            algos, (unsigned long)SVA_FLOW_MAX_WORK, REPEAT_MAX);
+            algos, (unsigned long)SVA_FLOW_MAX_WORK, REPEAT_MAX,
+            (unsigned long)SVA_FLOW_REPLAN_WORK);
 }
 
 static void print_version(void)
@@ -581,7 +584,9 @@ static int cmd_replan(int argc, char** argv)
         return error_exit(EXIT_FAILED, "planner initialisation failed");
     }
     if (opt.flow_work > 0) {
+        // an explicit budget is the budget of every replan too
         g_planner.flow_max_work = (uint32_t)opt.flow_work;
+        g_planner.flow_replan_work = (uint32_t)opt.flow_work;
     }
     code = replay(&opt, algorithm);
     sva_json_live_free(&g_doc);
