@@ -12,6 +12,7 @@
 
 #include <cmocka.h>
 
+#include "live_gen.h"
 #include "mission_gen.h"
 #include "spec_checker.h"
 #include "sva/sva.h"
@@ -43,15 +44,6 @@ static void start_hand(int32_t change_penalty)
     sva_diag_t diag;
     assert_int_equal(sva_live_init(&live, &mission, &plan, &diag), SVA_OK);
     assert_int_equal(sva_planner_init(&planner), SVA_OK);
-}
-
-static sva_event_t at_event(sva_event_type_t type, int32_t at)
-{
-    sva_event_t e;
-    (void)memset(&e, 0, sizeof(e));
-    e.type = type;
-    e.at_ticks = at;
-    return e;
 }
 
 static void apply_ok(sva_event_t e)
@@ -113,19 +105,19 @@ static void test_flight_model_and_clock(void** state)
     assert_int_equal(fuel, 97);
     assert_int_equal(ready, 3);
     assert_int_equal(state_of(1), SVA_TARGET_WAITING);
-    apply_ok(at_event(SVA_EVENT_CLOCK, 10));
+    apply_ok(test_event_at(SVA_EVENT_CLOCK, 10));
     assert_int_equal(state_of(1), SVA_TARGET_UNDER_WAY);
     // Under way: at the target until the window ends.
     assert_true(sva_live_uav_at(&live, 1U, 12, &x, &y, &fuel, &ready));
     assert_int_equal(x, 5);
     assert_int_equal(ready, 20);
-    apply_ok(at_event(SVA_EVENT_CLOCK, 20));
+    apply_ok(test_event_at(SVA_EVENT_CLOCK, 20));
     assert_int_equal(state_of(1), SVA_TARGET_DONE);
     // UAV 2 leaves T1 at 20 for T3 (1, 6): 4 cells west first, then north.
     assert_true(sva_live_uav_at(&live, 1U, 27, &x, &y, &fuel, &ready));
     assert_int_equal(x, 1);
     assert_int_equal(y, 3);
-    apply_ok(at_event(SVA_EVENT_CLOCK, 45));
+    apply_ok(test_event_at(SVA_EVENT_CLOCK, 45));
     assert_int_equal(state_of(2), SVA_TARGET_DONE);
     assert_int_equal(state_of(3), SVA_TARGET_DONE);
     assert_int_equal(live.revision, 3U);
@@ -135,7 +127,7 @@ static void test_lost_uav_breaks_visit_under_way(void** state)
 {
     (void)state;
     start_hand(0);
-    sva_event_t lost = at_event(SVA_EVENT_UAV_LOST, 15);
+    sva_event_t lost = test_event_at(SVA_EVENT_UAV_LOST, 15);
     lost.uav_id = 1;
     apply_ok(lost);
     // T1 was under way with both UAVs: it can no longer be covered; UAV 2 is free now.
@@ -168,7 +160,7 @@ static void test_change_penalty_keeps_standing_visits(void** state)
 {
     (void)state;
     start_hand(10);
-    sva_event_t lost = at_event(SVA_EVENT_UAV_LOST, 15);
+    sva_event_t lost = test_event_at(SVA_EVENT_UAV_LOST, 15);
     lost.uav_id = 1;
     apply_ok(lost);
     sva_live_result_t r;
@@ -183,7 +175,7 @@ static void test_change_penalty_keeps_standing_visits(void** state)
     assert_int_equal(r.plan->routes[0].target_count, 1);
     assert_int_equal(r.plan->routes[0].targets[0], t3);
     // The kept plan is the plan in force now: flying on, T3 is covered.
-    apply_ok(at_event(SVA_EVENT_CLOCK, 41));
+    apply_ok(test_event_at(SVA_EVENT_CLOCK, 41));
     assert_int_equal(state_of(3), SVA_TARGET_DONE);
     assert_int_equal(state_of(2), SVA_TARGET_EXPIRED);
 }
@@ -192,7 +184,7 @@ static void test_replan_keeps_visits_under_way(void** state)
 {
     (void)state;
     start_hand(0);
-    apply_ok(at_event(SVA_EVENT_CLOCK, 12));
+    apply_ok(test_event_at(SVA_EVENT_CLOCK, 12));
     for (int algo = 0; algo < (int)SVA_ALGO_COUNT_; algo++) {
         sva_live_result_t r;
         replan_ok((sva_algorithm_t)algo, &r);
@@ -206,7 +198,7 @@ static void test_replan_keeps_visits_under_way(void** state)
         assert_int_equal(r.covered, 3);
         assert_int_equal(state_of(1), SVA_TARGET_UNDER_WAY);
     }
-    apply_ok(at_event(SVA_EVENT_CLOCK, 45));
+    apply_ok(test_event_at(SVA_EVENT_CLOCK, 45));
     assert_int_equal(state_of(1), SVA_TARGET_DONE);
     assert_int_equal(state_of(2), SVA_TARGET_DONE);
     assert_int_equal(state_of(3), SVA_TARGET_DONE);
@@ -216,7 +208,7 @@ static void test_targets_added_cancelled_changed(void** state)
 {
     (void)state;
     start_hand(0);
-    sva_event_t added = at_event(SVA_EVENT_TARGET_ADDED, 5);
+    sva_event_t added = test_event_at(SVA_EVENT_TARGET_ADDED, 5);
     added.target = (sva_target_t){9, 2, 2, 50, 60, 1};
     apply_ok(added);
     assert_int_equal(live.mission.target_count, 4);
@@ -226,14 +218,14 @@ static void test_targets_added_cancelled_changed(void** state)
     assert_int_equal(r.covered, 4);
     assert_int_equal(r.added, 1U);
     // Cancel T2 before its start: the UAV going there is free.
-    sva_event_t cancel = at_event(SVA_EVENT_TARGET_CANCELLED, 25);
+    sva_event_t cancel = test_event_at(SVA_EVENT_TARGET_CANCELLED, 25);
     cancel.target.id = 2;
     apply_ok(cancel);
     assert_int_equal(state_of(2), SVA_TARGET_CANCELLED);
     replan_ok(SVA_ALGO_FLOW, &r);
     assert_int_equal(residual_index(&r, 2), -1);
     // T3 moves before its start; the replan flies to its new place.
-    sva_event_t moved = at_event(SVA_EVENT_TARGET_CHANGED, 26);
+    sva_event_t moved = test_event_at(SVA_EVENT_TARGET_CHANGED, 26);
     moved.target = (sva_target_t){3, 2, 7, 33, 40, 1};
     apply_ok(moved);
     replan_ok(SVA_ALGO_FLOW, &r);
@@ -241,7 +233,7 @@ static void test_targets_added_cancelled_changed(void** state)
     assert_true(t3 >= 0);
     assert_int_equal(r.residual->targets[t3].x, 2);
     assert_int_equal(r.residual->targets[t3].start_ticks, 33);
-    apply_ok(at_event(SVA_EVENT_CLOCK, 61));
+    apply_ok(test_event_at(SVA_EVENT_CLOCK, 61));
     assert_int_equal(state_of(3), SVA_TARGET_DONE);
     assert_int_equal(state_of(9), SVA_TARGET_DONE);
 }
@@ -250,12 +242,12 @@ static void test_uav_back_and_fuel(void** state)
 {
     (void)state;
     start_hand(0);
-    sva_event_t lost = at_event(SVA_EVENT_UAV_LOST, 2);
+    sva_event_t lost = test_event_at(SVA_EVENT_UAV_LOST, 2);
     lost.uav_id = 2;
     apply_ok(lost);
     // T1 needs two UAVs: with one lost before its start it can no longer be covered.
     assert_int_equal(state_of(1), SVA_TARGET_EXPIRED);
-    sva_event_t back = at_event(SVA_EVENT_UAV_BACK, 3);
+    sva_event_t back = test_event_at(SVA_EVENT_UAV_BACK, 3);
     back.uav_id = 2;
     back.x = 4;
     back.y = 0;
@@ -268,7 +260,7 @@ static void test_uav_back_and_fuel(void** state)
     assert_int_equal(r.residual->uavs[1].fuel, 50);
     assert_int_equal(r.covered, 3);
     // A fuel reading too low for the rest of a route: the replan drops what does not fit.
-    sva_event_t fuel = at_event(SVA_EVENT_FUEL, 4);
+    sva_event_t fuel = test_event_at(SVA_EVENT_FUEL, 4);
     fuel.uav_id = 1;
     fuel.fuel = 12;
     apply_ok(fuel);
@@ -285,7 +277,7 @@ static void test_uav_back_and_fuel(void** state)
 
 static void position_ok(int32_t at, int32_t uav, int32_t x, int32_t y, int32_t fuel)
 {
-    sva_event_t e = at_event(SVA_EVENT_POSITION, at);
+    sva_event_t e = test_event_at(SVA_EVENT_POSITION, at);
     e.uav_id = uav;
     e.x = x;
     e.y = y;
@@ -327,7 +319,7 @@ static void test_position_event(void** state)
     assert_int_equal(r.residual->uavs[0].fuel, 90);
 
     start_hand(0);
-    apply_ok(at_event(SVA_EVENT_CLOCK, 12));
+    apply_ok(test_event_at(SVA_EVENT_CLOCK, 12));
     assert_int_equal(state_of(1), SVA_TARGET_UNDER_WAY);
     // On station: only the fuel changes; the visit goes on until its end.
     position_ok(13, 2, 5, 0, 70);
@@ -361,24 +353,24 @@ static void test_rejected_events_change_nothing(void** state)
 {
     (void)state;
     start_hand(0);
-    apply_ok(at_event(SVA_EVENT_CLOCK, 12));
-    sva_event_t lost = at_event(SVA_EVENT_UAV_LOST, 13);
+    apply_ok(test_event_at(SVA_EVENT_CLOCK, 12));
+    sva_event_t lost = test_event_at(SVA_EVENT_UAV_LOST, 13);
     lost.uav_id = 2;
     apply_ok(lost);
-    rejected(at_event(SVA_EVENT_CLOCK, 11), "event.at: 11 is before now (13)");
-    sva_event_t e = at_event(SVA_EVENT_UAV_LOST, 14);
+    rejected(test_event_at(SVA_EVENT_CLOCK, 11), "event.at: 11 is before now (13)");
+    sva_event_t e = test_event_at(SVA_EVENT_UAV_LOST, 14);
     e.uav_id = 7;
     rejected(e, "event.uav: unknown id 7");
     e.uav_id = 2;
     rejected(e, "event.uav: the UAV is lost");
-    e = at_event(SVA_EVENT_FUEL, 14);
+    e = test_event_at(SVA_EVENT_FUEL, 14);
     e.uav_id = 2;
     e.fuel = 5;
     rejected(e, "event.uav: the UAV is lost");
     e.uav_id = 1;
     e.fuel = -1;
     rejected(e, "event.fuel: must be >= 0, got -1");
-    e = at_event(SVA_EVENT_POSITION, 14);
+    e = test_event_at(SVA_EVENT_POSITION, 14);
     e.uav_id = 2;
     rejected(e, "event.uav: the UAV is lost");
     e.uav_id = 9;
@@ -390,17 +382,17 @@ static void test_rejected_events_change_nothing(void** state)
     e.fuel = 1000000001;
     rejected(e, "event.fuel: must be <= SVA_MAX_FUEL (1000000000), got 1000000001");
     // Off station during T1's visit under way, but at a tick before now.
-    e = at_event(SVA_EVENT_POSITION, 12);
+    e = test_event_at(SVA_EVENT_POSITION, 12);
     e.uav_id = 1;
     e.x = 9;
     rejected(e, "event.at: 12 is before now (13)");
-    e = at_event(SVA_EVENT_UAV_BACK, 14);
+    e = test_event_at(SVA_EVENT_UAV_BACK, 14);
     e.uav_id = 1;
     rejected(e, "event.uav: the UAV is in service");
     e.uav_id = 2;
     e.x = 40000;
     rejected(e, "event.x: must be <= 32767, got 40000");
-    e = at_event(SVA_EVENT_TARGET_ADDED, 14);
+    e = test_event_at(SVA_EVENT_TARGET_ADDED, 14);
     e.target = (sva_target_t){3, 1, 1, 50, 60, 1};
     rejected(e, "event.target: duplicate id 3 (first at index 2)");
     e.target.id = 4;
@@ -409,21 +401,21 @@ static void test_rejected_events_change_nothing(void** state)
     e.target.start_ticks = 50;
     e.target.end_ticks = 50;
     rejected(e, "targets[3].end: must be > start (50), got 50");
-    e = at_event(SVA_EVENT_TARGET_CANCELLED, 14);
+    e = test_event_at(SVA_EVENT_TARGET_CANCELLED, 14);
     e.target.id = 1;
     rejected(e, "event.target: the target is lost");
     e.target.id = 8;
     rejected(e, "event.target: unknown id 8");
-    e = at_event(SVA_EVENT_TARGET_CHANGED, 31);
+    e = test_event_at(SVA_EVENT_TARGET_CHANGED, 31);
     e.target = (sva_target_t){2, 1, 1, 50, 60, 1};
     rejected(e, "event.target: its window started at 30 (now 31): only a target not yet "
                 "started may change");
-    e = at_event(SVA_EVENT_CLOCK, 14);
+    e = test_event_at(SVA_EVENT_CLOCK, 14);
     e.type = SVA_EVENT_COUNT_;
     rejected(e, "event.type: must be <= 7, got 8");
     // Done targets cannot be cancelled.
-    apply_ok(at_event(SVA_EVENT_CLOCK, 45));
-    e = at_event(SVA_EVENT_TARGET_CANCELLED, 46);
+    apply_ok(test_event_at(SVA_EVENT_CLOCK, 45));
+    e = test_event_at(SVA_EVENT_TARGET_CANCELLED, 46);
     e.target.id = 2;
     rejected(e, "event.target: the target is done");
 }
@@ -559,18 +551,8 @@ static void test_random_live_missions(void** state)
         int32_t at = 0;
         for (int k = 0; k < 6; k++) {
             at += test_rng_range(&rng, 1, 12);
-            sva_event_t e = at_event(
-                (sva_event_type_t)test_rng_range(&rng, 0, (int32_t)SVA_EVENT_COUNT_ - 1), at);
-            e.uav_id = live.mission.uavs[test_rng_range(&rng, 0, live.mission.uav_count - 1)].id;
-            e.x = test_rng_range(&rng, 0, 10);
-            e.y = test_rng_range(&rng, 0, 10);
-            e.fuel = test_rng_range(&rng, 0, 60);
-            const int32_t start = at + test_rng_range(&rng, 1, 20);
-            e.target = (sva_target_t){100 + k, e.x, e.y, start, start + 8, 1};
-            if ((e.type == SVA_EVENT_TARGET_CANCELLED) || (e.type == SVA_EVENT_TARGET_CHANGED)) {
-                e.target.id =
-                    live.mission.targets[test_rng_range(&rng, 0, live.mission.target_count - 1)].id;
-            }
+            sva_event_t e = test_live_random_event(
+                &rng, &live, at, k, (sva_event_type_t)((int32_t)SVA_EVENT_COUNT_ - 1));
             sva_diag_t diag;
             (void)memcpy(&before, &live, sizeof(live));
             if (sva_live_apply(&live, &e, &diag) != SVA_OK) {

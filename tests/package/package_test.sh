@@ -100,7 +100,8 @@ cmake)
     rm -rf "$d" && mkdir -p "$d"
     readme_example "$d/readme_example.c"
     run cmake -S "$here/consumer" -B "$d" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" \
-        -DSVA_COMPONENTS="${components// /;}" -DREADME_EXAMPLE="$d/readme_example.c" >/dev/null
+        -DSVA_COMPONENTS="${components// /;}" -DREADME_EXAMPLE="$d/readme_example.c" \
+        -DSVA_WANTED_VERSION="${version%.*}" >/dev/null
     run cmake --build "$d" >/dev/null
     run_consumers "$d"
     # Exactly as the README says: find_package(sva) with no component, then sva::core.

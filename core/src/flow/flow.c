@@ -470,7 +470,10 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
         sva_flow_seed_standing(priv, m, plan, seed_plan);
         seed(self, m, plan);
         start = w->work - root_work;  // the root counts in the search's share, as before
-        const uint64_t share = replan ? REPLAN_SEARCH_SHARE : SEARCH_SHARE;
+        uint64_t share = SEARCH_SHARE;
+        if (replan) {
+            share = REPLAN_SEARCH_SHARE;
+        }
         open = search(priv, m, plan, start + (budget / share), root_solved, &incomplete);
     } else {
         sva_flow_seed_standing(priv, m, plan, seed_plan);

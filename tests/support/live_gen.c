@@ -1,0 +1,30 @@
+// Random events for the live-mission tests (live_gen.h).
+#include "live_gen.h"
+
+#include <string.h>
+
+sva_event_t test_event_at(sva_event_type_t type, int32_t at)
+{
+    sva_event_t e;
+    (void)memset(&e, 0, sizeof(e));
+    e.type = type;
+    e.at_ticks = at;
+    return e;
+}
+
+sva_event_t test_live_random_event(test_rng_t* rng, const sva_live_t* live, int32_t at, int k,
+                                   sva_event_type_t max_type)
+{
+    sva_event_t e = test_event_at((sva_event_type_t)test_rng_range(rng, 0, (int32_t)max_type), at);
+    e.uav_id = live->mission.uavs[test_rng_range(rng, 0, live->mission.uav_count - 1)].id;
+    e.x = test_rng_range(rng, 0, 10);
+    e.y = test_rng_range(rng, 0, 10);
+    e.fuel = test_rng_range(rng, 0, 60);
+    const int32_t start = at + test_rng_range(rng, 1, 20);
+    e.target = (sva_target_t){100 + k, e.x, e.y, start, start + 8, 1};
+    if ((e.type == SVA_EVENT_TARGET_CANCELLED) || (e.type == SVA_EVENT_TARGET_CHANGED)) {
+        e.target.id =
+            live->mission.targets[test_rng_range(rng, 0, live->mission.target_count - 1)].id;
+    }
+    return e;
+}
