@@ -122,7 +122,11 @@ def node_figures(node_logs, cli_logs):
             if m["channel"] == "REPLAN"]
     rts = sorted(m["round_trip_us"] for m in msgs)
     solve = sorted(m["solve_us"] for m in msgs)
-    same = sum(1 for a, b in zip(node_logs, cli_logs) if a["summary"]["covered"] == b["summary"]["covered"])
+    def name(log):
+        return log["scenario"]["mission"]["name"]
+
+    covered = {name(b): b["summary"]["covered"] for b in cli_logs}  # paired by scenario name
+    same = sum(1 for a in node_logs if covered.get(name(a)) == a["summary"]["covered"])
     return {"flights": len(node_logs), "same": same, "messages": len(msgs),
             "rt_p50": percentile(rts, 50) if rts else None, "rt_p99": percentile(rts, 99) if rts else None,
             "rt_max": rts[-1] if rts else None,
@@ -302,8 +306,11 @@ def main(argv):
         logs = {}
         for algo in algos:
             for pen in penalties:
-                flights = sorted((r for r in rows.values() if r["task"] == "fly" and r["set"] == label
-                                  and r["tool"] == algo and r["penalty"] == pen), key=lambda r: r["index"])
+                # a stored row is keyed by content, so it may carry the set label of the run
+                # that stored it: this run's tasks pick their rows
+                flights = [rows[t["key"]] for t in sorted(
+                    (t for t in stats["task_list"] if t["task"] == "fly" and t["set"] == label
+                     and t["tool"] == algo and t["penalty"] == pen), key=lambda t: t["index"])]
                 for r in flights:
                     if r["error"]:
                         sys.exit(f"live_bench: {algo} penalty {pen} on {r['mission_name']}: {r['error']}")
