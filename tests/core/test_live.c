@@ -522,22 +522,9 @@ static void test_random_live_missions(void** state)
     const uint64_t seed = test_seed(20261125U);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
-    const test_gen_params_t params = {.targets = 8,
-                                      .uavs = 4,
-                                      .grid = 10,
-                                      .window_min = 4,
-                                      .window_max = 12,
-                                      .horizon = 60,
-                                      .need_max = 2,
-                                      .fuel_min = 30,
-                                      .fuel_max = 80,
-                                      .hover_fuel = 1,
-                                      .ticks_per_cell = 1,
-                                      .scattered = 0,
-                                      .start_min = 12};
     int replans = 0;
     for (int n = 0; n < 60; n++) {
-        test_gen_mission(&rng, &params, &mission);
+        test_gen_mission(&rng, &test_live_params, &mission);
         if ((mission.target_count > SVA_MAX_TARGETS - 4) || (mission.uav_count > SVA_MAX_UAVS)) {
             continue;
         }

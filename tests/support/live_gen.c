@@ -3,6 +3,20 @@
 
 #include <string.h>
 
+const test_gen_params_t test_live_params = {.targets = 8,
+                                            .uavs = 4,
+                                            .grid = 10,
+                                            .window_min = 4,
+                                            .window_max = 12,
+                                            .horizon = 60,
+                                            .need_max = 2,
+                                            .fuel_min = 30,
+                                            .fuel_max = 80,
+                                            .hover_fuel = 1,
+                                            .ticks_per_cell = 1,
+                                            .scattered = 0,
+                                            .start_min = 12};
+
 sva_event_t test_event_at(sva_event_type_t type, int32_t at)
 {
     sva_event_t e;

@@ -8,6 +8,10 @@
 #include "mission_gen.h"
 #include "sva/sva.h"
 
+/// Small random live missions (8 targets, 4 UAVs, need up to 2, fuel 30 to 80) whose
+/// windows start from tick 12, so events come before the visits.
+extern const test_gen_params_t test_live_params;
+
 /// An event of `type` at tick `at`, every other field zero.
 sva_event_t test_event_at(sva_event_type_t type, int32_t at);
 

@@ -437,7 +437,9 @@ def simulate(mission: M.Mission, events: List[dict], penalty: Optional[int] = No
 
 # --- the timeline --------------------------------------------------------------------
 
-def _event_text(e: dict) -> str:
+def event_text(e: dict) -> str:
+    """One line for a live event (scenario JSON; a cancelled target as its id or its
+    object): the timeline's and the ground view's words."""
     k = e["type"]
     if k == "uav_lost":
         return f"uav {e['uav']} lost"
@@ -452,7 +454,8 @@ def _event_text(e: dict) -> str:
         return (f"target {t['id']} added at ({t['x']}, {t['y']}) [{t['start']}, {t['end']}) "
                 f"need {t['need']}")
     if k == "target_cancelled":
-        return f"target {e['target']} cancelled"
+        t = e["target"]
+        return f"target {t['id'] if isinstance(t, dict) else t} cancelled"
     if k == "target_changed":
         t = e["target"]
         return (f"target {t['id']} moved to ({t['x']}, {t['y']}) [{t['start']}, {t['end']}) "
@@ -472,7 +475,7 @@ def timeline(log: dict) -> str:
              f"{'kept':>5} {'solve_us':>9}"]
     for r in log["replans"]:
         for e in by_tick.get(r["at"], []):
-            lines.append(f"{e['at']:>6}  - {_event_text(e)}")
+            lines.append(f"{e['at']:>6}  - {event_text(e)}")
         live = r.get("live") or {}
         done = sum(1 for t in live.get("targets", []) if t.get("state") == "done")
         covered = done + int(live.get("covered", r["plan"].get("covered", 0)))

@@ -20,6 +20,7 @@ import time
 from typing import Any, Dict, List, Optional
 
 from ..lcm import wire
+from ..sim import event_text
 
 MAX_LOG = 500
 MAX_WARNINGS = 50
@@ -305,23 +306,6 @@ class Ground:
                 "plan": self.plan, "replans": self.replans[-200:],
                 "replan_count": len(self.replans), "log": self.log[-200:],
                 "node": self.node, "warnings": self.warnings, "counts": self.counts}
-
-
-def event_text(e: dict) -> str:
-    k = e["type"]
-    if k == "uav_lost":
-        return f"uav {e['uav']} lost"
-    if k == "uav_back":
-        return f"uav {e['uav']} back at ({e['x']}, {e['y']}) with fuel {e['fuel']}"
-    if k == "fuel":
-        return f"uav {e['uav']} fuel reads {e['fuel']}"
-    t = e.get("target")
-    if k == "target_cancelled":
-        return f"target {t['id'] if isinstance(t, dict) else t} cancelled"
-    if k in ("target_added", "target_changed"):
-        return (f"target {t['id']} {'added' if k == 'target_added' else 'changed'} at "
-                f"({t['x']}, {t['y']}) [{t['start']}, {t['end']}) need {t['need']}")
-    return k
 
 
 # --- a simulator flight log, tick by tick -----------------------------------------------
