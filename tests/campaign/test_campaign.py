@@ -247,7 +247,7 @@ def test_worker_killed_mid_campaign_loses_no_result(tmp_path, cluster, direct):
             for addr, keys in c.processing().items():
                 ref_keys = [k for k in keys if str(k).startswith("sva-ref-")]
                 if ref_keys and addr in info:
-                    victim = (addr, info[addr], ref_keys[0])
+                    victim = (addr, info[addr], {str(k) for k in keys})
                     break
             time.sleep(0.02)
         assert victim, "no task seen running on a worker"
@@ -259,8 +259,11 @@ def test_worker_killed_mid_campaign_loses_no_result(tmp_path, cluster, direct):
     rows = stored_rows(tmp_path / "out")
     assert len(rows) == len({r["key"] for r in rows}) == len(direct)
     assert by_key(rows) == by_key(direct.values())
-    lost = next(r for r in rows if f"sva-ref-{r['key']}" == victim[2])
-    assert lost["worker"] != victim[0]  # rerun on the surviving worker
+    # The tasks the victim held when it was killed: one may have finished just before the
+    # signal (stored by the victim), the others ran again on the surviving worker.
+    held = [r for r in rows if any(k.endswith(r["key"]) for k in victim[2])]
+    assert held, victim[2]
+    assert any(r["worker"] != victim[0] for r in held), [(r["key"], r["worker"]) for r in held]
     assert summary(stdout)["failed"] == 0
 
 
