@@ -101,6 +101,26 @@ if(TARGET sva_json)
     list(APPEND SVA_INSTALLED_COMPONENTS json)
 endif()
 
+# --- MAVLink bridge (sva::mavlink with mavgen's headers) and its program ---------------
+# sva_mavlink.h includes "common/mavlink.h" (its parser and message types are in the
+# public structs): the headers mavgen generated for this build go to include/sva/mavlink,
+# the installed target's SYSTEM include directory (port/mavlink/CMakeLists.txt).
+if(TARGET sva_mavlink)
+    set_target_properties(sva_mavlink PROPERTIES EXPORT_NAME mavlink)
+    install(TARGETS sva_mavlink EXPORT sva_mavlinkTargets ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}")
+    install(FILES "${PROJECT_SOURCE_DIR}/port/mavlink/include/sva/sva_mavlink.h"
+            DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/sva")
+    install(DIRECTORY "${SVA_MAVLINK_GEN_DIR}/" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/sva/mavlink"
+            FILES_MATCHING PATTERN "*.h")
+    install(EXPORT sva_mavlinkTargets NAMESPACE sva:: DESTINATION "${SVA_CMAKE_INSTALL_DIR}")
+    configure_file("${_pkg}/pkgconfig/sva-mavlink.pc.in" "${_pc_out}/sva-mavlink.pc" @ONLY)
+    install(FILES "${_pc_out}/sva-mavlink.pc" DESTINATION "${SVA_PC_INSTALL_DIR}")
+    list(APPEND SVA_INSTALLED_COMPONENTS mavlink)
+endif()
+if(TARGET sva_mavlink_bridge)
+    install(TARGETS sva_mavlink_bridge RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}")
+endif()
+
 # --- svaConfig.cmake ------------------------------------------------------------------
 list(JOIN SVA_INSTALLED_COMPONENTS " " SVA_INSTALLED_COMPONENTS_TEXT)  # for its messages
 configure_package_config_file("${_pkg}/svaConfig.cmake.in" "${PROJECT_BINARY_DIR}/svaConfig.cmake"
@@ -159,12 +179,12 @@ set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "sva assigns UAVs to target areas with time
 flow planners). The planning core is C99 with static allocation only.
 
 This package holds the sva command-line tool, the LCM and CAN nodes with their
-systemd units, the core and port libraries with headers, CMake and pkg-config
-files, and the LCM message definitions and CAN DBC.")
-# Run-time dependencies (libc6, libglib2.0-0, libjansson4) from the programs' ELF
-# dependencies with dpkg-shlibdeps. No program here calls the frame's geodesy, so none
-# needs PROJ at run time; a consumer linking the installed sva::frame needs PROJ's
-# development files.
+systemd units, the MAVLink mission bridge, the core and port libraries with
+headers, CMake and pkg-config files, and the LCM message definitions and CAN DBC.")
+# Run-time dependencies (libc6, libglib2.0-0, libjansson4, and PROJ's library for
+# sva_mavlink_bridge, which places the routes with the frame's geodesy) from the
+# programs' ELF dependencies with dpkg-shlibdeps; a consumer linking the installed
+# static sva::frame needs PROJ's development files.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "libproj-dev")
 include(CPack)

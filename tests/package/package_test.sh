@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Packaging tests (ctest label package; tests/package/CMakeLists.txt sets the variables):
-#   package_test.sh install    cmake --install into one prefix; the expected files are there
+#   package_test.sh install    cmake --install into one prefix; the expected files are there;
+#                              the installed sva_mavlink_bridge answers --help and bad options
 #   package_test.sh cmake      find_package(sva) consumers and the README example, built and run
 #   package_test.sh pkgconfig  the same consumers with pkg-config only (make)
 #   package_test.sh subdir     add_subdirectory() of the source tree
@@ -8,7 +9,8 @@
 #   package_test.sh deb        cpack's .deb: fields, dpkg into a throw-away root, the
 #                              installed programs run, the node answers over LCM
 # Environment: SVA_SOURCE_DIR SVA_BUILD_DIR SVA_WORK SVA_COMPONENTS (e.g. "can lcm json")
-# SVA_PYTHON SVA_LCM_PYTHON_DIR SVA_NETNS_RUN.
+# SVA_MAVLINK_BRIDGE (1 when sva_mavlink_bridge is built) SVA_PYTHON SVA_LCM_PYTHON_DIR
+# SVA_NETNS_RUN.
 set -euo pipefail
 step=${1:?usage: package_test.sh install|cmake|pkgconfig|subdir|units|deb}
 src=${SVA_SOURCE_DIR:?}
@@ -16,6 +18,7 @@ build=${SVA_BUILD_DIR:?}
 work=${SVA_WORK:?}
 prefix="$work/prefix"
 components=${SVA_COMPONENTS:-}
+bridge=${SVA_MAVLINK_BRIDGE:-0}
 here="$src/tests/package"
 version=$(sed -n 's/^#define SVA_VERSION_\(MAJOR\|MINOR\|PATCH\) \([0-9]*\)$/\2/p' \
           "$src/core/include/sva/sva.h" | paste -sd.)
@@ -64,11 +67,34 @@ installed_files() {  # the files every install must have, relative to the prefix
         echo "share/sva/lcm/node_status_t.lcm share/sva/lcm/frame_t.lcm"
         echo "lib/systemd/system/sva-node.service"
     fi
+    if has mavlink; then
+        # sva_mavlink.h includes mavgen's "common/mavlink.h" (include/sva/mavlink).
+        echo "include/sva/sva_mavlink.h include/sva/mavlink/common/mavlink.h"
+        echo "include/sva/mavlink/minimal/mavlink.h include/sva/mavlink/protocol.h"
+        echo "$lib/libsva_mavlink.a $lib/pkgconfig/sva-mavlink.pc $lib/cmake/sva/sva_mavlinkTargets.cmake"
+    fi
+    if [ "$bridge" = 1 ]; then
+        echo "bin/sva_mavlink_bridge"
+    fi
+}
+
+check_bridge() {  # check_bridge PROGRAM: --help, and bad options refused with their name
+    local prog="$1" out rc
+    out=$("$prog" --help) || fail "$prog --help exited $?"
+    [[ "$out" == "usage: sva_mavlink_bridge --vehicle "* ]] || { echo "$out" >&2; fail "$prog --help: no usage line"; }
+    [[ "$out" == *"--ardupilot"* ]] || fail "$prog --help does not list --ardupilot"
+    rc=0; out=$("$prog" --no-such-option 1 2>&1 >/dev/null) || rc=$?
+    [ $rc -eq 2 ] || fail "$prog --no-such-option 1 exited $rc, expected 2"
+    [[ "$out" == *"sva_mavlink_bridge: error: --no-such-option: unknown option"* ]] || { echo "$out" >&2; fail "$prog: no message naming --no-such-option"; }
+    rc=0; out=$("$prog" --vehicle 1=udp:127.0.0.1:14550 --system 0 2>&1 >/dev/null) || rc=$?
+    [ $rc -eq 2 ] || fail "$prog --system 0 exited $rc, expected 2"
+    [[ "$out" == *"--system: must be an integer in [1, 255], got \"0\""* ]] || { echo "$out" >&2; fail "$prog --system 0: no message naming the rule"; }
+    echo "package_test $step: $prog: --help, --no-such-option, --system 0 ok" >&2
 }
 
 run_consumers() {  # runs every consumer program built in $1
     local dir="$1" p n=0
-    for p in consumer_core consumer_frame consumer_can consumer_lcm readme_example; do
+    for p in consumer_core consumer_frame consumer_can consumer_lcm consumer_mavlink readme_example; do
         if [ -x "$dir/$p" ]; then run "$dir/$p" || fail "$p exited $?"; n=$((n + 1)); fi
     done
     local want=2  # core and the README example, and one per port
@@ -93,6 +119,7 @@ install)
     expect_files "$prefix" $(installed_files lib)
     grep -q "SVA_VERSION_MINOR" "$prefix/include/sva/sva.h" || fail "installed sva.h"
     grep -q "^Version: $version$" "$prefix/lib/pkgconfig/sva.pc" || fail "sva.pc: Version is not $version"
+    if [ "$bridge" = 1 ]; then check_bridge "$prefix/bin/sva_mavlink_bridge"; fi
     ;;
 cmake)
     [ -f "$prefix/lib/cmake/sva/svaConfig.cmake" ] || fail "no install in $prefix (package_install)"
@@ -204,6 +231,7 @@ deb)
         "$root/usr/bin/sva_can_node" --help 2>&1 | grep -q '^usage: sva_can_node --mission' || fail "sva_can_node --help"
         "$root/usr/bin/sva_can_node" --iface vcan0 >/dev/null 2>&1 && fail "sva_can_node without --mission succeeded"
     fi
+    if [ "$bridge" = 1 ]; then check_bridge "$root/usr/bin/sva_mavlink_bridge"; fi
     if has lcm; then
         "$root/usr/bin/sva_node" --help | grep -q '^usage: sva_node' || fail "sva_node --help"
         # A real start: the installed node in a network namespace must publish its status.
