@@ -6,9 +6,9 @@ and ticks per cell. Same seed and parameters give the same missions, byte for by
 
 With --events N it writes a live-mission scenario instead (docs/live.md):
 {"mission", "events", "change_penalty"}, with N events at random ticks inside the
-mission's horizon drawn from --kinds (default all six): uav_lost, uav_back, fuel,
-target_added, target_cancelled, target_changed. Every event is valid when applied in
-order (see generate_events).
+mission's horizon drawn from --kinds (default the six: uav_lost, uav_back, fuel,
+target_added, target_cancelled, target_changed; `position` is drawn only when named).
+Every event is valid when applied in order (see generate_events).
 
 Intersection ratio of a mission (model.intersection_ratio): targets sorted by
 (start, end, id); the mean over consecutive pairs of |A n B| / min(|A|, |B|), SPEC 2's
@@ -96,18 +96,35 @@ def generate(targets: int, uavs: int, *, width=(20, 40), ratio: str = "any",
     raise RuntimeError(f"could not hit intersection category {ratio!r} in 1000 attempts")
 
 
+# The default kinds. Their draws are fixed: every scenario generated from them stays byte
+# for byte what it was, so new kinds are opt-in (KINDS) and never join this tuple.
 EVENT_KINDS = ("uav_lost", "uav_back", "fuel", "target_added", "target_cancelled",
                "target_changed")
+# Every kind gen can draw: the defaults, then the opt-in ones.
+KINDS = EVENT_KINDS + ("position",)
+
+
+def kinds_error(kinds: Sequence[str]) -> Optional[str]:
+    """Why `kinds` is not a list of event kinds gen can draw (None: it is)."""
+    allowed = ", ".join(KINDS)
+    if not kinds:
+        return f"name at least one event kind (allowed: {allowed})"
+    seen = set()
+    for k in kinds:
+        if k not in KINDS:
+            return f"{k!r} is not an event kind gen draws: each kind must be one of {allowed}"
+        if k in seen:
+            return f"event kind {k!r} named twice: name each kind at most once (allowed: {allowed})"
+        seen.add(k)
+    return None
 
 
 def parse_kinds(text: str) -> Tuple[str, ...]:
+    """--kinds: comma-separated kinds (argparse prefixes its errors with the option)."""
     kinds = tuple(k.strip() for k in text.split(",") if k.strip())
-    for k in kinds:
-        if k not in EVENT_KINDS:
-            raise argparse.ArgumentTypeError(f"unknown event kind {k!r} (kinds: "
-                                             f"{', '.join(EVENT_KINDS)})")
-    if not kinds:
-        raise argparse.ArgumentTypeError("--kinds: name at least one kind")
+    err = kinds_error(kinds)
+    if err:
+        raise argparse.ArgumentTypeError(err)
     return kinds
 
 
@@ -126,10 +143,22 @@ def generate_events(m: M.Mission, count: int, *, kinds: Sequence[str] = EVENT_KI
     changed window starts after the event. Fuel readings and fuel on return are at least
     the longest flight home from the grid, so no UAV is stranded by them.
 
+    A position report (only when `kinds` names "position") goes to a UAV in service, on
+    a cell of the grid [0, max_coord]^2 it could have flown to since its last known cell
+    (where it started, came back or was last seen): at most (elapsed ticks) //
+    ticks_per_cell cells from there. Half the time, when one is in reach, it is the cell
+    of a target whose window is open (the UAV on station, or blown onto it); otherwise
+    any such cell, uniformly. Its fuel is at least the longest flight home, and at most
+    the UAV's last known fuel less the cells from its last known cell (when that is
+    above the floor).
+
     Targets (the mission's too: they are moved when needed, so it returns the mission)
     stand on distinct cells, none at the depot, and a UAV comes back on no target's cell:
     a UAV waiting at one target or at home never stands on another one's cell.
     Deterministic in (mission, parameters, seed, index)."""
+    err = kinds_error(tuple(kinds))
+    if err:
+        raise ValueError(f"kinds: {err}")
     rng = random.Random(f"sva-gen-events:{seed}:{index}")
     dx, dy = m.depot
     far = max(abs(dx - cx) + abs(dy - cy) for cx in (0, max_coord) for cy in (0, max_coord))
@@ -155,6 +184,10 @@ def generate_events(m: M.Mission, count: int, *, kinds: Sequence[str] = EVENT_KI
     horizon = max([t.end for t in targets] + [2])
     times = sorted(rng.randint(1, horizon - 1) for _ in range(count))
     in_service = {u.id: True for u in m.uavs}
+    # Per UAV: its last known cell, the tick from which it may have left it, and its last
+    # known fuel. Kept for every kind but read only by position reports, so the draws of
+    # the other kinds do not depend on it.
+    fix = {u.id: ((u.x, u.y), u.ready_at, u.fuel) for u in m.uavs}
     lost_at: Dict[int, int] = {}
     current = {t.id: t for t in targets}
     cancelled = set()
@@ -166,6 +199,21 @@ def generate_events(m: M.Mission, count: int, *, kinds: Sequence[str] = EVENT_KI
         start = at + rng.randint(max(1, lead // 2), lead + width[1])
         return start, start + rng.randint(width[0], width[1])
 
+    def position(known, at: int, open_targets: List[M.Target]) -> Tuple[Tuple[int, int], int]:
+        """A cell the UAV could be on at `at` and a fuel reading there (see above)."""
+        (fx, fy), since, fuel = known
+        reach = min(max(0, at - since) // m.ticks_per_cell, 2 * max_coord)
+
+        def dist(x: int, y: int) -> int:
+            return abs(x - fx) + abs(y - fy)
+
+        cells = [(x, y) for x in range(max(0, fx - reach), min(max_coord, fx + reach) + 1)
+                 for y in range(max(0, fy - reach), min(max_coord, fy + reach) + 1)
+                 if dist(x, y) <= reach] or [(fx, fy)]
+        stations = [(t.x, t.y) for t in open_targets if dist(t.x, t.y) <= reach]
+        cell = rng.choice(stations) if stations and rng.random() < 0.5 else rng.choice(cells)
+        return cell, rng.randint(far, max(far, fuel - dist(*cell)))
+
     events: List[dict] = []
     for at in times:
         up = [u for u, ok in in_service.items() if ok]
@@ -173,7 +221,8 @@ def generate_events(m: M.Mission, count: int, *, kinds: Sequence[str] = EVENT_KI
         ahead = [t for t in current.values() if t.start > at and t.id not in cancelled]
         can = {"uav_lost": bool(up), "uav_back": bool(back), "fuel": bool(up),
                "target_added": len(current) < M.SVA_MAX_TARGETS,
-               "target_cancelled": bool(ahead), "target_changed": bool(ahead)}
+               "target_cancelled": bool(ahead), "target_changed": bool(ahead),
+               "position": bool(up)}
         choice = [k for k in kinds if can[k]]
         if not choice:
             continue
@@ -190,9 +239,18 @@ def generate_events(m: M.Mission, count: int, *, kinds: Sequence[str] = EVENT_KI
             x, y = fresh_cell()
             events.append({"at": at, "type": kind, "uav": u, "x": x, "y": y,
                            "fuel": rng.randint(2 * far, max(2 * far, full_fuel))})
+            fix[u] = ((x, y), at, events[-1]["fuel"])
         elif kind == "fuel":
             events.append({"at": at, "type": kind, "uav": rng.choice(up),
                            "fuel": rng.randint(far, max(far, full_fuel * 3 // 4))})
+            cell, since, _ = fix[events[-1]["uav"]]
+            fix[events[-1]["uav"]] = (cell, since, events[-1]["fuel"])
+        elif kind == "position":
+            u = rng.choice(up)
+            (x, y), f = position(fix[u], at, [t for t in current.values()
+                                              if t.id not in cancelled and t.start <= at < t.end])
+            events.append({"at": at, "type": kind, "uav": u, "x": x, "y": y, "fuel": f})
+            fix[u] = ((x, y), at, f)
         elif kind == "target_added":
             x, y = fresh_cell()
             start, end = window(at)
@@ -204,7 +262,7 @@ def generate_events(m: M.Mission, count: int, *, kinds: Sequence[str] = EVENT_KI
             t = rng.choice(ahead)
             cancelled.add(t.id)
             events.append({"at": at, "type": kind, "target": t.id})
-        else:
+        elif kind == "target_changed":
             old = rng.choice(ahead)
             x, y = fresh_cell()
             start, end = window(at)
@@ -251,8 +309,9 @@ def add_parser(sub) -> None:
     ap.add_argument("--events", type=int, metavar="N",
                     help="write a live-mission scenario with N random events (docs/live.md)")
     ap.add_argument("--kinds", type=parse_kinds, default=EVENT_KINDS,
-                    help="with --events: comma-separated event kinds to draw from "
-                         f"(default all: {','.join(EVENT_KINDS)})")
+                    help="with --events: comma-separated event kinds to draw from, each "
+                         f"one of {','.join(KINDS)} (default: {','.join(EVENT_KINDS)}; "
+                         "position only when named)")
     ap.add_argument("--change-penalty", type=int, metavar="P",
                     help="with --events: the scenario's change_penalty (default: none)")
     ap.add_argument("-o", "--out", default="-",
