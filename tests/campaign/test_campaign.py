@@ -226,6 +226,21 @@ def test_rows_stored_under_another_label_are_grouped_by_this_runs_sets(tmp_path)
     assert [g["n"] for g in mine] == [40] * 8
 
 
+def test_a_key_stored_twice_is_read_once_from_the_first_file(tmp_path):
+    """Two clients on one folder may store one key twice: reading keeps the row of the
+    first part file in name order."""
+    spec = RB.synthetic_spec(2, ["flow"], 3)
+    RB.synthetic_store(str(tmp_path), spec, flush_rows=2, seed=1)  # part-bench-*
+    rows = stored_rows(tmp_path)
+    later = Store(str(tmp_path), "zz")  # part-zz-*: after part-bench-*
+    for r in (rows[3], rows[0]):
+        later.add(dict(r, covered=-1, run="zz"))
+    later.flush()
+    cols = ["key", "covered", "run"]
+    assert len(stored_rows(tmp_path)) == len(rows) + 2
+    assert Store(str(tmp_path), "read").table(cols).to_pylist() == [{c: r[c] for c in cols} for r in rows]
+
+
 LIVE = """name: tiny_live
 kind: live
 sets:

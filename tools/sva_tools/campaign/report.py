@@ -44,7 +44,8 @@ def _gap(cost, ref_cost):
 
 def _this_run(table, tasks: List[dict]):
     """One row per task of this run whose key is stored: the stored figures under this
-    run's set label, seed and index. A stored row is keyed by content, so its own set
+    run's set label, seed and index; and the stored ref results of this run's tasks
+    without an error. A stored row is keyed by content, so its own set
     label is that of the run that first stored it (another set's, or an older name)."""
     import numpy as np
     import pyarrow as pa
@@ -64,7 +65,8 @@ def _this_run(table, tasks: List[dict]):
     order = pc.sort_indices(t.append_column("_penalty", pc.fill_null(t["penalty"], 0)),
                             [("set", "ascending"), ("tool", "ascending"), ("_penalty", "ascending"),
                              ("seed", "ascending"), ("index", "ascending")])
-    return t.take(order), stored.filter(pc.is_in(stored["key"], value_set=mine["key"]))
+    refs = stored.filter(pc.and_(pc.equal(stored["task"], "ref"), _ok(stored)))
+    return t.take(order), refs.filter(pc.is_in(refs["key"], value_set=mine["key"]))
 
 
 def _ok(t):
@@ -82,9 +84,7 @@ def metrics(spec: dict, table, tasks: List[dict]):
     import numpy as np
     import pyarrow as pa
     import pyarrow.compute as pc
-    t, stored = _this_run(table, tasks)
-    ok = _ok(stored)
-    refs = stored.filter(pc.and_(pc.equal(stored["task"], "ref"), ok))
+    t, refs = _this_run(table, tasks)
     if spec["kind"] == "live":
         return _live(t, refs)
     t = t.filter(pc.is_in(t["task"], value_set=pa.array(["plan", "ref"])))
