@@ -200,6 +200,8 @@ def test_report_with_arrow_equals_the_report_row_by_row(local_run):
     assert all(g["gaps"] or g["tool"] == "ref" for g in gs) and all(g["times"] for g in gs)
     stats = {"tasks": 12, "stored": 0, "computed": 12, "failed": [], "wall_s": 0.0}
     assert R.summary(spec, stats, gs).splitlines()[1:] == [ln for ln in stdout.splitlines() if ln.startswith("|")]
+    figures = R.figures(spec, gs)  # the report's plots, drawn from the groups row by row: the same PNGs
+    assert len(figures) == 3 and figures == R.figures(spec, row_by_row(spec, out, S.first_tasks(spec, "check"))[2])
 
 
 def test_report_with_arrow_equals_the_report_row_by_row_on_a_large_store(tmp_path):
