@@ -17,9 +17,12 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "tools"))
+sys.path.insert(0, str(REPO / "tools" / "bench"))
 
+import campaign_report_bench as RB  # noqa: E402  (the report row by row, as it was built before Arrow)
 import sva_tools.campaign as C  # noqa: E402
-from sva_tools.campaign import spec as S, tasks as T  # noqa: E402
+from sva_tools.campaign import report as R, spec as S, tasks as T  # noqa: E402
+from sva_tools.campaign.store import Store  # noqa: E402
 
 VENV_BIN = Path(sys.executable).parent
 ENV = dict(os.environ, PYTHONPATH=str(REPO / "tools") + os.pathsep + os.environ.get("PYTHONPATH", ""))
@@ -167,6 +170,146 @@ def test_local_cluster_equals_the_tasks_run_directly(local_run, direct):
     html = (out / "report.html").read_text(encoding="utf-8")
     assert html.count("src='data:image/png;base64,") == 3
     assert "http://" not in html and "https://" not in html
+
+
+def row_by_row(spec, out, tasks):
+    """The records and summary groups computed the way the report did before Arrow:
+    every stored row as a dict, grouped in Python by its stored set label."""
+    rows = RB.row_wise_rows(Store(str(out), "check"), tasks, spec)
+    records = RB.row_wise_metrics(spec, rows)
+    return len(rows), records, RB.row_wise_groups(spec, records)
+
+
+def assert_same_report(spec, out, tasks):
+    """The report built with pyarrow has the row-by-row report's records, in the same
+    order, and the same groups (counts, sums, the gap and time lists the plots draw)."""
+    old_stored, old_records, old_groups = row_by_row(spec, out, tasks)
+    records, gs, stored = R.build(spec, Store(str(out), "check"), tasks)
+    assert stored == old_stored
+    assert records.column_names == list(old_records[0])
+    assert records.to_pylist() == old_records
+    assert gs == old_groups
+    return gs
+
+
+def test_report_with_arrow_equals_the_report_row_by_row(local_run):
+    out, stdout = local_run
+    spec = S.load(str(write_spec(out.parent, 2)))
+    gs = assert_same_report(spec, out, S.first_tasks(spec, "check"))
+    assert [(g["set"], g["tool"]) for g in gs] == [(s, t) for s in ("5x2", "8x3") for t in ("flow", "sva", "ref")]
+    assert all(g["gaps"] or g["tool"] == "ref" for g in gs) and all(g["times"] for g in gs)
+    stats = {"tasks": 12, "stored": 0, "computed": 12, "failed": [], "wall_s": 0.0}
+    assert R.summary(spec, stats, gs).splitlines()[1:] == [ln for ln in stdout.splitlines() if ln.startswith("|")]
+    figures = R.figures(spec, gs)  # the report's plots, drawn from the groups row by row: the same PNGs
+    assert len(figures) == 3 and figures == R.figures(spec, row_by_row(spec, out, S.first_tasks(spec, "check"))[2])
+
+
+def test_report_with_arrow_equals_the_report_row_by_row_on_a_large_store(tmp_path):
+    """A synthetic store (tools/bench/campaign_report_bench.py): 4 sets, three planners,
+    ref on two sets, errors, coverage below ref's."""
+    spec = RB.synthetic_spec(4, ["flow", "sva", "hga"], 150)
+    tasks = RB.synthetic_store(str(tmp_path), spec, flush_rows=200, seed=3)
+    gs = assert_same_report(spec, tmp_path, tasks)
+    assert len(gs) == 2 * 4 + 2 * 3
+    assert sum(g["errors"] for g in gs) > 0 and sum(g["below"] for g in gs) > 0
+    assert sum(g["equal"] for g in gs) > 0 and sum(g["judged"] for g in gs) < sum(g["n"] for g in gs)
+
+
+def test_rows_stored_under_another_label_are_grouped_by_this_runs_sets(tmp_path):
+    """Rows first stored by another set (or an older name of a set) are counted under the
+    set of this run's task: the report equals that of a store with this run's labels."""
+    spec = RB.synthetic_spec(3, ["flow", "sva"], 40)
+    tasks = RB.synthetic_store(str(tmp_path / "own"), spec, seed=5)
+    shared = RB.synthetic_store(str(tmp_path / "shared"), spec, seed=5,
+                                shared={"set1_40x8": "set0_25x5", "set2_100x20": "old_name"})
+    assert [t["key"] for t in shared] == [t["key"] for t in tasks]
+    mine = R.build(spec, Store(str(tmp_path / "own"), "check"), tasks)[1]
+    assert R.build(spec, Store(str(tmp_path / "shared"), "check"), shared)[1] == mine
+    assert [g["n"] for g in mine] == [40] * 8
+
+
+def test_a_key_stored_twice_is_read_once_from_the_first_file(tmp_path):
+    """Two clients on one folder may store one key twice: reading keeps the row of the
+    first part file in name order."""
+    spec = RB.synthetic_spec(2, ["flow"], 3)
+    RB.synthetic_store(str(tmp_path), spec, flush_rows=2, seed=1)  # part-bench-*
+    rows = stored_rows(tmp_path)
+    later = Store(str(tmp_path), "zz")  # part-zz-*: after part-bench-*
+    for r in (rows[3], rows[0]):
+        later.add(dict(r, covered=-1, run="zz"))
+    later.flush()
+    cols = ["key", "covered", "run"]
+    assert len(stored_rows(tmp_path)) == len(rows) + 2
+    assert Store(str(tmp_path), "read").table(cols).to_pylist() == [{c: r[c] for c in cols} for r in rows]
+
+
+LIVE = """name: tiny_live
+kind: live
+sets:
+  - {targets: 6, uavs: 2, width: [10, 20], need: 1, fuel: 100, hover: 2, events: 4}
+  - {targets: 8, uavs: 3, width: [10, 20], need: 1, fuel: 100, hover: 2, events: 4, ref_count: 1}
+seeds: {first: 7, count: 1}
+count: 2
+algorithms: [flow, sva]
+penalties: [0, 1000]
+ref: {det_limit: 2}
+"""
+
+
+def test_live_report_with_arrow_equals_the_report_row_by_row(tmp_path, cluster):
+    address, _ = cluster
+    spec = S.load(str(write_spec(tmp_path, 2, "live.yaml", LIVE)))
+    stats = C.run(spec, str(tmp_path / "out"), scheduler=address, progress=False, columns=[])
+    assert not stats["failed"] and "rows" not in stats
+    gs = assert_same_report(spec, tmp_path / "out", stats["task_list"])
+    assert [(g["set"], g["tool"], g["penalty"]) for g in gs] == [
+        (s, t, p) for s in ("6x2", "8x3") for t in ("flow", "sva") for p in (0, 1000)]
+    assert all(g["n"] == 2 and g["times"] for g in gs) and sum(g["judged"] for g in gs) > 0
+
+
+TWINS = """name: twins
+kind: plan
+sets:
+  - {targets: 5, uavs: 2, width: [10, 20], need: 1, fuel: 100, hover: 2, label: LABEL}
+  - {targets: 5, uavs: 2, width: [10, 20], need: 1, fuel: 100, hover: 2, label: twin}
+seeds: {first: 7, count: 1}
+count: 2
+algorithms: [flow, sva]
+ref: {det_limit: 5}
+"""
+
+
+def table_rows(stdout):
+    return {tuple(c.strip() for c in ln.strip("|").split("|")[:2]): [c.strip() for c in ln.strip("|").split("|")[2:]]
+            for ln in stdout.splitlines() if ln.startswith("| ") and not ln.startswith("| set ")}
+
+
+def test_two_sets_of_the_same_missions_and_a_renamed_set_each_get_their_rows(tmp_path, cluster):
+    """Two sets that generate the same missions share their stored rows (one task each),
+    yet each set's table rows count its own missions; a re-run with a set renamed lists
+    the stored rows under the new name."""
+    address, _ = cluster
+    out = tmp_path / "out"
+    r = campaign(write_spec(tmp_path, 2, "twins.yaml", TWINS.replace("LABEL", "first")),
+                 "--scheduler", address, "--out", out, "--no-report")
+    assert r.returncode == 0, r.stderr
+    rows = table_rows(r.stdout)
+    assert sorted(rows) == sorted((s, t) for s in ("first", "twin") for t in ("flow", "sva", "ref"))
+    for tool in ("flow", "sva", "ref"):
+        assert rows["first", tool] == rows["twin", tool]
+        assert rows["first", tool][0] == "2"  # missions
+    assert summary(r.stdout) == {"tasks": 12, "stored": 0, "computed": 6, "failed": 0}  # each mission once
+    metrics = pq.read_table(out / "metrics.parquet").to_pylist()
+    assert sorted((m["set"], m["tool"]) for m in metrics) == sorted(
+        (s, t) for s in ("first", "twin") for t in ("flow", "sva", "ref") for _ in range(2))
+    r2 = campaign(write_spec(tmp_path, 2, "renamed.yaml", TWINS.replace("LABEL", "renamed")),
+                  "--scheduler", "tcp://127.0.0.1:9", "--out", out)
+    assert r2.returncode == 0, r2.stderr
+    assert summary(r2.stdout) == {"tasks": 12, "stored": 12, "computed": 0, "failed": 0}
+    renamed = table_rows(r2.stdout)
+    assert sorted(renamed) == sorted((s, t) for s in ("renamed", "twin") for t in ("flow", "sva", "ref"))
+    for tool in ("flow", "sva", "ref"):
+        assert renamed["renamed", tool] == renamed["twin", tool] == rows["first", tool]
 
 
 def test_separate_scheduler_and_workers_give_the_same_results(tmp_path, cluster, local_run, direct):

@@ -81,9 +81,10 @@ def _execute(cl: _Cluster, tasks: List[dict], store, stored: set, stats: dict, p
              label: str) -> None:
     from distributed import as_completed
     from .tasks import run_task
-    todo = [t for t in tasks if t["key"] not in stored]
+    new = [t for t in tasks if t["key"] not in stored]
+    todo = list({t["key"]: t for t in new}.values())  # a mission two sets share runs once
     stats["tasks"] += len(tasks)
-    stats["stored"] += len(tasks) - len(todo)
+    stats["stored"] += len(tasks) - len(new)
     if not todo:
         return
     client = cl.get()
@@ -119,7 +120,8 @@ def run(spec: dict, out: str, scheduler: Optional[str] = None, workers: Optional
         columns: Optional[List[str]] = None) -> dict:
     """Runs the campaign; returns {"run", "tasks", "stored", "computed", "failed", "wall_s",
     "compute_s" (first submission to last result, cluster start excluded), "workers",
-    "rows" (key -> stored row, the given columns or all, of every task of the spec), "task_list"}."""
+    "rows" (key -> stored row, the given columns or all, of every task of the spec; absent
+    for columns=[]), "task_list" (this run's tasks), "store" (the Store)}."""
     from . import spec as S
     from .store import Store
     run_id = new_run_id()
@@ -143,14 +145,11 @@ def run(spec: dict, out: str, scheduler: Optional[str] = None, workers: Optional
         stats["wall_s"] = time.perf_counter() - t0
     finally:
         cl.close()
-    stats["rows"] = store.rows((t["key"] for t in all_tasks), columns)
+    if columns is None or columns:
+        stats["rows"] = store.rows((t["key"] for t in all_tasks), columns)
     stats["task_list"] = all_tasks
+    stats["store"] = store
     return stats
-
-
-def store_columns() -> List[str]:
-    from .tasks import ROW_FIELDS
-    return list(ROW_FIELDS)
 
 
 def add_parser(sub) -> None:
@@ -190,19 +189,18 @@ def main(args) -> int:
         return 2
     out = args.out or os.path.join(REPO, "build", "campaigns", spec["name"])
     try:
-        # The figures need neither the missions nor (kind plan) the plans: a large
-        # campaign's report does not load them.
-        keep = [c for c in store_columns() if c != "mission" and (c != "result" or spec["kind"] == "live")]
         stats = run(spec, out, args.scheduler, args.workers, progress=not args.no_progress,
-                    flush_rows=args.flush_rows, columns=keep)
+                    flush_rows=args.flush_rows, columns=[])
     except CampaignError as e:
         print(f"sva-tools: error: campaign: {shown(e)}", file=sys.stderr)
         return 2
-    metrics = report.metrics(spec, stats["rows"])
-    report.write_metrics(metrics, out)
-    print(report.summary(spec, stats, metrics))
+    # The figures need neither the missions nor (kind plan) the plans: the report reads
+    # only the columns it needs, as one Arrow table, and groups this run's tasks.
+    records, gs, stored = report.build(spec, stats["store"], stats["task_list"])
+    report.write_metrics(records, out)
+    print(report.summary(spec, stats, gs))
     if not args.no_report:
-        path = report.write_html(spec, stats, metrics, out)
+        path = report.write_html(spec, stats, gs, out, stored)
         print(f"report: {path}")
     for f in stats["failed"][:10]:
         print(f"failed: {shown(f)}", file=sys.stderr)

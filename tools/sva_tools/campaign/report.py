@@ -24,97 +24,204 @@ def percentile(values: List[float], p: float):
     return v[max(1, math.ceil(len(v) * p / 100)) - 1]
 
 
+# A record's columns taken from its stored row (kind plan: the whole record before the
+# join to ref); set, seed and index come from this run's task.
+BASE = ("key", "set", "targets", "uavs", "seed", "index", "tool", "penalty", "mission_hash", "covered",
+        "coverable", "cost", "optimal", "solve_us", "wall_s", "error")
+# The stored columns the figures read (kind live adds result and replan_us).
+STORED = ("key", "task", "tool", "targets", "uavs", "penalty", "mission_hash", "covered", "coverable",
+          "cost", "optimal", "solve_us", "wall_s", "error")
+
+
+def stored_columns(spec: dict) -> List[str]:
+    """The columns of the store that metrics() reads."""
+    return list(STORED) + (["replan_us", "result"] if spec["kind"] == "live" else [])
+
+
 def _gap(cost, ref_cost):
     return 100.0 * (cost - ref_cost) / ref_cost if ref_cost else None
 
 
-def metrics(spec: dict, rows: Dict[str, dict]) -> List[dict]:
-    """kind plan: one record per planner or ref result with the ref result of the same
+def _this_run(table, tasks: List[dict]):
+    """One row per task of this run whose key is stored: the stored figures under this
+    run's set label, seed and index; and the stored ref results of this run's tasks
+    without an error. A stored row is keyed by content, so its own set
+    label is that of the run that first stored it (another set's, or an older name)."""
+    import numpy as np
+    import pyarrow as pa
+    import pyarrow.compute as pc
+    mine = pa.table({"key": pa.array([t["key"] for t in tasks], pa.string()),
+                     "set": pa.array([t["set"] for t in tasks], pa.string()),
+                     "seed": pa.array([t["seed"] for t in tasks], pa.int64()),
+                     "index": pa.array([t["index"] for t in tasks], pa.int32())})
+    stored = table.drop_columns([c for c in ("set", "seed", "index") if c in table.column_names])
+    # joined through row numbers: Arrow's join carries no list column (replan_us)
+    rows = pa.table({"key": stored["key"], "_row": pa.array(np.arange(len(stored), dtype=np.int64))})
+    j = mine.join(rows, "key", join_type="inner", use_threads=False)
+    t = stored.take(j["_row"])
+    for c in ("set", "seed", "index"):
+        t = t.append_column(c, j[c])
+    # Sorted as the summary lists them: by set, tool, penalty, seed and index.
+    order = pc.sort_indices(t.append_column("_penalty", pc.fill_null(t["penalty"], 0)),
+                            [("set", "ascending"), ("tool", "ascending"), ("_penalty", "ascending"),
+                             ("seed", "ascending"), ("index", "ascending")])
+    refs = stored.filter(pc.and_(pc.equal(stored["task"], "ref"), _ok(stored)))
+    return t.take(order), refs.filter(pc.is_in(refs["key"], value_set=mine["key"]))
+
+
+def _ok(t):
+    """True where a row has no error."""
+    import pyarrow.compute as pc
+    return pc.invert(pc.fill_null(pc.not_equal(t["error"], ""), False))
+
+
+def metrics(spec: dict, table, tasks: List[dict]):
+    """A pyarrow table, one record per task of this run with a stored row (table: the
+    store's rows, stored_columns() at least; tasks: this run's task list).
+    kind plan: one record per planner or ref result with the ref result of the same
     mission (ref_covered, ref_cost, cover_diff, gap_pct at equal coverage);
     kind live: one record per flight with its replans judged against ref."""
-    refs = {r["mission_hash"]: r for r in rows.values() if r["task"] == "ref" and not r["error"]}
-    out = []
-    for r in sorted(rows.values(), key=lambda r: (r["set"], r["tool"], r["penalty"] or 0, r["seed"], r["index"])):
-        base = {k: r[k] for k in ("key", "set", "targets", "uavs", "seed", "index", "tool", "penalty",
-                                  "mission_hash", "covered", "coverable", "cost", "optimal", "solve_us",
-                                  "wall_s", "error")}
-        if r["task"] in ("plan", "ref"):
-            if spec["kind"] == "live":
-                continue  # live: ref rows are judged through the flights
-            q = refs.get(r["mission_hash"]) if r["task"] == "plan" else None  # ref: not against itself
-            base.update(ref_covered=q["covered"] if q else None, ref_cost=q["cost"] if q else None,
-                        ref_optimal=q["optimal"] if q else None)
-            if q and not r["error"]:
-                base["cover_diff"] = r["covered"] - q["covered"]
-                base["gap_pct"] = _gap(r["cost"], q["cost"]) if r["covered"] == q["covered"] else None
-            out.append(base)
-            continue
-        log = json.loads(r["result"]) if r["result"] else {"replans": []}
+    import numpy as np
+    import pyarrow as pa
+    import pyarrow.compute as pc
+    t, refs = _this_run(table, tasks)
+    if spec["kind"] == "live":
+        return _live(t, refs)
+    t = t.filter(pc.is_in(t["task"], value_set=pa.array(["plan", "ref"])))
+    # ref results by mission (one per mission: its key holds the mission's hash)
+    refs = refs.select(["mission_hash", "covered", "cost", "optimal"]).group_by(
+        "mission_hash", use_threads=False).aggregate([("covered", "first"), ("cost", "first"),
+                                                      ("optimal", "first")])
+    refs = refs.rename_columns(["mission_hash", "ref_covered", "ref_cost", "ref_optimal"])
+    t = t.append_column("_order", pa.array(np.arange(len(t), dtype=np.int64)))
+    t = t.join(refs, "mission_hash", join_type="left outer", use_threads=False)
+    t = t.take(pc.sort_indices(t["_order"]))
+    plan = pc.equal(t["task"], "plan")  # ref: not against itself
+    nulls = {c: pa.nulls(len(t), t[c].type) for c in ("ref_covered", "ref_cost", "ref_optimal")}
+    ref_cols = {c: pc.if_else(plan, t[c], nulls[c]) for c in nulls}
+    judged = pc.and_(_ok(t), pc.is_valid(ref_cols["ref_covered"]))
+    diff = pc.subtract(t["covered"], ref_cols["ref_covered"])
+    cover_diff = pc.if_else(judged, diff, pa.nulls(len(t), diff.type))
+    equal_cost = pc.and_(pc.equal(cover_diff, 0), pc.fill_null(pc.not_equal(ref_cols["ref_cost"], 0), False))
+    gap = pc.divide(pc.multiply(pc.subtract(t["cost"], ref_cols["ref_cost"]).cast(pa.float64()), 100.0),
+                    ref_cols["ref_cost"].cast(pa.float64()))
+    gap_pct = pc.if_else(pc.fill_null(equal_cost, False), gap, pa.nulls(len(t), pa.float64()))
+    return pa.table(dict({c: t[c] for c in BASE}, **ref_cols, cover_diff=cover_diff, gap_pct=gap_pct))
+
+
+def _live(t, refs):
+    """kind live: the flights' records (each flight's log is read here, row by row)."""
+    import pyarrow as pa
+    import pyarrow.compute as pc
+    t = t.filter(pc.equal(t["task"], "fly"))
+    by_hash = {h: (c, k) for h, c, k in zip(refs["mission_hash"].to_pylist(), refs["covered"].to_pylist(),
+                                            refs["cost"].to_pylist())}
+    cols: Dict[str, list] = {c: [] for c in ("replans", "judged", "as_many", "gap_mean", "gap_max", "gaps",
+                                             "changes", "later", "p50_us", "p99_us", "replan_us")}
+    for result, times in zip(t["result"].to_pylist(), t["replan_us"].to_pylist()):
+        log = json.loads(result) if result else {"replans": []}
         judged, as_many, gaps = 0, 0, []
         for rp in log["replans"]:
             if not rp["mission"]["targets"]:
                 continue
-            q = refs.get(T.mission_hash(T.residual_for_ref(rp["mission"])))
+            q = by_hash.get(T.mission_hash(T.residual_for_ref(rp["mission"])))
             if q is None:
                 continue
             judged += 1
-            as_many += rp["plan"]["covered"] >= q["covered"]
-            if rp["plan"]["covered"] == q["covered"] and q["cost"]:
-                gaps.append(_gap(rp["plan"]["cost"], q["cost"]))
-        times = r["replan_us"] or []
+            as_many += rp["plan"]["covered"] >= q[0]
+            if rp["plan"]["covered"] == q[0] and q[1]:
+                gaps.append(_gap(rp["plan"]["cost"], q[1]))
+        times = times or []
         later = [rp for rp in log["replans"] if rp["cause"] != "start"]
-        base.update(replans=len(log["replans"]), judged=judged, as_many=as_many,
-                    gap_mean=statistics.mean(gaps) if gaps else None, gap_max=max(gaps) if gaps else None,
-                    gaps=gaps, changes=sum(rp["changes"]["count"] for rp in later), later=len(later),
-                    p50_us=percentile(times, 50), p99_us=percentile(times, 99), replan_us=list(times))
-        out.append(base)
-    return out
+        for k, v in (("replans", len(log["replans"])), ("judged", judged), ("as_many", as_many),
+                     ("gap_mean", statistics.mean(gaps) if gaps else None), ("gap_max", max(gaps) if gaps else None),
+                     ("gaps", gaps), ("changes", sum(rp["changes"]["count"] for rp in later)),
+                     ("later", len(later)), ("p50_us", percentile(times, 50)), ("p99_us", percentile(times, 99)),
+                     ("replan_us", list(times))):
+            cols[k].append(v)
+    types = {"gap_mean": pa.float64(), "gap_max": pa.float64(), "gaps": pa.list_(pa.float64()),
+             "replan_us": pa.list_(pa.int64())}
+    out = {c: t[c] for c in BASE}
+    out.update({c: pa.array(v, types.get(c, pa.int64())) for c, v in cols.items()})
+    return pa.table(out)
 
 
-def write_metrics(records: List[dict], out: str) -> str:
-    import pandas as pd
+def build(spec: dict, store, tasks: List[dict]):
+    """(metrics(), groups(), how many stored rows the tasks have) from a Store, reading
+    only stored_columns()."""
+    import pyarrow as pa
+    import pyarrow.compute as pc
+    table = store.table(stored_columns(spec))
+    records = metrics(spec, table, tasks)
+    keys = pa.array([t["key"] for t in tasks], pa.string())
+    stored = pc.sum(pc.is_in(table["key"], value_set=keys)).as_py() or 0
+    return records, groups(spec, records), stored
+
+
+def write_metrics(records, out: str) -> str:
+    import pyarrow.parquet as pq
     path = os.path.join(out, "metrics.parquet")
-    df = pd.DataFrame(records)
-    if "gaps" in df:
-        df = df.drop(columns=["gaps"])
+    if "gaps" in records.column_names:
+        records = records.drop_columns(["gaps"])
     tmp = os.path.join(out, ".tmp-metrics.parquet")
-    df.to_parquet(tmp, index=False)
+    pq.write_table(records, tmp)
     os.replace(tmp, path)
     return path
 
 
-def groups(spec: dict, records: List[dict]) -> List[dict]:
-    """The summary rows: per set and tool (and change_penalty for live)."""
+def groups(spec: dict, records) -> List[dict]:
+    """The summary rows: per set and tool (and change_penalty for live). records: the
+    table metrics() returns (sorted by set, tool and penalty, so a group is a run of
+    consecutive records); its figures are computed with pyarrow, group by group."""
+    import pyarrow as pa
+    import pyarrow.compute as pc
+    live = spec["kind"] == "live"
+    keys = ["set", "tool"] + (["penalty"] if live else [])
+    n = len(records)
+    change = pa.array([False] * max(n - 1, 0), pa.bool_())
+    for k in keys:  # where a record's group differs from the one before it
+        c = records[k]
+        change = pc.or_(change, pc.fill_null(pc.not_equal(c.slice(1), c.slice(0, max(n - 1, 0))), False))
+    bounds = ([0] if n else []) + [i + 1 for i in pc.indices_nonzero(change).to_pylist()] + [n]
     order = [S.set_label(s) for s in spec["sets"]]
-    keyf = (lambda r: (r["set"], r["tool"], r["penalty"])) if spec["kind"] == "live" else \
-        (lambda r: (r["set"], r["tool"]))
-    by: Dict[tuple, List[dict]] = {}
-    for r in records:
-        by.setdefault(keyf(r), []).append(r)
     tools = list(spec["algorithms"]) + ["ref"]
     out = []
-    for k in sorted(by, key=lambda k: (order.index(k[0]), tools.index(k[1]), k[2:] and k[2] or 0)):
-        rs = [r for r in by[k] if not r["error"]]
-        g = {"set": k[0], "tool": k[1], "penalty": k[2] if len(k) > 2 else None, "n": len(by[k]),
-             "errors": len(by[k]) - len(rs), "covered": sum(r["covered"] for r in rs),
-             "coverable": sum(r["coverable"] or 0 for r in rs)}
-        if spec["kind"] == "plan":
-            judged = [r for r in rs if r.get("ref_covered") is not None]
-            gaps = [r["gap_pct"] for r in judged if r.get("gap_pct") is not None]
-            times = [r["solve_us"] for r in rs if r["solve_us"] is not None]
-            g.update(judged=len(judged), equal=sum(1 for r in judged if r["cover_diff"] == 0),
-                     below=sum(1 for r in judged if r["cover_diff"] < 0),
-                     above=sum(1 for r in judged if r["cover_diff"] > 0),
+    for a, b in zip(bounds, bounds[1:]):
+        r = records.slice(a, b - a)
+        k = tuple(r[c][0].as_py() for c in keys)
+        rs = r.filter(_ok(r))
+
+        def total(col):
+            return pc.sum(rs[col]).as_py() or 0
+
+        g = {"set": k[0], "tool": k[1], "penalty": k[2] if live else None, "n": len(r),
+             "errors": len(r) - len(rs), "covered": total("covered"), "coverable": total("coverable")}
+        if not live:
+            judged = rs.filter(pc.is_valid(rs["ref_covered"]))
+            gaps = pc.drop_null(judged["gap_pct"]).to_pylist()
+            times = pc.drop_null(rs["solve_us"]).to_pylist()
+            diff = judged["cover_diff"]
+            g.update(judged=len(judged), equal=pc.sum(pc.equal(diff, 0)).as_py() or 0,
+                     below=pc.sum(pc.less(diff, 0)).as_py() or 0, above=pc.sum(pc.greater(diff, 0)).as_py() or 0,
                      gap_mean=statistics.mean(gaps) if gaps else None, gap_max=max(gaps) if gaps else None,
-                     gaps=gaps, times=times, p50_us=percentile(times, 50), p95_us=percentile(times, 95))
+                     gaps=gaps, times=times, p50_us=_rank(times, 50), p95_us=_rank(times, 95))
         else:
-            gaps = [x for r in rs for x in r["gaps"]]
-            times = [x for r in rs for x in r["replan_us"]]
-            g.update(judged=sum(r["judged"] for r in rs), as_many=sum(r["as_many"] for r in rs),
+            gaps = pc.list_flatten(rs["gaps"]).to_pylist()
+            times = pc.list_flatten(rs["replan_us"]).to_pylist()
+            g.update(judged=total("judged"), as_many=total("as_many"),
                      gap_mean=statistics.mean(gaps) if gaps else None, gap_max=max(gaps) if gaps else None,
-                     gaps=gaps, times=times, p50_us=percentile(times, 50), p99_us=percentile(times, 99))
-        out.append(g)
-    return out
+                     gaps=gaps, times=times, p50_us=_rank(times, 50), p99_us=_rank(times, 99))
+        out.append((order.index(k[0]), tools.index(k[1]), k[2] if live and k[2] else 0, g))
+    return [g for *_, g in sorted(out, key=lambda x: x[:3])]
+
+
+def _rank(values: List, p: float):
+    """percentile() through numpy's sort (the same nearest rank)."""
+    if not values:
+        return None
+    import numpy as np
+    v = np.sort(np.asarray(values))
+    return v[max(1, math.ceil(len(v) * p / 100)) - 1].item()
 
 
 def _pct(a, b):
@@ -156,14 +263,15 @@ def markdown(rows: List[List[str]]) -> str:
     return "\n".join(lines + ["| " + " | ".join(r) + " |" for r in rows[1:]])
 
 
-def summary(spec: dict, stats: dict, records: List[dict]) -> str:
+def summary(spec: dict, stats: dict, gs: List[dict]) -> str:
+    """The printed summary: one line of counts and times, and the table of groups()."""
     units = "missions" if spec["kind"] == "plan" else "scenarios"
     n = S.missions(spec)
     wall = stats.get("wall_s") or 0.0
     head = (f"campaign {spec['name']}: {stats['tasks']} tasks for {n} {units}; {stats['stored']} already stored, "
             f"{stats['computed']} computed, {len(stats['failed'])} failed; {wall:.1f} s, of which "
             f"{stats.get('compute_s', 0.0):.1f} s computing on {stats.get('workers', 0)} workers")
-    return head + "\n" + markdown(table(spec, groups(spec, records)))
+    return head + "\n" + markdown(table(spec, gs))
 
 
 def _png(fig) -> str:
@@ -206,11 +314,11 @@ def figures(spec: dict, gs: List[dict]) -> List[tuple]:
     return out
 
 
-def write_html(spec: dict, stats: dict, records: List[dict], out: str) -> str:
-    gs = groups(spec, records)
+def write_html(spec: dict, stats: dict, gs: List[dict], out: str, stored: int) -> str:
+    """OUT/report.html from groups(); stored: how many stored rows this spec's tasks have."""
     rows = table(spec, gs)
     e = html.escape
-    head = summary(spec, stats, records).splitlines()[0]
+    head = summary(spec, stats, gs).splitlines()[0]
     parts = ["<!doctype html><html><head><meta charset='utf-8'>",
              f"<title>campaign {e(spec['name'])}</title>",
              "<style>body{font-family:sans-serif;margin:1.5em}table{border-collapse:collapse}"
@@ -223,7 +331,7 @@ def write_html(spec: dict, stats: dict, records: List[dict], out: str) -> str:
     for title, uri in figures(spec, gs):
         parts += [f"<h2>{e(title)}</h2>", f"<img alt='{e(title)}' src='{uri}'>"]
     parts += ["<h2>Spec</h2>", f"<pre>{e(json.dumps(spec, indent=1))}</pre>",
-              f"<p>Results: results/*.parquet ({len(stats['rows'])} rows for this spec); metrics.parquet.</p>",
+              f"<p>Results: results/*.parquet ({stored} rows for this spec); metrics.parquet.</p>",
               "</body></html>"]
     path = os.path.join(out, "report.html")
     with open(path + ".tmp", "w", encoding="utf-8") as f:

@@ -9,10 +9,13 @@ from __future__ import annotations
 
 import os
 import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import Dict, Iterable, List, Optional
 
+import numpy as np
 import pyarrow as pa
+import pyarrow.compute as pc
 import pyarrow.parquet as pq
 
 from .tasks import ROW_FIELDS
@@ -47,20 +50,22 @@ class Store:
 
     def table(self, columns: Optional[List[str]] = None) -> pa.Table:
         """Every stored row (the first of each key), files in name order."""
-        parts = [pq.read_table(p, columns=columns, schema=SCHEMA) for p in self.files()]
+        schema = SCHEMA if columns is None else pa.schema([SCHEMA.field(c) for c in columns])
+
+        def read(path):  # ParquetFile: a third of read_table's cost on a small part file
+            return pq.ParquetFile(path).read(columns=schema.names, use_threads=False).cast(schema)
+
+        with ThreadPoolExecutor(max_workers=min(4, os.cpu_count() or 1)) as pool:
+            parts = list(pool.map(read, self.files()))  # in file order
         if not parts:
-            return SCHEMA.empty_table() if columns is None else \
-                pa.schema([SCHEMA.field(c) for c in columns]).empty_table()
+            return schema.empty_table()
         t = pa.concat_tables(parts)
-        if "key" not in t.column_names:
+        if "key" not in t.column_names or pc.count_distinct(t["key"]).as_py() == len(t):
             return t
-        keys = t.column("key").to_pylist()
-        seen, keep = set(), []
-        for i, k in enumerate(keys):
-            if k not in seen:
-                seen.add(k)
-                keep.append(i)
-        return t if len(keep) == len(keys) else t.take(pa.array(keep))
+        # the first row of each key, in file order
+        first = pa.table({"key": t["key"], "i": pa.array(np.arange(len(t), dtype=np.int64))}).group_by(
+            "key", use_threads=False).aggregate([("i", "min")])["i_min"]
+        return t.take(first.take(pc.sort_indices(first)))
 
     def keys(self) -> set:
         return set(self.table(["key"]).column("key").to_pylist())
