@@ -6,12 +6,13 @@
 // the repair and local search, no bound).
 // flow also keeps 4 labels per target (not 8) in its Lagrangian phase, and searches
 // 16 levels deep (not 24). Its route master (the Lagrangian's LP prices) is off: the
-// prices come from subgradient steps alone.
+// prices come from subgradient steps alone. So is its coverage search (16 KiB).
 #ifndef SVA_PROFILE_512K_H
 #define SVA_PROFILE_512K_H
-#define SVA_FLOW_MAX_ARCS  28672L
-#define SVA_FLOW_LABELS    4
-#define SVA_FLOW_MAX_DEPTH 16
-#define SVA_FLOW_LP_ROWS   1
-#define SVA_FLOW_LP_COLS   1
+#define SVA_FLOW_MAX_ARCS      28672L
+#define SVA_FLOW_LABELS        4
+#define SVA_FLOW_MAX_DEPTH     16
+#define SVA_FLOW_LP_ROWS       1
+#define SVA_FLOW_LP_COLS       1
+#define SVA_FLOW_COVER_TARGETS 0
 #endif

@@ -313,6 +313,7 @@ typedef struct {
     int64_t lower_bound;
     /// The plan is proven optimal under SPEC section 1 (lower_bound == cost).
     bool optimal;
+    uint16_t flow_cover_nodes;     ///< coverage search nodes (0: did not run; at most 65,535)
     uint32_t flow_solves;          ///< min-cost flow relaxations solved
     uint32_t flow_augmentations;   ///< shortest augmenting paths, all solves
     uint64_t flow_work;            ///< arc scans, against SVA_FLOW_MAX_WORK

@@ -18,7 +18,8 @@
 ///                  + (106 + 2 * SVA_FLOW_MAX_DEPTH) * SVA_FLOW_MAX_COPIES (copies, search)
 ///                  + 8 * SVA_FLOW_LP_ROWS^2 + 68 * SVA_FLOW_LP_ROWS
 ///                  + 14 * SVA_FLOW_LP_COLS                               (route master)
-///   (default profile: 711,392 B, of which flow's sva_flow_work_t is 565,472 B.)
+///                  + the coverage search (SVA_FLOW_COVER_TARGETS below)
+///   (default profile: 727,656 B, of which flow's sva_flow_work_t is 581,736 B.)
 
 #ifndef SVA_CONFIG_H
 #define SVA_CONFIG_H
@@ -238,6 +239,24 @@
 #endif
 #if (SVA_FLOW_LP_COLS < 1) || (SVA_FLOW_LP_COLS > 4096)
 #    error "SVA_FLOW_LP_COLS must be in [1, 4096]"
+#endif
+
+/// flow's coverage search (flow_cover.c): missions of at most this many targets and
+/// UAVs that are not stranded get it, while their coverage is not proven the most; 0
+/// turns it off. Cost: about 4 B * T * (T + 1) + 20 B * (T + 1) * U + 2 B * T * U + 8 B * T
+/// + 10 B * U (16,264 B at the default 32 x 16).
+#ifndef SVA_FLOW_COVER_TARGETS
+#    define SVA_FLOW_COVER_TARGETS ((SVA_MAX_TARGETS < 32) ? SVA_MAX_TARGETS : 32)
+#endif
+#if (SVA_FLOW_COVER_TARGETS < 0) || (SVA_FLOW_COVER_TARGETS > 64) || \
+    (SVA_FLOW_COVER_TARGETS > SVA_MAX_TARGETS)
+#    error "SVA_FLOW_COVER_TARGETS must be in [0, min(64, SVA_MAX_TARGETS)]"
+#endif
+#ifndef SVA_FLOW_COVER_UAVS
+#    define SVA_FLOW_COVER_UAVS ((SVA_MAX_UAVS < 16) ? SVA_MAX_UAVS : 16)
+#endif
+#if (SVA_FLOW_COVER_UAVS < 0) || (SVA_FLOW_COVER_UAVS > 32) || (SVA_FLOW_COVER_UAVS > SVA_MAX_UAVS)
+#    error "SVA_FLOW_COVER_UAVS must be in [0, min(32, SVA_MAX_UAVS)]"
 #endif
 
 // ---------------------------------------------------------------------------------

@@ -152,6 +152,41 @@ typedef struct {
     uint16_t rows;
 } sva_flow_lp_t;
 
+// flow's coverage search (flow_cover.c), when SVA_FLOW_COVER_TARGETS is not 0.
+#if SVA_FLOW_COVER_TARGETS > 0
+#    define SVA_FLOW_COVER_T SVA_FLOW_COVER_TARGETS
+#    define SVA_FLOW_COVER_U ((SVA_FLOW_COVER_UAVS > 0) ? SVA_FLOW_COVER_UAVS : 1)
+
+/// A UAV's state on the coverage search's path.
+typedef struct {
+    int32_t x;
+    int32_t y;
+    int32_t free_at;  ///< ticks
+    int32_t fuel;     ///< fuel left
+    uint16_t served;  ///< targets on its route so far
+} sva_flow_cover_uav_t;
+
+/// The coverage search: a depth-first path over the targets in window order (depth d
+/// decides the d-th), every UAV's state at each depth.
+typedef struct {
+    /// Least fuel that leaving the i-th target gets k more targets served and the UAV
+    /// home (INT32_MAX: no route does).
+    int32_t fuel_after[SVA_FLOW_COVER_T][SVA_FLOW_COVER_T + 1];
+    sva_flow_cover_uav_t at[SVA_FLOW_COVER_T + 1][SVA_FLOW_COVER_U];
+    uint16_t uav[SVA_FLOW_COVER_U];                    ///< the search's UAV k: mission UAV
+    uint8_t cand[SVA_FLOW_COVER_T][SVA_FLOW_COVER_U];  ///< able to serve, cheapest first
+    uint8_t pick[SVA_FLOW_COVER_T][SVA_FLOW_COVER_U];  ///< combination to try next
+    uint8_t cand_count[SVA_FLOW_COVER_T];
+    uint8_t step[SVA_FLOW_COVER_T];          ///< combinations, the target left, done
+    uint32_t chosen[SVA_FLOW_COVER_T];       ///< UAVs serving it on the path (bits)
+    uint16_t covered[SVA_FLOW_COVER_T + 1];  ///< targets covered above depth d
+    uint16_t most[SVA_FLOW_COVER_U];         ///< bound: targets a UAV can still serve
+    uint8_t reach[SVA_FLOW_COVER_T];         ///< bound: UAVs that can reach a target
+    uint16_t by_need[SVA_FLOW_COVER_U + 1];  ///< bound: those targets by need
+    int32_t leg[SVA_FLOW_COVER_U];           ///< candidates: cells to the target
+} sva_flow_cover_t;
+#endif
+
 /// flow's graph, relaxation and search state (flow_graph.c, flow_ssp.c, flow.c).
 typedef struct {
     uint16_t uavs;    ///< U: node ids 0..U-1 are the UAVs
@@ -222,6 +257,9 @@ typedef struct {
     sva_flow_frame_t stack[SVA_FLOW_MAX_DEPTH];
     sva_flow_lagrange_t lagrange;
     sva_flow_lp_t lp;
+#if SVA_FLOW_COVER_TARGETS > 0
+    sva_flow_cover_t cover;
+#endif
 } sva_flow_work_t;
 
 /// All of the planner's working memory.

@@ -34,6 +34,11 @@
 // (the standing plan repaired) is good from the start.
 #define SEARCH_SHARE        16U
 #define REPLAN_SEARCH_SHARE 2U
+// The coverage search's share, after the first search when that does not finish: a
+// sixteenth, and a quarter in a replan, whose residual missions (UAVs scattered, fuel
+// spent) are where the other phases stay a target short.
+#define COVER_SHARE        16U
+#define REPLAN_COVER_SHARE 4U
 
 static uint32_t find_arc(const sva_flow_work_t* w, uint16_t tail, uint16_t head)
 {
@@ -479,6 +484,12 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
         sva_flow_seed_standing(priv, m, plan, seed_plan);
     }
     if (open != INT64_MAX) {
+#if SVA_FLOW_COVER_TARGETS > 0
+        // Coverage first: its own share of the budget, on top of the phases below
+        // (their ends move by the work it spent).
+        const uint64_t share = replan ? (uint64_t)REPLAN_COVER_SHARE : (uint64_t)COVER_SHARE;
+        start += sva_flow_cover_incumbent(priv, m, plan, budget / share, &coverage_proven);
+#endif
         lagrange_bound = sva_flow_lagrange(priv, m, plan, start + (budget - (budget / 4U)),
                                            &coverage_proven, &stats->flow_lagrange_iters);
         const bool proven = sva_flow_ruin_recreate(priv, m, plan, start + budget,

@@ -142,7 +142,8 @@ int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t
 // flow_lagrange.c: flow's Lagrangian bound and heuristic.
 /// Subgradient phases until the work reaches `budget`: improves the incumbent, and
 /// returns a lower bound on the cost of every plan covering at least as many targets
-/// as the incumbent (0 when it has none); *coverage_proven: no plan covers more.
+/// as the incumbent (0 when it has none); *coverage_proven: no plan covers more (true
+/// on entry: known already, and not sought again).
 /// *iters gets the subgradient steps taken.
 int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                           uint64_t budget, bool* coverage_proven, uint32_t* iters);
@@ -174,6 +175,28 @@ bool sva_flow_lp_prices(sva_flow_work_t* w, const sva_mission_t* m, const sva_pl
 /// sva_flow_repair to complete and offer. False if nothing was fixed.
 bool sva_flow_lp_dive(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                       uint64_t budget);
+
+// flow_cover.c: the coverage search.
+typedef enum {
+    SVA_FLOW_COVER_OPEN,   ///< neither: the budget ran out, or the mission is past its bounds
+    SVA_FLOW_COVER_FOUND,  ///< a plan covering more is in *plan
+    SVA_FLOW_COVER_PROVEN  ///< no plan covers more
+} sva_flow_cover_result_t;
+
+/// Depth-first search for a plan covering more than `covered` targets, until the work
+/// reaches `budget` (missions of at most SVA_FLOW_COVER_TARGETS targets and
+/// SVA_FLOW_COVER_UAVS UAVs not stranded). FOUND: its routes are in *plan and
+/// priv->target_served, for the caller's sva_flow_repair. Adds its nodes to *nodes
+/// (saturating).
+sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                       sva_plan_t* plan, int64_t covered, uint64_t budget,
+                                       uint16_t* nodes);
+/// The coverage search for one target more than the incumbent covers, again after each
+/// plan it finds (repaired and offered: it covers more, so it becomes the incumbent),
+/// within `work` units; returns the work it spent. *proven: it proved the incumbent's
+/// coverage the most. Off (nothing spent, nothing proven) when SVA_FLOW_COVER_TARGETS is 0.
+uint64_t sva_flow_cover_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                  sva_plan_t* plan, uint64_t work, bool* proven);
 
 // flow_standing.c: the standing plan (sva_planner_t.standing; SVA_FLOW_STANDING).
 /// Whether `standing` is a plan of the mission (*plan fresh from sva_state_reset): a

@@ -318,7 +318,7 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     const int64_t best = (ph.best > lp_value) ? ph.best : lp_value;
     const int64_t bound = (best == NO_BOUND) ? 0 : ceil_div(best, s);
     // Optimality needs both; the coverage phase runs once the cost is proven.
-    *coverage_proven = (covered == (int64_t)m->target_count) ||
+    *coverage_proven = *coverage_proven || (covered == (int64_t)m->target_count) ||
                        ((bound >= cost) && prove_coverage(w, m, plan, covered, budget, iters));
     // Coverage comes first (SPEC 1): while c is not proven the most, a dive on the
     // cost master for c + 1 targets looks for a plan covering one more. Any bound for

@@ -79,6 +79,7 @@ static bool flow_stats(json_t* o, const sva_stats_t* s)
            put_int(o, "flow_lp_columns", s->flow_lp_columns) &&
            put_int(o, "flow_dive_routes", s->flow_dive_routes) &&
            put_int(o, "flow_cover_dive", s->flow_cover_dive) &&
+           put_int(o, "flow_cover_nodes", s->flow_cover_nodes) &&
            put_int(o, "flow_ruin_rounds", s->flow_ruin_rounds) &&
            put_int(o, "flow_incomplete", s->flow_incomplete);
 }

@@ -1,0 +1,412 @@
+// flow_cover.c -- flow's coverage search: a plan covering more targets than the
+// incumbent, or the proof that none does (DESIGN.md section 8, "Coverage search").
+//
+// Coverage comes first (SPEC section 1). Where fuel binds and targets need two UAVs,
+// the relaxation's search and its repairs can stay a target short for long: the plan
+// covering one more pairs the UAVs differently from the first target on. This search
+// decides the targets one by one in window order (start, end, id): each is served by
+// `need` UAVs able to reach it by its start with the fuel to get home after it, or
+// left. A UAV's route is its chosen targets in that order, feasible by construction.
+//
+// Bound: fuel_after[j][k] is the least fuel that, leaving the j-th target, serves k
+// more targets and gets home (a backward pass over the window order). A UAV in state
+// s can still serve at most K(s) targets: the most k + 1 for which some target j ahead
+// is reachable from s and fuel_after[j][k] fits the fuel left once there (the first
+// target a route flies to bounds the rest). The targets ahead that their need of UAVs
+// can reach, fewest UAVs needed first, cover c more only if the c smallest needs sum
+// to at most sum K(s), and to at most sum min(K(s), c): no UAV serves a target twice.
+// UAVs in one state are interchangeable: a combination taking the second of two alike
+// UAVs must take the first. Combinations are tried in the order of their legs'
+// lengths, the target left last. No recursion: the path is the UAV states per depth.
+#include "flow.h"
+
+#if SVA_FLOW_COVER_TARGETS > 0
+
+#    define STEP_COMBOS 0U  // the next combination in pick[d]
+#    define STEP_LEAVE  1U  // the target left
+#    define STEP_DONE   2U
+#    define NO_FUEL     INT32_MAX
+
+// fuel_after for the n targets in window order; returns the work (pairs x counts).
+static uint64_t fill_fuel_after(sva_flow_cover_t* c, const sva_planner_priv_t* priv,
+                                const sva_mission_t* m)
+{
+    const int32_t n = (int32_t)m->target_count;
+    uint64_t work = 0U;
+    for (int32_t i = n - 1; i >= 0; i--) {
+        const sva_target_t* a = &m->targets[priv->target_order[i]];
+        int32_t* row = c->fuel_after[i];
+        row[0] = sva_distance(a->x, a->y, m->depot_x, m->depot_y);
+        for (int32_t k = 1; k <= n; k++) {
+            row[k] = NO_FUEL;
+        }
+        for (int32_t l = i + 1; l < n; l++) {
+            const sva_target_t* b = &m->targets[priv->target_order[l]];
+            const int32_t leg = sva_distance(a->x, a->y, b->x, b->y);
+            if (((int64_t)a->end_ticks + ((int64_t)leg * m->ticks_per_cell)) >
+                (int64_t)b->start_ticks) {
+                continue;
+            }
+            const int32_t* next = c->fuel_after[l];
+            // A route serving k targets after b can drop one (triangle inequality): the
+            // finite entries come first.
+            for (int32_t k = 0; (k < (n - l)) && (next[k] != NO_FUEL); k++) {
+                const int64_t v = (int64_t)next[k] + leg + m->hover_fuel;
+                if ((v <= (int64_t)SVA_MAX_FUEL) && (v < (int64_t)row[k + 1])) {
+                    row[k + 1] = (int32_t)v;
+                }
+            }
+            work += (uint64_t)n - (uint64_t)l;
+        }
+    }
+    return work;
+}
+
+// Whether UAV state s reaches target t (the j-th) by its start and still gets home
+// from there; *leg gets the cells flown.
+static bool reaches(const sva_flow_cover_t* c, const sva_mission_t* m,
+                    const sva_flow_cover_uav_t* s, uint16_t j, const sva_target_t* t, int32_t* leg)
+{
+    *leg = sva_distance(s->x, s->y, t->x, t->y);
+    return ((int32_t)s->served < (int32_t)SVA_MAX_ROUTE_TARGETS) &&
+           (((int64_t)s->free_at + ((int64_t)*leg * m->ticks_per_cell)) <=
+            (int64_t)t->start_ticks) &&
+           (((int64_t)s->fuel - *leg - m->hover_fuel) >= (int64_t)c->fuel_after[j][0]);
+}
+
+// Whether the targets from depth d on may still cover `more` of them (the bound in the
+// header comment).
+static bool may_cover(sva_flow_cover_t* c, const sva_planner_priv_t* priv, const sva_mission_t* m,
+                      uint16_t d, uint16_t uavs, int32_t more, uint64_t* work)
+{
+    const uint16_t n = m->target_count;
+    for (uint16_t j = d; j < n; j++) {
+        c->reach[j] = 0U;
+    }
+    int64_t total = 0;
+    for (uint16_t k = 0U; k < uavs; k++) {
+        const sva_flow_cover_uav_t* s = &c->at[d][k];
+        int32_t most = 0;
+        for (uint16_t j = d; j < n; j++) {
+            int32_t leg = 0;
+            if (!reaches(c, m, s, j, &m->targets[priv->target_order[j]], &leg)) {
+                continue;
+            }
+            c->reach[j]++;
+            const int64_t left = (int64_t)s->fuel - leg - m->hover_fuel;
+            // The most k with fuel_after[j][k] <= left; k = 0 fits (reaches).
+            int32_t lo = 0;
+            int32_t hi = (int32_t)n - 1 - (int32_t)j;
+            while (lo < hi) {
+                const int32_t mid = (lo + hi + 1) / 2;
+                if ((int64_t)c->fuel_after[j][mid] <= left) {
+                    lo = mid;
+                } else {
+                    hi = mid - 1;
+                }
+            }
+            const int32_t reachable = lo + 1;
+            most = (reachable > most) ? reachable : most;
+        }
+        const int32_t room = (int32_t)SVA_MAX_ROUTE_TARGETS - (int32_t)s->served;
+        most = (most < room) ? most : room;
+        c->most[k] = (uint16_t)most;
+        total += most;
+        *work += (uint64_t)n - (uint64_t)d;
+    }
+    // The targets their need of UAVs can reach, counted by need (at most `uavs`).
+    uint16_t* by_need = c->by_need;
+    for (uint16_t k = 0U; k <= uavs; k++) {
+        by_need[k] = 0U;
+    }
+    for (uint16_t j = d; j < n; j++) {
+        const int32_t need = m->targets[priv->target_order[j]].need;
+        if (((int32_t)c->reach[j] >= need) && (need <= (int32_t)uavs)) {
+            by_need[need]++;
+        }
+    }
+    int32_t got = 0;
+    int64_t needs = 0;
+    for (int32_t need = 1; (need <= (int32_t)uavs) && (got < more); need++) {
+        for (uint16_t i = 0U; (i < by_need[need]) && (got < more); i++) {
+            got++;
+            needs += need;
+            int64_t spread = 0;
+            for (uint16_t k = 0U; k < uavs; k++) {
+                const int32_t most = (int32_t)c->most[k];
+                spread += (most < got) ? most : got;
+            }
+            if ((needs > total) || (spread < needs)) {
+                return false;
+            }
+        }
+    }
+    return got >= more;
+}
+
+static bool cover_alike(const sva_flow_cover_uav_t* a, const sva_flow_cover_uav_t* b)
+{
+    return (a->x == b->x) && (a->y == b->y) && (a->free_at == b->free_at) && (a->fuel == b->fuel) &&
+           (a->served == b->served);
+}
+
+// Candidate order: shorter leg first; alike states next to each other, lower index
+// first among them.
+static bool cand_before(const sva_flow_cover_uav_t* at, const int32_t* leg, uint8_t a, uint8_t b)
+{
+    const sva_flow_cover_uav_t* p = &at[a];
+    const sva_flow_cover_uav_t* q = &at[b];
+    if (leg[a] != leg[b]) {
+        return leg[a] < leg[b];
+    }
+    if ((p->x != q->x) || (p->y != q->y)) {
+        return (p->x != q->x) ? (p->x < q->x) : (p->y < q->y);
+    }
+    if ((p->free_at != q->free_at) || (p->fuel != q->fuel)) {
+        return (p->free_at != q->free_at) ? (p->free_at < q->free_at) : (p->fuel < q->fuel);
+    }
+    return (p->served != q->served) ? (p->served < q->served) : (a < b);
+}
+
+// The UAVs able to serve depth d's target t into cand[d], in candidate order.
+static void cover_candidates(sva_flow_cover_t* c, const sva_mission_t* m, uint16_t d,
+                             const sva_target_t* t, uint16_t uavs)
+{
+    int32_t* leg = c->leg;
+    uint8_t count = 0U;
+    for (uint16_t k = 0U; k < uavs; k++) {
+        if (!reaches(c, m, &c->at[d][k], d, t, &leg[k])) {
+            continue;
+        }
+        uint8_t i = count;
+        while ((i > 0U) && cand_before(c->at[d], leg, (uint8_t)k, c->cand[d][i - 1U])) {
+            c->cand[d][i] = c->cand[d][i - 1U];
+            i--;
+        }
+        c->cand[d][i] = (uint8_t)k;
+        count++;
+    }
+    c->cand_count[d] = count;
+}
+
+// The combination after pick[0..need) over `count` positions; false after the last.
+static bool cover_advance(uint8_t* pick, uint8_t need, uint8_t count)
+{
+    int32_t i = (int32_t)need - 1;
+    while ((i >= 0) && ((int32_t)pick[i] == ((int32_t)count - (int32_t)need + i))) {
+        i--;
+    }
+    if (i < 0) {
+        return false;
+    }
+    pick[i]++;
+    for (int32_t j = i + 1; j < (int32_t)need; j++) {
+        pick[j] = (uint8_t)(pick[j - 1] + 1U);
+    }
+    return true;
+}
+
+// Whether pick[d] takes, of alike UAVs, the first ones.
+static bool cover_canonical(const sva_flow_cover_t* c, uint16_t d, uint8_t need)
+{
+    for (uint8_t i = 0U; i < need; i++) {
+        const uint8_t p = c->pick[d][i];
+        if ((p > 0U) && ((i == 0U) || (c->pick[d][i - 1U] != (uint8_t)(p - 1U))) &&
+            cover_alike(&c->at[d][c->cand[d][p]], &c->at[d][c->cand[d][p - 1U]])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+// The path's routes above depth d into *plan and priv->target_served.
+static void cover_routes(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                         uint16_t d, uint16_t uavs)
+{
+    const sva_flow_cover_t* c = &priv->flow.cover;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        priv->target_served[t] = 0U;
+    }
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        plan->routes[u].target_count = 0U;
+    }
+    for (uint16_t e = 0U; e < d; e++) {
+        const uint16_t t = priv->target_order[e];
+        for (uint16_t k = 0U; k < uavs; k++) {
+            if ((c->chosen[e] & ((uint32_t)1U << k)) != 0U) {
+                sva_route_t* r = &plan->routes[c->uav[k]];
+                r->targets[r->target_count] = t;
+                r->target_count++;
+                priv->target_served[t]++;
+            }
+        }
+    }
+}
+
+// Depth d's next child into depth d + 1: its next combination, then the target left.
+// False when none is left.
+static bool next_child(sva_flow_cover_t* c, const sva_planner_priv_t* priv, const sva_mission_t* m,
+                       uint16_t d, uint16_t uavs)
+{
+    const sva_target_t* t = &m->targets[priv->target_order[d]];
+    const uint8_t need = (uint8_t)t->need;  // at most cand_count in STEP_COMBOS
+    while (c->step[d] == (uint8_t)STEP_COMBOS) {
+        const bool take = cover_canonical(c, d, need);
+        uint32_t chosen = 0U;
+        if (take) {
+            for (uint8_t i = 0U; i < need; i++) {
+                chosen |= (uint32_t)1U << c->cand[d][c->pick[d][i]];
+            }
+        }
+        if (!cover_advance(c->pick[d], need, c->cand_count[d])) {
+            c->step[d] = (uint8_t)STEP_LEAVE;
+        }
+        if (take) {
+            for (uint16_t k = 0U; k < uavs; k++) {
+                sva_flow_cover_uav_t s = c->at[d][k];
+                if ((chosen & ((uint32_t)1U << k)) != 0U) {
+                    s.fuel -= sva_distance(s.x, s.y, t->x, t->y) + m->hover_fuel;
+                    s.x = t->x;
+                    s.y = t->y;
+                    s.free_at = t->end_ticks;
+                    s.served++;
+                }
+                c->at[d + 1U][k] = s;
+            }
+            c->chosen[d] = chosen;
+            c->covered[d + 1U] = (uint16_t)(c->covered[d] + 1U);
+            return true;
+        }
+    }
+    if (c->step[d] == (uint8_t)STEP_LEAVE) {
+        c->step[d] = (uint8_t)STEP_DONE;
+        for (uint16_t k = 0U; k < uavs; k++) {
+            c->at[d + 1U][k] = c->at[d][k];
+        }
+        c->chosen[d] = 0U;
+        c->covered[d + 1U] = c->covered[d];
+        return true;
+    }
+    return false;
+}
+
+sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                       sva_plan_t* plan, int64_t covered, uint64_t budget,
+                                       uint16_t* nodes)
+{
+    sva_flow_work_t* w = &priv->flow;
+    sva_flow_cover_t* c = &w->cover;
+    const uint16_t n = m->target_count;
+    if (covered >= (int64_t)n) {
+        return SVA_FLOW_COVER_PROVEN;  // nothing is left to cover
+    }
+    if ((int32_t)n > (int32_t)SVA_FLOW_COVER_TARGETS) {
+        return SVA_FLOW_COVER_OPEN;
+    }
+    // The UAVs that are not stranded, in id order (the plan does not depend on the
+    // mission's order).
+    uint16_t uavs = 0U;
+    for (uint16_t i = 0U; i < m->uav_count; i++) {
+        const uint16_t u = priv->uav_order[i];
+        const sva_uav_t* uav = &m->uavs[u];
+        if ((int64_t)uav->fuel < sva_distance(uav->x, uav->y, m->depot_x, m->depot_y)) {
+            continue;
+        }
+        if ((int32_t)uavs == (int32_t)SVA_FLOW_COVER_UAVS) {
+            return SVA_FLOW_COVER_OPEN;
+        }
+        c->uav[uavs] = u;
+        c->at[0][uavs] = (sva_flow_cover_uav_t){uav->x, uav->y, uav->ready_at_ticks, uav->fuel, 0U};
+        uavs++;
+    }
+    w->work += fill_fuel_after(c, priv, m);
+    const int32_t goal = (int32_t)covered + 1;
+    c->covered[0] = 0U;
+    uint16_t d = 0U;
+    bool enter = true;
+    for (;;) {
+        if (enter) {
+            enter = false;
+            *nodes = (*nodes < UINT16_MAX) ? (uint16_t)(*nodes + 1U) : (uint16_t)UINT16_MAX;
+            if ((int32_t)c->covered[d] >= goal) {
+                cover_routes(priv, m, plan, d, uavs);
+                return SVA_FLOW_COVER_FOUND;
+            }
+            if (w->work >= budget) {
+                return SVA_FLOW_COVER_OPEN;
+            }
+            if ((d == n) ||
+                !may_cover(c, priv, m, d, uavs, goal - (int32_t)c->covered[d], &w->work)) {
+                if (d == 0U) {
+                    return SVA_FLOW_COVER_PROVEN;
+                }
+                d--;
+                continue;
+            }
+            const sva_target_t* t = &m->targets[priv->target_order[d]];
+            cover_candidates(c, m, d, t, uavs);
+            w->work += uavs;
+            c->step[d] = (uint8_t)STEP_LEAVE;
+            if ((int32_t)c->cand_count[d] >= t->need) {
+                c->step[d] = (uint8_t)STEP_COMBOS;
+                for (int32_t i = 0; i < t->need; i++) {
+                    c->pick[d][i] = (uint8_t)i;
+                }
+            }
+        }
+        if (next_child(c, priv, m, d, uavs)) {
+            d++;
+            enter = true;
+            continue;
+        }
+        if (d == 0U) {
+            return SVA_FLOW_COVER_PROVEN;
+        }
+        d--;
+    }
+}
+
+uint64_t sva_flow_cover_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                  sva_plan_t* plan, uint64_t work, bool* proven)
+{
+    const uint64_t from = priv->flow.work;
+    const uint64_t end = from + work;
+    sva_flow_cover_result_t r = SVA_FLOW_COVER_FOUND;
+    while (r == SVA_FLOW_COVER_FOUND) {
+        int64_t cost = 0;
+        int64_t covered = 0;
+        sva_flow_incumbent(priv, m, plan, &cost, &covered);
+        r = sva_flow_cover(priv, m, plan, covered, end, &plan->stats.flow_cover_nodes);
+        if (r == SVA_FLOW_COVER_FOUND) {
+            sva_flow_repair(priv, m, plan, true);
+        }
+    }
+    *proven = r == SVA_FLOW_COVER_PROVEN;
+    return priv->flow.work - from;
+}
+
+#else  // the profile turns the search off
+
+sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                       sva_plan_t* plan, int64_t covered, uint64_t budget,
+                                       uint16_t* nodes)
+{
+    (void)priv;
+    (void)plan;
+    (void)budget;
+    (void)nodes;
+    return (covered >= (int64_t)m->target_count) ? SVA_FLOW_COVER_PROVEN : SVA_FLOW_COVER_OPEN;
+}
+
+uint64_t sva_flow_cover_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                  sva_plan_t* plan, uint64_t work, bool* proven)
+{
+    (void)priv;
+    (void)m;
+    (void)plan;
+    (void)work;
+    *proven = false;
+    return 0U;
+}
+
+#endif
