@@ -63,7 +63,7 @@ extern "C" {
 
 /// Library version (CMakeLists.txt reads it from here).
 #define SVA_VERSION_MAJOR 0
-#define SVA_VERSION_MINOR 3
+#define SVA_VERSION_MINOR 4
 #define SVA_VERSION_PATCH 0
 /// Version of the mission and plan JSON schema (SPEC.md section 3).
 #define SVA_SCHEMA_VERSION 3
