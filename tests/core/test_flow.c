@@ -431,16 +431,17 @@ static void test_route_master_holds_only_real_routes(void** state)
 
 // Ruin and recreate (flow_repair.c) at the same budget: it runs, its plans pass the
 // checks of against_brute_force, and flow's plan is optimal on most of the missions
-// it ran on. (It is skipped where the coverage is proven and the plan within 1/64 of
-// its bound; the coverage search proves coverage on many of these small missions.)
+// it ran on. It is skipped where the coverage is proven and the plan within 1/64 of
+// its bound, and the coverage search proves coverage on many of these small missions:
+// 500 missions give it the 30 runs that 300 gave it without that search.
 static void test_ruin_and_recreate_plans_hold(void** state)
 {
     (void)state;
-    const int rounds = 300;
+    const int rounds = 500;
     const phase_counts_t c = against_brute_force(0x2E1ULL, rounds, 6000U, 5, ruin_ran);
     printf("# %d missions: ruin and recreate ran on %d; flow's plan optimal on %d of them\n",
            rounds, c.ran, c.best);
-    assert_true(c.ran >= rounds / 20);
+    assert_true(c.ran >= 30);
     assert_true(c.best >= c.ran / 2);
 }
 
