@@ -17,6 +17,24 @@ set(_pc_out "${PROJECT_BINARY_DIR}/packaging/pkgconfig")
 file(RELATIVE_PATH SVA_PC_PREFIX_REL "/root/${SVA_PC_INSTALL_DIR}" "/root")
 string(REGEX REPLACE "/$" "" SVA_PC_PREFIX_REL "${SVA_PC_PREFIX_REL}")
 
+# One port library as component COMPONENT of the package: target(s) exported as
+# sva::<name>, public headers under include/sva (HEADER_DIR: a folder below it), the
+# export set and, with PC, packaging/pkgconfig/<PC>.in configured and installed.
+macro(sva_install_component COMPONENT)
+    cmake_parse_arguments(_c "" "HEADER_DIR;PC" "TARGETS;HEADERS" ${ARGN})
+    install(TARGETS ${_c_TARGETS} EXPORT sva_${COMPONENT}Targets
+            ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}")
+    if(_c_HEADERS)
+        install(FILES ${_c_HEADERS} DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/sva${_c_HEADER_DIR}")
+    endif()
+    install(EXPORT sva_${COMPONENT}Targets NAMESPACE sva:: DESTINATION "${SVA_CMAKE_INSTALL_DIR}")
+    if(_c_PC)
+        configure_file("${_pkg}/pkgconfig/${_c_PC}.in" "${_pc_out}/${_c_PC}" @ONLY)
+        install(FILES "${_pc_out}/${_c_PC}" DESTINATION "${SVA_PC_INSTALL_DIR}")
+    endif()
+    list(APPEND SVA_INSTALLED_COMPONENTS ${COMPONENT})
+endmacro()
+
 # --- core (sva::core, installed by core/CMakeLists.txt) --------------------------------
 install(EXPORT svaTargets NAMESPACE sva:: DESTINATION "${SVA_CMAKE_INSTALL_DIR}")
 configure_file("${_pkg}/pkgconfig/sva.pc.in" "${_pc_out}/sva.pc" @ONLY)
@@ -25,27 +43,17 @@ install(FILES "${_pc_out}/sva.pc" DESTINATION "${SVA_PC_INSTALL_DIR}")
 # --- mission frame (sva::frame: PROJ, found with pkg-config) ----------------------------
 if(TARGET sva_frame)
     set_target_properties(sva_frame PROPERTIES EXPORT_NAME frame)
-    install(TARGETS sva_frame EXPORT sva_frameTargets ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}")
-    install(FILES "${PROJECT_SOURCE_DIR}/port/frame/include/sva/sva_frame.h"
-            DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/sva")
-    install(EXPORT sva_frameTargets NAMESPACE sva:: DESTINATION "${SVA_CMAKE_INSTALL_DIR}")
-    configure_file("${_pkg}/pkgconfig/sva-frame.pc.in" "${_pc_out}/sva-frame.pc" @ONLY)
-    install(FILES "${_pc_out}/sva-frame.pc" DESTINATION "${SVA_PC_INSTALL_DIR}")
-    list(APPEND SVA_INSTALLED_COMPONENTS frame)
+    sva_install_component(frame TARGETS sva_frame PC sva-frame.pc
+                          HEADERS "${PROJECT_SOURCE_DIR}/port/frame/include/sva/sva_frame.h")
 endif()
 
 # --- CAN port (sva::can), its node and the DBC -----------------------------------------
 if(TARGET sva_can)
     set_target_properties(sva_can PROPERTIES EXPORT_NAME can)
-    install(TARGETS sva_can EXPORT sva_canTargets ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}")
-    install(FILES "${PROJECT_SOURCE_DIR}/port/can/include/sva/sva_can.h"
-                  "${PROJECT_SOURCE_DIR}/port/can/include/sva/sva_can_frame.h"
-            DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/sva")
-    install(EXPORT sva_canTargets NAMESPACE sva:: DESTINATION "${SVA_CMAKE_INSTALL_DIR}")
-    configure_file("${_pkg}/pkgconfig/sva-can.pc.in" "${_pc_out}/sva-can.pc" @ONLY)
-    install(FILES "${_pc_out}/sva-can.pc" DESTINATION "${SVA_PC_INSTALL_DIR}")
+    sva_install_component(can TARGETS sva_can PC sva-can.pc
+                          HEADERS "${PROJECT_SOURCE_DIR}/port/can/include/sva/sva_can.h"
+                                  "${PROJECT_SOURCE_DIR}/port/can/include/sva/sva_can_frame.h")
     install(FILES "${PROJECT_SOURCE_DIR}/port/can/sva.dbc" DESTINATION "${SVA_SHARE_INSTALL_DIR}")
-    list(APPEND SVA_INSTALLED_COMPONENTS can)
 endif()
 if(TARGET sva_can_node)
     install(TARGETS sva_can_node RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}")
@@ -55,23 +63,18 @@ endif()
 if(TARGET sva_lcm)
     set_target_properties(sva_lcm PROPERTIES EXPORT_NAME lcm)
     set_target_properties(sva_lcm_types PROPERTIES EXPORT_NAME lcm_types)
-    install(TARGETS sva_lcm sva_lcm_types EXPORT sva_lcmTargets
-            ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}")
-    install(FILES "${PROJECT_SOURCE_DIR}/port/lcm/include/sva/sva_lcm.h" ${SVA_LCM_GEN_HEADERS}
-            DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/sva")
-    install(EXPORT sva_lcmTargets NAMESPACE sva:: DESTINATION "${SVA_CMAKE_INSTALL_DIR}")
     # The pkg-config file names the lcm this build used (lcm ships none); another one:
     #   pkg-config --define-variable=lcm_prefix=/path/to/site-packages sva-lcm
     get_filename_component(SVA_LCM_PREFIX "${SVA_LCM_CMAKE_DIR}/../../.." ABSOLUTE)
-    configure_file("${_pkg}/pkgconfig/sva-lcm.pc.in" "${_pc_out}/sva-lcm.pc" @ONLY)
-    install(FILES "${_pc_out}/sva-lcm.pc" DESTINATION "${SVA_PC_INSTALL_DIR}")
+    sva_install_component(lcm TARGETS sva_lcm sva_lcm_types PC sva-lcm.pc
+                          HEADERS "${PROJECT_SOURCE_DIR}/port/lcm/include/sva/sva_lcm.h"
+                                  ${SVA_LCM_GEN_HEADERS})
     file(GLOB _sva_lcm_types "${PROJECT_SOURCE_DIR}/port/lcm/types/*.lcm")
     install(FILES ${_sva_lcm_types} DESTINATION "${SVA_SHARE_INSTALL_DIR}/lcm")
     if(SVA_LCM_JAVA_JAR)
         # lcm-spy's class path entry for sva's messages (docs/lcm.md).
         install(FILES "${SVA_LCM_JAVA_JAR}" DESTINATION "${CMAKE_INSTALL_DATADIR}/java")
     endif()
-    list(APPEND SVA_INSTALLED_COMPONENTS lcm)
 endif()
 if(TARGET sva_node)
     install(TARGETS sva_node RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}")
@@ -93,12 +96,7 @@ if(TARGET sva_json)
         set_target_properties(sva_json PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_json_new}")
     endif()
     file(GLOB _json_headers "${_json_src}/*json*.h" "${_json_src}/input.h")
-    install(TARGETS sva_json EXPORT sva_jsonTargets ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}")
-    if(_json_headers)
-        install(FILES ${_json_headers} DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/sva/json")
-    endif()
-    install(EXPORT sva_jsonTargets NAMESPACE sva:: DESTINATION "${SVA_CMAKE_INSTALL_DIR}")
-    list(APPEND SVA_INSTALLED_COMPONENTS json)
+    sva_install_component(json TARGETS sva_json HEADER_DIR /json HEADERS ${_json_headers})
 endif()
 
 # --- MAVLink bridge (sva::mavlink with mavgen's headers) and its program ---------------
@@ -107,15 +105,10 @@ endif()
 # the installed target's SYSTEM include directory (port/mavlink/CMakeLists.txt).
 if(TARGET sva_mavlink)
     set_target_properties(sva_mavlink PROPERTIES EXPORT_NAME mavlink)
-    install(TARGETS sva_mavlink EXPORT sva_mavlinkTargets ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}")
-    install(FILES "${PROJECT_SOURCE_DIR}/port/mavlink/include/sva/sva_mavlink.h"
-            DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/sva")
+    sva_install_component(mavlink TARGETS sva_mavlink PC sva-mavlink.pc
+                          HEADERS "${PROJECT_SOURCE_DIR}/port/mavlink/include/sva/sva_mavlink.h")
     install(DIRECTORY "${SVA_MAVLINK_GEN_DIR}/" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/sva/mavlink"
             FILES_MATCHING PATTERN "*.h")
-    install(EXPORT sva_mavlinkTargets NAMESPACE sva:: DESTINATION "${SVA_CMAKE_INSTALL_DIR}")
-    configure_file("${_pkg}/pkgconfig/sva-mavlink.pc.in" "${_pc_out}/sva-mavlink.pc" @ONLY)
-    install(FILES "${_pc_out}/sva-mavlink.pc" DESTINATION "${SVA_PC_INSTALL_DIR}")
-    list(APPEND SVA_INSTALLED_COMPONENTS mavlink)
 endif()
 if(TARGET sva_mavlink_bridge)
     install(TARGETS sva_mavlink_bridge RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}")
