@@ -1,8 +1,10 @@
-// Fuzz target: the LCM message path of port/lcm (sva_lcm_on_fleet / sva_lcm_on_mission:
-// size and fingerprint checks, lcm-gen's decoder, the version, count, value and frame
-// checks, conversion,
-// sva_plan, plan encoding). The input is a sequence of up to 8 messages:
-//   byte  kind: bit 0 = 0 fleet, 1 mission; bit 1 = 1 "exact": the next bytes are
+// Fuzz target: the LCM message path of port/lcm (sva_lcm_on_fleet / sva_lcm_on_mission /
+// sva_lcm_on_report: size and fingerprint checks, lcm-gen's decoder, the version, count,
+// value and frame checks, conversion, sva_plan, plan encoding, the report rule and the
+// live replan). The input is a sequence of up to 8 messages:
+//   byte  kind: bit 0 = 0 fleet, 1 mission; bit 7 = 1 a vehicle report instead (a
+//         refused one must leave the live mission byte for byte as it was); bit 1 = 1
+//         "exact": the next bytes are
 //         zero-padded or cut to the type's one valid size (so the fuzzer reaches the
 //         decoder), 0 "raw": a little-endian 16-bit length follows, then that many
 //         bytes (clamped to what is left) are delivered as they are.
@@ -27,6 +29,7 @@ static sva_lcm_node_t node;
 static sva_lcm_plan_t decoded;
 static sva_mission_t before;
 static sva_lcm_frame_t frame_before;
+static sva_live_t live_before;
 static uint8_t message[SVA_LCM_MISSION_BYTES > SVA_LCM_FLEET_BYTES ? SVA_LCM_MISSION_BYTES
                                                                    : SVA_LCM_FLEET_BYTES];
 static unsigned published;
@@ -93,8 +96,11 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     size_t at = 0;
     for (int m = 0; m < 8 && at < size; m++) {
         const uint8_t kind = data[at++];
-        const bool is_mission = (kind & 1U) != 0U;
-        const size_t want = is_mission ? SVA_LCM_MISSION_BYTES : SVA_LCM_FLEET_BYTES;
+        const bool is_report = (kind & 0x80U) != 0U;
+        const bool is_mission = !is_report && ((kind & 1U) != 0U);
+        const size_t want = is_report    ? SVA_LCM_REPORT_BYTES
+                            : is_mission ? SVA_LCM_MISSION_BYTES
+                                         : SVA_LCM_FLEET_BYTES;
         size_t n;
         if ((kind & 2U) != 0U) {
             n = want;
@@ -120,6 +126,15 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
         const bool had_fleet = node.priv.have_fleet;
         const bool had_mission = node.priv.have_mission;
         const unsigned published_before = published;
+        if (is_report) {
+            memcpy(&live_before, &node.priv.live, sizeof live_before);
+            if ((sva_lcm_on_report(&node, message, n) != SVA_LCM_ACCEPTED) &&
+                ((memcmp(&live_before, &node.priv.live, sizeof live_before) != 0) ||
+                 (published != published_before))) {
+                fail("a refused report changed the live mission or published");
+            }
+            continue;
+        }
         const sva_lcm_verdict_t v = is_mission ? sva_lcm_on_mission(&node, message, n)
                                                : sva_lcm_on_fleet(&node, message, n);
         if (v != SVA_LCM_ACCEPTED) {

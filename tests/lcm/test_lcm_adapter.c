@@ -272,6 +272,8 @@ static void test_encoded_sizes(void** state)
     static sva_lcm_replan_t r;
     assert_int_equal(sva_lcm_event_t_encoded_size(&e), SVA_LCM_EVENT_BYTES);
     assert_int_equal(sva_lcm_replan_t_encoded_size(&r), SVA_LCM_REPLAN_BYTES);
+    static sva_lcm_report_t rp;
+    assert_int_equal(sva_lcm_report_t_encoded_size(&rp), SVA_LCM_REPORT_BYTES);
     assert_true(SVA_LCM_REPLAN_BYTES + 64 <= 65499);
     // one udpm datagram (LCM_SHORT_MESSAGE_MAX_SIZE) with the longest channel name
     assert_true(SVA_LCM_PLAN_BYTES + 64 <= 65499);
@@ -965,9 +967,10 @@ static void test_frame_round_trip(void** state)
     assert_int_equal(got_replan.residual_mission.frame.present, 0);
 }
 
-// fleet_reports: while a live mission runs, a fleet message is a report. A UAV reported
-// unavailable becomes uav_lost, one whose fuel is below its route's need a fuel event,
-// one off its track by more than the tolerance a position event, each answered by one replan
+// fleet_reports: while a live mission runs, a fleet message is a report through the
+// core's rule (sva_live_report). A UAV reported unavailable becomes uav_lost, one whose
+// fuel is below its route's need a fuel event, one off its track by more than the
+// tolerance a position event, each answered by one replan
 // (event_seq -1) and no plan from scratch; a report that contradicts nothing publishes nothing.
 static void test_fleet_reports(void** state)
 {
@@ -1042,12 +1045,119 @@ static void test_fleet_reports(void** state)
     assert_int_equal(got_replan.residual_fleet.uavs[0].x, x0 + 2);
     assert_int_equal(got_replan.residual_fleet.uavs[0].y, fleet.uavs[0].y);
     assert_int_equal(got_replan.residual_fleet.uavs[0].fuel, fleet.uavs[0].fuel);
-    // A tighter tolerance: the same report (one cell off the new track) is off it now.
+    // A tighter tolerance: one cell off the new track, away from where it flies next
+    // (its first target, or the depot), is off it now (a cell towards it would not be).
     node.track_tolerance_cells = 0;
-    fleet.uavs[0].y += 1;
+    int32_t next_y = got_replan.residual_mission.depot_y;
+    if ((got_replan.plan.route_count > 0) && (got_replan.plan.routes[0].target_count > 0)) {
+        for (int i = 0; i < got_replan.residual_mission.target_count; ++i) {
+            if (got_replan.residual_mission.targets[i].id == got_replan.plan.route_targets[0]) {
+                next_y = got_replan.residual_mission.targets[i].y;
+            }
+        }
+    }
+    assert_int_equal(got_replan.plan.routes[0].uav_id, 10);
+    fleet.uavs[0].y += (next_y > fleet.uavs[0].y) ? -1 : 1;
     assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
     assert_int_equal(replans_seen, 4);
     assert_int_equal(got_replan.event_type, SVA_LCM_EVENT_T_TYPE_POSITION);
+}
+
+static sva_lcm_verdict_t send_report(int32_t uav, int32_t at, int8_t health, int32_t x, int32_t y,
+                                     int32_t fuel)
+{
+    static uint8_t buf[SVA_LCM_REPORT_BYTES];
+    sva_lcm_report_t r;
+    memset(&r, 0, sizeof r);
+    r.version = SVA_LCM_REPORT_T_VERSION;
+    r.uav_id = uav;
+    r.at_ticks = at;
+    r.health = health;
+    r.x = x;
+    r.y = y;
+    r.fuel = fuel;
+    r.mission_seq = -1;
+    r.reached_seq = -1;
+    assert_int_equal(sva_lcm_report_t_encode(buf, 0, (int)sizeof buf, &r), SVA_LCM_REPORT_BYTES);
+    return sva_lcm_on_report(&node, buf, sizeof buf);
+}
+
+// Vehicle reports (REPORT): refused before a live mission, with another version, a
+// field out of range or a wrong size, each counted and changing nothing; a report moves
+// the clock to its tick (an earlier tick is taken as now) and the core's rule turns it
+// into at most one event: an agreeing report publishes nothing, a lost vehicle a uav_lost
+// replan (event_seq -1), the same vehicle heard again a uav_back at its reported cell.
+static void test_vehicle_reports(void** state)
+{
+    (void)state;
+    node_setup(SVA_ALGO_SVA);
+    make_inputs(6);
+    assert_int_equal(send_report(10, 0, 0, 0, 0, -1), SVA_LCM_REJECTED);
+    assert_int_equal(node.last_reject, SVA_LCM_REJECT_VALUE);
+    assert_non_null(strstr(last_log, "T_REPORT: no live mission"));
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
+    assert_int_equal(plans_seen, 1);
+    static sva_live_t before;
+    memcpy(&before, &node.priv.live, sizeof before);
+    const uint32_t values = node.counters.rejected[SVA_LCM_REJECT_VALUE];
+    assert_int_equal(send_report(10, 0, 2, 0, 0, -1), SVA_LCM_REJECTED);
+    assert_int_equal(send_report(10, -1, 0, 0, 0, -1), SVA_LCM_REJECTED);
+    assert_int_equal(send_report(10, 0, 0, 40000, 0, -1), SVA_LCM_REJECTED);
+    assert_int_equal(send_report(10, 0, 0, 0, 0, -2), SVA_LCM_REJECTED);
+    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_VALUE], values + 4U);
+    static uint8_t short_buf[SVA_LCM_REPORT_BYTES - 1];
+    assert_int_equal(sva_lcm_on_report(&node, short_buf, sizeof short_buf), SVA_LCM_REJECTED);
+    assert_int_equal(node.last_reject, SVA_LCM_REJECT_TRUNCATED);
+    static uint8_t buf[SVA_LCM_REPORT_BYTES];
+    sva_lcm_report_t r;
+    memset(&r, 0, sizeof r);
+    r.version = SVA_LCM_REPORT_T_VERSION + 1;
+    assert_int_equal(sva_lcm_report_t_encode(buf, 0, (int)sizeof buf, &r), SVA_LCM_REPORT_BYTES);
+    assert_int_equal(sva_lcm_on_report(&node, buf, sizeof buf), SVA_LCM_REJECTED);
+    assert_int_equal(node.last_reject, SVA_LCM_REJECT_VERSION);
+    assert_memory_equal(&before, &node.priv.live, sizeof before);
+    assert_int_equal(replans_seen, 0);
+
+    // Agreeing: UAV 10 where the model has it at tick 1, fuel unknown; the clock moves.
+    int32_t x = 0;
+    int32_t y = 0;
+    int32_t fuel = 0;
+    int32_t ready = 0;
+    assert_true(sva_live_uav_at(&node.priv.live, 0, 1, &x, &y, &fuel, &ready));
+    assert_int_equal(send_report(10, 1, 0, x, y, -1), SVA_LCM_ACCEPTED);
+    assert_int_equal(node.priv.live.now_ticks, 1);
+    assert_int_equal(replans_seen, 0);
+    // An earlier tick is now; lost: a replan without UAV 11.
+    assert_int_equal(send_report(11, 0, SVA_LCM_REPORT_T_HEALTH_LOST, 0, 0, -1), SVA_LCM_ACCEPTED);
+    assert_int_equal(replans_seen, 1);
+    assert_int_equal(got_replan.event_seq, -1);
+    assert_int_equal(got_replan.event_type, SVA_LCM_EVENT_T_TYPE_UAV_LOST);
+    assert_int_equal(got_replan.now_ticks, 1);
+    for (int u = 0; u < got_replan.residual_fleet.uav_count; ++u) {
+        assert_int_not_equal(got_replan.residual_fleet.uavs[u].id, 11);
+    }
+    // Silent again: nothing; heard again at (2, -3) with fuel 150: back there.
+    assert_int_equal(send_report(11, 2, SVA_LCM_REPORT_T_HEALTH_LOST, 0, 0, -1), SVA_LCM_ACCEPTED);
+    assert_int_equal(replans_seen, 1);
+    assert_int_equal(send_report(11, 3, SVA_LCM_REPORT_T_HEALTH_OK, 2, -3, 150), SVA_LCM_ACCEPTED);
+    assert_int_equal(replans_seen, 2);
+    assert_int_equal(got_replan.event_type, SVA_LCM_EVENT_T_TYPE_UAV_BACK);
+    assert_int_equal(got_replan.now_ticks, 3);
+    int found = 0;
+    for (int u = 0; u < got_replan.residual_fleet.uav_count; ++u) {
+        const sva_lcm_uav_state_t* w = &got_replan.residual_fleet.uavs[u];
+        if (w->id == 11) {
+            assert_int_equal(w->x, 2);
+            assert_int_equal(w->y, -3);
+            assert_int_equal(w->fuel, 150);
+            found = 1;
+        }
+    }
+    assert_true(found);
+    assert_int_equal(node.counters.report_rx, 11U);
+    assert_int_equal(node.counters.reports_applied, 2U);
 }
 
 static void test_zero_allocations_per_message(void** state)
@@ -1139,6 +1249,7 @@ int main(void)
         cmocka_unit_test(test_versions),
         cmocka_unit_test(test_frame_round_trip),
         cmocka_unit_test(test_fleet_reports),
+        cmocka_unit_test(test_vehicle_reports),
         cmocka_unit_test(test_zero_allocations_per_message),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

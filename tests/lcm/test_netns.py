@@ -498,7 +498,7 @@ def spy_live_objects(pid):
 def test_lcm_spy_decodes_node_traffic_headless(tmp_path):
     """The docs' lcm-spy recipe: lcm-spy with build/port/lcm/java/sva_lcm.jar on its
     CLASSPATH, on a virtual X display (Xvfb), watching a node that publishes statuses
-    and a plan. It must find our 9 types, run without exceptions, and have decoded
+    and a plan. It must find our 11 types, run without exceptions, and have decoded
     every channel: its JVM then holds the last decoded message of each (jcmd's class
     histogram counts live sva_lcm.* objects; type discovery creates none)."""
     assert JAVA_JAR and Path(JAVA_JAR).exists(), "no build/port/lcm/java/sva_lcm.jar (needs a JDK)"
@@ -547,7 +547,7 @@ def test_lcm_spy_decodes_node_traffic_headless(tmp_path):
         x.wait(timeout=10)
     assert node_rc[0] == 0, node_rc[1]
     text = out.read_text()
-    assert "Found 10 LCM types" in text, text
+    assert "Found 11 LCM types" in text, text
     # lcm-spy's class scan reports classes of the wheel's own jars it cannot load
     # ("ClassDiscoverer: ..." and two indented lines): noise, not ours. Nothing else
     # may mention an exception or error (decode failures print "Spy.messageReceived ex").

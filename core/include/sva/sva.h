@@ -392,18 +392,12 @@ typedef struct sva_planner {
     /// sva_planner_init sets SVA_FLOW_REPLAN_WORK (clamped as flow_max_work).
     uint32_t flow_replan_work;
     /// The plan in force over the mission being planned (a live mission's plan carried
-    /// over, SPEC section 12.4), or NULL (sva_planner_init's value). Read by flow alone,
-    /// which repairs it as its first seed and plans within flow_replan_work; with a
-    /// change_penalty it returns, of the plans it offers, the one covering the most targets, then
-    /// with the least cost + change_penalty * changed visits against it (a changed visit: a (UAV,
-    /// target) pair in one plan and not the other). lower_bound bounds the cost alone; `optimal`
-    /// holds only when the plan returned costs the proven optimum. It must be a plan of this
-    /// mission (route r for UAV r, every visit in time and every target served by at most its
-    /// need); flow ignores one that is not, past SVA_FLOW_MAX_COPIES and with SVA_FLOW_STANDING 0
-    /// (the tiny profile). Read, never written, during sva_plan() only: the caller keeps it alive
-    /// for the call. sva_live_replan() sets it for its own sva_plan() call and clears it after.
-    /// Memory: two successor lists in the planner (sva_private.h); stack: no frame
-    /// deeper than flow's deepest path (DESIGN.md section 6).
+    /// over), or NULL (sva_planner_init's value). Read by flow alone, as SPEC section 12.4
+    /// says: its first seed, the replan budget, changes weighed with change_penalty. It must
+    /// be a plan of this mission (route r for UAV r, visits in time, no target over its
+    /// need); flow ignores one that is not, past SVA_FLOW_MAX_COPIES and with
+    /// SVA_FLOW_STANDING 0. Read only during sva_plan(); sva_live_replan() sets it for its
+    /// own call and clears it after. Memory: two successor lists (sva_private.h).
     const struct sva_plan* standing;
     /// All working memory (sva_private.h): read-only to users, its layout may change
     /// in any release.
@@ -432,13 +426,10 @@ SVA_NODISCARD sva_status_t sva_plan(sva_planner_t* self, const sva_mission_t* mi
 // =================================================================================
 // Live missions (docs/SPEC.md section 12)
 //
-// A live mission is a mission under way: a clock, the plan in force, every target's
-// state, and events that change the mission (UAVs lost or back, fuel readings, targets
-// added, cancelled or changed). sva_live_apply() takes one event; sva_live_replan()
-// plans what is left (the residual mission) with any algorithm and makes the result the
-// plan in force. Visits under way are never broken by a replan, and a replan never
-// covers fewer targets than the plan in force still could (it is always a candidate).
-// Everything lives in the caller's sva_live_t: firmware writes `static sva_live_t live;`.
+// A mission under way: a clock, the plan in force, target states, and events (UAVs lost
+// or back, fuel, targets added, cancelled or changed; sva_live_apply). sva_live_replan
+// plans what is left and keeps the better of that and the plan in force (visits under
+// way are never broken). All in the caller's sva_live_t (`static sva_live_t live;`).
 
 /// A target's state in a live mission.
 typedef enum {
@@ -525,8 +516,7 @@ typedef struct {
 } sva_live_t;
 
 /// Starts a live mission at now = 0 from a mission (its change_penalty included) and,
-/// when plan is not NULL, the plan in force (over the same mission, e.g. sva_plan()'s;
-/// only its routes are read).
+/// when plan is not NULL, the plan in force over it (only its routes are read).
 /// Returns SVA_OK; SVA_ERR_ARGUMENT for a NULL self or mission; SVA_ERR_INVALID when the
 /// mission breaks a rule or a route names an unknown target, a target twice or a UAV
 /// out of mission order (diag says which). Fails iff it returns non-zero, and then
@@ -535,25 +525,19 @@ typedef struct {
 SVA_NODISCARD sva_status_t sva_live_init(sva_live_t* self, const sva_mission_t* mission,
                                          const sva_plan_t* plan, sva_diag_t* diag);
 
-/// Applies one event: first the clock moves to event->at_ticks (visits start, end or
-/// expire on the way), then the event acts (SPEC section 12.3). Returns SVA_OK, or
-/// SVA_ERR_INVALID with diag naming the field and rule: an event before now, an unknown
-/// UAV or target, a duplicate target id, target_changed at or after its start, a fuel
-/// or position of a UAV out of service, uav_back of a UAV in service, a cancelled target
-/// that is done or lost, a target over SVA_MAX_TARGETS or breaking a mission rule.
+/// Applies one event: the clock moves to event->at_ticks (visits start, end or expire on
+/// the way), then the event acts (SPEC section 12.3). Returns SVA_OK, or SVA_ERR_INVALID
+/// with diag naming the field and rule of SPEC 12.3's "rejected when" column.
 /// All-or-nothing: a rejected event leaves *self byte for byte as it was.
 /// Allocates nothing; O(U * R + T).
 SVA_NODISCARD sva_status_t sva_live_apply(sva_live_t* self, const sva_event_t* event,
                                           sva_diag_t* diag);
 
-/// Plans the residual mission with `algorithm` and makes the better of that plan and the
-/// plan in force (less what no longer fits) the new plan in force: more targets covered
-/// first, then the smaller cost + change_penalty * changed visits (SPEC section 12.4).
-/// The carried plan is planner->standing during its sva_plan() call (flow weighs
-/// changes against it); planner->standing is NULL on return. Returns SVA_OK with
-/// *result filled; otherwise sva_plan()'s status and diag, and the
-/// plan in force stays as it was. Allocates nothing; sva_plan()'s complexity plus
-/// O(U * R * T).
+/// Plans the residual mission with `algorithm` and keeps the better of that plan and the
+/// plan in force (SPEC section 12.4); the carried plan is planner->standing during its
+/// sva_plan() call and NULL on return. Returns SVA_OK with *result filled; otherwise
+/// sva_plan()'s status and diag, and the plan in force stays as it was.
+/// Allocates nothing; sva_plan()'s complexity plus O(U * R * T).
 SVA_NODISCARD sva_status_t sva_live_replan(sva_live_t* self, sva_planner_t* planner,
                                            sva_algorithm_t algorithm, sva_live_result_t* result,
                                            sva_diag_t* diag);
@@ -565,10 +549,27 @@ SVA_NODISCARD sva_status_t sva_live_replan(sva_live_t* self, sva_planner_t* plan
 bool sva_live_uav_at(const sva_live_t* self, uint16_t uav, int32_t at_ticks, int32_t* x, int32_t* y,
                      int32_t* fuel, int32_t* ready_ticks);
 
+/// A vehicle's report of itself (MAVLink telemetry, an LCM fleet report, a CAN frame).
+typedef struct {
+    int32_t uav_id;
+    bool in_service;  ///< heard and healthy; false: silent past its timeout, or failed
+    int32_t x;        ///< the cell it is on
+    int32_t y;
+    int32_t fuel;  ///< remaining fuel, or SVA_REPORT_FUEL_UNKNOWN
+} sva_report_t;
+#define SVA_REPORT_FUEL_UNKNOWN (-1)
+/// The one rule that turns a report into a live event at now, for every node and bridge
+/// (SPEC section 12.3, "Vehicle reports"): the first of uav_lost, uav_back, position (off
+/// its track by more than track_tolerance_cells) and fuel that applies. True with *event
+/// filled (not applied: sva_live_apply checks it); false when the report agrees, the UAV
+/// is unknown or an argument is NULL. Changes nothing; allocates nothing; O(R).
+bool sva_live_report(const sva_live_t* self, const sva_report_t* report,
+                     int32_t track_tolerance_cells, sva_event_t* event);
+
 // =================================================================================
 // Compiled limits
 
-/// The compiled bounds, for tools and ports to report and check against.
+/// The compiled bounds, for tools and ports to report and check against (sva_limits()).
 typedef struct {
     uint32_t max_uavs;
     uint32_t max_targets;
@@ -590,8 +591,7 @@ typedef struct {
     uint32_t live_bytes;     ///< sizeof(sva_live_t)
 } sva_limits_t;
 
-/// Returns the compiled limits. Allocates nothing; O(1).
-sva_limits_t sva_limits(void);
+sva_limits_t sva_limits(void);  ///< Allocates nothing; O(1).
 
 #ifdef __cplusplus
 }

@@ -10,6 +10,8 @@
 typedef struct {
     int32_t x;  ///< the cell it stands on, or the next cell of the step in progress
     int32_t y;
+    int32_t from_x;  ///< where the leg in progress started (the cell itself when standing)
+    int32_t from_y;
     int64_t fuel_now;   ///< fuel at the tick (cells completed, windows started)
     int64_t fuel;       ///< fuel once at (x, y)
     int64_t ready;      ///< from this tick it can take new work (>= the tick)

@@ -34,6 +34,8 @@ static void on_leg(int32_t x, int32_t y, int32_t bx, int32_t by, int64_t t, int6
     const int64_t done = (at - t) / tpc;
     const int64_t steps = done + ((((at - t) % tpc) != 0) ? 1 : 0);
     step_point(x, y, bx, by, steps, &out->x, &out->y);
+    out->from_x = x;
+    out->from_y = y;
     out->fuel = fuel - steps;
     out->ready = t + (steps * tpc);
 }
@@ -44,6 +46,8 @@ void sva_live_walk(const sva_live_t* self, uint16_t u, int64_t at_ticks, sva_liv
     int64_t at = at_ticks;  // -1 once the position is known
     out->x = self->priv.uavs[u].x;
     out->y = self->priv.uavs[u].y;
+    out->from_x = out->x;
+    out->from_y = out->y;
     out->fuel = self->priv.uavs[u].fuel;
     out->ready = self->priv.uavs[u].from_ticks;
 
@@ -89,6 +93,8 @@ void sva_live_walk(const sva_live_t* self, uint16_t u, int64_t at_ticks, sva_liv
         if ((at >= 0) && (at < tg->start_ticks)) {
             out->x = x;
             out->y = y;
+            out->from_x = x;
+            out->from_y = y;
             out->fuel = fuel;
             out->ready = at;
             out->next = k;
@@ -100,6 +106,8 @@ void sva_live_walk(const sva_live_t* self, uint16_t u, int64_t at_ticks, sva_liv
             if ((at >= 0) && (at < tg->end_ticks)) {
                 out->x = x;
                 out->y = y;
+                out->from_x = x;
+                out->from_y = y;
                 out->fuel = fuel;
                 out->ready = tg->end_ticks;
                 out->busy_with = (int32_t)v->route[k];
@@ -127,6 +135,8 @@ void sva_live_walk(const sva_live_t* self, uint16_t u, int64_t at_ticks, sva_liv
     }
     out->x = m->depot_x;
     out->y = m->depot_y;
+    out->from_x = m->depot_x;
+    out->from_y = m->depot_y;
     out->fuel = fuel - cells;
     out->ready = at;
 }

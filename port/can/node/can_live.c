@@ -38,13 +38,6 @@ uint16_t sva_can_live_in_service(const sva_can_live_t* self)
     return n;
 }
 
-static int32_t manhattan(int32_t ax, int32_t ay, int32_t bx, int32_t by)
-{
-    const int32_t dx = (ax > bx) ? (ax - bx) : (bx - ax);
-    const int32_t dy = (ay > by) ? (ay - by) : (by - ay);
-    return dx + dy;
-}
-
 // Applies one event; logs it, its refusal, and every target whose state it changed.
 static int apply(sva_can_live_t* self, const sva_event_t* e, uint32_t now_ms)
 {
@@ -176,32 +169,28 @@ int sva_can_live_on_msg(sva_can_live_t* self, const sva_can_msg_t* msg, uint32_t
         e.type = SVA_EVENT_FUEL;
         return apply(self, &e, now_ms);
     }
-    e.x = msg->u.vehicle.x;
-    e.y = msg->u.vehicle.y;
+    // A status frame is a report: the core's rule decides (lost, back with the last
+    // fuel heard, off its track with the model's fuel, or nothing).
+    sva_report_t report;
+    report.uav_id = e.uav_id;
+    report.x = msg->u.vehicle.x;
+    report.y = msg->u.vehicle.y;
+    report.fuel = in_service ? SVA_REPORT_FUEL_UNKNOWN : self->fuel_heard[u];
     switch (msg->u.vehicle.state) {
     case SVA_CAN_VEHICLE_UNAVAILABLE:
-        if (!in_service) {
-            return 0;
-        }
-        e.type = SVA_EVENT_UAV_LOST;
-        return apply(self, &e, now_ms);
+        report.in_service = false;
+        break;
     case SVA_CAN_VEHICLE_AVAILABLE:
     case SVA_CAN_VEHICLE_BUSY:
-        if (!in_service) {
-            // Back in service where it says, with the last fuel heard (0 if none).
-            e.type = SVA_EVENT_UAV_BACK;
-            e.fuel = (self->fuel_heard[u] < 0) ? 0 : self->fuel_heard[u];
-            return apply(self, &e, now_ms);
-        }
-        if (manhattan(x, y, e.x, e.y) <= self->track_tolerance_cells) {
-            return 0;
-        }
-        e.type = SVA_EVENT_POSITION;  // off its track: it flies on from there
-        e.fuel = fuel;
-        return apply(self, &e, now_ms);
+        report.in_service = true;
+        break;
     default:
         return 0;  // UNKNOWN: nothing to go by
     }
+    if (!sva_live_report(&self->live, &report, self->track_tolerance_cells, &e)) {
+        return 0;
+    }
+    return apply(self, &e, now_ms);
 }
 
 // The plan in force over the whole live mission: for each UAV in service (residual

@@ -3,6 +3,8 @@
 
 #include "sva/sva_frame.h"
 
+#include "lcm_internal.h"
+
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
@@ -85,7 +87,8 @@ sva_status_t sva_lcm_node_init(sva_lcm_node_t* self, lcm_t* lcm, const char* pre
         !make_channel(self->channel_plan, prefix, "PLAN") ||
         !make_channel(self->channel_status, prefix, "STATUS") ||
         !make_channel(self->channel_event, prefix, "EVENT") ||
-        !make_channel(self->channel_replan, prefix, "REPLAN")) {
+        !make_channel(self->channel_replan, prefix, "REPLAN") ||
+        !make_channel(self->channel_report, prefix, "REPORT")) {
         return SVA_ERR_ARGUMENT;
     }
     sva_diag_clear(&self->last_diag);
@@ -142,6 +145,12 @@ static void on_event_raw(const lcm_recv_buf_t* rbuf, const char* channel, void* 
     (void)sva_lcm_on_event((sva_lcm_node_t*)user, rbuf->data, rbuf->data_size);
 }
 
+static void on_report_raw(const lcm_recv_buf_t* rbuf, const char* channel, void* user)
+{
+    (void)channel;
+    (void)sva_lcm_on_report((sva_lcm_node_t*)user, rbuf->data, rbuf->data_size);
+}
+
 sva_status_t sva_lcm_node_subscribe(sva_lcm_node_t* self)
 {
     if ((self == NULL) || (self->lcm == NULL)) {
@@ -163,8 +172,14 @@ sva_status_t sva_lcm_node_subscribe(sva_lcm_node_t* self)
         return SVA_ERR_ARGUMENT;
     }
     self->priv.sub_event = lcm_subscribe(self->lcm, regex, on_event_raw, self);
+    if (sva_lcm_channel_escape(self->channel_report, regex, sizeof regex) != SVA_OK) {
+        sva_lcm_node_unsubscribe(self);
+        return SVA_ERR_ARGUMENT;
+    }
+    self->priv.sub_report = lcm_subscribe(self->lcm, regex, on_report_raw, self);
     if ((self->priv.sub_fleet == NULL) || (self->priv.sub_mission == NULL) ||
-        (self->priv.sub_event == NULL) ||
+        (self->priv.sub_event == NULL) || (self->priv.sub_report == NULL) ||
+        (lcm_subscription_set_queue_capacity(self->priv.sub_report, SVA_LCM_QUEUE_CAPACITY) != 0) ||
         (lcm_subscription_set_queue_capacity(self->priv.sub_fleet, SVA_LCM_QUEUE_CAPACITY) != 0) ||
         (lcm_subscription_set_queue_capacity(self->priv.sub_mission, SVA_LCM_QUEUE_CAPACITY) !=
          0) ||
@@ -192,6 +207,10 @@ void sva_lcm_node_unsubscribe(sva_lcm_node_t* self)
         (void)lcm_unsubscribe(self->lcm, self->priv.sub_event);
         self->priv.sub_event = NULL;
     }
+    if (self->priv.sub_report != NULL) {
+        (void)lcm_unsubscribe(self->lcm, self->priv.sub_report);
+        self->priv.sub_report = NULL;
+    }
 }
 
 // ---------------------------------------------------------------------------------
@@ -204,7 +223,7 @@ static void logf_line(sva_lcm_node_t* self, const char* line)
     }
 }
 
-static sva_lcm_verdict_t reject(sva_lcm_node_t* self, sva_lcm_reject_t reason, const char* what)
+sva_lcm_verdict_t sva_lcm_reject(sva_lcm_node_t* self, sva_lcm_reject_t reason, const char* what)
 {
     self->last_reject = reason;
     self->counters.rejected[reason] += 1U;
@@ -227,7 +246,7 @@ static sva_lcm_verdict_t reject_diag(sva_lcm_node_t* self, sva_lcm_reject_t reas
     char what[240];
     (void)sva_diag_format(&self->last_diag, msg, sizeof msg);
     (void)snprintf(what, sizeof what, "%.63s: %.159s", channel, msg);
-    return reject(self, reason, what);
+    return sva_lcm_reject(self, reason, what);
 }
 
 // Range check of one field: fills *d and returns false when value is outside [lo, hi].
@@ -247,19 +266,19 @@ static bool in_range(sva_diag_t* d, sva_field_t field, int32_t index, int64_t va
 
 // Size and fingerprint, before the generated decoder sees the bytes. Returns
 // SVA_LCM_ACCEPTED when the bytes may be decoded.
-static sva_lcm_verdict_t check_frame(sva_lcm_node_t* self, const char* channel, const void* data,
-                                     size_t size, size_t want, int64_t fingerprint)
+sva_lcm_verdict_t sva_lcm_check_frame(sva_lcm_node_t* self, const char* channel, const void* data,
+                                      size_t size, size_t want, int64_t fingerprint)
 {
     char what[160];
     if ((data == NULL) || (size < want)) {
         (void)snprintf(what, sizeof what, "%s: %zu bytes, the type needs exactly %zu", channel,
                        size, want);
-        return reject(self, SVA_LCM_REJECT_TRUNCATED, what);
+        return sva_lcm_reject(self, SVA_LCM_REJECT_TRUNCATED, what);
     }
     if (size > want) {
         (void)snprintf(what, sizeof what, "%s: %zu bytes, the type needs exactly %zu", channel,
                        size, want);
-        return reject(self, SVA_LCM_REJECT_TRAILING, what);
+        return sva_lcm_reject(self, SVA_LCM_REJECT_TRAILING, what);
     }
     const uint8_t* b = (const uint8_t*)data;
     uint64_t got = 0;
@@ -269,14 +288,14 @@ static sva_lcm_verdict_t check_frame(sva_lcm_node_t* self, const char* channel, 
     if (got != (uint64_t)fingerprint) {
         (void)snprintf(what, sizeof what, "%s: fingerprint 0x%016llx, expected 0x%016llx", channel,
                        (unsigned long long)got, (unsigned long long)(uint64_t)fingerprint);
-        return reject(self, SVA_LCM_REJECT_FINGERPRINT, what);
+        return sva_lcm_reject(self, SVA_LCM_REJECT_FINGERPRINT, what);
     }
     return SVA_LCM_ACCEPTED;
 }
 
 // A decoded message's version field against the type's VERSION: a refusal names both.
-static bool version_ok(sva_lcm_node_t* self, const char* channel, const char* type, int version,
-                       int want, sva_lcm_verdict_t* verdict)
+bool sva_lcm_version_ok(sva_lcm_node_t* self, const char* channel, const char* type, int version,
+                        int want, sva_lcm_verdict_t* verdict)
 {
     if (version == want) {
         return true;
@@ -284,7 +303,7 @@ static bool version_ok(sva_lcm_node_t* self, const char* channel, const char* ty
     char what[160];
     (void)snprintf(what, sizeof what, "%.63s: %s.version is %d, this node speaks version %d",
                    channel, type, version, want);
-    *verdict = reject(self, SVA_LCM_REJECT_VERSION, what);
+    *verdict = sva_lcm_reject(self, SVA_LCM_REJECT_VERSION, what);
     return false;
 }
 
@@ -405,7 +424,7 @@ static void replan(sva_lcm_node_t* self)
             (void)snprintf(what, sizeof what,
                            "%s: plan needs more than MAX_ROUTE_ITEMS (%d) route items",
                            self->channel_plan, SVA_LCM_PLAN_T_MAX_ROUTE_ITEMS);
-            (void)reject(self, SVA_LCM_REJECT_TOO_LARGE, what);
+            (void)sva_lcm_reject(self, SVA_LCM_REJECT_TOO_LARGE, what);
         }
     } else {
         self->last_diag = diag;
@@ -426,7 +445,6 @@ static void replan(sva_lcm_node_t* self)
 // Inputs.
 
 // The live mission's handlers (defined below, with the events).
-static void fleet_report(sva_lcm_node_t* self);
 
 static bool check_fleet(sva_lcm_node_t* self, sva_lcm_reject_t* reason, int32_t* bad_health)
 {
@@ -529,16 +547,17 @@ static bool check_frame_fields(const sva_lcm_frame_t* w, char* err, size_t err_s
 sva_lcm_verdict_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_t size)
 {
     self->counters.fleet_rx += 1U;
-    sva_lcm_verdict_t v = check_frame(self, self->channel_fleet, data, size, SVA_LCM_FLEET_BYTES,
-                                      __sva_lcm_fleet_state_t_get_hash());
+    sva_lcm_verdict_t v =
+        sva_lcm_check_frame(self, self->channel_fleet, data, size, SVA_LCM_FLEET_BYTES,
+                            __sva_lcm_fleet_state_t_get_hash());
     if (v != SVA_LCM_ACCEPTED) {
         return v;
     }
     if (sva_lcm_fleet_state_t_decode(data, 0, (int)size, &self->priv.fleet_rx) != (int)size) {
-        return reject(self, SVA_LCM_REJECT_TRUNCATED, "fleet: decoder refused the bytes");
+        return sva_lcm_reject(self, SVA_LCM_REJECT_TRUNCATED, "fleet: decoder refused the bytes");
     }
-    if (!version_ok(self, self->channel_fleet, "fleet_state_t", self->priv.fleet_rx.version,
-                    SVA_LCM_FLEET_STATE_T_VERSION, &v)) {
+    if (!sva_lcm_version_ok(self, self->channel_fleet, "fleet_state_t", self->priv.fleet_rx.version,
+                            SVA_LCM_FLEET_STATE_T_VERSION, &v)) {
         return v;
     }
     sva_lcm_reject_t reason = SVA_LCM_REJECT_VALUE;
@@ -550,7 +569,7 @@ sva_lcm_verdict_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_
                            "%s: uavs[%ld].health: must be 0 (ok) or 1 (unavailable), got %d",
                            self->channel_fleet, (long)bad_health,
                            (int)self->priv.fleet_rx.uavs[bad_health].health);
-            return reject(self, reason, what);
+            return sva_lcm_reject(self, reason, what);
         }
         return reject_diag(self, reason, self->channel_fleet);
     }
@@ -577,7 +596,7 @@ sva_lcm_verdict_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_
     self->priv.fleet_revision = f->revision;
     self->priv.have_fleet = true;
     if (self->fleet_reports && self->priv.live_active) {
-        fleet_report(self);
+        sva_lcm_fleet_report(self);
     } else if (self->priv.have_mission) {
         replan(self);
     }
@@ -587,16 +606,17 @@ sva_lcm_verdict_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_
 sva_lcm_verdict_t sva_lcm_on_mission(sva_lcm_node_t* self, const void* data, size_t size)
 {
     self->counters.mission_rx += 1U;
-    sva_lcm_verdict_t v = check_frame(self, self->channel_mission, data, size,
-                                      SVA_LCM_MISSION_BYTES, __sva_lcm_mission_t_get_hash());
+    sva_lcm_verdict_t v =
+        sva_lcm_check_frame(self, self->channel_mission, data, size, SVA_LCM_MISSION_BYTES,
+                            __sva_lcm_mission_t_get_hash());
     if (v != SVA_LCM_ACCEPTED) {
         return v;
     }
     if (sva_lcm_mission_t_decode(data, 0, (int)size, &self->priv.mission_rx) != (int)size) {
-        return reject(self, SVA_LCM_REJECT_TRUNCATED, "mission: decoder refused the bytes");
+        return sva_lcm_reject(self, SVA_LCM_REJECT_TRUNCATED, "mission: decoder refused the bytes");
     }
-    if (!version_ok(self, self->channel_mission, "mission_t", self->priv.mission_rx.version,
-                    SVA_LCM_MISSION_T_VERSION, &v)) {
+    if (!sva_lcm_version_ok(self, self->channel_mission, "mission_t", self->priv.mission_rx.version,
+                            SVA_LCM_MISSION_T_VERSION, &v)) {
         return v;
     }
     sva_lcm_reject_t reason = SVA_LCM_REJECT_VALUE;
@@ -607,7 +627,7 @@ sva_lcm_verdict_t sva_lcm_on_mission(sva_lcm_node_t* self, const void* data, siz
     if (!check_frame_fields(&self->priv.mission_rx.frame, frame_err, sizeof frame_err)) {
         char what[240];
         (void)snprintf(what, sizeof what, "%.63s: %.159s", self->channel_mission, frame_err);
-        return reject(self, SVA_LCM_REJECT_VALUE, what);
+        return sva_lcm_reject(self, SVA_LCM_REJECT_VALUE, what);
     }
     if (self->priv.have_mission && (memcmp(self->priv.mission_raw, data, size) == 0)) {
         self->counters.unchanged += 1U;
@@ -682,7 +702,7 @@ static sva_lcm_verdict_t refuse_event(sva_lcm_node_t* self, sva_lcm_reject_t rea
     r->plan.algorithm = (int8_t)self->algorithm;
     r->plan.fleet_revision = self->priv.fleet_revision;
     r->plan.mission_revision = self->priv.mission_revision;
-    const sva_lcm_verdict_t v = reject(self, reason, text);
+    const sva_lcm_verdict_t v = sva_lcm_reject(self, reason, text);
     publish_replan(self);
     return v;
 }
@@ -768,10 +788,8 @@ static int16_t list_changes(const sva_plan_t* from, const sva_plan_t* to, const 
     return n;
 }
 
-static void replan_live(sva_lcm_node_t* self);
-
 // Every message a replan carries names its version, also when it is empty.
-static void stamp_replan_versions(sva_lcm_replan_t* r)
+void sva_lcm_stamp_replan_versions(sva_lcm_replan_t* r)
 {
     r->version = SVA_LCM_REPLAN_T_VERSION;
     r->residual_fleet.version = SVA_LCM_FLEET_STATE_T_VERSION;
@@ -782,19 +800,19 @@ static void stamp_replan_versions(sva_lcm_replan_t* r)
 sva_lcm_verdict_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_t size)
 {
     self->counters.event_rx += 1U;
-    const sva_lcm_verdict_t v = check_frame(self, self->channel_event, data, size,
-                                            SVA_LCM_EVENT_BYTES, __sva_lcm_event_t_get_hash());
+    const sva_lcm_verdict_t v = sva_lcm_check_frame(
+        self, self->channel_event, data, size, SVA_LCM_EVENT_BYTES, __sva_lcm_event_t_get_hash());
     if (v != SVA_LCM_ACCEPTED) {
         return v;
     }
     sva_lcm_event_t* e = &self->priv.event_rx;
     if (sva_lcm_event_t_decode(data, 0, (int)size, e) != (int)size) {
-        return reject(self, SVA_LCM_REJECT_TRUNCATED, "event: decoder refused the bytes");
+        return sva_lcm_reject(self, SVA_LCM_REJECT_TRUNCATED, "event: decoder refused the bytes");
     }
     sva_lcm_replan_t* r = &self->priv.replan_tx;
     // Every array is encoded in full: clear what the last answer left behind.
     memset(r, 0, sizeof(*r));
-    stamp_replan_versions(r);
+    sva_lcm_stamp_replan_versions(r);
     r->event_seq = e->seq;
     r->event_type = e->type;
     r->change_penalty = self->change_penalty;
@@ -845,12 +863,12 @@ sva_lcm_verdict_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_
         (void)snprintf(text, sizeof text, "%.31s: %.126s", self->channel_event, msg);
         return refuse_event(self, SVA_LCM_REJECT_INVALID, &diag, text);
     }
-    replan_live(self);
+    sva_lcm_replan_live(self);
     return SVA_LCM_ACCEPTED;
 }
 
 // Replans the live mission after applied events and publishes the replan (header set).
-static void replan_live(sva_lcm_node_t* self)
+void sva_lcm_replan_live(sva_lcm_node_t* self)
 {
     sva_lcm_replan_t* r = &self->priv.replan_tx;
     sva_live_t* live = &self->priv.live;
@@ -884,7 +902,7 @@ static void replan_live(sva_lcm_node_t* self)
         for (size_t i = 0; (i + 1U < sizeof text) && (text[i] != '\0'); ++i) {
             r->diag_text[i] = (int8_t)text[i];
         }
-        (void)reject(self, SVA_LCM_REJECT_PLANNER, text);
+        (void)sva_lcm_reject(self, SVA_LCM_REJECT_PLANNER, text);
         publish_replan(self);
         return;
     }
@@ -905,82 +923,10 @@ static void replan_live(sva_lcm_node_t* self)
         p->route_count = 0;
         p->item_count = 0;
         p->status = SVA_LCM_PLAN_T_STATUS_TOO_LARGE;
-        (void)reject(self, SVA_LCM_REJECT_TOO_LARGE,
-                     "replan: plan needs more than MAX_ROUTE_ITEMS");
+        (void)sva_lcm_reject(self, SVA_LCM_REJECT_TOO_LARGE,
+                             "replan: plan needs more than MAX_ROUTE_ITEMS");
     }
     publish_replan(self);
-}
-
-// A fleet report while a live mission runs (fleet_reports set): each UAV in service
-// whose report contradicts the plan in force becomes an event at the live mission's
-// now: health not OK -> uav_lost; more than track_tolerance_cells (Manhattan) from the
-// flight model's position now -> a position event (the reported cell and fuel); fuel
-// below what its route in force still needs (the flight model's fuel now less its fuel
-// at the route's end) -> a fuel event. With at least one applied, one replan is
-// published (event_seq -1, event_type the last one).
-static int64_t sva_lcm_abs64(int64_t v)
-{
-    return (v < 0) ? -v : v;
-}
-
-static void fleet_report(sva_lcm_node_t* self)
-{
-    const sva_lcm_fleet_state_t* f = &self->priv.fleet_rx;
-    sva_live_t* live = &self->priv.live;
-    sva_lcm_replan_t* r = &self->priv.replan_tx;
-    memset(r, 0, sizeof(*r));
-    stamp_replan_versions(r);
-    r->event_seq = -1;
-    r->change_penalty = self->change_penalty;
-    uint32_t applied = 0;
-    for (int32_t i = 0; i < (int32_t)f->uav_count; ++i) {
-        const sva_lcm_uav_state_t* w = &f->uavs[i];
-        int32_t u = -1;
-        for (uint16_t k = 0; k < live->mission.uav_count; ++k) {
-            if (live->mission.uavs[k].id == w->id) {
-                u = (int32_t)k;
-            }
-        }
-        int32_t x = 0;
-        int32_t y = 0;
-        int32_t fuel = 0;
-        int32_t ready = 0;
-        if ((u < 0) ||
-            !sva_live_uav_at(live, (uint16_t)u, live->now_ticks, &x, &y, &fuel, &ready)) {
-            continue;  // not in the live mission, or out of service
-        }
-        sva_event_t ev;
-        memset(&ev, 0, sizeof ev);
-        ev.at_ticks = live->now_ticks;
-        ev.uav_id = w->id;
-        const int64_t off = sva_lcm_abs64((int64_t)w->x - x) + sva_lcm_abs64((int64_t)w->y - y);
-        if (w->health != SVA_LCM_UAV_STATE_T_HEALTH_OK) {
-            ev.type = SVA_EVENT_UAV_LOST;
-        } else if (off > (int64_t)self->track_tolerance_cells) {
-            ev.type = SVA_EVENT_POSITION;
-            ev.x = w->x;
-            ev.y = w->y;
-            ev.fuel = w->fuel;
-        } else {
-            int32_t end_fuel = 0;
-            if (!sva_live_uav_at(live, (uint16_t)u, (int32_t)SVA_MAX_TICK, &x, &y, &end_fuel,
-                                 &ready) ||
-                ((int64_t)w->fuel >= (int64_t)fuel - (int64_t)end_fuel)) {
-                continue;
-            }
-            ev.type = SVA_EVENT_FUEL;
-            ev.fuel = w->fuel;
-        }
-        if (sva_live_apply(live, &ev, NULL) == SVA_OK) {
-            applied += 1U;
-            r->event_type = (int8_t)ev.type;
-        }
-    }
-    if (applied > 0U) {
-        r->now_ticks = live->now_ticks;
-        r->revision = (int64_t)live->revision;
-        replan_live(self);
-    }
 }
 
 sva_status_t sva_lcm_publish_status(sva_lcm_node_t* self, int64_t utime)

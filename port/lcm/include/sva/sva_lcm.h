@@ -40,6 +40,14 @@
 /// in force still needs becomes a fuel event (all at the live mission's now); if any
 /// applied, one replan (event_seq -1) is published.
 ///
+/// ## Vehicle reports (sva_lcm_on_report)
+///   <prefix>REPORT   sva_lcm_report_t       what one vehicle says of itself (telemetry)
+/// Whatever the fleet_reports setting, a report of a live mission first moves the clock
+/// to its at_ticks (when later than now: vehicles' clocks differ a little, so an earlier
+/// one is taken as now), then the core's rule (sva_live_report) decides: lost, back,
+/// off its track, short of fuel, or nothing. Fleet reports (fleet_reports set) go
+/// through the same rule, one report per UAV listed.
+///
 /// ## Where every byte lives
 /// Everything is in sva_lcm_node_t, which the caller owns (the node program declares it
 /// static): decoded messages, raw copies for change detection, the core mission,
@@ -70,6 +78,7 @@
 #include "sva_lcm_event_t.h"
 #include "sva_lcm_plan_t.h"
 #include "sva_lcm_replan_t.h"
+#include "sva_lcm_report_t.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -104,6 +113,10 @@ extern "C" {
     (8 + 40 + 8 + 2 * (2 + 8 * SVA_LCM_REPLAN_T_MAX_CHANGES) + 18 +                              \
      SVA_LCM_REPLAN_T_DIAG_TEXT_SIZE + (SVA_LCM_FLEET_BYTES - 8) + (SVA_LCM_MISSION_BYTES - 8) + \
      (SVA_LCM_PLAN_BYTES - 8))
+
+/// The vehicle report: fingerprint, version (1), uav_id and at_ticks (8), health (1),
+/// x, y and fuel (12), mission_seq and reached_seq (4).
+#define SVA_LCM_REPORT_BYTES (8 + 1 + 8 + 1 + 12 + 4)
 
 /// Longest channel name LCM accepts (LCM_MAX_CHANNEL_NAME_LENGTH) plus the NUL.
 #define SVA_LCM_CHANNEL_SIZE 64
@@ -151,6 +164,8 @@ typedef struct {
     uint64_t fleet_rx;           ///< fleet messages handled (accepted or not)
     uint64_t mission_rx;         ///< mission messages handled
     uint64_t event_rx;           ///< event messages handled
+    uint64_t report_rx;          ///< vehicle report messages handled
+    uint64_t reports_applied;    ///< reports the report rule turned into an event
     uint64_t replans_published;  ///< replans (accepted or refused events) published
     uint64_t unchanged;          ///< accepted but identical to the current input
     uint64_t plans_published;    ///< plans (any status) handed to publish successfully
@@ -164,6 +179,7 @@ typedef struct {
     lcm_subscription_t* sub_fleet;
     lcm_subscription_t* sub_mission;
     lcm_subscription_t* sub_event;
+    lcm_subscription_t* sub_report;
     bool live_active;  ///< a plan was published: `live` holds its live mission
     bool have_fleet;
     bool have_mission;
@@ -181,6 +197,7 @@ typedef struct {
     sva_lcm_fleet_state_t fleet_rx;
     sva_lcm_mission_t mission_rx;
     sva_lcm_event_t event_rx;
+    sva_lcm_report_t report_rx;
     /// The core's view: fleet and mission combined.
     sva_mission_t mission;
     sva_planner_t planner;
@@ -211,6 +228,7 @@ typedef struct {
     char channel_status[SVA_LCM_CHANNEL_SIZE];
     char channel_event[SVA_LCM_CHANNEL_SIZE];
     char channel_replan[SVA_LCM_CHANNEL_SIZE];
+    char channel_report[SVA_LCM_CHANNEL_SIZE];
     /// Cells a replan pays per changed visit (SPEC 12.4), [0, SVA_MAX_CHANGE_PENALTY]:
     /// set it before the first plan (the live mission takes it when it starts).
     int32_t change_penalty;
@@ -261,6 +279,15 @@ sva_lcm_verdict_t sva_lcm_on_mission(sva_lcm_node_t* self, const void* data, siz
 /// passed the fingerprint check). Allocates nothing (publish aside); sva_live_apply's
 /// and sva_live_replan's complexity.
 sva_lcm_verdict_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_t size);
+
+/// Handles one report_t message (see "Vehicle reports" above): while a live mission
+/// runs, moves its clock to the report's tick when that is later than now, turns the
+/// report into at most one event by the core's rule (sva_live_report, with
+/// track_tolerance_cells) and, when one applies, replans and publishes a replan_t
+/// (event_seq -1). Refused (counted, nothing changed, no replan published): a wrong
+/// size or fingerprint, another version, no live mission, a field out of range.
+/// Allocates nothing (publish aside); sva_live_apply's and sva_live_replan's complexity.
+sva_lcm_verdict_t sva_lcm_on_report(sva_lcm_node_t* self, const void* data, size_t size);
 
 /// Encodes and publishes a node_status_t stamped with utime (microseconds).
 /// Returns SVA_OK, or SVA_ERR_ARGUMENT iff publishing failed. Allocates nothing.
