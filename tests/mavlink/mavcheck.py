@@ -160,3 +160,35 @@ def run_tool(text: str, timeout: float = 120):
         elif w[0] == "result":
             results[int(w[1])] = " ".join(w[2:])
     return items, results, p.returncode, p.stderr
+
+
+# --- reports: telemetry in mission terms, recomputed with pymap3d -----------------------
+
+def round_half_away(v: float) -> int:
+    return int(math.floor(abs(v) + 0.5)) * (1 if v >= 0 else -1)
+
+
+def position_e7(fr: dict, east_cells: float, north_cells: float) -> Tuple[int, int]:
+    """A WGS84 position (1e-7 degree) east_cells and north_cells (fractions allowed) from
+    the frame's origin in its East-North-Up plane."""
+    fi = frame_ints(fr)
+    cell = fi["cell_cm"] / 100.0
+    lat, lon, _ = pymap3d.enu2geodetic(east_cells * cell, north_cells * cell, 0.0,
+                                       fi["lat_e7"] / 1e7, fi["lon_e7"] / 1e7, 0.0)
+    return round_half_away(float(lat) * 1e7), round_half_away(float(lon) * 1e7)
+
+
+def cell_of(fr: dict, lat_e7: int, lon_e7: int) -> Tuple[int, int]:
+    """The cell a report must give for a position (docs/flight-stack.md: east / cell_m and
+    north / cell_m rounded half away from zero)."""
+    fi = frame_ints(fr)
+    cell = fi["cell_cm"] / 100.0
+    e, n, _ = pymap3d.geodetic2enu(lat_e7 / 1e7, lon_e7 / 1e7, 0.0, fi["lat_e7"] / 1e7,
+                                   fi["lon_e7"] / 1e7, 0.0)
+    return round_half_away(float(e) / cell), round_half_away(float(n) / cell)
+
+
+def tick_of(fr: dict, gps_ms: int) -> int:
+    """report_t.at_ticks for a fix taken at GPS time gps_ms: floor((gps - t0) / tick), >= 0."""
+    fi = frame_ints(fr)
+    return max(0, (gps_ms - fi["t0_ms"]) // fi["tick_ms"])

@@ -1,28 +1,17 @@
-// sva_mavlink_bridge: sva_node's plans as MAVLink missions (docs/mavlink.md).
-// Subscribes to <prefix>FLEET, MISSION, PLAN and REPLAN (docs/lcm.md); every plan
-// (complete or partial) that answers the fleet and mission it holds is turned into
-// mission items per UAV with a vehicle (--vehicle UAV_ID=udp:HOST:PORT[:SYSID]) and
-// uploaded; an accepted replan uploads only to the vehicles whose remaining route
-// changed. One line per vehicle and plan on stdout; errors name the vehicle.
-#include <errno.h>
-#include <inttypes.h>
-#include <lcm/lcm.h>
+// sva_mavlink_bridge: sva_node's plans as MAVLink missions, and the vehicles' telemetry
+// as reports (docs/mavlink.md). Reads the options, opens a link per vehicle
+// (--vehicle UAV_ID=udp:HOST:PORT[:SYSID] or tcp:...), subscribes to the plans, then
+// loops: LCM messages, each vehicle's link, upload results and link events printed,
+// reports published.
 #include <poll.h>
 #include <signal.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
-#include "sva/sva_mavlink.h"
-#include "sva_lcm_fleet_state_t.h"
-#include "sva_lcm_mission_t.h"
-#include "sva_lcm_plan_t.h"
-#include "sva_lcm_replan_t.h"
+#include "bridge.h"
 
-#define DEFAULT_URL    "udpm://239.255.76.67:7667?ttl=0"
-#define DEFAULT_PREFIX "SVA_"
-#define MAX_VEHICLES   64
-#define CHANNEL_SIZE   64
+/// The loop wakes at least this often (sva_mavlink_vehicle_service wants <= 100 ms).
+#define LOOP_WAIT_MS 50
 
 static volatile sig_atomic_t stop_requested;
 static void on_signal(int sig)
@@ -31,476 +20,18 @@ static void on_signal(int sig)
     stop_requested = 1;
 }
 
-typedef struct vehicle_slot {
-    sva_mavlink_vehicle_t link;
-    sva_mavlink_item_t flown[SVA_MAVLINK_MAX_ITEMS];  ///< the last mission it accepted or got
-    size_t flown_count;
-    int64_t plan_id;  ///< plan of the upload in progress
-    bool reported;    ///< its result was printed
-} vehicle_slot_t;
-
-static vehicle_slot_t slots[MAX_VEHICLES];
-static size_t slot_count;
-
-static sva_lcm_fleet_state_t fleet;
-static sva_lcm_mission_t mission;
-static bool have_fleet;
-static bool have_mission;
-static sva_lcm_plan_t pending_plan;  // a plan whose inputs have not arrived yet
-static bool have_pending;
-static sva_lcm_replan_t replan;
-static bool ardupilot;  // --ardupilot: a home item 0 first
-static sva_mavlink_target_t route_targets[SVA_MAVLINK_MAX_ROUTE_TARGETS];
-static sva_mavlink_item_t built[SVA_MAVLINK_MAX_ITEMS];
-
-static void usage(FILE* f)
+static void run(lcm_t* lcm)
 {
-    fprintf(f,
-            "usage: sva_mavlink_bridge --vehicle UAV_ID=udp:HOST:PORT[:SYSID] [--vehicle ...]\n"
-            "                          [--url URL] [--prefix P] [--system N] [--timeout-ms N]\n"
-            "                          [--retries N] [--ardupilot]\n"
-            "  --url         LCM URL (default %s)\n"
-            "  --prefix      channel prefix (default %s): <prefix>FLEET, MISSION, PLAN, REPLAN\n"
-            "  --system      this side's MAVLink system id, [1, 255] (default 250)\n"
-            "  --timeout-ms  wait per message before resending, [1, 600000] (default %d)\n"
-            "  --retries     resends of one message before giving up, [0, 100] (default %d)\n"
-            "  --ardupilot   put a home item 0 first (ArduPilot overwrites item 0 with home)\n",
-            DEFAULT_URL, DEFAULT_PREFIX, SVA_MAVLINK_TIMEOUT_MS, SVA_MAVLINK_RETRIES);
-}
-
-static bool int_arg(const char* name, const char* text, long lo, long hi, long* out)
-{
-    char* end = NULL;
-    errno = 0;
-    long v = strtol(text, &end, 10);
-    if (text[0] == '\0' || *end != '\0' || errno != 0 || v < lo || v > hi) {
-        fprintf(stderr,
-                "sva_mavlink_bridge: error: %s: must be an integer in [%ld, %ld], got \"%.40s\"\n",
-                name, lo, hi, text);
-        return false;
-    }
-    *out = v;
-    return true;
-}
-
-static vehicle_slot_t* slot_of(int32_t uav_id)
-{
-    for (size_t i = 0; i < slot_count; i++) {
-        if (slots[i].link.spec.uav_id == uav_id) {
-            return &slots[i];
-        }
-    }
-    return NULL;
-}
-
-static const sva_lcm_target_t* find_target(const sva_lcm_mission_t* m, int32_t id)
-{
-    for (int i = 0; i < m->target_count && i < SVA_LCM_MISSION_T_MAX_TARGETS; i++) {
-        if (m->targets[i].id == id) {
-            return &m->targets[i];
-        }
-    }
-    return NULL;
-}
-
-static void say_vehicle(const vehicle_slot_t* s, int64_t plan_id, const char* text)
-{
-    printf("plan %" PRId64 ": uav %d (udp:%s:%u): %s\n", plan_id, (int)s->link.spec.uav_id,
-           s->link.spec.host, (unsigned)s->link.spec.port, text);
-    fflush(stdout);
-}
-
-static void start_upload(vehicle_slot_t* s, const sva_mavlink_item_t* items, size_t count,
-                         int64_t plan_id)
-{
-    memcpy(s->link.items, items, count * sizeof items[0]);
-    s->link.item_count = count;
-    if (ardupilot) {
-        (void)sva_mavlink_prepend_home(s->link.items, SVA_MAVLINK_MAX_ITEMS, &s->link.item_count);
-    }
-    memcpy(s->flown, items, count * sizeof items[0]);
-    s->flown_count = count;
-    s->plan_id = plan_id;
-    s->reported = false;
-    char text[64];
-    snprintf(text, sizeof text, "uploading %zu items", s->link.item_count);
-    say_vehicle(s, plan_id, text);
-    (void)sva_mavlink_vehicle_start(&s->link, sva_mavlink_now_ms());
-}
-
-static bool in_list(const int32_t* uavs, int listed, int32_t uav_id)
-{
-    for (int i = 0; i < listed; i++) {
-        if (uavs[i] == uav_id) {
-            return true;
-        }
-    }
-    return false;
-}
-
-// Builds and uploads the routes of plan p over fleet f and mission m (frame from m, or
-// from frame_m when m has none). replan: the replan_t answered (changed-route rule), or
-// NULL for a fresh plan (upload what differs from the vehicle's last mission).
-static void dispatch(const sva_lcm_plan_t* p, const sva_lcm_fleet_state_t* f,
-                     const sva_lcm_mission_t* m, const sva_lcm_mission_t* frame_m,
-                     const sva_lcm_replan_t* rp)
-{
-    char err[SVA_MAVLINK_ERROR_SIZE];
-    const sva_lcm_frame_t* lf = m->frame.present ? &m->frame : &frame_m->frame;
-    if (!lf->present) {
-        for (size_t i = 0; i < slot_count; i++) {
-            say_vehicle(&slots[i], p->plan_id,
-                        "error: frame: the mission has none (mission_t.frame.present 0): cells "
-                        "and ticks cannot be placed on the Earth; nothing uploaded");
-        }
-        return;
-    }
-    sva_frame_t frame = {lf->lat_e7, lf->lon_e7, lf->alt_cm, lf->cell_cm, lf->tick_ms, lf->t0_ms};
-    if (!sva_frame_check(&frame, err, sizeof err)) {
-        for (size_t i = 0; i < slot_count; i++) {
-            char text[SVA_MAVLINK_ERROR_SIZE + 32];
-            snprintf(text, sizeof text, "error: %s; nothing uploaded", err);
-            say_vehicle(&slots[i], p->plan_id, text);
-        }
-        return;
-    }
-    sva_frame_geodesy_t* geo = sva_frame_geodesy_open(&frame, err, sizeof err);
-    if (geo == NULL) {
-        fprintf(stderr, "sva_mavlink_bridge: error: %s\n", err);
-        return;
-    }
-    int offset = 0;
-    for (int r = 0; r < p->route_count && r < SVA_LCM_PLAN_T_MAX_UAVS; r++) {
-        const sva_lcm_route_t* route = &p->routes[r];
-        int first = offset;
-        offset += route->target_count;
-        vehicle_slot_t* s = slot_of(route->uav_id);
-        if (s == NULL) {
-            continue;
-        }
-        const sva_lcm_uav_state_t* u = NULL;
-        for (int k = 0; k < f->uav_count && k < SVA_LCM_FLEET_STATE_T_MAX_UAVS; k++) {
-            if (f->uavs[k].id == route->uav_id) {
-                u = &f->uavs[k];
-            }
-        }
-        if (u == NULL || route->target_count < 0 || offset > p->item_count ||
-            offset > SVA_LCM_PLAN_T_MAX_ROUTE_ITEMS) {
-            say_vehicle(s, p->plan_id, "error: plan: the route does not match the fleet");
-            continue;
-        }
-        size_t n = 0;
-        bool ok = true;
-        for (int k = first; k < offset && ok; k++) {
-            const sva_lcm_target_t* t = find_target(m, p->route_targets[k]);
-            if (t == NULL) {
-                snprintf(err, sizeof err, "error: plan: target %d is not in the mission",
-                         (int)p->route_targets[k]);
-                say_vehicle(s, p->plan_id, err);
-                ok = false;
-            } else if (n == SVA_MAVLINK_MAX_ROUTE_TARGETS) {
-                n++;  // the builder names the limit
-            } else {
-                route_targets[n].id = t->id;
-                route_targets[n].x = t->x;
-                route_targets[n].y = t->y;
-                route_targets[n].start = t->start_ticks;
-                route_targets[n].end = t->end_ticks;
-                n++;
-            }
-        }
-        if (!ok) {
-            continue;
-        }
-        sva_mavlink_route_t rt = {route->uav_id,     u->x,          u->y, u->ready_at_ticks,
-                                  m->ticks_per_cell, route_targets, n};
-        size_t count = 0;
-        if (!sva_mavlink_build(&frame, geo, &rt, built, SVA_MAVLINK_MAX_ITEMS, &count, err,
-                               sizeof err)) {
-            char text[SVA_MAVLINK_ERROR_SIZE + 32];
-            snprintf(text, sizeof text, "error: %s; nothing uploaded", err);
-            say_vehicle(s, p->plan_id, text);
-            continue;
-        }
-        bool changed;
-        if (rp != NULL) {
-            changed = in_list(rp->dropped_uav, rp->dropped_listed, route->uav_id) ||
-                      in_list(rp->added_uav, rp->added_listed, route->uav_id) ||
-                      !sva_mavlink_same_remaining(s->flown, s->flown_count, built, count);
-        } else {
-            changed = !sva_mavlink_same_items(s->flown, s->flown_count, built, count);
-        }
-        if (!changed) {
-            say_vehicle(s, p->plan_id, "route unchanged, not uploaded");
-            continue;
-        }
-        if (count == 0) {
-            if (s->flown_count == 0) {
-                say_vehicle(s, p->plan_id, "no targets, nothing to upload");
-                continue;
-            }
-            // its targets were taken away: the new mission is to come home
-            built[0].command = MAV_CMD_NAV_RETURN_TO_LAUNCH;
-            built[0].frame = MAV_FRAME_MISSION;
-            built[0].param1 = built[0].param2 = built[0].param3 = built[0].param4 = 0.0f;
-            built[0].x = built[0].y = 0;
-            built[0].z = 0.0f;
-            count = 1;
-        }
-        start_upload(s, built, count, p->plan_id);
-    }
-    sva_frame_geodesy_close(geo);
-}
-
-// A message (or a message inside one, `what`) of its type's version: true; else one
-// line naming both versions on stderr and false (docs/flight-stack.md "Wire versions").
-static bool version_ok(const char* kind, const char* what, int got, int want)
-{
-    if (got == want) {
-        return true;
-    }
-    fprintf(stderr,
-            "sva_mavlink_bridge: %s: %s.version is %d, this bridge speaks version %d; "
-            "ignored\n",
-            kind, what, got, want);
-    return false;
-}
-
-static bool plan_usable(const sva_lcm_plan_t* p)
-{
-    return p->status == SVA_LCM_PLAN_T_STATUS_COMPLETE ||
-           p->status == SVA_LCM_PLAN_T_STATUS_PARTIAL;
-}
-
-static void try_pending(void)
-{
-    if (have_pending && have_fleet && have_mission &&
-        pending_plan.fleet_revision == fleet.revision &&
-        pending_plan.mission_revision == mission.revision) {
-        have_pending = false;
-        dispatch(&pending_plan, &fleet, &mission, &mission, NULL);
-    }
-}
-
-static void on_fleet(const lcm_recv_buf_t* rbuf, const char* channel, void* user)
-{
-    (void)channel;
-    (void)user;
-    if (sva_lcm_fleet_state_t_decode(rbuf->data, 0, (int)rbuf->data_size, &fleet) !=
-        (int)rbuf->data_size) {
-        fprintf(stderr, "sva_mavlink_bridge: FLEET: not a fleet_state_t of this build; ignored\n");
-        have_fleet = false;
-        return;
-    }
-    if (!version_ok("FLEET", "fleet_state_t", fleet.version, SVA_LCM_FLEET_STATE_T_VERSION)) {
-        have_fleet = false;
-        return;
-    }
-    have_fleet = true;
-    try_pending();
-}
-
-static void on_mission(const lcm_recv_buf_t* rbuf, const char* channel, void* user)
-{
-    (void)channel;
-    (void)user;
-    if (sva_lcm_mission_t_decode(rbuf->data, 0, (int)rbuf->data_size, &mission) !=
-        (int)rbuf->data_size) {
-        fprintf(stderr, "sva_mavlink_bridge: MISSION: not a mission_t of this build; ignored\n");
-        have_mission = false;
-        return;
-    }
-    if (!version_ok("MISSION", "mission_t", mission.version, SVA_LCM_MISSION_T_VERSION)) {
-        have_mission = false;
-        return;
-    }
-    have_mission = true;
-    try_pending();
-}
-
-static void on_plan(const lcm_recv_buf_t* rbuf, const char* channel, void* user)
-{
-    (void)channel;
-    (void)user;
-    if (sva_lcm_plan_t_decode(rbuf->data, 0, (int)rbuf->data_size, &pending_plan) !=
-        (int)rbuf->data_size) {
-        fprintf(stderr, "sva_mavlink_bridge: PLAN: not a plan_t of this build; ignored\n");
-        have_pending = false;
-        return;
-    }
-    if (!version_ok("PLAN", "plan_t", pending_plan.version, SVA_LCM_PLAN_T_VERSION)) {
-        have_pending = false;
-        return;
-    }
-    if (!plan_usable(&pending_plan)) {
-        printf("plan %" PRId64 ": status %d (not complete or partial): nothing uploaded\n",
-               pending_plan.plan_id, (int)pending_plan.status);
-        fflush(stdout);
-        return;
-    }
-    have_pending = true;
-    try_pending();
-}
-
-static void on_replan(const lcm_recv_buf_t* rbuf, const char* channel, void* user)
-{
-    (void)channel;
-    (void)user;
-    if (sva_lcm_replan_t_decode(rbuf->data, 0, (int)rbuf->data_size, &replan) !=
-        (int)rbuf->data_size) {
-        fprintf(stderr, "sva_mavlink_bridge: REPLAN: not a replan_t of this build; ignored\n");
-        return;
-    }
-    if (!version_ok("REPLAN", "replan_t", replan.version, SVA_LCM_REPLAN_T_VERSION) ||
-        !version_ok("REPLAN", "replan_t.residual_fleet", replan.residual_fleet.version,
-                    SVA_LCM_FLEET_STATE_T_VERSION) ||
-        !version_ok("REPLAN", "replan_t.residual_mission", replan.residual_mission.version,
-                    SVA_LCM_MISSION_T_VERSION) ||
-        !version_ok("REPLAN", "replan_t.plan", replan.plan.version, SVA_LCM_PLAN_T_VERSION)) {
-        return;
-    }
-    if (!replan.accepted || !plan_usable(&replan.plan)) {
-        printf("plan %" PRId64 ": replan of event %" PRId64 " %s: nothing uploaded\n",
-               replan.plan.plan_id, replan.event_seq,
-               replan.accepted ? "has no usable plan" : "was refused");
-        fflush(stdout);
-        return;
-    }
-    if (!have_mission) {
-        fprintf(stderr, "sva_mavlink_bridge: REPLAN: no mission held yet; ignored\n");
-        return;
-    }
-    dispatch(&replan.plan, &replan.residual_fleet, &replan.residual_mission, &mission, &replan);
-}
-
-int main(int argc, char** argv)
-{
-    const char* url = DEFAULT_URL;
-    const char* prefix = DEFAULT_PREFIX;
-    long own_system = 250;
-    long timeout_ms = SVA_MAVLINK_TIMEOUT_MS;
-    long retries = SVA_MAVLINK_RETRIES;
-    static sva_mavlink_vehicle_spec_t specs[MAX_VEHICLES];
-    size_t nspecs = 0;
-    char err[SVA_MAVLINK_ERROR_SIZE];
-    for (int i = 1; i < argc; i++) {
-        const char* a = argv[i];
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            return 0;
-        }
-        if (strcmp(a, "--ardupilot") == 0) {
-            ardupilot = true;
-            continue;
-        }
-        if (i + 1 >= argc) {
-            fprintf(stderr, "sva_mavlink_bridge: error: %.40s: unknown option or missing value\n",
-                    a);
-            usage(stderr);
-            return 2;
-        }
-        const char* v = argv[++i];
-        if (strcmp(a, "--url") == 0) {
-            url = v;
-        } else if (strcmp(a, "--prefix") == 0) {
-            if (strlen(v) > CHANNEL_SIZE - 8) {
-                fprintf(stderr, "sva_mavlink_bridge: error: --prefix: at most %d characters\n",
-                        CHANNEL_SIZE - 8);
-                return 2;
-            }
-            prefix = v;
-        } else if (strcmp(a, "--system") == 0) {
-            if (!int_arg("--system", v, 1, 255, &own_system)) {
-                return 2;
-            }
-        } else if (strcmp(a, "--timeout-ms") == 0) {
-            if (!int_arg("--timeout-ms", v, 1, 600000, &timeout_ms)) {
-                return 2;
-            }
-        } else if (strcmp(a, "--retries") == 0) {
-            if (!int_arg("--retries", v, 0, 100, &retries)) {
-                return 2;
-            }
-        } else if (strcmp(a, "--vehicle") == 0) {
-            if (nspecs == MAX_VEHICLES) {
-                fprintf(stderr, "sva_mavlink_bridge: error: --vehicle: at most %d vehicles\n",
-                        MAX_VEHICLES);
-                return 2;
-            }
-            if (!sva_mavlink_parse_vehicle(v, &specs[nspecs], err, sizeof err)) {
-                fprintf(stderr, "sva_mavlink_bridge: error: %s\n", err);
-                return 2;
-            }
-            for (size_t k = 0; k < nspecs; k++) {
-                if (specs[k].uav_id == specs[nspecs].uav_id) {
-                    fprintf(stderr, "sva_mavlink_bridge: error: --vehicle: UAV %d given twice\n",
-                            (int)specs[k].uav_id);
-                    return 2;
-                }
-            }
-            nspecs++;
-        } else {
-            fprintf(stderr, "sva_mavlink_bridge: error: %.40s: unknown option\n", a);
-            usage(stderr);
-            return 2;
-        }
-    }
-    if (nspecs == 0) {
-        fprintf(stderr, "sva_mavlink_bridge: error: no --vehicle given\n");
-        usage(stderr);
-        return 2;
-    }
-    for (size_t k = 0; k < nspecs; k++) {
-        if (!sva_mavlink_vehicle_open(&slots[k].link, &specs[k], (uint8_t)own_system, err,
-                                      sizeof err)) {
-            fprintf(stderr, "sva_mavlink_bridge: error: %s\n", err);
-            return 2;
-        }
-        slots[k].link.upload.timeout_ms = (int32_t)timeout_ms;
-        slots[k].link.upload.retries = (int32_t)retries;
-        slots[k].reported = true;
-        slot_count++;
-    }
-    lcm_t* lcm = lcm_create(url);
-    if (lcm == NULL) {
-        fprintf(stderr, "sva_mavlink_bridge: error: lcm_create(\"%.200s\") failed\n", url);
-        return 1;
-    }
-    static const char* const names[4] = {"FLEET", "MISSION", "PLAN", "REPLAN"};
-    lcm_msg_handler_t handlers[4] = {on_fleet, on_mission, on_plan, on_replan};
-    for (int k = 0; k < 4; k++) {
-        char channel[CHANNEL_SIZE * 2 + 8];
-        // lcm_subscribe takes a regular expression: escape the prefix
-        size_t n = 0;
-        for (const char* c = prefix; *c != '\0'; c++) {
-            if (strchr(".^$*+?()[]{}|\\", *c) != NULL) {
-                channel[n++] = '\\';
-            }
-            channel[n++] = *c;
-        }
-        snprintf(channel + n, sizeof channel - n, "%s", names[k]);
-        lcm_subscription_t* sub = lcm_subscribe(lcm, channel, handlers[k], NULL);
-        if (sub == NULL || lcm_subscription_set_queue_capacity(sub, 64) != 0) {
-            fprintf(stderr, "sva_mavlink_bridge: error: cannot subscribe to %s%s\n", prefix,
-                    names[k]);
-            lcm_destroy(lcm);
-            return 1;
-        }
-    }
-    signal(SIGINT, on_signal);
-    signal(SIGTERM, on_signal);
-    printf("sva_mavlink_bridge: %zu vehicles, listening on %sFLEET, MISSION, PLAN, REPLAN\n",
-           slot_count, prefix);
-    fflush(stdout);
+    int wait_ms = LOOP_WAIT_MS;
     while (!stop_requested) {
-        struct pollfd fds[MAX_VEHICLES + 1];
+        struct pollfd fds[BRIDGE_MAX_VEHICLES + 1];
         fds[0].fd = lcm_get_fileno(lcm);
         fds[0].events = POLLIN;
-        for (size_t k = 0; k < slot_count; k++) {
-            fds[k + 1].fd = slots[k].link.fd;
+        for (size_t k = 0; k < bridge_slot_count; k++) {
+            fds[k + 1].fd = bridge_slots[k].link.fd;  // -1 (ignored) while a TCP link is down
             fds[k + 1].events = POLLIN;
         }
-        int rc = poll(fds, (nfds_t)(slot_count + 1), 50);
+        int rc = poll(fds, (nfds_t)(bridge_slot_count + 1), wait_ms);
         if (rc > 0 && (fds[0].revents & POLLIN) != 0) {
             if (lcm_handle(lcm) != 0) {
                 fprintf(stderr, "sva_mavlink_bridge: lcm_handle failed\n");
@@ -508,28 +39,42 @@ int main(int argc, char** argv)
             }
         }
         int64_t now = sva_mavlink_now_ms();
-        for (size_t k = 0; k < slot_count; k++) {
-            vehicle_slot_t* s = &slots[k];
-            sva_mavlink_vehicle_service(&s->link, now);
-            if (!s->reported && !sva_mavlink_vehicle_busy(&s->link)) {
-                s->reported = true;
-                if (s->link.upload.state == SVA_MAVLINK_UPLOAD_DONE) {
-                    char text[64];
-                    snprintf(text, sizeof text, "uploaded %u items",
-                             (unsigned)s->link.upload.count);
-                    say_vehicle(s, s->plan_id, text);
-                } else {
-                    char text[SVA_MAVLINK_ERROR_SIZE + 16];
-                    snprintf(text, sizeof text, "error: %s", s->link.upload.error);
-                    say_vehicle(s, s->plan_id, text);
-                    s->flown_count = 0;  // unknown what it holds: the next plan uploads again
-                }
-            }
-        }
+        bridge_vehicles_service(now);
+        int64_t until_report = bridge_reports_service(lcm, now);
+        wait_ms =
+            (until_report >= 0 && until_report < LOOP_WAIT_MS) ? (int)until_report : LOOP_WAIT_MS;
     }
-    for (size_t k = 0; k < slot_count; k++) {
-        sva_mavlink_vehicle_close(&slots[k].link);
+}
+
+int main(int argc, char** argv)
+{
+    static bridge_options_t options;
+    bridge_parse_t parsed = bridge_options_parse(argc, argv, &options);
+    if (parsed != BRIDGE_RUN) {
+        return parsed == BRIDGE_HELP ? 0 : 2;
     }
+    if (!bridge_vehicles_open(&options)) {
+        return 2;
+    }
+    lcm_t* lcm = lcm_create(options.url);
+    if (lcm == NULL) {
+        fprintf(stderr, "sva_mavlink_bridge: error: lcm_create(\"%.200s\") failed\n", options.url);
+        return 1;
+    }
+    if (!bridge_plans_subscribe(lcm, &options)) {
+        lcm_destroy(lcm);
+        return 1;
+    }
+    bridge_reports_configure(&options);
+    signal(SIGINT, on_signal);
+    signal(SIGTERM, on_signal);
+    printf("sva_mavlink_bridge: %zu vehicles, listening on %sFLEET, MISSION, PLAN, REPLAN; "
+           "reports on %sREPORT every %ld ms while a plan is held\n",
+           bridge_slot_count, options.prefix, options.prefix, options.report_ms);
+    fflush(stdout);
+    run(lcm);
+    bridge_vehicles_close();
+    bridge_reports_release();
     lcm_destroy(lcm);
     printf("sva_mavlink_bridge: stopped\n");
     return 0;

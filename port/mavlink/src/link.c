@@ -1,131 +1,21 @@
-// UDP endpoints of vehicles and the MAVLink byte parser (sva_mavlink.h).
+// One vehicle's link (sva_mavlink.h): the UDP socket or the TCP connection with its
+// reconnection, the bytes in (parser) and out (a queue on TCP), and what every message
+// feeds: the upload in progress and the telemetry.
 #include <errno.h>
-#include <fcntl.h>
-#include <netdb.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
 #include <sys/types.h>
 #include <time.h>
 #include <unistd.h>
 
-#include "sva/sva_mavlink.h"
+#include "mavlink_internal.h"
 
-static bool parse_int(const char* s, size_t len, long lo, long hi, long* out)
-{
-    if (len == 0 || len > 11) {
-        return false;
-    }
-    char buf[16];
-    memcpy(buf, s, len);
-    buf[len] = '\0';
-    char* end = NULL;
-    errno = 0;
-    long v = strtol(buf, &end, 10);
-    if (errno != 0 || *end != '\0' || buf[0] == '+' || buf[0] == ' ' || v < lo || v > hi) {
-        return false;
-    }
-    *out = v;
-    return true;
-}
-
-bool sva_mavlink_parse_vehicle(const char* text, sva_mavlink_vehicle_spec_t* spec, char* err,
-                               size_t err_size)
-{
-    memset(spec, 0, sizeof *spec);
-    const char* eq = strchr(text, '=');
-    long v = 0;
-    if (eq == NULL) {
-        snprintf(err, err_size, "--vehicle: must be UAV_ID=udp:HOST:PORT[:SYSID], got \"%.60s\"",
-                 text);
-        return false;
-    }
-    if (!parse_int(text, (size_t)(eq - text), 1, 2147483647L, &v)) {
-        snprintf(err, err_size,
-                 "--vehicle: UAV_ID must be an integer in [1, 2147483647], got \"%.*s\"",
-                 (int)((eq - text) > 40 ? 40 : (eq - text)), text);
-        return false;
-    }
-    spec->uav_id = (int32_t)v;
-    const char* rest = eq + 1;
-    if (strncmp(rest, "udp:", 4) != 0) {
-        snprintf(err, err_size, "--vehicle: %d: the endpoint must start with udp:, got \"%.60s\"",
-                 (int)spec->uav_id, rest);
-        return false;
-    }
-    rest += 4;
-    const char* c1 = strchr(rest, ':');
-    if (c1 == NULL || c1 == rest || (size_t)(c1 - rest) >= sizeof spec->host) {
-        snprintf(err, err_size, "--vehicle: %d: must be udp:HOST:PORT[:SYSID], got \"%.60s\"",
-                 (int)spec->uav_id, eq + 1);
-        return false;
-    }
-    memcpy(spec->host, rest, (size_t)(c1 - rest));
-    const char* port = c1 + 1;
-    const char* c2 = strchr(port, ':');
-    size_t port_len = c2 ? (size_t)(c2 - port) : strlen(port);
-    if (!parse_int(port, port_len, 1, 65535, &v)) {
-        snprintf(err, err_size,
-                 "--vehicle: %d: PORT must be an integer in [1, 65535], got \"%.*s\"",
-                 (int)spec->uav_id, (int)(port_len > 20 ? 20 : port_len), port);
-        return false;
-    }
-    spec->port = (uint16_t)v;
-    spec->system = 1;
-    if (c2 != NULL) {
-        if (!parse_int(c2 + 1, strlen(c2 + 1), 1, 255, &v)) {
-            snprintf(err, err_size,
-                     "--vehicle: %d: SYSID must be an integer in [1, 255], got \"%.20s\"",
-                     (int)spec->uav_id, c2 + 1);
-            return false;
-        }
-        spec->system = (uint8_t)v;
-    }
-    return true;
-}
-
-int sva_mavlink_udp_open(const sva_mavlink_vehicle_spec_t* spec, char* err, size_t err_size)
-{
-    struct addrinfo hints;
-    memset(&hints, 0, sizeof hints);
-    hints.ai_family = AF_UNSPEC;
-    hints.ai_socktype = SOCK_DGRAM;
-    char port[8];
-    snprintf(port, sizeof port, "%u", (unsigned)spec->port);
-    struct addrinfo* res = NULL;
-    int rc = getaddrinfo(spec->host, port, &hints, &res);
-    if (rc != 0 || res == NULL) {
-        snprintf(err, err_size, "vehicle %d: udp:%s:%u: cannot resolve: %s", (int)spec->uav_id,
-                 spec->host, (unsigned)spec->port, gai_strerror(rc));
-        return -1;
-    }
-    int fd = socket(res->ai_family, res->ai_socktype, res->ai_protocol);
-    if (fd < 0 || connect(fd, res->ai_addr, res->ai_addrlen) != 0) {
-        snprintf(err, err_size, "vehicle %d: udp:%s:%u: %s", (int)spec->uav_id, spec->host,
-                 (unsigned)spec->port, strerror(errno));
-        if (fd >= 0) {
-            close(fd);
-        }
-        freeaddrinfo(res);
-        return -1;
-    }
-    freeaddrinfo(res);
-    int flags = fcntl(fd, F_GETFL, 0);
-    if (flags < 0 || fcntl(fd, F_SETFL, flags | O_NONBLOCK) != 0) {
-        snprintf(err, err_size, "vehicle %d: fcntl: %s", (int)spec->uav_id, strerror(errno));
-        close(fd);
-        return -1;
-    }
-    return fd;
-}
-
-bool sva_mavlink_parse(sva_mavlink_parser_t* parser, uint8_t byte, mavlink_message_t* msg)
-{
-    uint8_t r =
-        mavlink_frame_char_buffer(&parser->buffer, &parser->status, byte, msg, &parser->out_status);
-    return r == MAVLINK_FRAMING_OK;
-}
+/// Bytes read from the socket at a time (a UDP datagram at most).
+#define RX_CHUNK 2048
 
 int64_t sva_mavlink_now_ms(void)
 {
@@ -134,26 +24,70 @@ int64_t sva_mavlink_now_ms(void)
     return (int64_t)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
 }
 
-bool sva_mavlink_vehicle_open(sva_mavlink_vehicle_t* v, const sva_mavlink_vehicle_spec_t* spec,
-                              uint8_t own_system, char* err, size_t err_size)
+static bool is_tcp(const sva_mavlink_vehicle_t* v)
 {
-    memset(&v->parser, 0, sizeof v->parser);
-    memset(&v->upload, 0, sizeof v->upload);
-    v->spec = *spec;
-    v->item_count = 0;
-    v->next_heartbeat_ms = 0;
-    v->send_errors = 0;
-    v->upload.own_system = own_system;
-    v->upload.own_component = MAV_COMP_ID_MISSIONPLANNER;
-    v->upload.target_system = spec->system;
-    v->upload.target_component = MAV_COMP_ID_AUTOPILOT1;
-    v->upload.timeout_ms = SVA_MAVLINK_TIMEOUT_MS;
-    v->upload.retries = SVA_MAVLINK_RETRIES;
-    v->fd = sva_mavlink_udp_open(spec, err, err_size);
-    return v->fd >= 0;
+    return v->spec.transport == SVA_MAVLINK_TCP;
 }
 
-void sva_mavlink_vehicle_close(sva_mavlink_vehicle_t* v)
+static void flush_tx(sva_mavlink_vehicle_t* v)
+{
+    if (v->tx_len == 0 || v->link != SVA_MAVLINK_LINK_UP) {
+        return;
+    }
+    ssize_t n = send(v->fd, v->tx, v->tx_len, MSG_NOSIGNAL);
+    if (n > 0) {
+        memmove(v->tx, v->tx + n, v->tx_len - (size_t)n);
+        v->tx_len -= (size_t)n;
+    }
+    // n < 0: EAGAIN keeps the bytes for later; a broken connection shows up on reading.
+}
+
+static void send_frame(sva_mavlink_vehicle_t* v, const sva_mavlink_frame_t* f)
+{
+    if (!is_tcp(v)) {
+        if (send(v->fd, f->bytes, f->len, 0) != (ssize_t)f->len) {
+            v->send_errors++;  // nobody listening yet (ICMP refused): the timeout resends
+        }
+        return;
+    }
+    // A frame is queued whole or not at all: half a frame would corrupt the stream.
+    if (v->link != SVA_MAVLINK_LINK_UP || v->tx_len + f->len > sizeof v->tx) {
+        v->send_errors++;
+        return;
+    }
+    memcpy(v->tx + v->tx_len, f->bytes, f->len);
+    v->tx_len += f->len;
+    flush_tx(v);
+}
+
+static void send_heartbeat(sva_mavlink_vehicle_t* v, int64_t now_ms)
+{
+    sva_mavlink_frame_t f;
+    sva_mavlink_heartbeat(v->upload.own_system, v->upload.own_component, &f);
+    send_frame(v, &f);
+    v->next_heartbeat_ms = now_ms + SVA_MAVLINK_HEARTBEAT_MS;
+}
+
+static void on_connected(sva_mavlink_vehicle_t* v, int64_t now_ms)
+{
+    v->link = SVA_MAVLINK_LINK_UP;
+    v->connects++;
+    v->failed_connects = 0;
+    v->link_error[0] = '\0';
+    v->tx_len = 0;
+    sva_mavlink_parser_reset(&v->parser);
+    sva_mavlink_telemetry_on_link(&v->telemetry);
+    send_heartbeat(v, now_ms);
+    if (v->upload.state == SVA_MAVLINK_UPLOAD_COUNT) {
+        // Its MISSION_COUNT went nowhere: send it now, with every retry still to come.
+        sva_mavlink_frame_t f;
+        if (sva_mavlink_upload_start(&v->upload, v->upload.items, v->upload.count, now_ms, &f)) {
+            send_frame(v, &f);
+        }
+    }
+}
+
+static void close_fd(sva_mavlink_vehicle_t* v)
 {
     if (v->fd >= 0) {
         close(v->fd);
@@ -161,19 +95,110 @@ void sva_mavlink_vehicle_close(sva_mavlink_vehicle_t* v)
     v->fd = -1;
 }
 
-static void send_frame(sva_mavlink_vehicle_t* v, const sva_mavlink_frame_t* f)
+// A TCP attempt failed (why: errno's text or a reason): the next one in
+// SVA_MAVLINK_RECONNECT_MS.
+static void connect_failed(sva_mavlink_vehicle_t* v, int64_t now_ms, const char* why)
 {
-    if (send(v->fd, f->bytes, f->len, 0) != (ssize_t)f->len) {
-        v->send_errors++;  // nobody listening yet (ICMP refused): the timeout resends
+    close_fd(v);
+    v->link = SVA_MAVLINK_LINK_DOWN;
+    v->failed_connects++;
+    v->next_connect_ms = now_ms + SVA_MAVLINK_RECONNECT_MS;
+    snprintf(v->link_error, sizeof v->link_error, "%s", why);
+}
+
+static void link_lost(sva_mavlink_vehicle_t* v, int64_t now_ms, const char* why)
+{
+    close_fd(v);
+    v->link = SVA_MAVLINK_LINK_DOWN;
+    v->drops++;
+    v->next_connect_ms = now_ms + SVA_MAVLINK_RECONNECT_MS;
+    v->tx_len = 0;
+    snprintf(v->link_error, sizeof v->link_error, "%s", why);
+    if (sva_mavlink_vehicle_busy(v)) {
+        char text[SVA_MAVLINK_ERROR_SIZE];
+        snprintf(text, sizeof text, "link: tcp:%.64s:%u: connection lost during the upload: %.80s",
+                 v->spec.host, (unsigned)v->spec.port, why);
+        sva_mavlink_upload_abort(&v->upload, text);
     }
+}
+
+static void tcp_connect(sva_mavlink_vehicle_t* v, int64_t now_ms)
+{
+    v->fd = socket(v->addr_family, SOCK_STREAM, 0);
+    if (v->fd < 0 || !sva_mavlink_set_nonblocking(v->fd)) {
+        connect_failed(v, now_ms, strerror(errno));
+        return;
+    }
+    int one = 1;
+    // Frames are small and answered one by one: no Nagle delay.
+    (void)setsockopt(v->fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+    if (connect(v->fd, (const struct sockaddr*)(const void*)v->addr, (socklen_t)v->addr_len) == 0) {
+        on_connected(v, now_ms);
+    } else if (errno == EINPROGRESS) {
+        v->link = SVA_MAVLINK_LINK_CONNECTING;
+        v->next_connect_ms = now_ms + SVA_MAVLINK_CONNECT_TIMEOUT_MS;
+    } else {
+        connect_failed(v, now_ms, strerror(errno));
+    }
+}
+
+static void tcp_check_connect(sva_mavlink_vehicle_t* v, int64_t now_ms)
+{
+    struct pollfd p = {v->fd, POLLOUT, 0};
+    if (poll(&p, 1, 0) > 0) {
+        int so_error = 0;
+        socklen_t len = sizeof so_error;
+        if (getsockopt(v->fd, SOL_SOCKET, SO_ERROR, &so_error, &len) != 0) {
+            so_error = errno;
+        }
+        if (so_error == 0) {
+            on_connected(v, now_ms);
+        } else {
+            connect_failed(v, now_ms, strerror(so_error));
+        }
+    } else if (now_ms >= v->next_connect_ms) {
+        char why[64];
+        snprintf(why, sizeof why, "no connection after %d ms", SVA_MAVLINK_CONNECT_TIMEOUT_MS);
+        connect_failed(v, now_ms, why);
+    }
+}
+
+bool sva_mavlink_vehicle_open(sva_mavlink_vehicle_t* v, const sva_mavlink_vehicle_spec_t* spec,
+                              uint8_t own_system, char* err, size_t err_size)
+{
+    memset(v, 0, sizeof *v);
+    v->spec = *spec;
+    v->fd = -1;
+    v->upload.own_system = own_system;
+    v->upload.own_component = MAV_COMP_ID_MISSIONPLANNER;
+    v->upload.target_system = spec->system;
+    v->upload.target_component = MAV_COMP_ID_AUTOPILOT1;
+    v->upload.timeout_ms = SVA_MAVLINK_TIMEOUT_MS;
+    v->upload.retries = SVA_MAVLINK_RETRIES;
+    sva_mavlink_telemetry_init(&v->telemetry, spec->system);
+    if (!is_tcp(v)) {
+        v->fd = sva_mavlink_udp_open(spec, err, err_size);
+        v->link = v->fd >= 0 ? SVA_MAVLINK_LINK_UP : SVA_MAVLINK_LINK_DOWN;
+        return v->fd >= 0;
+    }
+    if (!sva_mavlink_resolve(spec, SOCK_STREAM, v->addr, &v->addr_len, &v->addr_family, err,
+                             err_size)) {
+        return false;
+    }
+    tcp_connect(v, sva_mavlink_now_ms());
+    return true;
+}
+
+void sva_mavlink_vehicle_close(sva_mavlink_vehicle_t* v)
+{
+    close_fd(v);
+    v->link = SVA_MAVLINK_LINK_DOWN;
 }
 
 bool sva_mavlink_vehicle_start(sva_mavlink_vehicle_t* v, int64_t now_ms)
 {
+    send_heartbeat(v, now_ms);
     sva_mavlink_frame_t f;
-    sva_mavlink_heartbeat(v->upload.own_system, v->upload.own_component, &f);
-    send_frame(v, &f);
-    v->next_heartbeat_ms = now_ms + 1000;
     if (!sva_mavlink_upload_start(&v->upload, v->items, v->item_count, now_ms, &f)) {
         return false;
     }
@@ -181,30 +206,96 @@ bool sva_mavlink_vehicle_start(sva_mavlink_vehicle_t* v, int64_t now_ms)
     return true;
 }
 
-void sva_mavlink_vehicle_service(sva_mavlink_vehicle_t* v, int64_t now_ms)
+static void on_message(sva_mavlink_vehicle_t* v, const mavlink_message_t* msg, int64_t now_ms)
 {
-    uint8_t buf[2048];
     sva_mavlink_frame_t f;
-    for (;;) {
-        ssize_t n = recv(v->fd, buf, sizeof buf, 0);
-        if (n <= 0) {
-            break;  // EAGAIN, or an ICMP error of an earlier send
-        }
-        for (ssize_t i = 0; i < n; i++) {
-            mavlink_message_t msg;
-            if (sva_mavlink_parse(&v->parser, buf[i], &msg) &&
-                sva_mavlink_upload_on_message(&v->upload, &msg, now_ms, &f)) {
-                send_frame(v, &f);
-            }
+    if (sva_mavlink_upload_on_message(&v->upload, msg, now_ms, &f)) {
+        send_frame(v, &f);
+    }
+    (void)sva_mavlink_telemetry_on_message(&v->telemetry, msg, now_ms);
+}
+
+// Feeds bytes to the parser and every frame it completes to on_message.
+static void feed(sva_mavlink_vehicle_t* v, const uint8_t* data, size_t size, bool datagram,
+                 int64_t now_ms)
+{
+    mavlink_message_t msg;
+    size_t used = 0;
+    while (used < size) {
+        used += sva_mavlink_parser_put(&v->parser, data + used, size - used);
+        while (sva_mavlink_parser_next(&v->parser, &msg)) {
+            on_message(v, &msg, now_ms);
         }
     }
+    if (datagram) {
+        sva_mavlink_parser_end(&v->parser);
+        while (sva_mavlink_parser_next(&v->parser, &msg)) {
+            on_message(v, &msg, now_ms);
+        }
+    }
+}
+
+static void receive(sva_mavlink_vehicle_t* v, int64_t now_ms)
+{
+    uint8_t buf[RX_CHUNK];
+    while (v->link == SVA_MAVLINK_LINK_UP) {
+        ssize_t n = recv(v->fd, buf, sizeof buf, 0);
+        if (!is_tcp(v)) {
+            if (n <= 0) {
+                return;  // EAGAIN, or an ICMP error of an earlier send
+            }
+            // Each datagram holds whole frames: it starts and ends a parse of its own
+            // (after sva_mavlink_parser_end the parser is empty again).
+            feed(v, buf, (size_t)n, true, now_ms);
+        } else if (n > 0) {
+            feed(v, buf, (size_t)n, false, now_ms);
+        } else if (n == 0) {
+            link_lost(v, now_ms, "closed by the vehicle");
+        } else if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) {
+            return;
+        } else {
+            link_lost(v, now_ms, strerror(errno));
+        }
+    }
+}
+
+void sva_mavlink_vehicle_service(sva_mavlink_vehicle_t* v, int64_t now_ms)
+{
+    if (is_tcp(v)) {
+        if (v->link == SVA_MAVLINK_LINK_DOWN && now_ms >= v->next_connect_ms) {
+            tcp_connect(v, now_ms);
+        }
+        if (v->link == SVA_MAVLINK_LINK_CONNECTING) {
+            tcp_check_connect(v, now_ms);
+        }
+        flush_tx(v);
+    }
+    receive(v, now_ms);
+    sva_mavlink_frame_t f;
+    const bool was_busy = sva_mavlink_vehicle_busy(v);
     if (sva_mavlink_upload_on_time(&v->upload, now_ms, &f)) {
         send_frame(v, &f);
     }
-    if (sva_mavlink_vehicle_busy(v) && now_ms >= v->next_heartbeat_ms) {
-        sva_mavlink_heartbeat(v->upload.own_system, v->upload.own_component, &f);
-        send_frame(v, &f);
-        v->next_heartbeat_ms = now_ms + 1000;
+    if (was_busy && v->upload.state == SVA_MAVLINK_UPLOAD_FAILED && is_tcp(v) &&
+        v->link != SVA_MAVLINK_LINK_UP) {
+        // Timed out on a link that is not up: say why it is not.
+        size_t n = strlen(v->upload.error);
+        snprintf(v->upload.error + n, sizeof v->upload.error - n,
+                 "; tcp:%.64s:%u not connected: %.80s", v->spec.host, (unsigned)v->spec.port,
+                 v->link_error[0] != '\0' ? v->link_error : "connecting");
+    }
+    if (v->link != SVA_MAVLINK_LINK_UP) {
+        return;
+    }
+    if (now_ms >= v->next_heartbeat_ms) {
+        send_heartbeat(v, now_ms);
+    }
+    sva_mavlink_frame_t requests[SVA_MAVLINK_STREAM_COUNT];
+    size_t n =
+        sva_mavlink_telemetry_requests(&v->telemetry, now_ms, v->upload.own_system,
+                                       v->upload.own_component, requests, SVA_MAVLINK_STREAM_COUNT);
+    for (size_t k = 0; k < n; k++) {
+        send_frame(v, &requests[k]);
     }
 }
 

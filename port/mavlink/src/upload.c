@@ -221,3 +221,10 @@ void sva_mavlink_heartbeat(uint8_t own_system, uint8_t own_component, sva_mavlin
                                MAV_AUTOPILOT_INVALID, 0, 0, MAV_STATE_ACTIVE);
     finish(&msg, out);
 }
+
+void sva_mavlink_upload_abort(sva_mavlink_upload_t* up, const char* reason)
+{
+    if (up->state == SVA_MAVLINK_UPLOAD_COUNT || up->state == SVA_MAVLINK_UPLOAD_ITEMS) {
+        fail(up, reason);
+    }
+}

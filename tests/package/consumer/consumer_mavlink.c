@@ -24,9 +24,9 @@ int main(void)
         spec.system != 2U) {
         return fail("3=udp:127.0.0.1:14550:2 parsed wrong");
     }
-    if (sva_mavlink_parse_vehicle("3=tcp:127.0.0.1:14550", &spec, err, sizeof err) ||
+    if (sva_mavlink_parse_vehicle("3=serial:127.0.0.1:14550", &spec, err, sizeof err) ||
         strstr(err, "must start with udp:") == NULL) {
-        return fail("3=tcp:... not refused with the rule");
+        return fail("3=serial:... not refused with the rule");
     }
 
     // 10 m cells, 1 s ticks, 2 ticks per cell, 30 m up: 5 m/s times (1 + 30 / R), rounded

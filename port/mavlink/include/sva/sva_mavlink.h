@@ -1,7 +1,10 @@
 /// sva_mavlink.h -- the MAVLink mission bridge (docs/mavlink.md): a planned route and
-/// the mission frame as MAVLink mission items, and the mission upload protocol per
-/// vehicle over UDP. Companion-computer code (doubles, sockets); CMake target
-/// sva_mavlink (alias sva::mavlink).
+/// the mission frame as MAVLink mission items, the mission upload protocol, and each
+/// vehicle's telemetry turned into reports in mission terms, per vehicle over UDP or TCP.
+/// Companion-computer code (doubles, sockets); CMake target sva_mavlink (alias
+/// sva::mavlink). Every struct is caller-owned (static storage); nothing allocates
+/// except PROJ inside sva_frame_geodesy_open. Not thread-safe: one thread per vehicle
+/// set.
 ///
 /// Items of one route (docs/mavlink.md gives the reasons):
 ///   0   MAV_CMD_NAV_TAKEOFF at the UAV's start cell, frame alt
@@ -158,61 +161,298 @@ bool sva_mavlink_upload_on_message(sva_mavlink_upload_t* up, const mavlink_messa
 /// resends the upload FAILS ("no answer to MISSION_COUNT after 6 tries of 1500 ms").
 bool sva_mavlink_upload_on_time(sva_mavlink_upload_t* up, int64_t now_ms, sva_mavlink_frame_t* out);
 
-/// A GCS heartbeat of this side (1 Hz while uploading keeps vehicles talking).
+/// A GCS heartbeat of this side (sent every SVA_MAVLINK_HEARTBEAT_MS on every link that
+/// is up: a UDP vehicle learns where to send its telemetry from it).
 void sva_mavlink_heartbeat(uint8_t own_system, uint8_t own_component, sva_mavlink_frame_t* out);
 
-/// --- UDP endpoints ------------------------------------------------------------------
+/// Ends an upload in progress with `reason` as its error (state FAILED); used when the
+/// link under it is lost. Nothing happens when no upload is in progress.
+void sva_mavlink_upload_abort(sva_mavlink_upload_t* up, const char* reason);
 
-/// A vehicle: `UAV_ID=udp:HOST:PORT[:SYSID]` (SYSID 1 by default, component 1).
+/// --- the byte parser ------------------------------------------------------------------
+
+/// Bytes a parser holds: one whole frame at most (MAVLink 2, signed, 255 payload bytes).
+#define SVA_MAVLINK_PARSER_SIZE MAVLINK_MAX_PACKET_LEN
+
+/// A parser of MAVLink 1 and 2 frames in a byte stream (TCP) or in datagrams (UDP). It
+/// keeps the bytes of the frame it is reading. A candidate frame that proves bad loses
+/// only its first byte, and the search for the next frame resumes at the byte after it,
+/// so a stray, truncated or corrupted frame never swallows a good frame behind it. A
+/// candidate is bad as soon as one of these is known: an incompatibility flag other than
+/// signing, a message id that common.xml does not define (its checksum cannot be
+/// checked), a payload longer than the message's, a checksum that does not match (with
+/// the message's CRC_EXTRA), or, after sva_mavlink_parser_end, a frame cut short by the
+/// end of its datagram. Signatures are carried, not verified. No heap; caller-owned.
+typedef struct sva_mavlink_parser {
+    uint8_t bytes[SVA_MAVLINK_PARSER_SIZE];  ///< read-only: the candidate frame and after
+    uint16_t len;                            ///< bytes held
+    bool flushing;                           ///< after _end: no byte is coming to finish a frame
+    uint32_t dropped;                        ///< bytes discarded as not part of a good frame
+    uint32_t frames;                         ///< good frames returned
+} sva_mavlink_parser_t;
+
+/// Empties the parser (the counters too). Every parser starts with it (or zeroed).
+void sva_mavlink_parser_reset(sva_mavlink_parser_t* self);
+
+/// Copies as many of data[0..size) as there is room for and returns how many. After
+/// sva_mavlink_parser_next returned false there is room for at least one byte, so a loop
+/// of put and next (until next returns false) always makes progress.
+size_t sva_mavlink_parser_put(sva_mavlink_parser_t* self, const uint8_t* data, size_t size);
+
+/// The next good frame held: true with *msg filled (as the generated parser fills it),
+/// false when the bytes held are a frame still incomplete (or none). Bytes before a good
+/// frame that cannot start one are dropped (counted in `dropped`). O(bytes held) per
+/// byte dropped.
+bool sva_mavlink_parser_next(sva_mavlink_parser_t* self, mavlink_message_t* msg);
+
+/// Marks the end of a datagram: no byte will finish the frame held, so the following
+/// sva_mavlink_parser_next calls read past it to any good frame behind it, until they
+/// return false with the parser empty (then it takes a new datagram).
+void sva_mavlink_parser_end(sva_mavlink_parser_t* self);
+
+/// One byte at a time: puts the byte, then returns sva_mavlink_parser_next's answer
+/// (frames found behind a bad candidate come out on the following calls).
+bool sva_mavlink_parse(sva_mavlink_parser_t* parser, uint8_t byte, mavlink_message_t* msg);
+
+/// --- endpoints ----------------------------------------------------------------------
+
+typedef enum sva_mavlink_transport {
+    SVA_MAVLINK_UDP = 0,  ///< datagrams to HOST:PORT (the vehicle listens)
+    SVA_MAVLINK_TCP = 1   ///< a connection to HOST:PORT (the vehicle serves, as SITL does)
+} sva_mavlink_transport_t;
+
+/// A vehicle: `UAV_ID=udp:HOST:PORT[:SYSID]` or `UAV_ID=tcp:HOST:PORT[:SYSID]` (SYSID 1
+/// by default, component 1).
 typedef struct sva_mavlink_vehicle_spec {
     int32_t uav_id;
+    sva_mavlink_transport_t transport;
     char host[256];
     uint16_t port;
     uint8_t system;
 } sva_mavlink_vehicle_spec_t;
 
-/// Parses a --vehicle value. False with one line in err naming the part and the rule.
+/// Parses a --vehicle value. False with one line in err naming the part and the rule
+/// ("--vehicle: 3: the endpoint must start with udp: or tcp:, got \"serial:/dev/ttyS0\"").
 bool sva_mavlink_parse_vehicle(const char* text, sva_mavlink_vehicle_spec_t* spec, char* err,
                                size_t err_size);
 
-/// Opens a UDP socket connected to the vehicle (non-blocking). -1 with err on failure.
+/// "udp" or "tcp": how messages name the endpoint ("tcp:127.0.0.1:5760").
+const char* sva_mavlink_transport_name(sva_mavlink_transport_t transport);
+
+/// Opens a UDP socket connected to the vehicle (non-blocking). -1 with err when the host
+/// does not resolve or the socket cannot be made.
 int sva_mavlink_udp_open(const sva_mavlink_vehicle_spec_t* spec, char* err, size_t err_size);
 
-/// A MAVLink parser of one byte stream (the generated code's, with its own buffers).
-typedef struct sva_mavlink_parser {
-    mavlink_message_t buffer;
-    mavlink_status_t status;
-    mavlink_status_t out_status;
-} sva_mavlink_parser_t;
+/// --- telemetry ------------------------------------------------------------------------
 
-/// Feeds one byte; true when *msg holds a complete message with a good checksum.
-bool sva_mavlink_parse(sva_mavlink_parser_t* parser, uint8_t byte, mavlink_message_t* msg);
+/// Streams requested with MAV_CMD_SET_MESSAGE_INTERVAL (COMMAND_LONG 511): position
+/// every SVA_MAVLINK_POSITION_INTERVAL_MS, the others every SVA_MAVLINK_STATUS_INTERVAL_MS.
+#define SVA_MAVLINK_POSITION_INTERVAL_MS 200
+#define SVA_MAVLINK_STATUS_INTERVAL_MS   1000
+/// GLOBAL_POSITION_INT, SYSTEM_TIME, SYS_STATUS, BATTERY_STATUS, MISSION_CURRENT.
+#define SVA_MAVLINK_STREAM_COUNT 5
+/// A stream not heard this long after its request is requested again, at most
+/// SVA_MAVLINK_STREAM_TRIES times in all per link (a vehicle may not have it).
+#define SVA_MAVLINK_STREAM_RETRY_MS 3000
+#define SVA_MAVLINK_STREAM_TRIES    3
+/// A HEARTBEAT after this much silence may come from a rebooted vehicle: the streams are
+/// requested again.
+#define SVA_MAVLINK_STREAM_SILENCE_MS 3000
+/// Percentages and sequence numbers that are not known.
+#define SVA_MAVLINK_UNKNOWN (-1)
 
-/// One vehicle's link: its endpoint, socket, parser, the upload in progress and the
-/// items it carries. Static storage of the caller; sva_mavlink_vehicle_open fills it.
+/// What one vehicle says of itself, kept from its messages: only those of its system id
+/// and component 1 (MAV_COMP_ID_AUTOPILOT1) count. Times named _host_ms are this side's
+/// monotonic clock (sva_mavlink_now_ms); _boot_ms the vehicle's time since boot.
+/// A time since boot that goes back (in GLOBAL_POSITION_INT or SYSTEM_TIME) is a reboot:
+/// position, GPS time, battery and mission sequence numbers are forgotten.
+typedef struct sva_mavlink_telemetry {
+    uint8_t system;             ///< the vehicle's system id
+    bool heard;                 ///< a HEARTBEAT was heard
+    bool heard_on_link;         ///< ... since the link was last made
+    int64_t heartbeat_host_ms;  ///< when the last HEARTBEAT was heard
+    bool armed;                 ///< HEARTBEAT.base_mode has MAV_MODE_FLAG_SAFETY_ARMED
+    uint8_t system_status;      ///< HEARTBEAT.system_status (MAV_STATE)
+    bool has_position;          ///< a GLOBAL_POSITION_INT was heard (this boot)
+    int32_t lat_e7;             ///< latitude, 1e-7 degree
+    int32_t lon_e7;             ///< longitude, 1e-7 degree
+    int32_t relative_alt_mm;    ///< altitude above home, mm
+    uint32_t position_boot_ms;  ///< GLOBAL_POSITION_INT.time_boot_ms
+    /// The latest battery_remaining in [0, 100] of SYS_STATUS or BATTERY_STATUS (battery
+    /// id 0); -1 until one of them gives one (this boot).
+    int32_t battery_percent;
+    int32_t mission_seq;      ///< MISSION_CURRENT.seq; -1 unknown
+    int32_t reached_seq;      ///< MISSION_ITEM_REACHED.seq; -1 none
+    bool has_time_boot;       ///< a SYSTEM_TIME was heard (this boot)
+    bool has_gps_time;        ///< ... and it carried a GPS time (time_unix_usec not 0)
+    uint64_t time_unix_usec;  ///< the latest SYSTEM_TIME: the vehicle's GPS clock, UTC us
+    uint32_t time_boot_ms;    ///< ... and its time_boot_ms
+    int64_t time_host_ms;     ///< when it was heard
+    uint32_t reboots;         ///< reboots seen
+    /// Stream requests (read-only): pending after the first HEARTBEAT of a link, after a
+    /// silence of SVA_MAVLINK_STREAM_SILENCE_MS and after a reboot.
+    bool streams_pending;
+    int64_t streams_due_host_ms;
+    uint8_t stream_tries[SVA_MAVLINK_STREAM_COUNT];
+    uint32_t streams_heard;      ///< bit i: stream i heard since its last request
+    uint32_t requests_sent;      ///< SET_MESSAGE_INTERVAL commands sent
+    uint32_t requests_accepted;  ///< COMMAND_ACK 511 MAV_RESULT_ACCEPTED received
+    uint32_t requests_refused;   ///< COMMAND_ACK 511 with another result
+} sva_mavlink_telemetry_t;
+
+/// Empties the telemetry of the vehicle with system id `system`. Allocates nothing.
+void sva_mavlink_telemetry_init(sva_mavlink_telemetry_t* self, uint8_t system);
+
+/// A new link to the vehicle (a TCP connection made): the streams are requested at its
+/// next HEARTBEAT. What was heard before is kept.
+void sva_mavlink_telemetry_on_link(sva_mavlink_telemetry_t* self);
+
+/// Takes one message heard at now_host_ms. True when it changed the telemetry (a
+/// message of the vehicle, component 1, of a kind listed above or a COMMAND_ACK of
+/// SET_MESSAGE_INTERVAL); false for anything else, which is ignored.
+bool sva_mavlink_telemetry_on_message(sva_mavlink_telemetry_t* self, const mavlink_message_t* msg,
+                                      int64_t now_host_ms);
+
+/// The SET_MESSAGE_INTERVAL commands due at now_host_ms, from own_system/own_component
+/// to the vehicle's autopilot, into out[0..capacity); returns how many (0 when none is
+/// due). The first round asks for every stream; later rounds, SVA_MAVLINK_STREAM_RETRY_MS
+/// apart, only for the streams not heard since, each at most SVA_MAVLINK_STREAM_TRIES times.
+size_t sva_mavlink_telemetry_requests(sva_mavlink_telemetry_t* self, int64_t now_host_ms,
+                                      uint8_t own_system, uint8_t own_component,
+                                      sva_mavlink_frame_t* out, size_t capacity);
+
+/// The GPS time (UTC ms) at which the held position was taken: the latest SYSTEM_TIME's
+/// time_unix_usec plus the time since boot from that SYSTEM_TIME to the position's
+/// GLOBAL_POSITION_INT (both of this boot). False, *gps_ms untouched, without a position
+/// or a GPS time. Host time never enters it.
+bool sva_mavlink_telemetry_gps_ms(const sva_mavlink_telemetry_t* self, int64_t* gps_ms);
+
+/// --- reports ----------------------------------------------------------------------------
+
+/// Cells of a report: report_t's range.
+#define SVA_MAVLINK_MIN_CELL (-32768)
+#define SVA_MAVLINK_MAX_CELL 32767
+
+typedef enum sva_mavlink_health {
+    SVA_MAVLINK_HEALTH_OK = 0,   ///< heard within the heartbeat timeout
+    SVA_MAVLINK_HEALTH_LOST = 1  ///< silent for longer than the heartbeat timeout
+} sva_mavlink_health_t;
+
+/// A vehicle report in mission terms (the fields of report_t.lcm).
+typedef struct sva_mavlink_report {
+    int32_t uav_id;
+    int32_t at_ticks;  ///< floor((GPS time of the position - t0) / tick), at least 0
+    sva_mavlink_health_t health;
+    int32_t x;  ///< the cell nearest the position
+    int32_t y;
+    int32_t fuel;         ///< floor(capacity * battery_percent / 100); -1 unknown
+    int32_t mission_seq;  ///< [0, 32767]; -1 unknown
+    int32_t reached_seq;  ///< [0, 32767]; -1 none
+} sva_mavlink_report_t;
+
+typedef struct sva_mavlink_report_config {
+    int32_t heartbeat_timeout_ms;  ///< silent longer than this: LOST
+    int32_t fuel_capacity_cells;   ///< fuel of a full battery; 0: fuel not reported (-1)
+} sva_mavlink_report_config_t;
+
+/// Why a vehicle has no report (SVA_MAVLINK_REPORT_OK: it has one).
+typedef enum sva_mavlink_report_status {
+    SVA_MAVLINK_REPORT_OK = 0,
+    SVA_MAVLINK_REPORT_NEVER_HEARD = -1,  ///< no HEARTBEAT yet
+    SVA_MAVLINK_REPORT_NO_POSITION = -2,  ///< no GLOBAL_POSITION_INT (this boot)
+    SVA_MAVLINK_REPORT_NO_GPS_TIME = -3,  ///< no SYSTEM_TIME with a GPS time (this boot)
+    SVA_MAVLINK_REPORT_NO_PLACE = -4,     ///< PROJ cannot place the position in the frame
+    SVA_MAVLINK_REPORT_CELL_RANGE = -5,   ///< the cell is outside [-32768, 32767]
+    SVA_MAVLINK_REPORT_TICK_RANGE = -6    ///< at_ticks is over 2147483647
+} sva_mavlink_report_status_t;
+
+/// One line saying why (e.g. "no SYSTEM_TIME with a GPS time yet").
+const char* sva_mavlink_report_status_text(sva_mavlink_report_status_t status);
+
+/// The cell of `metres` east (or north) of the origin: metres / cell rounded half away
+/// from zero (docs/flight-stack.md). False, *cell untouched, outside
+/// [SVA_MAVLINK_MIN_CELL, SVA_MAVLINK_MAX_CELL] or not finite.
+bool sva_mavlink_cell_of(double metres, int32_t cell_cm, int32_t* cell);
+
+/// Turns the telemetry of the vehicle of `uav_id` into a report in the checked frame
+/// (geodesy opened for it), at now_host_ms: the position's cell (sva_frame_geo_to_enu,
+/// then sva_mavlink_cell_of), at_ticks from the position's GPS time
+/// (sva_mavlink_telemetry_gps_ms; clamped at 0 before t0), health LOST when the last
+/// HEARTBEAT is more than heartbeat_timeout_ms old, fuel from the battery. Decides
+/// nothing about the mission. SVA_MAVLINK_REPORT_OK with *out filled, or the first
+/// reason in the enum's order why there is no report (*out untouched). Allocates nothing.
+sva_mavlink_report_status_t sva_mavlink_report_make(const sva_mavlink_telemetry_t* telemetry,
+                                                    int32_t uav_id, const sva_frame_t* frame,
+                                                    sva_frame_geodesy_t* geodesy,
+                                                    const sva_mavlink_report_config_t* config,
+                                                    int64_t now_host_ms, sva_mavlink_report_t* out);
+
+/// --- one vehicle's link -------------------------------------------------------------
+
+/// TCP: wait between connection attempts, and the longest wait for one to complete.
+#define SVA_MAVLINK_RECONNECT_MS       500
+#define SVA_MAVLINK_CONNECT_TIMEOUT_MS 3000
+/// GCS heartbeats of this side: one a second on every link that is up.
+#define SVA_MAVLINK_HEARTBEAT_MS 1000
+/// TCP: bytes waiting to be sent (a frame that does not fit is dropped whole).
+#define SVA_MAVLINK_TX_SIZE 4096
+/// Room for a resolved address (a struct sockaddr_storage).
+#define SVA_MAVLINK_ADDR_SIZE 128
+
+typedef enum sva_mavlink_link_state {
+    SVA_MAVLINK_LINK_DOWN = 0,  ///< TCP: not connected; the next attempt is due at next_connect_ms
+    SVA_MAVLINK_LINK_CONNECTING = 1,  ///< TCP: connect() in progress
+    SVA_MAVLINK_LINK_UP = 2           ///< UDP: always once open; TCP: connected
+} sva_mavlink_link_state_t;
+
+/// One vehicle's link: its endpoint, socket, parser, telemetry, the upload in progress
+/// and the items it carries. Static storage of the caller; sva_mavlink_vehicle_open
+/// fills it. Fields are read-only to callers except items/item_count (before
+/// sva_mavlink_vehicle_start) and upload.timeout_ms/retries.
 typedef struct sva_mavlink_vehicle {
     sva_mavlink_vehicle_spec_t spec;
-    int fd;
+    int fd;  ///< -1 while a TCP link is down
+    sva_mavlink_link_state_t link;
+    uint8_t addr[SVA_MAVLINK_ADDR_SIZE];  ///< the resolved address (struct sockaddr)
+    uint32_t addr_len;
+    int addr_family;
+    int64_t next_connect_ms;   ///< TCP: the next attempt (DOWN) or its deadline (CONNECTING)
+    uint32_t connects;         ///< TCP connections made
+    uint32_t drops;            ///< TCP connections lost
+    uint32_t failed_connects;  ///< TCP attempts failed since the last connection made
+    char link_error[SVA_MAVLINK_ERROR_SIZE];  ///< why the last attempt failed or the link dropped
     sva_mavlink_parser_t parser;
+    uint8_t tx[SVA_MAVLINK_TX_SIZE];  ///< TCP: bytes not yet taken by the socket
+    size_t tx_len;
+    sva_mavlink_telemetry_t telemetry;
     sva_mavlink_upload_t upload;
     sva_mavlink_item_t items[SVA_MAVLINK_MAX_ITEMS];  ///< the mission being sent
     size_t item_count;
     int64_t next_heartbeat_ms;
-    int32_t send_errors;  ///< datagrams the socket refused (e.g. ECONNREFUSED)
+    int32_t send_errors;  ///< frames not sent (UDP refused, TCP down or backed up)
 } sva_mavlink_vehicle_t;
 
-/// Opens the vehicle's socket (own ids: system own_system, component
-/// MAV_COMP_ID_MISSIONPLANNER). False with err.
+/// Opens the vehicle's link (own ids: system own_system, component
+/// MAV_COMP_ID_MISSIONPLANNER): resolves the host once, opens the UDP socket or starts
+/// the TCP connection (a refused or failed connection is not an error here: it is tried
+/// again every SVA_MAVLINK_RECONNECT_MS by sva_mavlink_vehicle_service). False with err
+/// when the host does not resolve or no socket can be made.
 bool sva_mavlink_vehicle_open(sva_mavlink_vehicle_t* v, const sva_mavlink_vehicle_spec_t* spec,
                               uint8_t own_system, char* err, size_t err_size);
 void sva_mavlink_vehicle_close(sva_mavlink_vehicle_t* v);
 
-/// Starts uploading v->items[0..v->item_count). False (upload FAILED) when empty.
+/// Starts uploading v->items[0..v->item_count). False (upload FAILED) when empty. On a
+/// TCP link that is not up yet the MISSION_COUNT goes out when the connection is made
+/// (or the upload times out as for a silent vehicle, its error naming the link's).
 bool sva_mavlink_vehicle_start(sva_mavlink_vehicle_t* v, int64_t now_ms);
 
-/// Reads every datagram waiting on the socket, answers requests, then checks the
-/// timeout and sends a heartbeat once a second. Call when the socket is readable or at
-/// least every 100 ms.
+/// Does the link's work due at now_ms: (TCP) connects, notices a completed, refused or
+/// lost connection and reconnects SVA_MAVLINK_RECONNECT_MS later; reads every byte
+/// waiting (UDP: each datagram parsed on its own), feeds each message to the upload and
+/// the telemetry, answers requests, checks the upload's timeout, sends a heartbeat every
+/// SVA_MAVLINK_HEARTBEAT_MS and the stream requests due. An upload in progress when a
+/// TCP link drops FAILS ("link: tcp:HOST:PORT: connection lost during the upload: ...").
+/// Call when the socket is readable or at least every 100 ms.
 void sva_mavlink_vehicle_service(sva_mavlink_vehicle_t* v, int64_t now_ms);
 
 /// True while an upload is in progress.

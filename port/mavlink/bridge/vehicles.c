@@ -1,0 +1,98 @@
+// sva_mavlink_bridge's vehicles (bridge.h): their slots, their links' work, and the
+// lines they print (upload results, TCP link events).
+#include <inttypes.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "bridge.h"
+
+vehicle_slot_t bridge_slots[BRIDGE_MAX_VEHICLES];
+size_t bridge_slot_count;
+
+void bridge_say(const vehicle_slot_t* s, const char* prefix, const char* text)
+{
+    const sva_mavlink_vehicle_spec_t* sp = &s->link.spec;
+    printf("%s%suav %d (%s:%s:%u): %s\n", prefix, prefix[0] != '\0' ? " " : "", (int)sp->uav_id,
+           sva_mavlink_transport_name(sp->transport), sp->host, (unsigned)sp->port, text);
+    fflush(stdout);
+}
+
+bool bridge_vehicles_open(const bridge_options_t* o)
+{
+    char err[SVA_MAVLINK_ERROR_SIZE];
+    for (size_t k = 0; k < o->spec_count; k++) {
+        vehicle_slot_t* s = &bridge_slots[k];
+        if (!sva_mavlink_vehicle_open(&s->link, &o->specs[k], (uint8_t)o->own_system, err,
+                                      sizeof err)) {
+            fprintf(stderr, "sva_mavlink_bridge: error: %s\n", err);
+            return false;
+        }
+        s->link.upload.timeout_ms = (int32_t)o->timeout_ms;
+        s->link.upload.retries = (int32_t)o->retries;
+        s->reported = true;
+        s->said_status = SVA_MAVLINK_REPORT_NEVER_HEARD;
+        s->said_health = SVA_MAVLINK_HEALTH_OK;
+        bridge_slot_count++;
+    }
+    return true;
+}
+
+// The end of an upload: one line with its result.
+static void say_upload_result(vehicle_slot_t* s)
+{
+    if (s->reported || sva_mavlink_vehicle_busy(&s->link)) {
+        return;
+    }
+    s->reported = true;
+    char prefix[32];
+    snprintf(prefix, sizeof prefix, "plan %" PRId64 ":", s->plan_id);
+    char text[SVA_MAVLINK_ERROR_SIZE + 16];
+    if (s->link.upload.state == SVA_MAVLINK_UPLOAD_DONE) {
+        snprintf(text, sizeof text, "uploaded %u items", (unsigned)s->link.upload.count);
+    } else {
+        snprintf(text, sizeof text, "error: %s", s->link.upload.error);
+        s->flown_count = 0;  // unknown what it holds: the next plan uploads again
+    }
+    bridge_say(s, prefix, text);
+}
+
+// TCP links: connections made and lost, and the first failed attempt of each outage.
+static void say_link_events(vehicle_slot_t* s)
+{
+    const sva_mavlink_vehicle_t* v = &s->link;
+    char text[SVA_MAVLINK_ERROR_SIZE + 64];
+    if (v->drops != s->said_drops) {
+        s->said_drops = v->drops;
+        snprintf(text, sizeof text, "connection lost: %s; reconnecting every %d ms", v->link_error,
+                 SVA_MAVLINK_RECONNECT_MS);
+        bridge_say(s, "", text);
+    }
+    if (v->connects != s->said_connects) {
+        s->said_connects = v->connects;
+        s->said_connect_failure = false;
+        bridge_say(s, "", "connected");
+    }
+    if (v->failed_connects > 0 && !s->said_connect_failure) {
+        s->said_connect_failure = true;
+        snprintf(text, sizeof text, "cannot connect: %s; retrying every %d ms", v->link_error,
+                 SVA_MAVLINK_RECONNECT_MS);
+        bridge_say(s, "", text);
+    }
+}
+
+void bridge_vehicles_service(int64_t now_ms)
+{
+    for (size_t k = 0; k < bridge_slot_count; k++) {
+        vehicle_slot_t* s = &bridge_slots[k];
+        sva_mavlink_vehicle_service(&s->link, now_ms);
+        say_link_events(s);
+        say_upload_result(s);
+    }
+}
+
+void bridge_vehicles_close(void)
+{
+    for (size_t k = 0; k < bridge_slot_count; k++) {
+        sva_mavlink_vehicle_close(&bridge_slots[k].link);
+    }
+}
