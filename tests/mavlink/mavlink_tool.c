@@ -10,6 +10,7 @@
 //                                     (a vehicle without a route only listens)
 //   timeout MS RETRIES                (for the vehicles given after it)
 //   ardupilot                         (a home item 0 first: sva_mavlink_prepend_home)
+//   cruise M_S                        (the speed commanded, for the routes given after it)
 //   listen MS [EVERY_MS]              (after the uploads: MS more, printing every EVERY_MS)
 //   reportcfg HB_TIMEOUT_MS FUEL_CAPACITY
 // Output: `item UAV SEQ COMMAND FRAME P1 P2 P3 P4 X Y Z`, `result UAV ok N` or
@@ -221,6 +222,7 @@ int main(void)
     int32_t timeout_ms = SVA_MAVLINK_TIMEOUT_MS;
     int32_t retries = SVA_MAVLINK_RETRIES;
     bool ardupilot = false;
+    double cruise = 0.0;
     bool have_frame = false;
     long long listen_ms = 0;
     long long every_ms = 1000;
@@ -246,6 +248,8 @@ int main(void)
             have_frame = true;
         } else if (strncmp(line, "ardupilot", 9) == 0) {
             ardupilot = true;
+        } else if (sscanf(line, "cruise %lf", &cruise) == 1) {
+            // the routes that follow command it
         } else if (sscanf(line, "timeout %lld %lld", &a[0], &a[1]) == 2) {
             timeout_ms = (int32_t)a[0];
             retries = (int32_t)a[1];
@@ -271,6 +275,7 @@ int main(void)
             r->ready_at = (int32_t)a[3];
             r->targets = targets[nroutes];
             r->target_count = 0;
+            r->cruise_m_s = (float)cruise;
             has_route[nroutes] = true;
             nroutes++;
         } else if (sscanf(line, "target %lld %lld %lld %lld %lld", &a[0], &a[1], &a[2], &a[3],

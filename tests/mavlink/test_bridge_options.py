@@ -28,6 +28,10 @@ def run(*args):
     (["--fuel-capacity", "1000000001"],
      '--fuel-capacity: must be an integer in [0, 1000000000], got "1000000001"'),
     (["--fuel-capacity", ""], '--fuel-capacity: must be an integer in [0, 1000000000], got ""'),
+    (["--cruise-speed", "0"], '--cruise-speed: must be a number in (0, 100], got "0"'),
+    (["--cruise-speed", "100.5"], '--cruise-speed: must be a number in (0, 100], got "100.5"'),
+    (["--cruise-speed", "nan"], '--cruise-speed: must be a number in (0, 100], got "nan"'),
+    (["--cruise-speed", "9m"], '--cruise-speed: must be a number in (0, 100], got "9m"'),
 ])
 def test_a_bad_report_option_is_one_line_and_exit_2(args, line):
     p = run(*OK_VEHICLE, *args)

@@ -124,6 +124,24 @@ def test_a_route_over_the_item_limit_is_refused():
     assert results[7] == "error uav 7: route: 257 targets need 517 mission items, more than the limit 515"
 
 
+def test_cruise_speed_is_commanded_and_never_below_the_plan():
+    """A cruise speed replaces the plan's in DO_CHANGE_SPEED (the rest unchanged); one
+    below the plan's speed is refused, naming both speeds."""
+    lines = ["frame 473977419 85455938 3000 2500 5000 1764115200000", "tpc 1", "route 4 0 0 0",
+             "target 1 3 0 20 30"]
+    plain, _, rc, err = C.run_tool("\n".join(lines) + "\n")
+    assert rc == 0, err
+    assert plain[4][1][0] == 178 and plain[4][1][3] == pytest.approx(5.0, rel=1e-5)
+    fast, _, rc, err = C.run_tool("cruise 9.5\n" + "\n".join(lines) + "\n")
+    assert rc == 0, err
+    assert fast[4][1][3] == pytest.approx(9.5)
+    assert [repr(i) for k, i in enumerate(fast[4]) if k != 1] == \
+        [repr(i) for k, i in enumerate(plain[4]) if k != 1]
+    _, results, rc, err = C.run_tool("cruise 4.9\n" + "\n".join(lines) + "\n")
+    assert rc == 1
+    assert results[4].startswith("error uav 4: cruise speed 4.9 m/s is below the plan's speed 5 m/s")
+
+
 def test_ardupilot_home_item_comes_first(tmp_path):
     """With a home item 0 the rest is the same mission, shifted by one; 256 targets
     (515 items + home) still fit."""

@@ -37,6 +37,7 @@ typedef struct bridge_options {
     long report_ms;             ///< host ms between two reports of a vehicle
     long heartbeat_timeout_ms;  ///< silent longer than this: reported LOST
     long fuel_capacity_cells;   ///< fuel of a full battery; 0: fuel not reported
+    float cruise_m_s;           ///< the speed commanded (>= the plan's); 0: the plan's
     sva_mavlink_vehicle_spec_t specs[BRIDGE_MAX_VEHICLES];
     size_t spec_count;
 } bridge_options_t;

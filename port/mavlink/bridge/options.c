@@ -18,6 +18,7 @@
 #define MAX_REPORT_MS     3600000
 #define MAX_HB_TIMEOUT_MS 600000
 #define MAX_FUEL_CELLS    ((long)SVA_MAX_FUEL)
+#define MAX_CRUISE_M_S    100.0
 
 static void usage(FILE* f)
 {
@@ -26,6 +27,7 @@ static void usage(FILE* f)
             "                          [--url URL] [--prefix P] [--system N] [--timeout-ms N]\n"
             "                          [--retries N] [--ardupilot] [--report-ms N]\n"
             "                          [--heartbeat-timeout-ms N] [--fuel-capacity CELLS]\n"
+            "                          [--cruise-speed M_S]\n"
             "  --vehicle     UAV_ID=udp:HOST:PORT[:SYSID] or UAV_ID=tcp:HOST:PORT[:SYSID]\n"
             "                (SYSID 1 by default); tcp: connects and reconnects every %d ms\n"
             "  --url         LCM URL (default %s)\n"
@@ -41,11 +43,15 @@ static void usage(FILE* f)
             "                (default %d)\n"
             "  --fuel-capacity\n"
             "                fuel in cells of a full battery, [0, %ld]; report fuel =\n"
-            "                floor(CELLS * battery %% / 100); 0 (default): fuel not reported\n",
+            "                floor(CELLS * battery %% / 100); 0 (default): fuel not reported\n"
+            "  --cruise-speed\n"
+            "                m/s to command, (0, %g], at least the plan's speed: the vehicle\n"
+            "                then has room to make up acceleration and turns; default: the\n"
+            "                plan's speed\n",
             SVA_MAVLINK_RECONNECT_MS, BRIDGE_DEFAULT_URL, BRIDGE_DEFAULT_PREFIX, MAX_SYSTEM,
             BRIDGE_DEFAULT_SYSTEM, MAX_TIMEOUT_MS, SVA_MAVLINK_TIMEOUT_MS, MAX_RETRIES,
             SVA_MAVLINK_RETRIES, MIN_REPORT_MS, MAX_REPORT_MS, BRIDGE_DEFAULT_REPORT_MS,
-            MAX_HB_TIMEOUT_MS, BRIDGE_DEFAULT_HEARTBEAT_TIMEOUT_MS, MAX_FUEL_CELLS);
+            MAX_HB_TIMEOUT_MS, BRIDGE_DEFAULT_HEARTBEAT_TIMEOUT_MS, MAX_FUEL_CELLS, MAX_CRUISE_M_S);
 }
 
 static bool int_arg(const char* name, const char* text, long lo, long hi, long* out)
@@ -117,6 +123,20 @@ static bool take(bridge_options_t* o, const char* a, const char* v)
     }
     if (strcmp(a, "--fuel-capacity") == 0) {
         return int_arg(a, v, 0, MAX_FUEL_CELLS, &o->fuel_capacity_cells);
+    }
+    if (strcmp(a, "--cruise-speed") == 0) {
+        char* end = NULL;
+        errno = 0;
+        const double m_s = strtod(v, &end);
+        if (v[0] == '\0' || *end != '\0' || errno != 0 || !(m_s > 0.0) || m_s > MAX_CRUISE_M_S) {
+            fprintf(stderr,
+                    PROGRAM ": error: --cruise-speed: must be a number in (0, %g], got "
+                            "\"%.40s\"\n",
+                    MAX_CRUISE_M_S, v);
+            return false;
+        }
+        o->cruise_m_s = (float)m_s;
+        return true;
     }
     if (strcmp(a, "--vehicle") == 0) {
         return add_vehicle(o, v);

@@ -23,7 +23,8 @@ static bool have_mission;
 static sva_lcm_plan_t pending_plan;  // a plan whose inputs have not arrived yet
 static bool have_pending;
 static sva_lcm_replan_t replan;
-static bool ardupilot;  // --ardupilot: a home item 0 first
+static bool ardupilot;    // --ardupilot: a home item 0 first
+static float cruise_m_s;  // --cruise-speed: the speed commanded (0: the plan's)
 static sva_mavlink_target_t route_targets[SVA_MAVLINK_MAX_ROUTE_TARGETS];
 static sva_mavlink_item_t built[SVA_MAVLINK_MAX_ITEMS];
 
@@ -161,7 +162,7 @@ static void dispatch(const sva_lcm_plan_t* p, const sva_lcm_fleet_state_t* f,
             continue;
         }
         sva_mavlink_route_t rt = {route->uav_id,     u->x,          u->y, u->ready_at_ticks,
-                                  m->ticks_per_cell, route_targets, n};
+                                  m->ticks_per_cell, route_targets, n,    cruise_m_s};
         size_t count = 0;
         if (!sva_mavlink_build(&frame, geo, &rt, built, SVA_MAVLINK_MAX_ITEMS, &count, err,
                                sizeof err)) {
@@ -326,6 +327,7 @@ static void on_replan(const lcm_recv_buf_t* rbuf, const char* channel, void* use
 bool bridge_plans_subscribe(lcm_t* lcm, const bridge_options_t* o)
 {
     ardupilot = o->ardupilot;
+    cruise_m_s = o->cruise_m_s;
     static const char* const names[] = {"FLEET", "MISSION", "PLAN", "REPLAN"};
     const lcm_msg_handler_t handlers[] = {on_fleet, on_mission, on_plan, on_replan};
     for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {

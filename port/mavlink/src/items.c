@@ -83,6 +83,17 @@ bool sva_mavlink_build(const sva_frame_t* frame, sva_frame_geodesy_t* geodesy,
                  (int)route->ticks_per_cell);
         return false;
     }
+    float speed = sva_mavlink_speed(frame, route->ticks_per_cell);
+    if (route->cruise_m_s > 0.0f) {
+        if (route->cruise_m_s < speed) {
+            snprintf(err, err_size,
+                     "uav %d: cruise speed %.3g m/s is below the plan's speed %.3g m/s "
+                     "(cell_m / (ticks_per_cell * tick_s), raised for the altitude)",
+                     (int)route->uav_id, (double)route->cruise_m_s, (double)speed);
+            return false;
+        }
+        speed = route->cruise_m_s;
+    }
     const float alt = (float)frame->alt_cm / 100.0f;
     const uint8_t global = MAV_FRAME_GLOBAL_RELATIVE_ALT_INT;
     sva_frame_geo_t geo;
@@ -94,8 +105,8 @@ bool sva_mavlink_build(const sva_frame_t* frame, sva_frame_geodesy_t* geodesy,
     }
     (void)put(items, capacity, &n, MAV_CMD_NAV_TAKEOFF, global, 0.0f, 0.0f, 0.0f, NAN,
               to_e7(geo.lat_deg), to_e7(geo.lon_deg), alt);
-    (void)put(items, capacity, &n, MAV_CMD_DO_CHANGE_SPEED, MAV_FRAME_MISSION, 1.0f,
-              sva_mavlink_speed(frame, route->ticks_per_cell), -1.0f, 0.0f, 0, 0, 0.0f);
+    (void)put(items, capacity, &n, MAV_CMD_DO_CHANGE_SPEED, MAV_FRAME_MISSION, 1.0f, speed, -1.0f,
+              0.0f, 0, 0, 0.0f);
 
     int32_t at_x = route->x;
     int32_t at_y = route->y;

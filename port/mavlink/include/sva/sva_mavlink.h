@@ -73,6 +73,10 @@ typedef struct sva_mavlink_route {
     int32_t ticks_per_cell;  ///< the mission's
     const sva_mavlink_target_t* targets;
     size_t target_count;
+    /// The speed to command, m/s, at least the plan's (sva_mavlink_speed): the vehicle's
+    /// cruise, so that it makes up for acceleration, turns and climbs that the grid does
+    /// not model (docs/mavlink.md, "Margins"). 0: the plan's speed.
+    float cruise_m_s;
 } sva_mavlink_route_t;
 
 /// The plan's ground speed in m/s, cell / (ticks_per_cell * tick), raised by the factor
@@ -85,7 +89,8 @@ float sva_mavlink_speed(const sva_frame_t* frame, int32_t ticks_per_cell);
 /// False with one line in err naming the UAV and the rule when the route needs more
 /// than `capacity` items, a leg is shorter in time than the plan's travel
 /// (departure + distance * ticks_per_cell > start), a hold is a day or longer, a
-/// time is outside the frame's range, or PROJ fails.
+/// time is outside the frame's range, route->cruise_m_s is below the plan's speed, or
+/// PROJ fails.
 bool sva_mavlink_build(const sva_frame_t* frame, sva_frame_geodesy_t* geodesy,
                        const sva_mavlink_route_t* route, sva_mavlink_item_t* items, size_t capacity,
                        size_t* count, char* err, size_t err_size);
