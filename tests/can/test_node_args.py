@@ -4,6 +4,8 @@ the node opens its CAN interface, so no bus is needed."""
 import os
 import subprocess
 
+import pytest
+
 NODE = os.environ["SVA_CAN_NODE"]
 HOSTILE = "x\n\x1b[31mforged"
 HOSTILE_SHOWN = "x\\n\\x1b[31mforged"
@@ -15,10 +17,11 @@ def run(*args):
     return r.returncode, r.stderr.splitlines()
 
 
-def test_algorithm_value_is_escaped():
-    rc, lines = run("--mission", "m.json", "--algorithm", HOSTILE)
+@pytest.mark.parametrize("option", ["--algo", "--algorithm"])
+def test_algorithm_value_is_escaped(option):
+    rc, lines = run("--mission", "m.json", option, HOSTILE)
     assert rc == 2
-    assert lines == [f'sva_can_node: --algorithm: unknown algorithm "{HOSTILE_SHOWN}" (sva, ga, hga, bfa, flow)']
+    assert lines == [f'sva_can_node: {option}: unknown algorithm "{HOSTILE_SHOWN}" (sva, ga, hga, bfa, flow)']
 
 
 def test_integer_value_and_unknown_option_are_escaped():

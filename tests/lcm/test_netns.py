@@ -209,6 +209,8 @@ def test_every_fixture_over_lcm(algo, tmp_path, capsys):
 def test_node_rejects_bad_options():
     r = subprocess.run([NODE, "--algorithm", "simplex"], capture_output=True, text=True)
     assert r.returncode == 2 and "--algorithm" in r.stderr
+    r = subprocess.run([NODE, "--algo", "simplex"], capture_output=True, text=True)
+    assert r.returncode == 2 and "sva_node: --algo: unknown name 'simplex'" in r.stderr
     r = subprocess.run([NODE, "--prefix", "P" * 60], capture_output=True, text=True)
     assert r.returncode == 2 and "--prefix" in r.stderr
     r = subprocess.run([NODE, "--track-tolerance", "-1"], capture_output=True, text=True)
@@ -216,6 +218,26 @@ def test_node_rejects_bad_options():
     for bad in ("0", "100", "x"):
         r = subprocess.run([NODE, "--rt-priority", bad], capture_output=True, text=True)
         assert r.returncode == 2 and "--rt-priority: must be an integer in [1, 99]" in r.stderr
+
+
+def test_node_algo_and_send_out(tmp_path):
+    """The shared option names end to end: a node started with --algo (the name sva and
+    `sva-tools sim` use) plans with that algorithm; `sva-tools lcm send` writes the plan
+    with -o, --out and --output alike."""
+    n = Node(f"O{uuid.uuid4().hex[:6]}_", "--algo", "flow")
+    try:
+        for option in ("-o", "--out", "--output"):
+            out = tmp_path / f"plan{option}.json"
+            r = send(n.prefix, SMALL, option, str(out))
+            assert r.returncode == 0, r.stderr
+            assert r.stdout == ""
+            plan = json.loads(out.read_text())
+            assert plan["algorithm"] == "flow", option
+            assert violations(SMALL, plan) == []
+    finally:
+        rc, err = n.stop()
+    assert rc == 0, err
+    assert "; algorithm flow;" in err
 
 
 HOSTILE = "x\n\x1b[31mforged"

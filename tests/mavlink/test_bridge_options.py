@@ -1,9 +1,10 @@
 """sva_mavlink_bridge's command line: each bad value of the report options and of
 --vehicle is refused before anything starts, with exit 2 and one line naming the option,
-the rule and the limit; --help lists the options."""
+the rule and the limit; --help lists the options; --version is one line."""
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 
 import pytest
@@ -66,5 +67,13 @@ def test_an_unresolvable_tcp_host_is_an_error_at_start():
 def test_help_lists_the_new_options():
     p = run("--help")
     assert p.returncode == 0
-    for opt in ("--report-ms", "--heartbeat-timeout-ms", "--fuel-capacity", "UAV_ID=tcp:HOST:PORT"):
+    for opt in ("--report-ms", "--heartbeat-timeout-ms", "--fuel-capacity", "UAV_ID=tcp:HOST:PORT",
+                "--version"):
         assert opt in p.stdout
+
+
+def test_version_is_one_line_and_exit_0():
+    p = run("--version")
+    assert p.returncode == 0
+    assert p.stderr == ""
+    assert re.fullmatch(r"sva_mavlink_bridge \d+\.\d+\.\d+\n", p.stdout), p.stdout

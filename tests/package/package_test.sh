@@ -3,7 +3,8 @@
 #   package_test.sh install    cmake --install into one prefix; the expected files are there;
 #                              the installed sva_mavlink_bridge answers --help and bad options
 #   package_test.sh cmake      find_package(sva) consumers and the README example, built and run
-#   package_test.sh pkgconfig  the same consumers with pkg-config only (make)
+#   package_test.sh pkgconfig  the same consumers with pkg-config only, from make and from a
+#                              plain shell; the README's pkg-config line as written
 #   package_test.sh subdir     add_subdirectory() of the source tree
 #   package_test.sh units      systemd-analyze verify of the installed units
 #   package_test.sh deb        cpack's .deb: fields, dpkg into a throw-away root, the
@@ -26,6 +27,17 @@ version=$(sed -n 's/^#define SVA_VERSION_\(MAJOR\|MINOR\|PATCH\) \([0-9]*\)$/\2/
 fail() { echo "package_test $step: FAIL: $*" >&2; exit 1; }
 has() { [[ " $components " == *" $1 "* ]]; }
 run() { echo "+ $*" >&2; "$@"; }
+
+# The README's pkg-config command: the one `...` span under "## Embedding the core" that
+# holds "$(pkg-config --cflags --libs sva)", as written (a line of its own in the README).
+readme_pkgconfig_command() {
+    local cmd
+    cmd=$(awk '/^## Embedding the core/ {s=1; next} s && /^## / {exit} s {print}' "$src/README.md" |
+          grep -o '`[^`]*\$(pkg-config --cflags --libs sva)[^`]*`' | tr -d '`')
+    [ "$(printf '%s\n' "$cmd" | grep -c .)" -eq 1 ] ||
+        fail "README.md: expected one \`... \$(pkg-config --cflags --libs sva)\` command in '## Embedding the core', found: $cmd"
+    printf '%s\n' "$cmd"
+}
 
 # The README's embedding example: the first ```c block after "## Embedding the core".
 readme_example() {
@@ -78,18 +90,19 @@ installed_files() {  # the files every install must have, relative to the prefix
     fi
 }
 
-check_bridge() {  # check_bridge PROGRAM: --help, and bad options refused with their name
+check_bridge() {  # check_bridge PROGRAM: --help, --version, bad options refused with their name
     local prog="$1" out rc
     out=$("$prog" --help) || fail "$prog --help exited $?"
     [[ "$out" == "usage: sva_mavlink_bridge --vehicle "* ]] || { echo "$out" >&2; fail "$prog --help: no usage line"; }
     [[ "$out" == *"--ardupilot"* ]] || fail "$prog --help does not list --ardupilot"
+    [ "$("$prog" --version)" = "sva_mavlink_bridge $version" ] || fail "$prog --version"
     rc=0; out=$("$prog" --no-such-option 1 2>&1 >/dev/null) || rc=$?
     [ $rc -eq 2 ] || fail "$prog --no-such-option 1 exited $rc, expected 2"
     [[ "$out" == *"sva_mavlink_bridge: error: --no-such-option: unknown option"* ]] || { echo "$out" >&2; fail "$prog: no message naming --no-such-option"; }
     rc=0; out=$("$prog" --vehicle 1=udp:127.0.0.1:14550 --system 0 2>&1 >/dev/null) || rc=$?
     [ $rc -eq 2 ] || fail "$prog --system 0 exited $rc, expected 2"
     [[ "$out" == *"--system: must be an integer in [1, 255], got \"0\""* ]] || { echo "$out" >&2; fail "$prog --system 0: no message naming the rule"; }
-    echo "package_test $step: $prog: --help, --no-such-option, --system 0 ok" >&2
+    echo "package_test $step: $prog: --help, --version, --no-such-option, --system 0 ok" >&2
 }
 
 run_consumers() {  # runs every consumer program built in $1
@@ -152,17 +165,49 @@ pkgconfig)
     d="$work/consumer_pkgconfig"
     rm -rf "$d" && mkdir -p "$d"
     export PKG_CONFIG_PATH="$prefix/lib/pkgconfig"
-    cflags=$(pkg-config --cflags sva)
-    [[ "$cflags" == *'-DSVA_CONFIG_HEADER=\"sva_build_config.h\"'* ]] || fail "pkg-config --cflags sva: no SVA_CONFIG_HEADER ($cflags)"
     [ "$(pkg-config --modversion sva)" = "$version" ] || fail "pkg-config --modversion sva"
+    # No installed .pc file hands out a flag that needs quoting: a shell passes quotes and
+    # backslashes from $(pkg-config ...) to the compiler as they are.
+    for pc in "$prefix"/lib/pkgconfig/*.pc; do
+        name=$(basename "$pc" .pc)
+        flags=$(pkg-config --cflags --libs "$name") || fail "pkg-config --cflags --libs $name"
+        case "$flags" in
+        *[\"\'\\]*) fail "pkg-config --cflags --libs $name: a flag needs quoting: $flags" ;;
+        esac
+    done
+    cflags=$(pkg-config --cflags sva)
+    [[ " $cflags " == *" -DSVA_BUILD_CONFIG=1 "* ]] || fail "pkg-config --cflags sva: no -DSVA_BUILD_CONFIG=1 ($cflags)"
+    # ... and with it a consumer includes the build's bound profile (consumer_core checks
+    # its layout against the library's).
+    # shellcheck disable=SC2046
+    deps=$(cc -std=c99 -M "$here/consumer/consumer_core.c" $(pkg-config --cflags sva))
+    [[ "$deps" == *"/include/sva_build_config.h"* ]] || fail "consumer_core.c does not include sva_build_config.h with pkg-config's flags"
     readme_example "$d/readme_example.c"
     ports=$(for p in $components; do [ "$p" = json ] || printf '%s ' "$p"; done)
     run make -s -f "$here/consumer/Makefile" O="$d" PORTS="$ports" README_EXAMPLE="$d/readme_example.c"
     run_consumers "$d"
-    # docs/packaging.md's shell recipe: eval reads the quoted definition.
+    # The same programs from a plain shell: $(pkg-config ...) unquoted, word-split.
+    ds="$d/shell"
+    mkdir -p "$ds"
+    for p in core $ports; do
+        pc=sva; [ "$p" = core ] || pc="sva-$p"
+        # shellcheck disable=SC2046
+        run cc -std=c99 -Wall -Wextra -Werror -o "$ds/consumer_$p" "$here/consumer/consumer_$p.c" \
+            $(pkg-config --cflags --libs "$pc") || fail "consumer_$p.c with \$(pkg-config --cflags --libs $pc) in a shell"
+    done
     # shellcheck disable=SC2046
-    eval cc -std=c99 -Wall -Wextra -Werror "$d/readme_example.c" -o "$d/readme_eval" $(pkg-config --cflags --libs sva)
-    run "$d/readme_eval" || fail "the README example built with eval and pkg-config exited $?"
+    run cc -std=c99 -Wall -Wextra -Werror -o "$ds/readme_example" "$d/readme_example.c" \
+        $(pkg-config --cflags --libs sva) || fail "readme_example.c with \$(pkg-config --cflags --libs sva) in a shell"
+    run_consumers "$ds"
+    # The README's command exactly as written, in bash, on the README's example as main.c.
+    dr="$d/readme"
+    mkdir -p "$dr"
+    cp "$d/readme_example.c" "$dr/main.c"
+    cmd=$(readme_pkgconfig_command)
+    (cd "$dr" && run bash -euc "$cmd") || fail "the README's '$cmd' failed in a shell"
+    exe=$(find "$dr" -maxdepth 1 -type f -perm -u+x)
+    [ "$(printf '%s\n' "$exe" | grep -c .)" -eq 1 ] || fail "the README's '$cmd' made no program (or several: $exe)"
+    run "$exe" || fail "the README example built by '$cmd' exited $?"
     ;;
 subdir)
     d="$work/consumer_subdir"
@@ -210,6 +255,13 @@ deb)
     dpkg --root="$root" -s sva | grep -q '^Status: install ok installed' || fail "dpkg -s sva in $root"
     # shellcheck disable=SC2046
     expect_files "$root/usr" $(installed_files lib)
+    # The package's own pkg-config file, from a shell: the README example builds and runs.
+    readme_example "$d/readme_example.c"
+    # shellcheck disable=SC2046
+    run cc -std=c99 -Wall -Wextra -Werror -o "$d/readme_example" "$d/readme_example.c" \
+        $(PKG_CONFIG_PATH="$root/usr/lib/pkgconfig" pkg-config --cflags --libs sva) ||
+        fail "the README example with the package's sva.pc in a shell"
+    run "$d/readme_example" || fail "the README example built with the package's sva.pc exited $?"
     # PROJ: an installed program that links it at run time makes Depends name libprojNN;
     # the static sva::frame needs libproj-dev to be linked by a consumer (Suggests).
     if objdump -p "$root"/usr/bin/* 2>/dev/null | grep -q 'NEEDED.*libproj'; then
@@ -228,12 +280,14 @@ deb)
         run verify_unit "$mapped" || fail "systemd-analyze verify $u (as $mapped)"
     done
     if has can; then
-        "$root/usr/bin/sva_can_node" --help 2>&1 | grep -q '^usage: sva_can_node --mission' || fail "sva_can_node --help"
+        "$root/usr/bin/sva_can_node" --help | grep -q '^usage: sva_can_node --mission' || fail "sva_can_node --help"
+        [ "$("$root/usr/bin/sva_can_node" --version)" = "sva_can_node $version" ] || fail "sva_can_node --version"
         "$root/usr/bin/sva_can_node" --iface vcan0 >/dev/null 2>&1 && fail "sva_can_node without --mission succeeded"
     fi
     if [ "$bridge" = 1 ]; then check_bridge "$root/usr/bin/sva_mavlink_bridge"; fi
     if has lcm; then
         "$root/usr/bin/sva_node" --help | grep -q '^usage: sva_node' || fail "sva_node --help"
+        [ "$("$root/usr/bin/sva_node" --version)" = "sva_node $version" ] || fail "sva_node --version"
         # A real start: the installed node in a network namespace must publish its status.
         rc=0
         run "$SVA_NETNS_RUN" env PYTHONPATH="$SVA_LCM_PYTHON_DIR" "$SVA_PYTHON" \

@@ -6,7 +6,7 @@ import importlib
 import sys
 from typing import List, Optional
 
-from . import io
+from . import __version__, io
 from .text import Parser, shown
 
 SUBCOMMANDS = ("gen", "check", "validate", "ref", "ih", "peer", "bench", "plot", "sim", "ground", "geo",
@@ -30,6 +30,8 @@ def main(argv: Optional[List[str]] = None) -> int:
     if argv and argv[0] == "lcm":
         return _lcm(argv[1:])
     ap = Parser(prog="sva-tools", description=__doc__)
+    ap.add_argument("--version", action="version", version=f"sva-tools {__version__}",
+                    help='print "sva-tools VERSION" (the sva library\'s) and exit')
     sub = ap.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
     for name in SUBCOMMANDS:

@@ -4,6 +4,9 @@
 /// cost. To change bounds, either define them on the compiler command line or point
 /// SVA_CONFIG_HEADER at a header that defines them (CMake's SVA_PROFILE option writes
 /// one and exports it PUBLIC, so every consumer sees the same struct layout).
+/// SVA_BUILD_CONFIG=1 is the same hook without a quoted value: it includes
+/// "sva_build_config.h", the header an installed build puts in its include directory
+/// (pkg-config's sva.pc passes it: flags that need no quoting in a shell).
 /// sva_limits() reports the compiled values at run time.
 ///
 /// Memory formulas (bytes on x86-64, measured by varying each bound; DESIGN.md
@@ -24,8 +27,18 @@
 #ifndef SVA_CONFIG_H
 #define SVA_CONFIG_H
 
-#ifdef SVA_CONFIG_HEADER
+/// 1: include "sva_build_config.h" (found through the include path) unless
+/// SVA_CONFIG_HEADER names a header, which wins. 0 (default): neither, the defaults.
+#ifndef SVA_BUILD_CONFIG
+#    define SVA_BUILD_CONFIG 0
+#endif
+#if (SVA_BUILD_CONFIG != 0) && (SVA_BUILD_CONFIG != 1)
+#    error "SVA_BUILD_CONFIG must be 0 or 1"
+#endif
+#if defined(SVA_CONFIG_HEADER)
 #    include SVA_CONFIG_HEADER
+#elif SVA_BUILD_CONFIG
+#    include "sva_build_config.h"
 #endif
 
 // ---------------------------------------------------------------------------------

@@ -6,9 +6,10 @@
 // for --settle-ms after an event it replans and sends the new plan when it changed.
 // Heartbeat every second. SIGINT/SIGTERM: aborts an in-flight transfer, exits 0.
 //
-// Usage: sva_can_node --mission FILE [--iface vcan0] [--algorithm sva]
+// Usage: sva_can_node --mission FILE [--iface vcan0] [--algo sva]
 //                     [--settle-ms 200] [--track-tolerance 2] [--exit-after-acks N]
 //                     [--max-runtime-ms N] [--print-plans]
+//        sva_can_node --help | --version
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
@@ -85,12 +86,14 @@ static uint32_t elapsed(uint32_t now, uint32_t then)
     return (uint32_t)(now - then);  // modulo 2^32: right across the wrap-around
 }
 
-static void usage(void)
+static void usage(FILE* out)
 {
-    fprintf(stderr,
-            "usage: sva_can_node --mission FILE [--iface NAME] [--algorithm sva|ga|hga|bfa|flow]\n"
-            "                    [--settle-ms N] [--track-tolerance N] [--exit-after-acks N]\n"
-            "                    [--max-runtime-ms N] [--print-plans]\n");
+    fprintf(out, "usage: sva_can_node --mission FILE [--iface NAME] [--algo sva|ga|hga|bfa|flow]\n"
+                 "                    [--settle-ms N] [--track-tolerance N] [--exit-after-acks N]\n"
+                 "                    [--max-runtime-ms N] [--print-plans]\n"
+                 "       sva_can_node --help | --version\n"
+                 "  --algo NAME  the planner (default sva); --algorithm is the same option\n"
+                 "  --version    print \"sva_can_node VERSION\" (the sva library's)\n");
 }
 
 static int parse_u32(const char* s, const char* opt, uint32_t* out)
@@ -138,6 +141,7 @@ int main(int argc, char** argv)
     const char* iface = "vcan0";
     const char* mission_path = NULL;
     const char* algo_name = "sva";
+    const char* algo_option = "--algo";  // as the user spelled it, for its error line
     sva_algorithm_t algo;
     uint32_t settle_ms = 200u;
     uint32_t exit_after_acks = 0u;
@@ -174,14 +178,19 @@ int main(int argc, char** argv)
             print = 1;
             continue;
         }
-        if (strcmp(a, "--help") == 0) {
-            usage();
+        if ((strcmp(a, "--help") == 0) || (strcmp(a, "-h") == 0)) {
+            usage(stdout);
+            return 0;
+        }
+        if (strcmp(a, "--version") == 0) {
+            printf("sva_can_node %d.%d.%d\n", SVA_VERSION_MAJOR, SVA_VERSION_MINOR,
+                   SVA_VERSION_PATCH);
             return 0;
         }
         if (v == NULL) {
             fprintf(stderr, "sva_can_node: %s: missing value\n",
                     sva_text_escape(shown, sizeof shown, a));
-            usage();
+            usage(stderr);
             return 2;
         }
         ++i;
@@ -189,7 +198,8 @@ int main(int argc, char** argv)
             iface = v;
         } else if (strcmp(a, "--mission") == 0) {
             mission_path = v;
-        } else if (strcmp(a, "--algorithm") == 0) {
+        } else if ((strcmp(a, "--algo") == 0) || (strcmp(a, "--algorithm") == 0)) {
+            algo_option = a;
             algo_name = v;
         } else if (strcmp(a, "--settle-ms") == 0) {
             if (parse_u32(v, a, &settle_ms) != 0)
@@ -206,19 +216,18 @@ int main(int argc, char** argv)
         } else {
             fprintf(stderr, "sva_can_node: unknown option %s\n",
                     sva_text_escape(shown, sizeof shown, a));
-            usage();
+            usage(stderr);
             return 2;
         }
     }
     if (mission_path == NULL) {
         fprintf(stderr, "sva_can_node: --mission: missing required option\n");
-        usage();
+        usage(stderr);
         return 2;
     }
     if (sva_algorithm_from_name(algo_name, &algo) != SVA_OK) {
-        fprintf(stderr,
-                "sva_can_node: --algorithm: unknown algorithm \"%s\" (sva, ga, hga, bfa, flow)\n",
-                sva_text_escape(shown_arg, sizeof shown_arg, algo_name));
+        fprintf(stderr, "sva_can_node: %s: unknown algorithm \"%s\" (sva, ga, hga, bfa, flow)\n",
+                algo_option, sva_text_escape(shown_arg, sizeof shown_arg, algo_name));
         return 2;
     }
     if (sva_can_mission_load_frame(mission_path, &g_mission, name, sizeof name, &g_frame,

@@ -59,12 +59,14 @@ static void usage(FILE* out)
 {
     fprintf(out,
             "usage: sva_node [options]\n"
+            "       sva_node --help | --version\n"
             "  -u, --url URL          LCM provider (default " DEFAULT_URL ")\n"
             "                         a udpm URL without recv_buf_size gets %d\n"
             "  -p, --prefix PREFIX    channel prefix (default " DEFAULT_PREFIX "): channels\n"
             "                         PREFIX{FLEET,MISSION,PLAN,STATUS,EVENT,REPLAN}, matched\n"
             "                         exactly\n"
-            "  -a, --algorithm NAME   sva, ga, hga, bfa or flow (default sva)\n"
+            "  -a, --algo NAME        sva, ga, hga, bfa or flow (default sva); --algorithm\n"
+            "                         is the same option\n"
             "  -c, --change-penalty N cells a replan pays per changed visit (default 0,\n"
             "                         at most %ld; SPEC section 12.4)\n"
             "  -f, --fleet-reports    while a live mission runs, a fleet message is a report\n"
@@ -80,7 +82,8 @@ static void usage(FILE* out)
             "  -r, --rt-priority N    run under SCHED_FIFO priority N (1..99), LCM's receive\n"
             "                         thread included (needs CAP_SYS_NICE or RLIMIT_RTPRIO)\n"
             "  -m, --mlock            lock every page in RAM (mlockall current and future)\n"
-            "  -h, --help             this text\n",
+            "  -h, --help             this text\n"
+            "      --version          print \"sva_node VERSION\" (the sva library's)\n",
             RECV_BUF_BYTES, (long)SVA_MAX_CHANGE_PENALTY, SVA_LCM_TRACK_TOLERANCE_DEFAULT,
             SVA_LCM_TRACK_TOLERANCE_MAX);
 }
@@ -150,6 +153,7 @@ int main(int argc, char** argv)
     const char* url_arg = DEFAULT_URL;
     const char* prefix = DEFAULT_PREFIX;
     const char* algo_name = "sva";
+    const char* algo_option = "--algo";  // as the user spelled it, for its error line
     long status_ms = 1000;
     long change_penalty = 0;
     int fleet_reports = 0;
@@ -163,11 +167,17 @@ int main(int argc, char** argv)
         if ((strcmp(a, "-h") == 0) || (strcmp(a, "--help") == 0)) {
             usage(stdout);
             return 0;
+        } else if (strcmp(a, "--version") == 0) {
+            printf("sva_node %d.%d.%d\n", SVA_VERSION_MAJOR, SVA_VERSION_MINOR, SVA_VERSION_PATCH);
+            return 0;
         } else if (((strcmp(a, "-u") == 0) || (strcmp(a, "--url") == 0)) && has_value) {
             url_arg = argv[++i];
         } else if (((strcmp(a, "-p") == 0) || (strcmp(a, "--prefix") == 0)) && has_value) {
             prefix = argv[++i];
-        } else if (((strcmp(a, "-a") == 0) || (strcmp(a, "--algorithm") == 0)) && has_value) {
+        } else if (((strcmp(a, "-a") == 0) || (strcmp(a, "--algo") == 0) ||
+                    (strcmp(a, "--algorithm") == 0)) &&
+                   has_value) {
+            algo_option = (strcmp(a, "--algorithm") == 0) ? "--algorithm" : "--algo";
             algo_name = argv[++i];
         } else if (((strcmp(a, "-s") == 0) || (strcmp(a, "--status-ms") == 0)) && has_value) {
             if (!integer_option("--status-ms", argv[++i], 10, 3600000, &status_ms)) {
@@ -205,7 +215,7 @@ int main(int argc, char** argv)
     sva_algorithm_t algorithm = SVA_ALGO_SVA;
     if (sva_algorithm_from_name(algo_name, &algorithm) != SVA_OK) {
         char shown[SHOWN_SIZE];
-        fprintf(stderr, "sva_node: --algorithm: unknown name '%s' (sva, ga, hga, bfa, flow)\n",
+        fprintf(stderr, "sva_node: %s: unknown name '%s' (sva, ga, hga, bfa, flow)\n", algo_option,
                 sva_text_escape(shown, sizeof shown, algo_name));
         return 2;
     }

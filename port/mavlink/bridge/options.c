@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "bridge.h"
-#include "sva/sva_config.h"  // SVA_MAX_FUEL: report_t.fuel is [0, SVA_MAX_FUEL]
+#include "sva/sva.h"  // SVA_VERSION_*; SVA_MAX_FUEL: report_t.fuel is [0, SVA_MAX_FUEL]
 
 #define PROGRAM "sva_mavlink_bridge"
 
@@ -28,6 +28,7 @@ static void usage(FILE* f)
             "                          [--retries N] [--ardupilot] [--report-ms N]\n"
             "                          [--heartbeat-timeout-ms N] [--fuel-capacity CELLS]\n"
             "                          [--cruise-speed M_S]\n"
+            "       " PROGRAM " --help | --version\n"
             "  --vehicle     UAV_ID=udp:HOST:PORT[:SYSID] or UAV_ID=tcp:HOST:PORT[:SYSID]\n"
             "                (SYSID 1 by default); tcp: connects and reconnects every %d ms\n"
             "  --url         LCM URL (default %s)\n"
@@ -47,7 +48,8 @@ static void usage(FILE* f)
             "  --cruise-speed\n"
             "                m/s to command, (0, %g], at least the plan's speed: the vehicle\n"
             "                then has room to make up acceleration and turns; default: the\n"
-            "                plan's speed\n",
+            "                plan's speed\n"
+            "  --version     print \"" PROGRAM " VERSION\" (the sva library's)\n",
             SVA_MAVLINK_RECONNECT_MS, BRIDGE_DEFAULT_URL, BRIDGE_DEFAULT_PREFIX, MAX_SYSTEM,
             BRIDGE_DEFAULT_SYSTEM, MAX_TIMEOUT_MS, SVA_MAVLINK_TIMEOUT_MS, MAX_RETRIES,
             SVA_MAVLINK_RETRIES, MIN_REPORT_MS, MAX_REPORT_MS, BRIDGE_DEFAULT_REPORT_MS,
@@ -161,6 +163,10 @@ bridge_parse_t bridge_options_parse(int argc, char** argv, bridge_options_t* o)
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             usage(stdout);
             return BRIDGE_HELP;
+        }
+        if (strcmp(a, "--version") == 0) {
+            printf(PROGRAM " %d.%d.%d\n", SVA_VERSION_MAJOR, SVA_VERSION_MINOR, SVA_VERSION_PATCH);
+            return BRIDGE_HELP;  // printed: exit 0, as --help
         }
         if (strcmp(a, "--ardupilot") == 0) {
             o->ardupilot = true;

@@ -1,11 +1,12 @@
 // Installed-tree consumer of sva::core: it must see the bound profile the library was
-// built with (SVA_CONFIG_HEADER) and plan a small mission completely.
+// built with (sva_build_config.h, through CMake's SVA_CONFIG_HEADER or pkg-config's
+// SVA_BUILD_CONFIG) and plan a small mission completely.
 #include <stdio.h>
 
 #include "sva/sva.h"
 
-#ifndef SVA_CONFIG_HEADER
-#    error "SVA_CONFIG_HEADER did not reach this consumer (the installed package must export it)"
+#ifndef SVA_BUILD_CONFIG_H  // the include guard of sva_build_config.h
+#    error "sva_build_config.h did not reach this consumer (the installed package must export it)"
 #endif
 
 static sva_planner_t planner;

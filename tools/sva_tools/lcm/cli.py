@@ -24,7 +24,8 @@ def _parser() -> argparse.ArgumentParser:
 
     s = sub.add_parser("send", help="publish a mission and its fleet, print the plan")
     s.add_argument("mission", help="SPEC section 3 mission JSON")
-    s.add_argument("-o", "--output", help="write the plan here instead of stdout")
+    s.add_argument("-o", "--out", "--output", dest="out",
+                   help="write the plan here instead of stdout")
     s.add_argument("--url", default=DEFAULT_URL, help=f"LCM provider (default {DEFAULT_URL})")
     s.add_argument("--prefix", default=DEFAULT_PREFIX, help="channel prefix (default SVA_)")
     s.add_argument("--timeout", type=float, default=5.0, help="seconds to wait for the plan")
@@ -35,7 +36,8 @@ def _parser() -> argparse.ArgumentParser:
                        "record the node's replans")
     c.add_argument("scenario", help='{"mission": MISSION, "events": [EVENT, ...], '
                    '"change_penalty": N} (SPEC section 12.5)')
-    c.add_argument("-o", "--output", help="write the record here instead of stdout")
+    c.add_argument("-o", "--out", "--output", dest="out",
+                   help="write the record here instead of stdout")
     c.add_argument("--url", default=DEFAULT_URL, help=f"LCM provider (default {DEFAULT_URL})")
     c.add_argument("--prefix", default=DEFAULT_PREFIX, help="channel prefix (default SVA_)")
     c.add_argument("--timeout", type=float, default=5.0,
@@ -44,7 +46,8 @@ def _parser() -> argparse.ArgumentParser:
                    help="fleet and mission revision (default: a fresh one from the clock)")
 
     r = sub.add_parser("record", help="log LCM traffic with lcm-logger")
-    r.add_argument("-o", "--output", required=True, help="log file to write")
+    r.add_argument("-o", "--out", "--output", dest="out", required=True,
+                   help="log file to write")
     r.add_argument("--url", default=DEFAULT_URL)
     r.add_argument("--channels", default=".*", help="channel regex (default .*)")
 
@@ -110,8 +113,8 @@ def _send(args) -> int:
         print(shown(f"sva-tools lcm send: the node {what}{detail}"), file=sys.stderr)
         return 1
     text = json.dumps(wire.plan_document(plan, name), indent=2) + "\n"
-    if args.output:
-        with open(args.output, "w", encoding="utf-8") as f:
+    if args.out:
+        with open(args.out, "w", encoding="utf-8") as f:
             f.write(text)
     else:
         sys.stdout.write(text)
@@ -222,8 +225,8 @@ def _scenario(args) -> int:
                   file=sys.stderr)
         record["replans"].append(answer)
     text = json.dumps(record, indent=2) + "\n"
-    if args.output:
-        with open(args.output, "w", encoding="utf-8") as f:
+    if args.out:
+        with open(args.out, "w", encoding="utf-8") as f:
             f.write(text)
     else:
         sys.stdout.write(text)
@@ -270,7 +273,7 @@ def main(argv: list[str]) -> int:
         return _scenario(args)
     if args.command == "record":
         return _run([wire.lcm_tool("lcm-logger"), "-f", "-q", "-c", args.channels,
-                     "-l", args.url, args.output])
+                     "-l", args.url, args.out])
     cmd = [wire.lcm_tool("lcm-logplayer"), "-s", str(args.speed), "-l", args.url]
     if args.channels:
         cmd += ["-e", args.channels]
