@@ -14,7 +14,7 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
 from sva_tools import schema  # noqa: E402  (the schemas of docs/schema)
 
-from test_cli import ALGORITHMS, assert_one_error_line, check_plan, run
+from test_cli import ALGORITHMS, FIXTURES, assert_one_error_line, check_plan, limits, run
 
 pytestmark = pytest.mark.sanitize  # cheap: also run against the ASan/UBSan build
 
@@ -137,9 +137,14 @@ def test_rejected_events(tmp_path, events, message):
     ({"plan": PLAN}, 'live mission: missing key "mission"'),
     ({"mission": {**MISSION, "change_penalty": -1}}, "mission.change_penalty: must be >= 0, got -1"),
     ({"mission": MISSION, "plan": {"routes": [{"uav": 1, "targets": [7]}]}},
-     "plan.routes[0].targets[0]: not a target id of the mission"),
+     "plan.routes[0].targets[0]: not a target id of the mission, got 7"),
     ({"mission": MISSION, "plan": {"routes": [{"uav": 2, "targets": []}, {"uav": 1, "targets": []}]}},
-     "routes[0].uav: must follow the mission's UAVs (1), got 2"),
+     "plan.routes[0].uav: must follow the mission's UAVs (1), got 2"),
+    ({"mission": MISSION, "plan": PLAN, "events": {"at": 1}}, "events: must be an array, got object"),
+    ({"mission": MISSION, "events": [{"at": "5", "type": "clock"}]},
+     "events[0].at: must be an integer, got string"),
+    ({"mission": MISSION, "events": [{"at": 2 ** 31, "type": "clock"}]},
+     "events[0].at: must be an integer in [-2147483648, 2147483647], got 2147483648"),
     ({"mission": MISSION, "events": [{"at": 15, "type": "clock"}], "now": 10},
      "now: 10 is before the last event (15)"),
 ])
@@ -182,3 +187,109 @@ def test_flow_work_is_the_budget_of_every_replan(tmp_path):
           f"--flow-work 2000000 {full}")
     assert small < default < full
     assert default < 100000 and full > 1000000
+
+
+# --- the plan in force against SPEC section 1 -------------------------------------
+
+LIVE_INVALID = FIXTURES / "invalid" / "live"
+
+
+@pytest.mark.parametrize("name", sorted(p.stem for p in LIVE_INVALID.glob("*.json")))
+def test_a_plan_in_force_that_breaks_the_rules_is_refused(name):
+    """fixtures/invalid/live: each LIVE.json's plan in force breaks one rule (SPEC
+    section 1: a target half or over covered, a visit reached after its start, a route
+    beyond its UAV's fuel; or the plan's layout or shape): exit 2, its message, nothing
+    on stdout."""
+    expected = (LIVE_INVALID / f"{name}.err").read_text().rstrip("\n")
+    result = run(["replan", f"{name}.json"], cwd=LIVE_INVALID)
+    assert assert_one_error_line(result, 2) == expected
+    assert expected.startswith("plan")
+
+
+def test_every_invalid_live_document_has_its_message():
+    jsons = sorted(p.stem for p in LIVE_INVALID.glob("*.json"))
+    assert jsons == sorted(p.stem for p in LIVE_INVALID.glob("*.err"))
+    assert len(jsons) >= 15
+
+
+# At every limit of SPEC section 1: UAV 1 reaches target 1 exactly at its start (ready
+# at 5, 5 cells) and target 2 exactly at its start (20 + 5); UAV 2 reaches target 1 at 5;
+# each route uses exactly its fuel (hover_fuel 1); UAV 3 cannot get home (stranded) and
+# has an empty route; target 1 has exactly its need, target 3 no UAV.
+EDGE = {
+    "name": "edge_live", "depot": {"x": 0, "y": 0}, "hover_fuel": 1,
+    "uavs": [{"id": 1, "x": 0, "y": 0, "fuel": 22, "ready_at": 5},
+             {"id": 2, "x": 0, "y": 0, "fuel": 11},
+             {"id": 3, "x": 40, "y": 0, "fuel": 5}],
+    "targets": [{"id": 1, "x": 5, "y": 0, "start": 10, "end": 20, "need": 2},
+                {"id": 2, "x": 5, "y": 5, "start": 25, "end": 40, "need": 1},
+                {"id": 3, "x": 1, "y": 6, "start": 30, "end": 40, "need": 1}],
+}
+EDGE_PLAN = {"routes": [{"uav": 1, "targets": [1, 2]}, {"uav": 2, "targets": [1]},
+                        {"uav": 3, "targets": []}]}
+
+
+def test_a_plan_in_force_at_every_limit_is_taken(tmp_path):
+    _, plan = replan(tmp_path, {"mission": EDGE, "plan": EDGE_PLAN}, "--algo", "flow")
+    assert plan["live"]["now"] == 0 and plan["covered"] >= 2
+
+
+@pytest.mark.parametrize("change, message", [
+    (("uavs", 0, "ready_at", 6),
+     "plan.routes[0].targets[0]: uav 1 reaches target 1 at tick 11, after its start 10 (ready_at 6, 5 cells)"),
+    (("targets", 1, "start", 24),
+     "plan.routes[0].targets[1]: uav 1 leaves target 1 at its end 20 and reaches target 2 at tick 25, "
+     "after its start 24"),
+    (("uavs", 0, "fuel", 21),
+     "plan.routes[0]: the route of uav 1 needs 22 fuel (return leg and hover included), more than its fuel 21"),
+    (("uavs", 1, "fuel", 10),
+     "plan.routes[1]: the route of uav 2 needs 11 fuel (return leg and hover included), more than its fuel 10"),
+    (("targets", 0, "need", 3),
+     "plan.routes: target 1 is served by 2 UAVs, must be served by exactly its need (3) or by none"),
+    (("targets", 0, "need", 1),
+     "plan.routes: target 1 is served by 2 UAVs, must be served by exactly its need (1) or by none"),
+], ids=["late first visit", "late next visit", "fuel", "fuel, hover", "need 3", "need 1"])
+def test_one_past_a_limit_is_refused(tmp_path, change, message):
+    key, index, field, value = change
+    mission = json.loads(json.dumps(EDGE))
+    mission[key][index][field] = value
+    live = tmp_path / "live.json"
+    live.write_text(json.dumps({"mission": mission, "plan": EDGE_PLAN,
+                                "events": [{"at": 3, "type": "clock"}]}))
+    assert assert_one_error_line(run(["replan", str(live)]), 2) == message
+
+
+PLANNED = ["hand_5_3", "hand_5_4", "rand_7_2", "rand_10_2", "rand_25_2"]
+
+
+@pytest.mark.parametrize("algo", ALGORITHMS)
+@pytest.mark.parametrize("name", PLANNED)
+def test_every_plan_sva_plan_makes_is_taken_as_the_plan_in_force(tmp_path, name, algo):
+    """The check refuses no plan of the planner: plans of every algorithm (stranded
+    UAVs, UAVs away from the depot and busy, ticks_per_cell 2, binding fuel) replay."""
+    mission = json.loads((FIXTURES / "missions" / f"{name}.json").read_text())
+    if algo == "bfa" and (len(mission["targets"]) > limits()["SVA_BFA_MAX_TARGETS"] or
+                          len(mission["uavs"]) > limits()["SVA_BFA_MAX_UAVS"]):
+        pytest.skip("over bfa's bounds")
+    made = run(["plan", "--algo", algo, str(FIXTURES / "missions" / f"{name}.json")])
+    assert made.returncode == 0, made.stderr
+    _, plan = replan(tmp_path, {"mission": mission, "plan": json.loads(made.stdout)}, "--algo", algo)
+    assert plan["live"]["now"] == 0
+
+
+def test_a_framed_plan_is_taken_as_the_plan_in_force(tmp_path):
+    """`sva plan` of a mission with a frame echoes the frame: that plan document is a
+    plan in force as it is (its frame, like its figures, is not read)."""
+    path = FIXTURES / "geo" / "zurich.json"
+    made = run(["plan", "--algo", "flow", str(path)])
+    assert made.returncode == 0, made.stderr
+    plan = json.loads(made.stdout)
+    assert "frame" in plan
+    live, residual = tmp_path / "live.json", tmp_path / "residual.json"
+    live.write_text(json.dumps({"mission": json.loads(path.read_text()), "plan": plan, "now": 1}))
+    result = run(["replan", "--algo", "flow", "--residual", str(residual), str(live)])
+    assert result.returncode == 0, result.stderr
+    replanned = json.loads(result.stdout)
+    assert replanned["live"]["now"] == 1 and replanned["frame"] == plan["frame"]
+    check_plan({k: v for k, v in json.loads(residual.read_text()).items() if k != "frame"},
+               {k: v for k, v in replanned.items() if k not in ("changes", "live", "frame")}, "flow")

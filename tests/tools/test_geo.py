@@ -42,7 +42,10 @@ def tools(capsys):
     many bad-input cases cost no interpreter start each."""
     def run(*args):
         capsys.readouterr()
-        rc = cli.main([str(a) for a in args])
+        try:
+            rc = cli.main([str(a) for a in args])
+        except SystemExit as e:  # argparse: usage errors, --help
+            rc = e.code
         out = capsys.readouterr()
         return Run(rc, out.out, out.err)
     return run
@@ -428,6 +431,58 @@ def test_a_bad_option_is_refused_with_its_rule(tools, option, message):
     assert r.stderr.startswith(f"sva-tools: error: geo: {message}"), r.stderr
 
 
+# Options and arguments argparse refuses: one line too, naming the option.
+BAD_USAGE = [
+    (("--depot", "95,8"), "--depot: must be LAT in [-90, 90] and LON in [-180, 180], got '95,8'"),
+    (("--depot", "47"), "--depot: must be LAT,LON in degrees, got '47'"),
+    (("--cell-m", "abc"), "--cell-m: must be a number, got 'abc'"),
+    (("--tick-s", "inf"), "--tick-s: must be a number, got 'inf'"),
+    (("--uavs", "x"), "--uavs: must be an integer, got 'x'"),
+    (("--fuel", "1.5"), "--fuel: must be an integer, got '1.5'"),
+    (("--speed", "nan"), "--speed: must be a number, got 'nan'"),
+    (("--ticks-per-cell", "2"), "--ticks-per-cell: not allowed with argument --speed"),
+    (("--colour", "red"), "unrecognized arguments: --colour red"),
+    (("--depot", "\x1b[31m\n"), "--depot: must be LAT,LON in degrees, got '\\x1b[31m\\n'"),
+]
+
+
+@pytest.mark.parametrize("option,message", BAD_USAGE, ids=lambda v: str(v)[:30])
+def test_a_bad_option_value_is_one_line(tools, option, message):
+    args = list(ZURICH_ARGS)
+    if option[0] in args:
+        args[args.index(option[0]) + 1] = option[1]
+    else:
+        args += list(option)
+    r = tools("geo", "mission", TARGETS, *args)
+    assert (r.returncode, r.stdout) == (2, "")
+    assert r.stderr == f"sva-tools: error: geo: {message}\n"
+
+
+@pytest.mark.parametrize("args,message", [
+    (("geo",), "the following arguments are required: GEO_COMMAND"),
+    (("geo", "nope"), "GEO_COMMAND: invalid choice: 'nope' (choose from 'mission', 'plan', 'cell', 'point')"),
+    (("geo", "mission", TARGETS, "--cell-m", "50"), "the following arguments are required: --depot, "
+     "--tick-s, --t0"),
+    (("geo", "cell", "47.3655,8.5461,3", "--mission", MISSION),
+     "LAT,LON: must be LAT,LON in degrees, got '47.3655,8.5461,3'"),
+    (("geo", "point", "1", "--mission", MISSION), "X,Y: must be X,Y (integers), got '1'"),
+    (("geo", "point", "1,2"), "the following arguments are required: --mission"),
+    (("geo", "plan", MISSION), "the following arguments are required: PLAN.json"),
+    (("geo", "plan", MISSION, MISSION, MISSION), f"unrecognized arguments: {MISSION}"),
+], ids=lambda v: str(v)[:40])
+def test_a_bad_command_line_is_one_line(tools, args, message):
+    r = tools(*args)
+    assert (r.returncode, r.stdout) == (2, "")
+    assert r.stderr == f"sva-tools: error: geo: {message}\n"
+
+
+def test_usage_errors_are_one_line_from_the_entry_point_too():
+    r = sva_tools("geo", "mission", TARGETS, *ZURICH_ARGS, "--uavs", "many")
+    assert (r.returncode, r.stdout) == (2, "")
+    assert r.stderr == "sva-tools: error: geo: --uavs: must be an integer, got 'many'\n"
+    assert sva_tools("geo", "mission", "--help").returncode == 0
+
+
 def test_bad_documents_are_refused(tools, tmp_path):
     for text, message in (('{"type": "Feature"}', 'feature.properties: must be an object, got null'),
                           ('[1]', "geojson: must be an object, got array"),
@@ -583,4 +638,5 @@ def test_geo_cell_and_point_go_both_ways(tools):
     assert (cell["x"], cell["y"]) == (2, 24)
     assert abs(cell["east_m"] - 100) < 0.02 and abs(cell["north_m"] - 1200) < 0.02
     r = sva_tools("geo", "cell", "47.3655,8.5461,3", "--mission", MISSION)
-    assert r.returncode == 2 and "must be LAT,LON in degrees" in r.stderr
+    assert r.returncode == 2 and r.stderr == ("sva-tools: error: geo: LAT,LON: must be LAT,LON in "
+                                              "degrees, got '47.3655,8.5461,3'\n")

@@ -508,7 +508,13 @@ static int replay(const options_t* opt, sva_algorithm_t algorithm)
         }
     }
     if (sva_live_init(&g_live, &g_doc.mission, &g_doc.plan, &diag) != SVA_OK) {
-        return plan_failed(SVA_ERR_INVALID, &diag);
+        // The JSON layer refuses a plan in force that breaks these rules first; a route
+        // rule is the plan document's all the same.
+        const bool route = diag.field == SVA_FIELD_ROUTES || diag.field == SVA_FIELD_ROUTE_UAV ||
+                           diag.field == SVA_FIELD_ROUTE_TARGETS;
+        char message[SVA_JSON_ERROR_SIZE];
+        (void)sva_diag_format(&diag, message, sizeof message);
+        return error_exit(EXIT_BAD_INPUT, "%s%s", route ? "plan." : "", message);
     }
     sva_live_result_t result;
     bool replanned = false;

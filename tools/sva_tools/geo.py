@@ -14,7 +14,8 @@ the mission's geographic frame (docs/SPEC.md section 3, docs/flight-stack.md).
 - `geo cell LAT,LON --mission M.json`, `geo point X,Y --mission M.json`: one position
   each way.
 
-Bad input is one line `sva-tools: error: FILE: FIELD: RULE`, exit status 2.
+Bad input is one line `sva-tools: error: FILE: FIELD: RULE`, exit status 2; a bad
+option or argument is one line `sva-tools: error: geo: OPTION: RULE`, exit status 2.
 """
 from __future__ import annotations
 
@@ -24,11 +25,12 @@ import math
 import os
 from decimal import Decimal
 from fractions import Fraction
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Dict, List, NoReturn, Optional, Tuple
 
 from . import check, io, schema
 from . import frame as F
 from . import model as M
+from .text import Parser, shown
 
 # GeoJSON coordinates are written to 1e-7 degree (about 1 cm), the frame's resolution.
 COORD_DIGITS = 7
@@ -42,26 +44,58 @@ def _fail(message: str, path: str) -> io.InputError:
     return io.InputError(message, path)
 
 
-def _lat_lon(text: str, what: str) -> Tuple[float, float]:
+class _Parser(Parser):
+    """The geo commands' argparse: a usage error (a bad, missing or unknown option or
+    argument) is one line `sva-tools: error: geo: MESSAGE` with exit status 2, as a bad
+    value of a file is; plain argparse prints the usage and `PROG: error:` first, and
+    leaves unknown arguments to the top-level parser."""
+
+    def error(self, message: str) -> NoReturn:
+        name, sep, rest = message.partition(": ")
+        if sep and name.startswith("argument "):  # "argument --depot: RULE"
+            name = name[len("argument "):]
+            message = rest if rest.startswith(name + ":") else f"{name}: {rest}"
+        self.exit(2, f"sva-tools: error: geo: {shown(message)}\n")
+
+    def parse_known_args(self, args=None, namespace=None):  # type: ignore[override]
+        namespace, extras = super().parse_known_args(args, namespace)
+        if extras:
+            self.error(f"unrecognized arguments: {' '.join(extras)}")
+        return namespace, extras
+
+
+def _lat_lon(text: str) -> Tuple[float, float]:
     """`LAT,LON` in degrees (a usage error otherwise)."""
     parts = text.split(",")
     try:
         lat, lon = (float(p) for p in parts)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"{what}: must be LAT,LON in degrees, got {text!r}") from None
+        raise argparse.ArgumentTypeError(f"must be LAT,LON in degrees, got {text!r}") from None
     if not (math.isfinite(lat) and math.isfinite(lon)) or not -90 <= lat <= 90 or not -180 <= lon <= 180:
-        raise argparse.ArgumentTypeError(f"{what}: must be LAT in [-90, 90] and LON in [-180, 180], got {text!r}")
+        raise argparse.ArgumentTypeError(f"must be LAT in [-90, 90] and LON in [-180, 180], got {text!r}")
     return lat, lon
 
 
 def _number(text: str):
+    """A finite number: an integer when written as one (a usage error otherwise)."""
     try:
         return int(text)
     except ValueError:
+        pass
+    try:
         v = float(text)
-        if not math.isfinite(v):
-            raise ValueError(text) from None
-        return v
+    except ValueError:
+        v = math.nan
+    if not math.isfinite(v):
+        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}")
+    return v
+
+
+def _integer(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be an integer, got {text!r}") from None
 
 
 # --- geo mission --------------------------------------------------------------------
@@ -434,12 +468,13 @@ def run_point(args) -> int:
 def add_parser(sub) -> None:
     ap = sub.add_parser("geo", help="missions from GeoJSON, plans to GeoJSON (the mission frame)",
                         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    geo = ap.add_subparsers(dest="geo_command", metavar="GEO_COMMAND")
+    ap.__class__ = _Parser  # made by the top-level parser; its own errors one line too
+    geo = ap.add_subparsers(dest="geo_command", metavar="GEO_COMMAND", parser_class=_Parser)
     geo.required = True
 
     mp = geo.add_parser("mission", help="a mission from a GeoJSON of targets")
     mp.add_argument("targets", metavar="TARGETS.geojson")
-    mp.add_argument("--depot", required=True, type=lambda s: _lat_lon(s, "--depot"),
+    mp.add_argument("--depot", required=True, type=_lat_lon,
                     metavar="LAT,LON", help="the depot, cell (0, 0) and the frame's origin "
                     "(a negative latitude: --depot=-33.86,151.21)")
     mp.add_argument("--cell-m", required=True, type=_number, metavar="M", help="cell size, metres")
@@ -447,15 +482,15 @@ def add_parser(sub) -> None:
     mp.add_argument("--t0", required=True, metavar="ISO", help="UTC instant of tick 0 (ISO 8601, Z or +hh:mm)")
     mp.add_argument("--alt-m", type=_number, default=DEFAULT_ALT_M, metavar="M",
                     help=f"flight altitude above home, metres (default {DEFAULT_ALT_M:g})")
-    mp.add_argument("--uavs", type=int, default=DEFAULT_UAVS, metavar="N",
+    mp.add_argument("--uavs", type=_integer, default=DEFAULT_UAVS, metavar="N",
                     help=f"UAVs at the depot (default {DEFAULT_UAVS})")
-    mp.add_argument("--fuel", type=int, default=M.SVA_MAX_FUEL, metavar="F",
+    mp.add_argument("--fuel", type=_integer, default=M.SVA_MAX_FUEL, metavar="F",
                     help="fuel of each UAV, cells (default SVA_MAX_FUEL: no limit in practice)")
     mp.add_argument("--name", default="", help="mission name (default: the file's name)")
     speed = mp.add_mutually_exclusive_group()
-    speed.add_argument("--ticks-per-cell", type=int, default=M.DEFAULT_TICKS_PER_CELL, metavar="N",
+    speed.add_argument("--ticks-per-cell", type=_integer, default=M.DEFAULT_TICKS_PER_CELL, metavar="N",
                        help="travel ticks per cell (default 1)")
-    speed.add_argument("--speed", type=float, default=None, metavar="V",
+    speed.add_argument("--speed", type=_number, default=None, metavar="V",
                        help="ground speed, m/s: ticks_per_cell = ceil(cell_m / (V * tick_s))")
     mp.add_argument("-o", "--out", default="-", help="output file (default: stdout)")
     mp.set_defaults(func=run_mission)
@@ -467,7 +502,7 @@ def add_parser(sub) -> None:
     pp.set_defaults(func=run_plan)
 
     cp = geo.add_parser("cell", help="the cell of a position")
-    cp.add_argument("position", type=lambda s: _lat_lon(s, "position"), metavar="LAT,LON")
+    cp.add_argument("position", type=_lat_lon, metavar="LAT,LON")
     cp.add_argument("--mission", required=True, metavar="M.json", help="a mission with a frame")
     cp.set_defaults(func=run_cell)
 

@@ -1,4 +1,4 @@
-"""`sva-tools mavlink upload PLAN.json --mission MISSION.json --vehicle UAV_ID=udp:HOST:PORT[:SYSID] ...`:
+"""`sva-tools mavlink upload PLAN.json --mission MISSION.json --vehicle UAV_ID=udp|tcp:HOST:PORT[:SYSID]`:
 a plan's routes as MAVLink missions, uploaded to the vehicles (docs/mavlink.md).
 
 Per UAV with a vehicle: MAV_CMD_NAV_TAKEOFF at its start cell, MAV_CMD_DO_CHANGE_SPEED
@@ -7,15 +7,19 @@ to the plan's ground speed, per target a MAV_CMD_NAV_WAYPOINT at the target cell
 UTC time of day of the window's end, then MAV_CMD_NAV_RETURN_TO_LAUNCH. The frame comes
 from the plan's `frame` when it has one, else from the mission's. Each vehicle gets the
 MAVLink mission protocol (MISSION_COUNT, MISSION_REQUEST_INT -> MISSION_ITEM_INT,
-MISSION_ACK) with pymavlink, all vehicles at once; one line per vehicle tells how it
-went. Exit 0 when every upload was accepted, 1 when one failed, 2 on bad input (files,
-frame, command line, a route the items cannot carry).
+MISSION_ACK) with pymavlink's codec, all vehicles at once, over UDP (datagrams from the
+vehicle's address and port only) or TCP; only the vehicle's autopilot (its system id,
+component 1) is heard, and stray or broken bytes lose no good frame. One line per
+vehicle tells how it went. Exit 0 when every upload was accepted, 1 when one failed, 2
+on bad input (files, frame, command line, a route the items cannot carry).
 """
 from __future__ import annotations
 
 import argparse
 import math
 import re
+import select
+import socket
 import struct
 import sys
 import threading
@@ -181,84 +185,324 @@ _ACK_NAMES = {0: "MAV_MISSION_ACCEPTED", 1: "MAV_MISSION_ERROR", 2: "MAV_MISSION
               14: "MAV_MISSION_DENIED", 15: "MAV_MISSION_OPERATION_CANCELLED"}
 
 
-def upload(host: str, port: int, sysid: int, items: List[Item], timeout_ms: int = TIMEOUT_MS,
+# --- frames out of untrusted bytes -------------------------------------------------
+
+_STX_V2 = 0xFD
+_STX_V1 = 0xFE
+_HEADER_V2 = 10
+_HEADER_V1 = 6
+_CRC_LEN = 2
+_SIGNATURE_LEN = 13
+_IFLAG_SIGNED = 0x01
+_GOOD, _BAD, _INCOMPLETE = range(3)
+
+
+def _dialect():
+    """pymavlink's MAVLink 2 common dialect (imported on first use: it is slow to load)."""
+    from pymavlink.dialects.v20 import common
+    return common
+
+
+class Frames:
+    """MAVLink 1 and 2 frames out of untrusted bytes, by the rules of the C library's
+    parser (docs/mavlink.md "Stray and broken bytes"). pymavlink decodes each candidate
+    (`MAVLink.decode`: length, checksum with CRC_EXTRA, payload); this class finds where
+    a candidate starts and how long its header says it is, and judges it as soon as it
+    can: an incompatibility flag, a message id common.xml lacks, a payload longer than
+    the message's or a failed decode make it bad. A bad candidate loses its first byte
+    only and the search resumes right after it, so a good frame behind stray, truncated
+    or corrupted bytes is always found (pymavlink's own parser takes a bad header's
+    length as its frame, and keeps that state from one call to the next).
+
+    Signed frames are not taken (counted in `signed`): this side holds no key to check
+    a signature, and a frame that claims one without it would take the next frame's
+    first 13 bytes. `datagram()` parses one datagram on its own; `stream()` holds the
+    bytes of a candidate whose declared length has not arrived yet (under 280)."""
+
+    def __init__(self) -> None:
+        dialect = _dialect()
+        self._map = dialect.mavlink_map
+        self._mav = dialect.MAVLink(None)
+        self._held = bytearray()
+        self.signed = 0  # signed frames with a good checksum, not taken
+
+    def datagram(self, data: bytes) -> list:
+        out: list = []
+        self._scan(bytearray(data), out, final=True)
+        return out
+
+    def stream(self, data: bytes) -> list:
+        out: list = []
+        self._held = self._scan(self._held + data, out, final=False)
+        return out
+
+    def _scan(self, buf: bytearray, out: list, final: bool) -> bytearray:
+        i = 0
+        while i < len(buf):
+            if buf[i] != _STX_V2 and buf[i] != _STX_V1:
+                starts = [k for k in (buf.find(_STX_V2, i), buf.find(_STX_V1, i)) if k >= 0]
+                i = min(starts) if starts else len(buf)
+                continue
+            verdict, msg, size = self._judge(buf, i)
+            if verdict == _GOOD:
+                out.append(msg)
+                i += size
+            elif verdict == _INCOMPLETE and not final:
+                break
+            else:
+                i += 1
+        return buf[i:]
+
+    def _judge(self, buf: bytearray, i: int) -> Tuple[int, object, int]:
+        v2 = buf[i] == _STX_V2
+        header = _HEADER_V2 if v2 else _HEADER_V1
+        have = len(buf) - i
+        flags = 0
+        if v2:
+            if have < 3:
+                return _INCOMPLETE, None, 0
+            flags = buf[i + 2]
+            if flags & ~_IFLAG_SIGNED:
+                return _BAD, None, 0
+        if have < header:
+            return _INCOMPLETE, None, 0
+        length = buf[i + 1]
+        msgid = (buf[i + 7] | buf[i + 8] << 8 | buf[i + 9] << 16) if v2 else buf[i + 5]
+        kind = self._map.get(msgid)
+        if kind is None or length > kind.unpacker.size:
+            return _BAD, None, 0
+        size = header + length + _CRC_LEN + (_SIGNATURE_LEN if flags else 0)
+        if have < size:
+            # A signed candidate is never taken: no need to wait for its signature.
+            return (_BAD if flags else _INCOMPLETE), None, 0
+        try:
+            msg = self._mav.decode(bytearray(buf[i:i + size]))
+        except Exception:  # noqa: BLE001 -- MAVError, struct.error: a bad candidate
+            return _BAD, None, 0
+        if flags:
+            self.signed += 1
+            return _BAD, None, 0
+        return _GOOD, msg, size
+
+
+# --- links ---------------------------------------------------------------------------
+
+AUTOPILOT_COMPONENT = 1                # MAV_COMP_ID_AUTOPILOT1
+RECONNECT_S = 0.5                      # SVA_MAVLINK_RECONNECT_MS
+CONNECT_TIMEOUT_S = 3.0                # SVA_MAVLINK_CONNECT_TIMEOUT_MS
+
+
+@dataclass(frozen=True)
+class Vehicle:
+    """A `--vehicle UAV_ID=udp|tcp:HOST:PORT[:SYSID]`, its address resolved once."""
+    uav: int
+    transport: str
+    host: str
+    port: int
+    sysid: int
+    family: int = 0
+    address: tuple = ()
+
+    @property
+    def endpoint(self) -> str:
+        return f"{self.transport}:{self.host}:{self.port}"
+
+
+class Link:
+    """One vehicle's socket. UDP: connected to the vehicle's address and port, so the
+    kernel delivers datagrams from there only, each parsed on its own. TCP: a
+    connection (tried again every RECONNECT_S while it is not made), parsed as a
+    stream. Used as the pymavlink MAVLink object's file: write() sends one frame."""
+
+    def __init__(self, vehicle: Vehicle) -> None:
+        self.vehicle = vehicle
+        self.tcp = vehicle.transport == "tcp"
+        self.frames = Frames()
+        self.error = ""          # why a TCP link is not up
+        self.lost = False        # a TCP connection that was up is gone
+        self.next_connect = 0.0
+        self.sock: Optional[socket.socket] = None
+        if not self.tcp:
+            self.sock = socket.socket(vehicle.family, socket.SOCK_DGRAM)
+            self.sock.connect(vehicle.address)
+
+    def up(self) -> bool:
+        return self.sock is not None
+
+    def connect(self, now: float, budget_s: float) -> bool:
+        """A TCP connection attempt when one is due; True when it was made now."""
+        if self.up() or self.lost or now < self.next_connect:
+            return False
+        self.next_connect = now + RECONNECT_S
+        sock = socket.socket(self.vehicle.family, socket.SOCK_STREAM)
+        sock.settimeout(max(0.05, min(CONNECT_TIMEOUT_S, budget_s)))
+        try:
+            sock.connect(self.vehicle.address)
+        except socket.timeout:
+            sock.close()
+            self.error = f"no connection after {int(CONNECT_TIMEOUT_S * 1000)} ms"
+            return False
+        except OSError as e:
+            sock.close()
+            self.error = e.strerror or str(e)
+            return False
+        sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        self.sock = sock
+        return True
+
+    def _lose(self, why: str) -> list:
+        self.close()
+        self.lost, self.error = True, why
+        return []
+
+    def write(self, data: bytes) -> None:
+        if self.sock is None:
+            return  # TCP not connected yet: the upload's timeout resends
+        try:
+            if self.tcp:
+                self.sock.sendall(data)
+            else:
+                self.sock.send(data)
+        except OSError as e:
+            if self.tcp:
+                self._lose(e.strerror or str(e))
+            elif not isinstance(e, ConnectionRefusedError):
+                raise  # refused: an ICMP error of an earlier datagram (nobody listening yet)
+
+    def receive(self, wait_s: float) -> list:
+        """The messages that arrive within wait_s (every good frame, any sender)."""
+        if self.sock is None:
+            time.sleep(wait_s)
+            return []
+        if not select.select([self.sock], [], [], wait_s)[0]:
+            return []
+        try:
+            data = self.sock.recv(65535)
+        except OSError as e:
+            if self.tcp:
+                return self._lose(e.strerror or str(e))
+            if isinstance(e, ConnectionRefusedError):
+                return []
+            raise
+        if not self.tcp:
+            return self.frames.datagram(data)
+        return self.frames.stream(data) if data else self._lose("closed by the vehicle")
+
+    def close(self) -> None:
+        if self.sock is not None:
+            self.sock.close()
+        self.sock = None
+
+
+def upload(vehicle: Vehicle, items: List[Item], timeout_ms: int = TIMEOUT_MS,
            retries: int = RETRIES) -> Optional[str]:
-    """The MAVLink mission protocol, sender side, with pymavlink. None when the vehicle
-    accepted the mission, else the reason."""
-    import os
-    os.environ["MAVLINK20"] = "1"  # MAVLink 2: mission_type, before pymavlink loads its dialect
-    from pymavlink import mavutil
-    conn = mavutil.mavlink_connection(f"udpout:{host}:{port}", source_system=OWN_SYSTEM,
-                                      source_component=OWN_COMPONENT, dialect="common")
-    mav = conn.mav
+    """The MAVLink mission protocol, sender side, with pymavlink's codec. None when
+    the vehicle accepted the mission, else the reason. Only messages of the vehicle's
+    system id and component 1 (MAV_COMP_ID_AUTOPILOT1), to this side's system id and
+    of the mission type count."""
+    dialect = _dialect()
+    link = Link(vehicle)
+    mav = dialect.MAVLink(link, srcSystem=OWN_SYSTEM, srcComponent=OWN_COMPONENT)
+    timeout = timeout_ms / 1000.0
     try:
-        mav.heartbeat_send(mavutil.mavlink.MAV_TYPE_GCS, mavutil.mavlink.MAV_AUTOPILOT_INVALID,
-                           0, 0, mavutil.mavlink.MAV_STATE_ACTIVE)
+        def heartbeat() -> None:
+            mav.heartbeat_send(dialect.MAV_TYPE_GCS, dialect.MAV_AUTOPILOT_INVALID, 0, 0,
+                               dialect.MAV_STATE_ACTIVE)
 
-        def send_count():
-            mav.mission_count_send(sysid, 1, len(items), 0)
+        def send_count() -> None:
+            mav.mission_count_send(vehicle.sysid, AUTOPILOT_COMPONENT, len(items), 0)
 
-        def send_item(seq: int):
+        def send_item(seq: int) -> None:
             it = items[seq]
-            mav.mission_item_int_send(sysid, 1, seq, it.frame, it.command, 1 if seq == 0 else 0,
-                                      1, it.param1, it.param2, it.param3, it.param4, it.x, it.y,
-                                      it.z, 0)
+            mav.mission_item_int_send(vehicle.sysid, AUTOPILOT_COMPONENT, seq, it.frame,
+                                      it.command, 1 if seq == 0 else 0, 1, it.param1, it.param2,
+                                      it.param3, it.param4, it.x, it.y, it.z, 0)
 
         resend, what = send_count, "MISSION_COUNT"
-        resend()
         tries, sent = 0, set()
-        deadline = time.monotonic() + timeout_ms / 1000.0
-        next_hb = time.monotonic() + 1.0
+        now = time.monotonic()
+        deadline, next_hb = now + timeout, now + 1.0
+        if link.up():
+            heartbeat()
+            send_count()
         while True:
             now = time.monotonic()
+            if link.tcp and not link.up():
+                if link.lost:
+                    return (f"link: {vehicle.endpoint}: connection lost during the upload: "
+                            f"{link.error}")
+                if link.connect(now, deadline - now):
+                    # The MISSION_COUNT goes out now, with every retry still to come.
+                    heartbeat()
+                    send_count()
+                    now = time.monotonic()
+                    tries, deadline, next_hb = 0, now + timeout, now + 1.0
             if now >= deadline:
                 if tries >= retries:
-                    return f"timeout: no answer to {what} after {tries + 1} tries of {timeout_ms} ms"
+                    why = f"timeout: no answer to {what} after {tries + 1} tries of {timeout_ms} ms"
+                    if link.tcp and not link.up():
+                        why += f"; {vehicle.endpoint} not connected: {link.error or 'connecting'}"
+                    if link.frames.signed:
+                        why += (f"; {link.frames.signed} signed frames not taken (this side "
+                                f"checks no MAVLink signature)")
+                    return why
                 tries += 1
                 resend()
-                deadline = now + timeout_ms / 1000.0
-            if now >= next_hb:
-                mav.heartbeat_send(mavutil.mavlink.MAV_TYPE_GCS,
-                                   mavutil.mavlink.MAV_AUTOPILOT_INVALID, 0, 0,
-                                   mavutil.mavlink.MAV_STATE_ACTIVE)
+                deadline = now + timeout
+            if now >= next_hb and link.up():
+                heartbeat()
                 next_hb = now + 1.0
-            msg = conn.recv_match(type=["MISSION_REQUEST_INT", "MISSION_REQUEST", "MISSION_ACK"],
-                                  blocking=True, timeout=0.05)
-            if msg is None or msg.get_srcSystem() != sysid:
-                continue
-            if getattr(msg, "target_system", OWN_SYSTEM) != OWN_SYSTEM or \
-                    getattr(msg, "mission_type", 0) != 0:
-                continue
-            if msg.get_type() == "MISSION_ACK":
-                if msg.type != 0:
-                    name = _ACK_NAMES.get(msg.type, "an unknown MAV_MISSION_RESULT")
-                    return f"MISSION_ACK: the vehicle refused the mission: {name} ({msg.type})"
-                if len(sent) == len(items):
-                    return None
-                return (f"MISSION_ACK: MAV_MISSION_ACCEPTED after {len(sent)} of {len(items)} "
-                        f"items were sent")
-            if 0 <= msg.seq < len(items):
-                seq = msg.seq
-                send_item(seq)
-                sent.add(seq)
-                resend, what = (lambda s=seq: send_item(s)), f"MISSION_ITEM_INT {seq}"
-                tries = 0
-                deadline = time.monotonic() + timeout_ms / 1000.0
+            for msg in link.receive(0.05):
+                if msg.get_srcSystem() != vehicle.sysid or \
+                        msg.get_srcComponent() != AUTOPILOT_COMPONENT:
+                    continue  # another system or component: not the vehicle's autopilot
+                kind = msg.get_type()
+                if kind not in ("MISSION_REQUEST_INT", "MISSION_REQUEST", "MISSION_ACK") or \
+                        msg.target_system != OWN_SYSTEM or msg.mission_type != 0:
+                    continue
+                if kind == "MISSION_ACK":
+                    if msg.type != 0:
+                        name = _ACK_NAMES.get(msg.type, "an unknown MAV_MISSION_RESULT")
+                        return f"MISSION_ACK: the vehicle refused the mission: {name} ({msg.type})"
+                    if len(sent) == len(items):
+                        return None
+                    return (f"MISSION_ACK: MAV_MISSION_ACCEPTED after {len(sent)} of "
+                            f"{len(items)} items were sent")
+                if 0 <= msg.seq < len(items):
+                    seq = msg.seq
+                    send_item(seq)
+                    sent.add(seq)
+                    resend, what = (lambda s=seq: send_item(s)), f"MISSION_ITEM_INT {seq}"
+                    tries = 0
+                    deadline = time.monotonic() + timeout
     finally:
-        conn.close()
+        link.close()
 
 
-_VEHICLE = re.compile(r"^([1-9][0-9]{0,9})=udp:([^:]+):([0-9]{1,5})(?::([0-9]{1,3}))?$")
+_VEHICLE = re.compile(r"^([1-9][0-9]{0,9})=(udp|tcp):([^:]+):([0-9]{1,5})(?::([0-9]{1,3}))?$")
 
 
-def parse_vehicle(text: str) -> Tuple[int, str, int, int]:
+def parse_vehicle(text: str) -> Vehicle:
+    """A --vehicle value (its address not resolved yet)."""
     m = _VEHICLE.match(text)
-    if not m or int(m.group(1)) > M.SVA_MAX_ID or not 1 <= int(m.group(3)) <= 65535 or \
-            (m.group(4) is not None and not 1 <= int(m.group(4)) <= 255):
-        raise io.InputError(f"--vehicle: must be UAV_ID=udp:HOST:PORT[:SYSID] (UAV_ID in "
-                            f"[1, {M.SVA_MAX_ID}], PORT in [1, 65535], SYSID in [1, 255]), "
-                            f"got \"{shown(text)[:60]}\"")
-    return int(m.group(1)), m.group(2), int(m.group(3)), int(m.group(4) or 1)
+    if not m or int(m.group(1)) > M.SVA_MAX_ID or not 1 <= int(m.group(4)) <= 65535 or \
+            (m.group(5) is not None and not 1 <= int(m.group(5)) <= 255):
+        raise io.InputError(f"--vehicle: must be UAV_ID=udp:HOST:PORT[:SYSID] or "
+                            f"UAV_ID=tcp:HOST:PORT[:SYSID] (UAV_ID in [1, {M.SVA_MAX_ID}], PORT in "
+                            f"[1, 65535], SYSID in [1, 255]), got \"{shown(text)[:60]}\"")
+    return Vehicle(int(m.group(1)), m.group(2), m.group(3), int(m.group(4)), int(m.group(5) or 1))
+
+
+def resolve(vehicle: Vehicle) -> Vehicle:
+    """The vehicle with its address (the first getaddrinfo gives), resolved once."""
+    kind = socket.SOCK_STREAM if vehicle.transport == "tcp" else socket.SOCK_DGRAM
+    try:
+        family, _, _, _, address = socket.getaddrinfo(vehicle.host, vehicle.port, type=kind)[0]
+    except (OSError, UnicodeError) as e:
+        raise io.InputError(f"--vehicle: {vehicle.uav}: {shown(vehicle.endpoint)}: cannot "
+                            f"resolve: {shown(getattr(e, 'strerror', None) or e)}") from None
+    return Vehicle(vehicle.uav, vehicle.transport, vehicle.host, vehicle.port, vehicle.sysid,
+                   family, address)
 
 
 def _load(path: str, kind: str):
@@ -278,10 +522,13 @@ def add_parser(sub) -> None:
                         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     msub = ap.add_subparsers(dest="mavlink_command", metavar="COMMAND")
     msub.required = True
-    up = msub.add_parser("upload", help="upload the routes to the vehicles (MAVLink over UDP)")
+    up = msub.add_parser("upload", help="upload the routes to the vehicles (MAVLink over UDP or TCP)")
     up.add_argument("plan", metavar="PLAN.json")
     up.add_argument("--mission", required=True, metavar="MISSION.json")
-    up.add_argument("--vehicle", action="append", required=True, metavar="UAV_ID=udp:HOST:PORT[:SYSID]")
+    up.add_argument("--vehicle", action="append", required=True,
+                    metavar="UAV_ID=udp|tcp:HOST:PORT[:SYSID]",
+                    help="a UAV's vehicle: UDP to its address and port (only datagrams from "
+                    "there are read), or a TCP connection; SYSID its system id (default 1)")
     up.add_argument("--timeout-ms", type=int, default=TIMEOUT_MS,
                     help=f"wait per message before resending (default {TIMEOUT_MS})")
     up.add_argument("--ardupilot", action="store_true",
@@ -296,15 +543,21 @@ def run(args) -> int:
         print("sva-tools: error: mavlink upload: --timeout-ms must be in [1, 600000] and "
               "--retries in [0, 100]", file=sys.stderr)
         return 2
-    vehicles: Dict[int, Tuple[str, int, int, str]] = {}
+    vehicles: Dict[int, Tuple[Vehicle, str]] = {}
     for text in args.vehicle:
         try:
-            uid, host, port, sysid = parse_vehicle(text)
+            vehicle = parse_vehicle(text)
         except io.InputError as e:
             return io.fail("mavlink upload", e)
-        if uid in vehicles:
-            return io.fail("mavlink upload", io.InputError(f"--vehicle: UAV {uid} given twice"))
-        vehicles[uid] = (host, port, sysid, text.split("=", 1)[1])
+        if vehicle.uav in vehicles:
+            return io.fail("mavlink upload",
+                           io.InputError(f"--vehicle: UAV {vehicle.uav} given twice"))
+        vehicles[vehicle.uav] = (vehicle, text.split("=", 1)[1])
+    for uid, (vehicle, text) in vehicles.items():
+        try:
+            vehicles[uid] = (resolve(vehicle), text)
+        except io.InputError as e:
+            return io.fail("mavlink upload", e)
     mission, mframe = _load(args.mission, "mission")
     plan, pframe = _load(args.plan, "plan")
     where = pframe if pframe is not None else mframe
@@ -341,11 +594,11 @@ def run(args) -> int:
         work.append((uid, items))
 
     def one(uid: int, items: List[Item]) -> None:
-        host, port, sysid, _ = vehicles[uid]
+        vehicle = vehicles[uid][0]
         try:
-            why = upload(host, port, sysid, items, args.timeout_ms, args.retries)
+            why = upload(vehicle, items, args.timeout_ms, args.retries)
         except OSError as e:
-            why = f"udp: {e.strerror or e}"
+            why = f"{vehicle.transport}: {e.strerror or e}"
         except Exception as e:  # noqa: BLE001 -- one vehicle's fault must not stop the others
             why = f"{type(e).__name__}: {shown(e)}"
         results[uid] = f"uploaded {len(items)} items" if why is None else f"error: {why}"
@@ -359,5 +612,5 @@ def run(args) -> int:
         line = results[uid]
         if line.startswith("error"):
             status = 1
-        print(f"uav {uid}: {shown(vehicles[uid][3])}: {line}")
+        print(f"uav {uid}: {shown(vehicles[uid][1])}: {shown(line)}")
     return status

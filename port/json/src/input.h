@@ -1,4 +1,5 @@
-// input.h -- read a whole mission document from a file or standard input (private).
+// input.h -- read a whole mission document from a file or standard input; the names
+// of JSON types in messages (private).
 #ifndef SVA_JSON_INPUT_H
 #define SVA_JSON_INPUT_H
 
@@ -14,5 +15,9 @@
 /// out. On error *text is NULL and err holds one printable line naming the path.
 sva_json_result_t sva_json_read_input(const char* path, char** text, size_t* len, char* err,
                                       size_t err_size);
+
+/// The SPEC section 4 name of a JSON value's type: object, array, string, integer,
+/// real, boolean or null.
+const char* sva_json_type_name(const json_t* value);
 
 #endif  // SVA_JSON_INPUT_H

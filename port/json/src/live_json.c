@@ -1,6 +1,7 @@
 // live_json.c -- live missions as JSON (docs/SPEC.md, live missions): the LIVE.json
 // document `sva replan` reads (mission, plan in force, events, now) and the replan it
-// prints (the plan with its changes and the live state).
+// prints (the plan with its changes and the live state). The plan in force is checked
+// against the mission by plan_check.c before anything starts.
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -9,6 +10,7 @@
 #include <sva/sva_json.h>
 
 #include "input.h"
+#include "plan_check.h"
 
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((format(printf, 3, 4)))
@@ -33,10 +35,13 @@ static sva_json_result_t member_int(const json_t* object, const char* path, cons
     if (value == NULL) {
         return optional ? SVA_JSON_OK : fail(err, size, "%s: missing key \"%s\"", path, key);
     }
-    if (!json_is_integer(value) || json_integer_value(value) < INT32_MIN ||
-        json_integer_value(value) > INT32_MAX) {
-        return fail(err, size, "%s.%s: must be an integer in [%ld, %ld]", path, key,
-                    (long)INT32_MIN, (long)INT32_MAX);
+    if (!json_is_integer(value)) {
+        return fail(err, size, "%s.%s: must be an integer, got %s", path, key,
+                    sva_json_type_name(value));
+    }
+    if (json_integer_value(value) < INT32_MIN || json_integer_value(value) > INT32_MAX) {
+        return fail(err, size, "%s.%s: must be an integer in [%ld, %ld], got %lld", path, key,
+                    (long)INT32_MIN, (long)INT32_MAX, (long long)json_integer_value(value));
     }
     *out = (int32_t)json_integer_value(value);
     return SVA_JSON_OK;
@@ -77,18 +82,21 @@ static int32_t target_index(const sva_mission_t* m, json_int_t id)
 static sva_json_result_t parse_plan(const json_t* doc, const sva_mission_t* m, sva_plan_t* plan,
                                     char* err, size_t size)
 {
-    static const char* const keys[] = {"mission",   "algorithm", "status", "covered",
-                                       "uncovered", "cost",      "routes", "stranded",
-                                       "stats",     "changes",   "live",   NULL};
+    static const char* const keys[] = {"mission", "algorithm", "status",   "covered", "uncovered",
+                                       "cost",    "routes",    "stranded", "stats",   "frame",
+                                       "changes", "live",      NULL};
     if (!json_is_object(doc)) {
-        return fail(err, size, "plan: must be an object");
+        return fail(err, size, "plan: must be an object, got %s", sva_json_type_name(doc));
     }
     if (known_keys(doc, "plan", keys, err, size) != SVA_JSON_OK) {
         return SVA_JSON_BAD_INPUT;
     }
     const json_t* routes = json_object_get(doc, "routes");
+    if (routes == NULL) {
+        return fail(err, size, "plan: missing key \"routes\"");
+    }
     if (!json_is_array(routes)) {
-        return fail(err, size, "plan.routes: must be an array");
+        return fail(err, size, "plan.routes: must be an array, got %s", sva_json_type_name(routes));
     }
     if (json_array_size(routes) > SVA_MAX_UAVS) {
         return fail(err, size, "plan.routes: %zu entries exceed SVA_MAX_UAVS (%ld)",
@@ -103,25 +111,37 @@ static sva_json_result_t parse_plan(const json_t* doc, const sva_mission_t* m, s
         snprintf(path, sizeof path, "plan.routes[%zu]", r);
         int32_t uav = 0;
         if (!json_is_object(route)) {
-            return fail(err, size, "%s: must be an object", path);
+            return fail(err, size, "%s: must be an object, got %s", path,
+                        sva_json_type_name(route));
         }
         if (known_keys(route, path, route_keys, err, size) != SVA_JSON_OK ||
             member_int(route, path, "uav", false, &uav, err, size) != SVA_JSON_OK) {
             return SVA_JSON_BAD_INPUT;
         }
         const json_t* targets = json_object_get(route, "targets");
-        if (!json_is_array(targets) || json_array_size(targets) > SVA_MAX_ROUTE_TARGETS) {
-            return fail(err, size,
-                        "%s.targets: must be an array of at most SVA_MAX_ROUTE_TARGETS (%ld) ids",
-                        path, (long)SVA_MAX_ROUTE_TARGETS);
+        if (targets == NULL) {
+            return fail(err, size, "%s: missing key \"targets\"", path);
+        }
+        if (!json_is_array(targets)) {
+            return fail(err, size, "%s.targets: must be an array, got %s", path,
+                        sva_json_type_name(targets));
+        }
+        if (json_array_size(targets) > SVA_MAX_ROUTE_TARGETS) {
+            return fail(err, size, "%s.targets: %zu entries exceed SVA_MAX_ROUTE_TARGETS (%ld)",
+                        path, json_array_size(targets), (long)SVA_MAX_ROUTE_TARGETS);
         }
         plan->routes[r].uav_id = uav;
         plan->routes[r].target_count = (uint16_t)json_array_size(targets);
         for (size_t k = 0; k < json_array_size(targets); ++k) {
             const json_t* id = json_array_get(targets, k);
-            const int32_t t = json_is_integer(id) ? target_index(m, json_integer_value(id)) : -1;
+            if (!json_is_integer(id)) {
+                return fail(err, size, "%s.targets[%zu]: must be an integer, got %s", path, k,
+                            sva_json_type_name(id));
+            }
+            const int32_t t = target_index(m, json_integer_value(id));
             if (t < 0) {
-                return fail(err, size, "%s.targets[%zu]: not a target id of the mission", path, k);
+                return fail(err, size, "%s.targets[%zu]: not a target id of the mission, got %lld",
+                            path, k, (long long)json_integer_value(id));
             }
             plan->routes[r].targets[k] = (uint16_t)t;
         }
@@ -191,7 +211,7 @@ static sva_json_result_t parse_live(const json_t* root, sva_json_live_t* live, c
 {
     static const char* const keys[] = {"mission", "plan", "events", "now", NULL};
     if (!json_is_object(root)) {
-        return fail(err, size, "live mission: must be an object");
+        return fail(err, size, "live mission: must be an object, got %s", sva_json_type_name(root));
     }
     if (known_keys(root, "live mission", keys, err, size) != SVA_JSON_OK) {
         return SVA_JSON_BAD_INPUT;
@@ -216,12 +236,14 @@ static sva_json_result_t parse_live(const json_t* root, sva_json_live_t* live, c
     }
     const json_t* plan = json_object_get(root, "plan");
     live->has_plan = plan != NULL;
-    if (live->has_plan && parse_plan(plan, &live->mission, &live->plan, err, size) != SVA_JSON_OK) {
+    if (live->has_plan &&
+        (parse_plan(plan, &live->mission, &live->plan, err, size) != SVA_JSON_OK ||
+         sva_json_check_plan(&live->mission, &live->plan, err, size) != SVA_JSON_OK)) {
         return SVA_JSON_BAD_INPUT;
     }
     const json_t* events = json_object_get(root, "events");
     if (events != NULL && !json_is_array(events)) {
-        return fail(err, size, "events: must be an array");
+        return fail(err, size, "events: must be an array, got %s", sva_json_type_name(events));
     }
     const size_t count = events != NULL ? json_array_size(events) : 0;
     if (count > SVA_JSON_MAX_EVENTS) {

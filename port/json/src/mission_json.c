@@ -65,7 +65,7 @@ fail(const sink_t* err, const char* fmt, ...)
     return false;
 }
 
-static const char* type_name(const json_t* value)
+const char* sva_json_type_name(const json_t* value)
 {
     switch (json_typeof(value)) {
     case JSON_OBJECT:
@@ -163,7 +163,7 @@ static bool get_int(const json_t* object, const char* prefix, const key_spec_t* 
     char path[128];
     field_path(path, sizeof path, prefix, key);
     if (!json_is_integer(value)) {
-        return fail(err, "%s: must be an integer, got %s", path, type_name(value));
+        return fail(err, "%s: must be an integer, got %s", path, sva_json_type_name(value));
     }
     json_int_t v = json_integer_value(value);
     if (v < INT32_MIN || v > INT32_MAX) {
@@ -181,7 +181,7 @@ static bool get_object(const json_t* parent, const char* prefix, const char* key
     if (!json_is_object(value)) {
         char path[128];
         field_path(path, sizeof path, prefix, key);
-        return fail(err, "%s: must be an object, got %s", path, type_name(value));
+        return fail(err, "%s: must be an object, got %s", path, sva_json_type_name(value));
     }
     *out = value;
     return true;
@@ -191,7 +191,7 @@ static bool parse_name(const json_t* root, char name[SVA_JSON_NAME_MAX + 1], con
 {
     const json_t* value = json_object_get(root, "name");
     if (!json_is_string(value)) {
-        return fail(err, "name: must be a string, got %s", type_name(value));
+        return fail(err, "name: must be a string, got %s", sva_json_type_name(value));
     }
     size_t len = json_string_length(value);
     if (len == 0 || len > SVA_JSON_NAME_MAX) {
@@ -210,7 +210,7 @@ static bool get_list(const json_t* root, const char* key, sva_field_t field, siz
 {
     const json_t* value = json_object_get(root, key);
     if (!json_is_array(value)) {
-        return fail(err, "%s: must be an array, got %s", key, type_name(value));
+        return fail(err, "%s: must be an array, got %s", key, sva_json_type_name(value));
     }
     size_t count = json_array_size(value);
     if (count > bound) {
@@ -230,7 +230,7 @@ static bool get_element(const json_t* list, const char* key, size_t i, char* pre
     const json_t* element = json_array_get(list, i);
     snprintf(prefix, prefix_size, "%s[%zu]", key, i);
     if (!json_is_object(element)) {
-        return fail(err, "%s: must be an object, got %s", prefix, type_name(element));
+        return fail(err, "%s: must be an object, got %s", prefix, sva_json_type_name(element));
     }
     if (!check_keys(element, prefix, keys, err)) {
         return false;
@@ -293,7 +293,7 @@ static bool get_number(const json_t* object, const char* key, double* out, unsig
 {
     const json_t* value = json_object_get(object, key);
     if (!json_is_number(value)) {
-        return fail(err, "frame.%s: must be a number, got %s", key, type_name(value));
+        return fail(err, "frame.%s: must be a number, got %s", key, sva_json_type_name(value));
     }
     *out = json_number_value(value);
     if (json_is_integer(value)) {
@@ -312,7 +312,7 @@ static bool parse_frame(const json_t* root, sva_frame_t* frame, bool* present, c
         return true;
     }
     if (!json_is_object(value)) {
-        return fail(err, "frame: must be an object, got %s", type_name(value));
+        return fail(err, "frame: must be an object, got %s", sva_json_type_name(value));
     }
     sva_frame_units_t units;
     memset(&units, 0, sizeof units);
@@ -326,7 +326,7 @@ static bool parse_frame(const json_t* root, sva_frame_t* frame, bool* present, c
     }
     const json_t* t0 = json_object_get(value, "t0");
     if (!json_is_string(t0)) {
-        return fail(err, "frame.t0: must be a string, got %s", type_name(t0));
+        return fail(err, "frame.t0: must be a string, got %s", sva_json_type_name(t0));
     }
     units.t0 = json_string_value(t0);
     char line[SVA_FRAME_ERROR_SIZE];
@@ -342,7 +342,7 @@ static bool parse_root(const json_t* root, sva_mission_t* mission, char name[SVA
 {
     const json_t* depot = NULL;
     if (!json_is_object(root)) {
-        return fail(err, "mission: must be an object, got %s", type_name(root));
+        return fail(err, "mission: must be an object, got %s", sva_json_type_name(root));
     }
     return check_keys(root, "", MISSION_KEYS, err) && parse_name(root, name, err) &&
            get_object(root, "", "depot", &depot, err) &&
@@ -478,7 +478,7 @@ sva_json_result_t sva_json_mission_frame(const json_t* root, sva_frame_t* frame,
     const sink_t sink = {err, err_size};
     *present = false;
     if (!json_is_object(root)) {
-        fail(&sink, "mission: must be an object, got %s", type_name(root));
+        fail(&sink, "mission: must be an object, got %s", sva_json_type_name(root));
         return SVA_JSON_BAD_INPUT;
     }
     sva_frame_t read;
@@ -511,7 +511,7 @@ bool sva_json_target_from(const json_t* object, const char* prefix, sva_target_t
 {
     const sink_t sink = {err, err_size};
     if (!json_is_object(object)) {
-        return fail(&sink, "%s: must be an object, got %s", prefix, type_name(object));
+        return fail(&sink, "%s: must be an object, got %s", prefix, sva_json_type_name(object));
     }
     return check_keys(object, prefix, TARGET_KEYS, &sink) &&
            get_int(object, prefix, TARGET_KEYS, "id", &target->id, &sink) &&

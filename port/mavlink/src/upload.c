@@ -119,7 +119,7 @@ bool sva_mavlink_upload_on_message(sva_mavlink_upload_t* up, const mavlink_messa
     if (up->state != SVA_MAVLINK_UPLOAD_COUNT && up->state != SVA_MAVLINK_UPLOAD_ITEMS) {
         return false;
     }
-    if (msg->sysid != up->target_system) {
+    if (msg->sysid != up->target_system || msg->compid != up->target_component) {
         return false;
     }
     uint16_t seq = 0;

@@ -180,9 +180,14 @@ typedef struct {
 } sva_json_live_t;
 
 /// Reads and checks the shape of a LIVE.json document at `path` ("-": standard input);
-/// the mission is also checked against the core's rules. Event rules (ids, ticks) are
-/// the core's, checked when sva_live_apply() takes each event. Returns SVA_JSON_OK, or
-/// SVA_JSON_BAD_INPUT / SVA_JSON_IO_ERROR with one line in err (nothing to free then).
+/// the mission is also checked against the core's rules, and the plan in force against
+/// the mission: one route per UAV in mission order, known targets none twice, and SPEC
+/// section 1 (every visit reached by its window's start, every route within its UAV's
+/// fuel, every target served by exactly its need or by none), each refused with a
+/// message starting "plan." that names the route or field, the rule and the limit.
+/// Event rules (ids, ticks) are the core's, checked when sva_live_apply() takes each
+/// event. Returns SVA_JSON_OK, or SVA_JSON_BAD_INPUT / SVA_JSON_IO_ERROR with one line
+/// in err (nothing to free then).
 sva_json_result_t sva_json_load_live(const char* path, sva_json_live_t* live, char* err,
                                      size_t err_size);
 
