@@ -1,10 +1,42 @@
 #!/usr/bin/env bash
-# Configures and builds the project into build/ (after scripts/setup.sh).
-# Usage: scripts/build.sh [extra cmake -D options]
+# Installs what a part needs (scripts/setup.sh), configures and builds it into build/
+# (or $SVA_BUILD_DIR), one line per step on stderr.
+# Usage: scripts/build.sh [--part demo|live|all] [extra cmake -D options]
+#   demo, live  the sva CLI only (target sva); a fresh build dir is configured without
+#               tests and ports, an existing one is kept as it is
+#   all         (default) everything: the core, the CLI, the ports, the tests
+# The part may also come from $SVA_SETUP_PART (scripts/demo.sh --live sets it).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
-scripts/setup.sh
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-      -DPython3_EXECUTABLE="$root/.venv/bin/python" "$@" >/dev/null
-cmake --build build -j "$(nproc)"
+
+log() { printf 'build: %s\n' "$*" >&2; }
+
+part=${SVA_SETUP_PART:-all}
+case "${1:-}" in
+    --part) part=${2:?--part needs a value (demo, live or all)}; shift 2 ;;
+    --part=*) part=${1#--part=}; shift ;;
+esac
+build=${SVA_BUILD_DIR:-build}
+
+scripts/setup.sh --part "$part"
+jobs=$(nproc)
+if [ "$part" = all ]; then
+    log "configuring $build/ (everything: core, CLI, ports, tests)"
+    cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+          -DSVA_BUILD_TESTS=ON -DSVA_BUILD_PORTS=ON -DPython3_EXECUTABLE="$root/.venv/bin/python" "$@" >/dev/null
+    log "building $build/ (all targets, $jobs jobs)"
+    cmake --build "$build" -j "$jobs"
+else
+    if [ ! -f "$build/CMakeCache.txt" ] || [ $# -gt 0 ]; then
+        log "configuring $build/ (the sva CLI only: no tests, no ports)"
+        cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+              -DSVA_BUILD_TESTS=OFF -DSVA_BUILD_PORTS=OFF "$@" >/dev/null
+    fi
+    log "building $build/bin/sva (target sva, $jobs jobs)"
+    # quiet unless it fails
+    if ! out=$(cmake --build "$build" -j "$jobs" --target sva 2>&1); then
+        printf '%s\n' "$out" >&2
+        exit 1
+    fi
+fi

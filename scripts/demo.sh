@@ -1,15 +1,24 @@
 #!/usr/bin/env bash
-# The main job: build, plan a bundled mission and print the schedule.
+# The main job: install what it needs (a C compiler, CMake, Ninja, pkg-config, jansson,
+# PROJ: scripts/deps/apt-demo.txt; no Python), build the sva CLI alone, plan a bundled
+# mission and print the schedule. One line per step on stderr.
 # Usage: scripts/demo.sh [MISSION.json] [ALGORITHM]
-#        scripts/demo.sh --live [SCENARIO.json] [ALGORITHM]   (scripts/demo-live.sh)
+#        scripts/demo.sh --live [SCENARIO.json] [ALGORITHM]   (scripts/demo-live.sh; adds
+#        Python and a small venv, scripts/deps/apt-live.txt and requirements-live.txt)
+# The build goes to build/ (or $SVA_BUILD_DIR).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 if [ "${1:-}" = "--live" ]; then
     shift
-    exec scripts/demo-live.sh "$@"
+    printf 'demo: live mission (setup part live, then scripts/demo-live.sh)\n' >&2
+    # the simulator finds the CLI through SVA_BIN when the build is not in build/
+    export SVA_BIN=${SVA_BIN:-$root/${SVA_BUILD_DIR:-build}/bin/sva}
+    SVA_SETUP_PART=live exec scripts/demo-live.sh "$@"
 fi
 mission=${1:-fixtures/missions/hand_5_3.json}
 algo=${2:-sva}
-scripts/build.sh >/dev/null
-build/bin/sva plan --algo "$algo" --schedule "$mission"
+build=${SVA_BUILD_DIR:-build}
+SVA_SETUP_PART=demo scripts/build.sh >/dev/null
+printf 'demo: planning %s with %s (%s/bin/sva plan --schedule)\n' "$mission" "$algo" "$build" >&2
+"$build/bin/sva" plan --algo "$algo" --schedule "$mission"

@@ -26,7 +26,10 @@ from referencing import Registry, Resource
 from . import frame as F
 from . import model as M
 
+# The repository's docs/schema; an installed package carries a copy (schema_files/).
 SCHEMA_DIR = Path(__file__).resolve().parents[2] / "docs" / "schema"
+if not (SCHEMA_DIR / "mission.schema.json").is_file():
+    SCHEMA_DIR = Path(__file__).resolve().parent / "schema_files"
 KINDS = ("mission", "plan", "trace", "bound", "cache-entry")
 # How messages name the document itself (the CLI calls a mission's root "mission").
 ROOT_NAMES = {"mission": "mission", "plan": "plan", "trace": "record", "bound": "bound",
