@@ -1160,6 +1160,82 @@ static void test_vehicle_reports(void** state)
     assert_int_equal(node.counters.reports_applied, 2U);
 }
 
+// The input hook (sva_lcm_input_fn): called once for each input that changes the node,
+// with its kind, its bytes and whether it starts over, before its answer is published;
+// not for a refused or unchanged input. A hook that fails halts the node: that input's
+// answer and every later input are dropped (SVA_LCM_HALTED).
+typedef struct {
+    int calls;
+    sva_lcm_input_t kind;
+    bool restarts;
+    size_t size;
+    int answers_before;  ///< answers published when the hook ran
+    int fail;
+} hook_seen_t;
+
+static int hook(void* user, sva_lcm_input_t kind, bool restarts, const void* data, size_t size)
+{
+    hook_seen_t* h = (hook_seen_t*)user;
+    (void)data;
+    h->calls++;
+    h->kind = kind;
+    h->restarts = restarts;
+    h->size = size;
+    h->answers_before = plans_seen + replans_seen;
+    return h->fail;
+}
+
+static void test_input_hook(void** state)
+{
+    (void)state;
+    node_setup(SVA_ALGO_SVA);
+    static hook_seen_t h;
+    memset(&h, 0, sizeof h);
+    node.input_hook = hook;
+    node.input_hook_user = &h;
+    make_inputs(8);
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    assert_true((h.calls == 1) && (h.kind == SVA_LCM_INPUT_FLEET) && h.restarts);
+    assert_int_equal(h.size, SVA_LCM_FLEET_BYTES);
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_ACCEPTED);
+    assert_true((h.calls == 2) && (h.kind == SVA_LCM_INPUT_MISSION) && h.restarts);
+    assert_int_equal(h.answers_before, 0);  // before the plan went out
+    assert_int_equal(plans_seen, 1);
+    // unchanged and refused: not handed over
+    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
+                     SVA_LCM_UNCHANGED);
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, 7), SVA_LCM_REJECTED);
+    static sva_lcm_event_t e;
+    memset(&e, 0, sizeof e);
+    e.version = SVA_LCM_EVENT_T_VERSION;
+    e.type = SVA_LCM_EVENT_T_TYPE_UAV_LOST;
+    e.uav_id = 99;  // unknown: refused, answered, not handed over
+    e.at_ticks = 2;
+    assert_int_equal(send_event(&e), SVA_LCM_REJECTED);
+    assert_int_equal(h.calls, 2);
+    e.uav_id = 10;
+    assert_int_equal(send_event(&e), SVA_LCM_ACCEPTED);
+    assert_true((h.calls == 3) && (h.kind == SVA_LCM_INPUT_EVENT) && !h.restarts);
+    assert_int_equal(h.answers_before, 2);  // the plan and the refusal, not this replan
+    assert_int_equal(replans_seen, 2);
+    // a report that moves the clock is handed over (no answer: nothing applied)
+    assert_int_equal(send_report(10, 5, SVA_LCM_REPORT_T_HEALTH_LOST, 0, 0, -1), SVA_LCM_ACCEPTED);
+    assert_true((h.calls == 4) && (h.kind == SVA_LCM_INPUT_REPORT));
+    assert_int_equal(replans_seen, 2);
+    // the hook fails: nothing published, the node halted
+    h.fail = -1;
+    e.type = SVA_LCM_EVENT_T_TYPE_CLOCK;
+    e.at_ticks = 6;
+    assert_int_equal(send_event(&e), SVA_LCM_HALTED);
+    assert_true(node.halted);
+    assert_int_equal(replans_seen, 2);
+    h.fail = 0;
+    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_HALTED);
+    assert_int_equal(h.calls, 5);
+    assert_int_equal(node.counters.inputs_hooked, 4U);
+}
+
 static void test_zero_allocations_per_message(void** state)
 {
     (void)state;
@@ -1250,6 +1326,7 @@ int main(void)
         cmocka_unit_test(test_frame_round_trip),
         cmocka_unit_test(test_fleet_reports),
         cmocka_unit_test(test_vehicle_reports),
+        cmocka_unit_test(test_input_hook),
         cmocka_unit_test(test_zero_allocations_per_message),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

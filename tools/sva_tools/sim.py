@@ -15,7 +15,9 @@ At tick 0 (cause "start") and at every tick with events (after applying them) it
 the C CLI's `sva replan` over the whole history (mission, events so far, now) and gives
 every UAV in service the new plan's route as its orders. With `--via lcm` the planner
 is a real sva_node over LCM instead (sva_tools.lcm.simnode, in a network namespace of
-its own; root). It stops when every UAV in
+its own; root); `--kill-node N` then kills it N times with SIGKILL at seeded moments
+(`--seed`) and starts it again on its journal (`--state-dir`): it must resume by itself,
+and the flight log lists the kills (`node_kills`). It stops when every UAV in
 service is home with no orders (or out of fuel) and no window or event is left. The
 flight log (docs/live.md) is JSON: tracks, visits, every target's outcome, every
 replan with its residual mission and plan, and a summary.
@@ -517,13 +519,20 @@ def add_parser(sub) -> None:
     ap.add_argument("--prefix", default=None, help="--via lcm: channel prefix (default SVA_)")
     ap.add_argument("--timeout", type=float, default=10.0,
                     help="--via lcm: seconds to wait for each answer of the node (default 10)")
+    ap.add_argument("--kill-node", type=int, default=0, metavar="N",
+                    help="--via lcm: SIGKILL the node N times at seeded moments of the flight and "
+                         "start it again on its journal (sva_node --state-dir, a temporary folder "
+                         "of the run's own); it must resume by itself (default 0)")
+    ap.add_argument("--seed", type=int, default=0,
+                    help="--kill-node: the seed of the moments (default 0)")
     ap.set_defaults(func=run)
 
 
 def _argv(args) -> List[str]:
     """The command line of this run, for its re-execution inside a network namespace."""
     argv = ["sim", args.scenario, "--algo", args.algo, "--via", "lcm",
-            "--timeout", str(args.timeout)]
+            "--timeout", str(args.timeout), "--kill-node", str(args.kill_node),
+            "--seed", str(args.seed)]
     for opt in ("out", "plot", "url", "prefix"):
         if getattr(args, opt) is not None:
             argv += [f"--{opt}", getattr(args, opt)]
@@ -535,32 +544,40 @@ def _argv(args) -> List[str]:
 
 
 def simulate_via_lcm(mission: M.Mission, events: List[dict], penalty: Optional[int] = None,
-                     algo: str = "sva", **link) -> dict:
+                     algo: str = "sva", kill_node: int = 0, seed: int = 0, **link) -> dict:
     """Flies the scenario against sva_node over LCM (sva_tools.lcm.simnode; `link`: url,
-    prefix, attach, timeout) from inside a network namespace; raises SimError or
-    simnode.NodeError."""
+    prefix, attach, timeout) from inside a network namespace; with kill_node, kills and
+    restarts the node that many times at moments drawn with seed (`node_kills` in the
+    log). Raises SimError or simnode.NodeError."""
     from .lcm import simnode
 
-    node = simnode.NodePlanner(algo, penalty, **link)
+    kills = simnode.kill_plan(events, kill_node, seed) if kill_node > 0 else None
+    node = simnode.NodePlanner(algo, penalty, kills=kills, **link)
     try:
         log = simulate(mission, events, penalty, algo, planner=node)
     finally:
         node.close()
     log["via"] = "lcm"
     log["node"] = node.summary()
+    if kill_node > 0:
+        log["node_kills"] = node.kills
     return log
 
 
 def _fly_via_lcm(args, mission, events, penalty) -> dict:
     kw = {k: getattr(args, k) for k in ("url", "prefix") if getattr(args, k) is not None}
-    return simulate_via_lcm(mission, events, penalty, args.algo, attach=args.attach,
-                            timeout=args.timeout, **kw)
+    return simulate_via_lcm(mission, events, penalty, args.algo, kill_node=args.kill_node,
+                            seed=args.seed, attach=args.attach, timeout=args.timeout, **kw)
 
 
 def run(args) -> int:
     if args.via == "cli" and (args.attach or args.url or args.prefix):
         print("sva-tools: error: sim: --attach, --url and --prefix need --via lcm",
               file=sys.stderr)
+        return 2
+    if args.kill_node and (args.via != "lcm" or args.attach or args.kill_node < 0):
+        print("sva-tools: error: sim: --kill-node: needs --via lcm and a node of the run's own "
+              f"(not --attach), and a count >= 0, got {args.kill_node}", file=sys.stderr)
         return 2
     if args.via == "lcm" and not args.attach and not os.environ.get("SVA_LCM_NETNS"):
         load_scenario(args.scenario)  # a bad scenario is reported before any namespace

@@ -1,7 +1,9 @@
 // sva_node -- the on-board planner process: fleet state and missions in over LCM,
 // plans and a 1 Hz status out; each plan starts a live mission, whose events come in
 // and whose replans go out (docs/lcm.md). One thread calls lcm_handle_timeout in a loop (LCM
-// requires a single handling thread); SIGINT/SIGTERM end the loop cleanly.
+// requires a single handling thread); SIGINT/SIGTERM end the loop cleanly. With
+// --state-dir its inputs are journaled (sva_lcm_journal.h) and a restart resumes the
+// live mission where it stood (docs/lcm.md, "Crash safety").
 #include <errno.h>
 #include <sched.h>
 #include <signal.h>
@@ -9,9 +11,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
+#include <sys/stat.h>
 #include <time.h>
 
 #include "sva/sva_lcm.h"
+#include "sva/sva_lcm_journal.h"
 #include "sva/sva_text.h"
 
 #define DEFAULT_URL    "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
@@ -24,6 +28,10 @@
 /// Room for a user-supplied string (an option value, the URL, a channel name, an
 /// adapter log line) as the node prints it: escaped with sva_text_escape().
 #define SHOWN_SIZE SVA_TEXT_ESCAPED_SIZE(URL_SIZE)
+/// Exit status of a journal the node refuses to resume (another version, a header that
+/// does not parse, other options): systemd's RestartPreventExitStatus names it, so a
+/// refused journal is not retried in a loop.
+#define EXIT_STATE_REFUSED 3
 
 static volatile sig_atomic_t stop_requested = 0;
 
@@ -82,6 +90,9 @@ static void usage(FILE* out)
             "  -r, --rt-priority N    run under SCHED_FIFO priority N (1..99), LCM's receive\n"
             "                         thread included (needs CAP_SYS_NICE or RLIMIT_RTPRIO)\n"
             "  -m, --mlock            lock every page in RAM (mlockall current and future)\n"
+            "      --state-dir DIR    journal every input in DIR (created if missing) and,\n"
+            "                         on start, resume the live mission it holds\n"
+            "      --state-reset      with --state-dir: discard the journal and start afresh\n"
             "  -h, --help             this text\n"
             "      --version          print \"sva_node VERSION\" (the sva library's)\n",
             RECV_BUF_BYTES, (long)SVA_MAX_CHANGE_PENALTY, SVA_LCM_TRACK_TOLERANCE_DEFAULT,
@@ -102,6 +113,8 @@ static int build_url(const char* in, char* out, size_t size)
 }
 
 static sva_lcm_node_t node;
+static sva_lcm_journal_t journal;
+static sva_lcm_journal_file_t journal_file;
 
 // Real-time setup, before lcm_create: threads created later (LCM's udpm receive thread)
 // inherit the calling thread's policy. Returns 0, or 1 after printing why it failed.
@@ -140,6 +153,67 @@ static bool integer_option(const char* name, const char* text, long lo, long hi,
     return true;
 }
 
+// The folder of --state-dir, made when missing. Returns 0, or 1 after printing why.
+static int state_dir_ready(const char* dir)
+{
+    char shown[SHOWN_SIZE];
+    struct stat st;
+    if ((stat(dir, &st) != 0) && ((errno != ENOENT) || (mkdir(dir, 0700) != 0))) {
+        fprintf(stderr, "sva_node: --state-dir %s: %s\n", sva_text_escape(shown, sizeof shown, dir),
+                strerror(errno));
+        return 1;
+    }
+    return 0;
+}
+
+// Opens the journal of --state-dir and replays it into the node (before it subscribes).
+// Says on stdout what it found (one line). Returns 0, 1 (storage) or EXIT_STATE_REFUSED.
+static int resume_state(bool reset)
+{
+    char shown[SHOWN_SIZE];
+    char said[SHOWN_SIZE];
+    (void)sva_text_escape(shown, sizeof shown, journal_file.path);
+    sva_lcm_journal_resume_t r;
+    const sva_lcm_journal_status_t st = sva_lcm_journal_resume(&journal, reset, &r);
+    // The journal's lines name paths from --state-dir.
+    (void)sva_text_escape(said, sizeof said, journal.message);
+    if (st == SVA_LCM_JOURNAL_ERR_IO) {
+        fprintf(stderr, "sva_node: --state-dir: %s\n", said);
+        return 1;
+    }
+    if (st != SVA_LCM_JOURNAL_OK) {
+        fprintf(stderr,
+                "sva_node: --state-dir: journal %s refused: %s; start with --state-reset to "
+                "discard it\n",
+                shown, said);
+        return EXIT_STATE_REFUSED;
+    }
+    if (r.fresh) {
+        printf("sva_node: state: %s journal %s\n", r.discarded ? "--state-reset, a new" : "a new",
+               shown);
+    } else {
+        if (r.cut) {
+            fprintf(stderr, "sva_node: journal %s: %s\n", shown, said);
+        }
+        char live[96];
+        if (node.priv.live_active) {
+            (void)snprintf(live, sizeof live, "revision %lu, now %ld",
+                           (unsigned long)node.priv.live.revision, (long)node.priv.live.now_ticks);
+        } else {
+            (void)snprintf(live, sizeof live, "no live mission");
+        }
+        char cut[64] = "";
+        if (r.cut) {
+            (void)snprintf(cut, sizeof cut, ", a torn tail cut at byte %lu",
+                           (unsigned long)r.cut_offset);
+        }
+        printf("sva_node: resumed from %s: %lu records replayed, %s, plan id %lld%s\n", shown,
+               (unsigned long)r.records, live, (long long)node.priv.plan_id, cut);
+    }
+    fflush(stdout);
+    return 0;
+}
+
 static void send_status(void)
 {
     if (sva_lcm_publish_status(&node, realtime_us()) != SVA_OK) {
@@ -161,6 +235,8 @@ int main(int argc, char** argv)
     long rt_priority = 0;
     int lock_memory = 0;
     int exit_on_eof = 0;
+    const char* state_dir = NULL;
+    bool state_reset = false;
     for (int i = 1; i < argc; ++i) {
         const char* a = argv[i];
         const int has_value = (i + 1) < argc;
@@ -203,6 +279,10 @@ int main(int argc, char** argv)
             lock_memory = 1;
         } else if ((strcmp(a, "-e") == 0) || (strcmp(a, "--exit-on-eof") == 0)) {
             exit_on_eof = 1;
+        } else if ((strcmp(a, "--state-dir") == 0) && has_value) {
+            state_dir = argv[++i];
+        } else if (strcmp(a, "--state-reset") == 0) {
+            state_reset = true;
         } else {
             char shown[SHOWN_SIZE];
             fprintf(stderr, "sva_node: unknown or incomplete option '%s'\n",
@@ -230,6 +310,17 @@ int main(int argc, char** argv)
         fprintf(stderr, "sva_node: --url: longer than %d characters\n", URL_SIZE - 1);
         return 2;
     }
+    if (state_reset && (state_dir == NULL)) {
+        fprintf(stderr, "sva_node: --state-reset needs --state-dir\n");
+        return 2;
+    }
+    sva_lcm_storage_t storage;
+    if ((state_dir != NULL) &&
+        (sva_lcm_journal_file_init(&journal_file, state_dir, &storage) != SVA_LCM_JOURNAL_OK)) {
+        fprintf(stderr, "sva_node: --state-dir: must be a folder path of 1 to %d characters\n",
+                SVA_LCM_JOURNAL_DIR_MAX);
+        return 2;
+    }
 
     if (realtime_setup(rt_priority, lock_memory) != 0) {
         return 1;
@@ -242,13 +333,8 @@ int main(int argc, char** argv)
                 sva_text_escape(shown, sizeof shown, url));
         return 1;
     }
-    if ((sva_lcm_node_init(&node, lcm, prefix, algorithm) != SVA_OK) ||
-        (sva_lcm_node_subscribe(&node) != SVA_OK)) {
-        char shown_fleet[SHOWN_SIZE];
-        char shown_mission[SHOWN_SIZE];
-        fprintf(stderr, "sva_node: cannot subscribe to %s and %s\n",
-                sva_text_escape(shown_fleet, sizeof shown_fleet, node.channel_fleet),
-                sva_text_escape(shown_mission, sizeof shown_mission, node.channel_mission));
+    if (sva_lcm_node_init(&node, lcm, prefix, algorithm) != SVA_OK) {
+        fprintf(stderr, "sva_node: cannot set up the node\n");
         lcm_destroy(lcm);
         return 1;
     }
@@ -256,6 +342,32 @@ int main(int argc, char** argv)
     node.change_penalty = (int32_t)change_penalty;
     node.fleet_reports = (fleet_reports != 0);
     node.track_tolerance_cells = (int32_t)track_tolerance;
+    // The journal is replayed before the node hears anything: its options set above are
+    // part of the journal's header.
+    if (state_dir != NULL) {
+        int src = state_dir_ready(state_dir);
+        if ((src == 0) && (sva_lcm_journal_init(&journal, &storage, &node) != SVA_LCM_JOURNAL_OK)) {
+            src = 1;
+        }
+        if (src == 0) {
+            src = resume_state(state_reset);
+        }
+        if (src != 0) {
+            sva_lcm_journal_close(&journal);
+            lcm_destroy(lcm);
+            return src;
+        }
+    }
+    if (sva_lcm_node_subscribe(&node) != SVA_OK) {
+        char shown_fleet[SHOWN_SIZE];
+        char shown_mission[SHOWN_SIZE];
+        fprintf(stderr, "sva_node: cannot subscribe to %s and %s\n",
+                sva_text_escape(shown_fleet, sizeof shown_fleet, node.channel_fleet),
+                sva_text_escape(shown_mission, sizeof shown_mission, node.channel_mission));
+        sva_lcm_journal_close(&journal);
+        lcm_destroy(lcm);
+        return 1;
+    }
 
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
@@ -279,6 +391,15 @@ int main(int argc, char** argv)
         const int64_t wait = next_status - monotonic_ms();
         const int timeout = (wait < 0) ? 0 : ((wait > 100) ? 100 : (int)wait);
         const int r = lcm_handle_timeout(lcm, timeout);
+        if (node.halted) {
+            // The journal could not keep an input: nothing was answered for it. Exit as a
+            // crash would; a restart resumes from the last record that was kept.
+            char said[SHOWN_SIZE];
+            fprintf(stderr, "sva_node: journal: %s: stopping without an answer\n",
+                    sva_text_escape(said, sizeof said, journal.message));
+            rc = 1;
+            break;
+        }
         if (r < 0) {
             // A signal interrupts the wait: that is a request to stop, not a failure.
             if (stop_requested || exit_on_eof) {
@@ -298,6 +419,7 @@ int main(int argc, char** argv)
     }
     send_status();
     sva_lcm_node_unsubscribe(&node);
+    sva_lcm_journal_close(&journal);
     lcm_destroy(lcm);
 
     const sva_lcm_counters_t* c = &node.counters;

@@ -20,6 +20,11 @@ bool sva_lcm_version_ok(sva_lcm_node_t* self, const char* channel, const char* t
 /// Every message a replan carries names its version, also when it is empty.
 void sva_lcm_stamp_replan_versions(sva_lcm_replan_t* r);
 
+/// Hands an input the node took to input_hook (none: true). False when the hook failed:
+/// the node is then halted and the caller publishes nothing.
+bool sva_lcm_input_durable(sva_lcm_node_t* self, sva_lcm_input_t kind, bool restarts,
+                           const void* data, size_t size);
+
 /// Replans the live mission after applied events and publishes priv.replan_tx (whose
 /// header the caller set).
 void sva_lcm_replan_live(sva_lcm_node_t* self);

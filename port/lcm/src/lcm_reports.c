@@ -74,6 +74,9 @@ static bool report_field_ok(sva_lcm_node_t* self, const char* field, int64_t val
 
 sva_lcm_verdict_t sva_lcm_on_report(sva_lcm_node_t* self, const void* data, size_t size)
 {
+    if (self->halted) {
+        return SVA_LCM_HALTED;
+    }
     self->counters.report_rx += 1U;
     sva_lcm_verdict_t v = sva_lcm_check_frame(self, self->channel_report, data, size,
                                               SVA_LCM_REPORT_BYTES, __sva_lcm_report_t_get_hash());
@@ -104,6 +107,7 @@ sva_lcm_verdict_t sva_lcm_on_report(sva_lcm_node_t* self, const void* data, size
         return sva_lcm_reject(self, SVA_LCM_REJECT_VALUE, what);
     }
     sva_live_t* live = &self->priv.live;
+    const uint32_t revision = live->revision;  // a report that changes nothing is not an input
     if (w->at_ticks > live->now_ticks) {
         sva_event_t clock;
         memset(&clock, 0, sizeof clock);
@@ -117,7 +121,12 @@ sva_lcm_verdict_t sva_lcm_on_report(sva_lcm_node_t* self, const void* data, size
     int8_t type = 0;
     const sva_report_t report = {w->uav_id, w->health == SVA_LCM_REPORT_T_HEALTH_OK, w->x, w->y,
                                  w->fuel};
-    if (apply_report(self, &report, &type)) {
+    const bool applied = apply_report(self, &report, &type);
+    if ((live->revision != revision) &&
+        !sva_lcm_input_durable(self, SVA_LCM_INPUT_REPORT, false, data, size)) {
+        return SVA_LCM_HALTED;
+    }
+    if (applied) {
         answer(self, type);
     }
     return SVA_LCM_ACCEPTED;

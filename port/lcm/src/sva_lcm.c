@@ -308,6 +308,33 @@ bool sva_lcm_version_ok(sva_lcm_node_t* self, const char* channel, const char* t
 }
 
 // ---------------------------------------------------------------------------------
+// Durable inputs (sva_lcm_input_fn) and the plan id sequence a journal restores.
+
+bool sva_lcm_input_durable(sva_lcm_node_t* self, sva_lcm_input_t kind, bool restarts,
+                           const void* data, size_t size)
+{
+    if (self->input_hook == NULL) {
+        return true;
+    }
+    if (self->input_hook(self->input_hook_user, kind, restarts, data, size) == 0) {
+        self->counters.inputs_hooked += 1U;
+        return true;
+    }
+    self->halted = true;
+    logf_line(self, "the input hook failed: halted, no answer is published from now on");
+    return false;
+}
+
+sva_status_t sva_lcm_node_set_plan_id(sva_lcm_node_t* self, int64_t plan_id)
+{
+    if ((self == NULL) || (plan_id < 0)) {
+        return SVA_ERR_ARGUMENT;
+    }
+    self->priv.plan_id = plan_id;
+    return SVA_OK;
+}
+
+// ---------------------------------------------------------------------------------
 // Planning and publishing.
 
 static int64_t now_us(clockid_t clock)
@@ -546,6 +573,9 @@ static bool check_frame_fields(const sva_lcm_frame_t* w, char* err, size_t err_s
 
 sva_lcm_verdict_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_t size)
 {
+    if (self->halted) {
+        return SVA_LCM_HALTED;
+    }
     self->counters.fleet_rx += 1U;
     sva_lcm_verdict_t v =
         sva_lcm_check_frame(self, self->channel_fleet, data, size, SVA_LCM_FLEET_BYTES,
@@ -581,6 +611,9 @@ sva_lcm_verdict_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_
     const sva_lcm_fleet_state_t* f = &self->priv.fleet_rx;
     sva_mission_t* m = &self->priv.mission;
     m->uav_count = (uint16_t)f->uav_count;
+    // Slots past the count cleared: the state is a function of the current inputs
+    // alone, so a journal compacted to them replays to the same bytes.
+    memset(&m->uavs[f->uav_count], 0, sizeof m->uavs[0] * (size_t)(SVA_MAX_UAVS - f->uav_count));
     for (int i = 0; i < (int)f->uav_count; ++i) {
         const sva_lcm_uav_state_t* u = &f->uavs[i];
         m->uavs[i].id = u->id;
@@ -595,7 +628,11 @@ sva_lcm_verdict_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_
     }
     self->priv.fleet_revision = f->revision;
     self->priv.have_fleet = true;
-    if (self->fleet_reports && self->priv.live_active) {
+    const bool report = self->fleet_reports && self->priv.live_active;
+    if (!sva_lcm_input_durable(self, SVA_LCM_INPUT_FLEET, !report, data, size)) {
+        return SVA_LCM_HALTED;
+    }
+    if (report) {
         sva_lcm_fleet_report(self);
     } else if (self->priv.have_mission) {
         replan(self);
@@ -605,6 +642,9 @@ sva_lcm_verdict_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_
 
 sva_lcm_verdict_t sva_lcm_on_mission(sva_lcm_node_t* self, const void* data, size_t size)
 {
+    if (self->halted) {
+        return SVA_LCM_HALTED;
+    }
     self->counters.mission_rx += 1U;
     sva_lcm_verdict_t v =
         sva_lcm_check_frame(self, self->channel_mission, data, size, SVA_LCM_MISSION_BYTES,
@@ -642,6 +682,8 @@ sva_lcm_verdict_t sva_lcm_on_mission(sva_lcm_node_t* self, const void* data, siz
     m->hover_fuel = w->hover_fuel;
     m->overlap_percent = w->overlap_percent;
     m->target_count = (uint16_t)w->target_count;
+    memset(&m->targets[w->target_count], 0,
+           sizeof m->targets[0] * (size_t)(SVA_MAX_TARGETS - w->target_count));
     for (int i = 0; i < (int)w->target_count; ++i) {
         const sva_lcm_target_t* t = &w->targets[i];
         m->targets[i].id = t->id;
@@ -654,6 +696,9 @@ sva_lcm_verdict_t sva_lcm_on_mission(sva_lcm_node_t* self, const void* data, siz
     self->priv.frame = w->frame;
     self->priv.mission_revision = w->revision;
     self->priv.have_mission = true;
+    if (!sva_lcm_input_durable(self, SVA_LCM_INPUT_MISSION, true, data, size)) {
+        return SVA_LCM_HALTED;
+    }
     if (self->priv.have_fleet) {
         replan(self);
     }
@@ -799,6 +844,9 @@ void sva_lcm_stamp_replan_versions(sva_lcm_replan_t* r)
 
 sva_lcm_verdict_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_t size)
 {
+    if (self->halted) {
+        return SVA_LCM_HALTED;
+    }
     self->counters.event_rx += 1U;
     const sva_lcm_verdict_t v = sva_lcm_check_frame(
         self, self->channel_event, data, size, SVA_LCM_EVENT_BYTES, __sva_lcm_event_t_get_hash());
@@ -862,6 +910,9 @@ sva_lcm_verdict_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_
         (void)sva_diag_format(&diag, msg, sizeof msg);
         (void)snprintf(text, sizeof text, "%.31s: %.126s", self->channel_event, msg);
         return refuse_event(self, SVA_LCM_REJECT_INVALID, &diag, text);
+    }
+    if (!sva_lcm_input_durable(self, SVA_LCM_INPUT_EVENT, false, data, size)) {
+        return SVA_LCM_HALTED;
     }
     sva_lcm_replan_live(self);
     return SVA_LCM_ACCEPTED;

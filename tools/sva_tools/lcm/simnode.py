@@ -12,12 +12,25 @@ Where the node runs: `run_via_lcm` enters a network namespace made for the run
 (tests/lcm/netns_run.sh, root only) unless it is already inside one (SVA_LCM_NETNS),
 and there starts sva_node (SVA_NODE, else build/bin/sva_node) with the algorithm and
 the scenario's change_penalty, or, with `attach`, uses the node already running there.
+
+Kills (`kills`, from `kill_plan`): the node runs with `--state-dir` in a temporary
+folder of the planner's own, and after the answer to each listed message it is killed
+with SIGKILL and started again with the same options. The planner then waits for the
+new node's first status, checks that it resumed (the plan id, revisions, clock and
+revision of the last answer), and goes on; it publishes nothing again: the node must
+resume by itself. Each kill is recorded (`kills`: tick, after_message, and what the
+node said it replayed).
 """
 from __future__ import annotations
 
 import os
+import random
+import re
+import shutil
+import signal
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 from typing import List, Optional, Tuple
@@ -60,18 +73,48 @@ def percentile(values: List[float], q: float) -> Optional[float]:
     return s[int(k) - 1]
 
 
+def flight_messages(events: List[dict]) -> int:
+    """The messages a flight sends the node: the fleet and mission (one answer, the
+    plan), then one event_t per event, and a clock event_t at tick 0 when no event is
+    at tick 0 (sim.Flight replans at tick 0 and at every tick with events)."""
+    return 1 + len(events) + (0 if any(e.get("at") == 0 for e in events) else 1)
+
+
+def kill_plan(events: List[dict], kills: int, seed: int) -> List[Tuple[int, float]]:
+    """`kills` seeded moments to kill the node: (after_message, delay in seconds), the
+    message drawn from 1 .. messages - 1 (after the plan, before the last event; the same
+    message may come twice: a node killed again right after it resumed), sorted."""
+    rng = random.Random(seed)
+    last = max(1, flight_messages(events) - 1)
+    plan = [(rng.randint(1, last), round(rng.uniform(0.0, 0.02), 4)) for _ in range(kills)]
+    return sorted(plan, key=lambda k: k[0])
+
+
+RESUMED = re.compile(r"resumed from .*: (\d+) records replayed, (?:revision (\d+), now (-?\d+)|"
+                     r"no live mission), plan id (\d+)")
+
+
 class NodePlanner:
     """sim.Flight's planner, answered by sva_node over LCM (see the module docstring)."""
 
     def __init__(self, algo: str, penalty: Optional[int], url: str = DEFAULT_URL,
-                 prefix: str = DEFAULT_PREFIX, attach: bool = False, timeout: float = 10.0):
+                 prefix: str = DEFAULT_PREFIX, attach: bool = False, timeout: float = 10.0,
+                 kills: Optional[List[Tuple[int, float]]] = None):
         import lcm  # the venv's lcm==1.5.3
 
         self.algo, self.penalty = algo, penalty or 0
         self.url, self.prefix, self.attach, self.timeout = url, prefix, attach, timeout
         self.proc: Optional[subprocess.Popen] = None
+        self.kill_at = list(kills or [])
+        if self.kill_at and attach:
+            raise NodeError("--kill-node: the node must be the run's own (not --attach)", 2)
+        self.state_dir = tempfile.mkdtemp(prefix="sva-sim-state-") if self.kill_at else None
+        self.kills: List[dict] = []
+        self.answered = 0    # messages answered (the plan, then each replan)
+        self.last: Tuple[int, int, int] = (-1, 0, 0)  # plan id, revision, now of the last answer
         self.t = wire.types()
         self.lc = lcm.LCM(url)
+        self.subs: list = []
         self.statuses: list = []
         self.plans: list = []
         self.replans: dict = {}
@@ -92,17 +135,17 @@ class NodePlanner:
                     pass  # not this type: nothing to answer
             return on
 
-        self.lc.subscribe(esc + "STATUS", keep(self.statuses.append, t.node_status_t.decode)
-                          ).set_queue_capacity(1000)
-        self.lc.subscribe(esc + "PLAN", keep(self._on_plan, t.plan_t.decode)
-                          ).set_queue_capacity(1000)
-        self.lc.subscribe(esc + "REPLAN", keep(self._on_replan, t.replan_t.decode)
-                          ).set_queue_capacity(1000)
+        # The subscriptions' handlers hold this planner, and the LCM object holds them: a
+        # cycle the garbage collector cannot see into. close() unsubscribes, so that the
+        # LCM object (its socket and receive thread) goes when the planner does.
+        self.subs = [
+            self.lc.subscribe(esc + "STATUS", keep(self.statuses.append, t.node_status_t.decode)),
+            self.lc.subscribe(esc + "PLAN", keep(self._on_plan, t.plan_t.decode)),
+            self.lc.subscribe(esc + "REPLAN", keep(self._on_replan, t.replan_t.decode))]
+        for sub in self.subs:
+            sub.set_queue_capacity(1000)
         if not attach:
-            self.proc = subprocess.Popen(
-                [str(node_bin()), "--url", url, "--prefix", prefix, "--algorithm", algo,
-                 "--change-penalty", str(self.penalty), "--status-ms", "200"],
-                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+            self._spawn()
         if not self._wait(lambda: self.statuses, timeout):
             self.close()
             raise NodeError(f"no node status on {prefix}STATUS within {timeout} s "
@@ -132,6 +175,64 @@ class NodePlanner:
             self.lc.handle_timeout(max(1, int(left * 1000)))
         return True
 
+    def _spawn(self) -> None:
+        argv = [str(node_bin()), "--url", self.url, "--prefix", self.prefix, "--algorithm",
+                self.algo, "--change-penalty", str(self.penalty), "--status-ms", "200"]
+        if self.state_dir is not None:
+            argv += ["--state-dir", self.state_dir]
+        self.proc = subprocess.Popen(
+            argv, stdout=subprocess.PIPE if self.state_dir else subprocess.DEVNULL,
+            stderr=subprocess.PIPE, text=True)
+
+    def _kill_and_resume(self, now: int) -> None:
+        """SIGKILL the node after the answer to message self.answered, start it again on
+        the same journal, wait for its first status and check that it resumed."""
+        after, delay = self.kill_at.pop(0)
+        if delay > 0:
+            time.sleep(delay)
+        assert self.proc is not None
+        self.proc.send_signal(signal.SIGKILL)
+        self.proc.communicate()
+        self.statuses.clear()
+        t0 = time.perf_counter()
+        self._spawn()
+        proc = self.proc
+
+        def first() -> bool:  # the new process's first status, or its end
+            return any(s.seq == 1 for s in self.statuses) or proc.poll() is not None
+
+        if not self._wait(first, self.timeout) or proc.poll() is not None:
+            why = (proc.communicate()[1] or "").strip().splitlines() if proc.poll() is not None \
+                else []
+            self.close()
+            raise NodeError(f"tick {now}: the node did not come back within {self.timeout} s "
+                            f"after kill {len(self.kills) + 1} (after message {after})"
+                            + (f": {why[-1]}" if why else ""), 3)
+        resume_ms = round((time.perf_counter() - t0) * 1000, 1)
+        status = next(s for s in self.statuses if s.seq == 1)
+        assert self.proc is not None and self.proc.stdout is not None
+        line = self.proc.stdout.readline().strip()
+        said = RESUMED.search(line)
+        plan_id, revision, now_ticks = self.last
+        want = (plan_id, self.rev, self.rev)
+        got = (status.last_plan_id, status.fleet_revision, status.mission_revision)
+        if said is None or got != want or int(said.group(2) or 0) != revision or \
+                int(said.group(3) or 0) != now_ticks:
+            self.close()
+            raise NodeError(f"tick {now}: the node did not resume after kill {len(self.kills) + 1} "
+                            f"(after message {after}): it says {line!r} and its status plan id "
+                            f"{got[0]}, revisions {got[1]}/{got[2]}; expected plan id {plan_id}, "
+                            f"revision {revision}, now {now_ticks}", 1)
+        self.kills.append({"tick": now, "after_message": after,
+                           "replayed": int(said.group(1)), "revision": revision,
+                           "now": now_ticks, "plan_id": plan_id, "resume_ms": resume_ms})
+
+    def _answered(self, now: int, plan_id: int, revision: int, now_ticks: int) -> None:
+        self.answered += 1
+        self.last = (plan_id, revision, now_ticks)
+        while self.kill_at and self.kill_at[0][0] <= self.answered:
+            self._kill_and_resume(now)
+
     def close(self) -> None:
         if self.proc is not None and self.proc.poll() is None:
             self.proc.terminate()
@@ -141,6 +242,12 @@ class NodePlanner:
                 self.proc.kill()
                 self.proc.communicate()
         self.proc = None
+        if self.state_dir is not None:
+            shutil.rmtree(self.state_dir, ignore_errors=True)
+            self.state_dir = None
+        for sub in self.subs:
+            self.lc.unsubscribe(sub)
+        self.subs = []
 
     def _start(self, mission_doc: dict) -> dict:
         doc = {k: v for k, v in mission_doc.items() if k != "change_penalty"}
@@ -160,6 +267,7 @@ class NodePlanner:
                             f"{wire.diag_text(p)}", 2 if p.status == p.STATUS_REJECTED else 1)
         rt = (at - t0) // 1000
         self.round_trips.append(rt)
+        self._answered(0, p.plan_id, 0, 0)
         return {"channel": "PLAN", "plan_id": p.plan_id, "solve_us": p.solve_us,
                 "round_trip_us": rt}
 
@@ -183,6 +291,8 @@ class NodePlanner:
             raise NodeError(f"tick {now}: {self.prefix}REPLAN: {e}", 1) from None
         rt = (at - t0) // 1000
         self.round_trips.append(rt)
+        if doc["accepted"]:
+            self._answered(now, r.plan.plan_id, r.revision, r.now_ticks)
         info = {"channel": "REPLAN", "event_seq": seq, "event": doc["event"],
                 "accepted": doc["accepted"], "now": doc["now"], "revision": doc["revision"],
                 "solve_us": r.plan.solve_us if doc["accepted"] else None,
@@ -226,7 +336,7 @@ class NodePlanner:
         rts = self.round_trips
         return {"url": self.url, "prefix": self.prefix, "algorithm": self.algo,
                 "change_penalty": self.penalty, "attached": self.attach,
-                "messages": len(rts),
+                "restarts": len(self.kills), "messages": len(rts),
                 "round_trip_us": {"p50": percentile(rts, 50), "p99": percentile(rts, 99),
                                   "max": max(rts) if rts else None}}
 

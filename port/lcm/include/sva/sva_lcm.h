@@ -48,6 +48,15 @@
 /// off its track, short of fuel, or nothing. Fleet reports (fleet_reports set) go
 /// through the same rule, one report per UAV listed.
 ///
+/// ## Durable inputs (input_hook)
+/// Every input that changes the node's state (an accepted fleet or mission, an event
+/// the live mission took, a report that moved its clock or became an event) is handed
+/// to input_hook after the node took it and before its answer is published. The
+/// journal of sva_lcm_journal.h writes it there and replays it through these same
+/// handlers after a restart: the node is deterministic, so the same inputs give the
+/// same state. A hook that fails halts the node (SVA_LCM_HALTED): no answer goes out
+/// whose input is not durable.
+///
 /// ## Where every byte lives
 /// Everything is in sva_lcm_node_t, which the caller owns (the node program declares it
 /// static): decoded messages, raw copies for change detection, the core mission,
@@ -150,7 +159,26 @@ typedef enum {
     SVA_LCM_ACCEPTED = 0,  ///< new input stored (and a plan published if both present)
     SVA_LCM_UNCHANGED,     ///< byte-identical to the current input: counted, no replan
     SVA_LCM_REJECTED,      ///< refused: see sva_lcm_node_t.last_reject
+    SVA_LCM_HALTED,        ///< the input hook failed (now or before): nothing answered
 } sva_lcm_verdict_t;
+
+/// The kind of an input handed to sva_lcm_node_t.input_hook.
+typedef enum {
+    SVA_LCM_INPUT_FLEET = 0,  ///< a fleet_state_t the node took (a new fleet or a report)
+    SVA_LCM_INPUT_MISSION,    ///< a mission_t the node took
+    SVA_LCM_INPUT_EVENT,      ///< an event_t the live mission took
+    SVA_LCM_INPUT_REPORT,     ///< a report_t that changed the live mission (clock or event)
+} sva_lcm_input_t;
+
+/// Called once for every input that changes the node's state, after the node took it
+/// and before it publishes the answer (the crash-safe journal, sva_lcm_journal.h, is
+/// one): `data` and `size` are the message's bytes as received. `restarts` is true when
+/// the state from then on depends only on the current fleet, the current mission and
+/// the plan id sequence (a fleet or mission planned from scratch). Returns 0 when the
+/// input is durable; anything else halts the node: the answer is not published, and
+/// every later input is refused with SVA_LCM_HALTED (the program should exit).
+typedef int (*sva_lcm_input_fn)(void* user, sva_lcm_input_t kind, bool restarts, const void* data,
+                                size_t size);
 
 /// Sends one encoded message; returns 0 on success (lcm_publish's convention).
 typedef int (*sva_lcm_publish_fn)(void* user, const char* channel, const void* data,
@@ -171,6 +199,7 @@ typedef struct {
     uint64_t plans_published;    ///< plans (any status) handed to publish successfully
     uint64_t publish_errors;     ///< publish returned non-zero
     uint64_t status_seq;         ///< status messages published
+    uint64_t inputs_hooked;      ///< inputs handed to input_hook (it returned 0)
     uint32_t rejected[SVA_LCM_REJECT_COUNT_];
 } sva_lcm_counters_t;
 
@@ -241,6 +270,11 @@ typedef struct {
     /// flight model's position is off its track (a position event). Default
     /// SVA_LCM_TRACK_TOLERANCE_DEFAULT; >= 0.
     int32_t track_tolerance_cells;
+    /// NULL (default): nothing is called. See sva_lcm_input_fn.
+    sva_lcm_input_fn input_hook;
+    void* input_hook_user;
+    /// The input hook failed: the node answers nothing more (read-only to users).
+    bool halted;
     sva_lcm_counters_t counters;
     sva_lcm_reject_t last_reject;  ///< valid after a SVA_LCM_REJECTED verdict
     sva_diag_t last_diag;          ///< the last COUNT/VALUE/INVALID/PLANNER diagnostic
@@ -288,6 +322,11 @@ sva_lcm_verdict_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_
 /// size or fingerprint, another version, no live mission, a field out of range.
 /// Allocates nothing (publish aside); sva_live_apply's and sva_live_replan's complexity.
 sva_lcm_verdict_t sva_lcm_on_report(sva_lcm_node_t* self, const void* data, size_t size);
+
+/// Sets the plan id sequence: the next plan or replan gets plan_id + 1. For a journal's
+/// replay (sva_lcm_journal.h), before the inputs that follow it. Returns SVA_OK, or
+/// SVA_ERR_ARGUMENT iff self is NULL or plan_id is negative. Allocates nothing; O(1).
+SVA_NODISCARD sva_status_t sva_lcm_node_set_plan_id(sva_lcm_node_t* self, int64_t plan_id);
 
 /// Encodes and publishes a node_status_t stamped with utime (microseconds).
 /// Returns SVA_OK, or SVA_ERR_ARGUMENT iff publishing failed. Allocates nothing.
