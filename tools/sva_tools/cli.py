@@ -10,7 +10,7 @@ from . import __version__, io
 from .text import Parser, shown
 
 SUBCOMMANDS = ("gen", "check", "validate", "ref", "ih", "peer", "bench", "plot", "sim", "ground", "geo",
-               "mavlink", "campaign")
+               "mavlink", "campaign", "sitl")
 
 
 def _lcm(argv: List[str]) -> int:
