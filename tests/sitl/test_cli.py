@@ -51,8 +51,11 @@ def test_the_missions_own_frame_is_checked_too(tmp_path):
              "t0": "2030-01-01T00:00:00Z"}
     r = sitl(scenario(tmp_path, mission={"frame": frame}))
     refused(r, "= 40 / (1 * 5) = 8 m/s must be <= 6 m/s")
-    r = sitl(scenario(tmp_path, mission={"frame": dict(frame, cell_m=25)}), "--frame",
-             "47.3977,8.5456,30,25,5")
+    r = sitl(scenario(tmp_path, mission={"frame": dict(frame, cell_m=25)}))
+    refused(r, "frame: a cell takes ticks_per_cell * tick_s = 1 * 5 = 5 s in the plan, must be "
+               ">= 5.80 s: the copter's time from a hold into the coverage radius")
+    r = sitl(scenario(tmp_path, mission={"frame": dict(frame, cell_m=25, tick_s=6)}), "--frame",
+             "47.3977,8.5456,30,25,6")
     refused(r, "--frame: the mission has a frame of its own")
 
 
@@ -86,4 +89,4 @@ def test_listed_among_the_commands():
     env = dict(os.environ, PYTHONPATH=str(REPO / "tools"))
     r = subprocess.run([sys.executable, "-m", "sva_tools", "sitl", "--help"], capture_output=True,
                        text=True, env=env, timeout=60)
-    assert r.returncode == 0 and "--speedup" in r.stdout and "47.3977,8.5456,30,25,5" in r.stdout
+    assert r.returncode == 0 and "--speedup" in r.stdout and "47.3977,8.5456,30,25,6" in r.stdout

@@ -9,9 +9,11 @@ vehicle in AUTO once it holds a mission) and makes the scenario's events real at
 ticks on the vehicles' GPS clock: uav_lost kills a vehicle's process, uav_back starts a
 fresh one on its cell, the other events are published as a ground station would.
 
-The frame is the mission's, else --frame (default 47.3977,8.5456,30,25,5: 25 m cells,
-5 s ticks, 30 m above home; t0 chosen on the vehicles' clock). A frame whose plan speed
-cell_m / (ticks_per_cell * tick_s) exceeds 6 m/s is refused. Coverage is judged from
+The frame is the mission's, else --frame (default 47.3977,8.5456,30,25,6: 25 m cells,
+6 s ticks, 30 m above home; t0 chosen on the vehicles' clock). A frame whose plan speed
+cell_m / (ticks_per_cell * tick_s) exceeds 6 m/s, or whose cell is shorter in time than
+the copter needs for a one-cell leg from a hold, is refused; the vehicles are commanded
+10 m/s. Coverage is judged from
 each vehicle's telemetry: present within max(cell_m / 2, 5 m) of the target for its
 whole window. The last line: `covered C of K coverable (plan promised P); arrival slack
 p50 X s, p1 Y s; late arrivals N`. docs/sitl.md has the details and measurements.

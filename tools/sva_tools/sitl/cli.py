@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import signal
 import subprocess
@@ -15,11 +16,18 @@ from .. import schema
 from ..sim import load_scenario
 from ..text import shown
 
-DEFAULT_FRAME = "47.3977,8.5456,30,25,5"
+DEFAULT_FRAME = "47.3977,8.5456,30,25,6"
 # The copter's default horizontal speed (WPNAV_SPEED 1000 cm/s; 9.7 m/s measured) and
 # the share of it a plan may use: the rest is room to catch up (docs/sitl.md).
 COPTER_SPEED_M_S = 10.0
 MAX_SPEED_SHARE = 0.6
+# A one-cell leg from a hold (the shortest the grid plans): seconds until the copter is
+# within the coverage radius (half a cell) of the next cell's point, fitted to
+# `tools/bench/sitl_bench.py --legs` at 15, 25 and 30 m cells (4.7 to 5.8 s; jerk-limited
+# acceleration and braking), plus a 0.5 s margin: ONE_CELL_BASE_S + ONE_CELL_ROOT_S *
+# sqrt(cell_m). The plan must give a cell at least that long.
+ONE_CELL_BASE_S = 3.8
+ONE_CELL_ROOT_S = 0.4
 FRAME_KEYS = ("lat", "lon", "alt_m", "cell_m", "tick_s")
 
 
@@ -52,7 +60,19 @@ def check_speed(frame: dict, ticks_per_cell: int) -> float:
                       f"{frame['cell_m']:g} / ({ticks_per_cell} * {frame['tick_s']:g}) = {v:.3g} m/s "
                       f"must be <= {limit:g} m/s ({MAX_SPEED_SHARE:.0%} of the copter's "
                       f"{COPTER_SPEED_M_S:g} m/s WPNAV_SPEED)")
+    one_cell_s = ticks_per_cell * frame["tick_s"]
+    need_s = one_cell_time_s(frame["cell_m"])
+    if one_cell_s < need_s - 1e-9:
+        raise Refused(f"frame: a cell takes ticks_per_cell * tick_s = {ticks_per_cell} * "
+                      f"{frame['tick_s']:g} = {one_cell_s:.3g} s in the plan, must be >= "
+                      f"{need_s:.2f} s: the copter's time from a hold into the coverage radius "
+                      f"of a target one {frame['cell_m']:g} m cell away, with margin")
     return v
+
+
+def one_cell_time_s(cell_m: float) -> float:
+    """The least plan time for one cell (see ONE_CELL_BASE_S)."""
+    return ONE_CELL_BASE_S + ONE_CELL_ROOT_S * math.sqrt(cell_m)
 
 
 def add_parser(sub) -> None:
