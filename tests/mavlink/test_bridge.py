@@ -1,9 +1,10 @@
 """sva_mavlink_bridge driven through LCM inside a private network namespace
 (tests/lcm/netns_run.sh): fleet, mission (with its frame) and plan messages go in as
 sva_node sends them (the build's lcm-gen Python types), missions go out to MAVSDK
-vehicles (and a pymavlink one that refuses) over UDP on loopback. A replan that changes
-one UAV's route uploads to that vehicle only; failures are reported per vehicle while the
-other uploads go on."""
+vehicles (and pymavlink ones that refuse) over UDP on loopback. A replan that changes
+one UAV's route uploads to that vehicle only (a cancelled target not yet due is a change;
+targets under way are not); a failed upload is tried again after a backoff; failures are
+reported per vehicle while the other uploads go on."""
 from __future__ import annotations
 
 import os
@@ -24,12 +25,14 @@ import sva_lcm  # noqa: E402
 
 import mavcheck as C  # noqa: E402
 from test_items import FRAME_MIDNIGHT  # noqa: E402
-from test_upload import FOUR, as_tuples, judge  # noqa: E402
+from test_upload import FOUR, as_tuples, judge, pymavlink_items  # noqa: E402
 from vehicles import MavsdkVehicle, PymavlinkVehicle, free_udp_port  # noqa: E402
 
 URL = "udpm://239.255.76.67:7667?ttl=0"
 BRIDGE = os.environ["SVA_MAVLINK_BRIDGE"]
 MAV_MISSION_DENIED = 14
+MAV_MISSION_NO_SPACE = 4
+TARGET_CANCELLED = 5  # event_t.TYPE_TARGET_CANCELLED
 
 TWO = {"name": "two", "depot": {"x": 0, "y": 0}, "frame": FRAME_MIDNIGHT,
        "uavs": [{"id": 1, "x": 0, "y": 0, "fuel": 1000}, {"id": 2, "x": 0, "y": 0, "fuel": 1000}],
@@ -100,8 +103,13 @@ def plan_msg(plan, plan_id, revision=1):
 
 
 class Bridge:
-    def __init__(self, specs, *extra):
+    """The bridge on the test's LCM URL; a failed upload is not tried again unless
+    upload_retries says so (None: the bridge's default)."""
+
+    def __init__(self, specs, *extra, upload_retries="0"):
         args = [BRIDGE, "--url", URL, "--timeout-ms", "300", "--retries", "2", *extra]
+        if upload_retries is not None:
+            args += ["--upload-retries", upload_retries]
         for uid, spec in specs.items():
             args += ["--vehicle", f"{uid}={spec}"]
         self.proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
@@ -359,3 +367,169 @@ def test_ardupilot_home_item(lc, tmp_path):
     finally:
         bridge.stop()
         va.close()
+
+
+def test_a_cancelled_first_target_uploads_the_shorter_mission_to_its_vehicle_only(lc, tmp_path):
+    """Target 1, the first of UAV 1's two, is cancelled at tick 5, before its window (20):
+    the new route [3] is the end of the mission UAV 1 has, but target 1 was not served, so
+    the shorter mission is uploaded; UAV 2's route is unchanged."""
+    three = dict(TWO, name="three", targets=TWO["targets"] + [ADDED])
+    plan = C.plan_mission(three, tmp_path)
+    routes = {r["uav"]: r["targets"] for r in plan["routes"]}
+    assert routes == {1: [1, ADDED["id"]], 2: [2]}, routes
+    pa, pb = free_udp_port(), free_udp_port()
+    va, vb = MavsdkVehicle(pa, 1), MavsdkVehicle(pb, 2)
+    bridge = Bridge({1: f"udp:127.0.0.1:{pa}:1", 2: f"udp:127.0.0.1:{pb}:2"})
+    try:
+        publish_start(lc, three, plan)
+        bridge.wait_for(done_lines(1, 2))
+        assert len(va.wait_missions(1)) == 1 and len(vb.wait_missions(1)) == 1
+
+        # at tick 5 the UAVs are on their way (ready again at 5 where they stand)
+        residual = dict(three, name="three_cancelled",
+                        uavs=[dict(u, ready_at=5) for u in three["uavs"]],
+                        targets=[t for t in three["targets"] if t["id"] != 1])
+        plan2 = dict(plan, covered=2, routes=[dict(r, targets=[t for t in r["targets"] if t != 1])
+                                              for r in plan["routes"]])
+        rp = sva_lcm.replan_t()
+        rp.version = rp.VERSION
+        rp.event_seq = 1
+        rp.event_type = TARGET_CANCELLED
+        rp.accepted = 1
+        rp.now_ticks = 5
+        rp.residual_fleet = fleet_msg(residual, 1)
+        rp.residual_mission = mission_msg(residual, 1)
+        rp.plan = plan_msg(plan2, 2)
+        lc.publish("SVA_REPLAN", rp.encode())
+        lines = bridge.wait_for(done_lines(2, 2))
+        assert f"plan 2: uav 1 (udp:127.0.0.1:{pa}): uploaded {3 + 2 * 1} items" in lines, lines
+        assert f"plan 2: uav 2 (udp:127.0.0.1:{pb}): route unchanged, not uploaded" in lines
+        got = va.wait_missions(2)
+        assert len(got) == 2 and got[1][0] == 1
+        problems = C.check_route(as_tuples(got[1][1]), residual, TWO["frame"], 1, [ADDED["id"]])
+        assert problems == [], "\n".join(problems)
+        time.sleep(1.0)
+        assert len(vb.missions) == 1  # it got nothing new
+    finally:
+        bridge.stop()
+        va.close()
+        vb.close()
+
+
+def test_a_refused_upload_is_tried_again_and_lands(lc, tmp_path):
+    """A vehicle that answers the first MISSION_COUNT with MAV_MISSION_NO_SPACE (as a
+    freshly booted ArduPilot does) and takes the second: one retry line, after the default
+    5 tries again and 2000 ms, then the whole mission, judged item by item."""
+    plan = C.plan_mission(TWO, tmp_path)
+    r = next(r for r in plan["routes"] if r["uav"] == 1)
+    pa = free_udp_port()
+    va = PymavlinkVehicle(pa, 1, refuse_first=1)
+    bridge = Bridge({1: f"udp:127.0.0.1:{pa}:1"}, upload_retries=None)
+    link = f"uav 1 (udp:127.0.0.1:{pa})"
+    n = 3 + 2 * len(r["targets"])
+    try:
+        publish_start(lc, TWO, plan, plan_id=21)
+        lines = bridge.wait_for(lambda ls: any(x.startswith(f"plan 21: {link}: uploaded") or
+                                               f"plan 21: {link}: error" in x for x in ls), 20)
+        mine = [x for x in lines if x.startswith(f"plan 21: {link}: ")]
+        assert mine == [f"plan 21: {link}: uploading {n} items",
+                        f"plan 21: {link}: retry 1 of 5 in 2000 ms: MISSION_ACK: the vehicle "
+                        f"refused the mission: MAV_MISSION_NO_SPACE ({MAV_MISSION_NO_SPACE})",
+                        f"plan 21: {link}: uploaded {n} items"], mine
+        assert va.counts == [n, n] and len(va.items) == 1
+        problems = C.check_route(pymavlink_items(va.items[0]), TWO, TWO["frame"], 1, r["targets"])
+        assert problems == [], "\n".join(problems)
+    finally:
+        bridge.stop()
+        va.close()
+
+
+def test_a_vehicle_that_always_refuses_gets_n_retries_and_holds_up_no_other(lc, tmp_path):
+    """--upload-retries 2: the refused mission is sent again after 2000 ms and 4000 ms,
+    then the error line; the other vehicle's upload is done long before."""
+    plan = C.plan_mission(TWO, tmp_path)
+    r = {r["uav"]: r for r in plan["routes"]}
+    pa, pb = free_udp_port(), free_udp_port()
+    refuser = PymavlinkVehicle(pa, 1, max_items=1)
+    good = MavsdkVehicle(pb, 2)
+    bridge = Bridge({1: f"udp:127.0.0.1:{pa}:1", 2: f"udp:127.0.0.1:{pb}:2"},
+                    upload_retries="2")
+    bad_link, good_link = f"uav 1 (udp:127.0.0.1:{pa})", f"uav 2 (udp:127.0.0.1:{pb})"
+    n = 3 + 2 * len(r[1]["targets"])
+    refused = (f"MISSION_ACK: the vehicle refused the mission: MAV_MISSION_NO_SPACE "
+               f"({MAV_MISSION_NO_SPACE})")
+    try:
+        start = time.monotonic()
+        publish_start(lc, TWO, plan, plan_id=22)
+        lines = bridge.wait_for(lambda ls: f"plan 22: {bad_link}: error: {refused}" in ls, 30)
+        took = time.monotonic() - start
+        mine = [x for x in lines if x.startswith(f"plan 22: {bad_link}: ")]
+        assert mine == [f"plan 22: {bad_link}: uploading {n} items",
+                        f"plan 22: {bad_link}: retry 1 of 2 in 2000 ms: {refused}",
+                        f"plan 22: {bad_link}: retry 2 of 2 in 4000 ms: {refused}",
+                        f"plan 22: {bad_link}: error: {refused}"], mine
+        assert 6.0 <= took < 15.0, took
+        uploaded = f"plan 22: {good_link}: uploaded {3 + 2 * len(r[2]['targets'])} items"
+        assert lines.index(uploaded) < lines.index(mine[2]), lines
+        judge(TWO, TWO["frame"], r[2], good.wait_missions(1))
+        time.sleep(2.5)
+        assert refuser.counts == [n, n, n] and refuser.items == []
+        assert not [x for x in bridge.lines[len(lines):] if x.startswith("plan 22:")]
+    finally:
+        bridge.stop()
+        refuser.close()
+        good.close()
+
+
+def test_a_newer_plan_replaces_the_retry_pending(lc, tmp_path):
+    """A plan for the vehicle that arrives while a refused upload waits for its retry is
+    uploaded instead; the older mission is not sent again."""
+    plan = C.plan_mission(TWO, tmp_path)
+    moved = dict(TWO, name="two_moved",
+                 targets=[dict(t, x=8) if t["id"] == 1 else t for t in TWO["targets"]])
+    plan2 = C.plan_mission(moved, tmp_path)
+    r2 = next(r for r in plan2["routes"] if r["uav"] == 1)
+    assert r2["targets"] == [1]
+    pa = free_udp_port()
+    va = PymavlinkVehicle(pa, 1, refuse_first=1)
+    bridge = Bridge({1: f"udp:127.0.0.1:{pa}:1"}, upload_retries="3")
+    link = f"uav 1 (udp:127.0.0.1:{pa})"
+    n = 3 + 2 * len(r2["targets"])
+    try:
+        publish_start(lc, TWO, plan, plan_id=23)
+        bridge.wait_for(lambda ls: any(x.startswith(f"plan 23: {link}: retry 1 of 3 in 2000 ms: ")
+                                       for x in ls), 10)
+        lc.publish("SVA_FLEET", fleet_msg(moved, 2).encode())
+        lc.publish("SVA_MISSION", mission_msg(moved, 2).encode())
+        time.sleep(0.2)
+        lc.publish("SVA_PLAN", plan_msg(plan2, 24, revision=2).encode())
+        bridge.wait_for(lambda ls: f"plan 24: {link}: uploaded {n} items" in ls, 10)
+        time.sleep(3.0)  # past the retry's 2000 ms
+        assert va.counts == [n, n] and len(va.items) == 1, va.counts
+        problems = C.check_route(pymavlink_items(va.items[0]), moved, TWO["frame"], 1,
+                                 r2["targets"])
+        assert problems == [], "\n".join(problems)
+        refused = (f"MISSION_ACK: the vehicle refused the mission: MAV_MISSION_NO_SPACE "
+                   f"({MAV_MISSION_NO_SPACE})")
+        assert [x for x in bridge.lines if x.startswith(("plan 23: ", "plan 24: "))] == [
+            f"plan 23: {link}: uploading {n} items",
+            f"plan 23: {link}: retry 1 of 3 in 2000 ms: {refused}",
+            f"plan 24: {link}: uploading {n} items",
+            f"plan 24: {link}: uploaded {n} items"], bridge.lines
+    finally:
+        bridge.stop()
+        va.close()
+
+
+@pytest.mark.parametrize("value", ["-1", "101", "2s"])
+def test_a_bad_upload_retries_is_one_line_and_exit_2(value):
+    p = subprocess.run([BRIDGE, "--vehicle", "1=udp:127.0.0.1:9", "--upload-retries", value],
+                       capture_output=True, text=True, timeout=30)
+    assert p.returncode == 2 and p.stdout == ""
+    assert p.stderr == (f"sva_mavlink_bridge: error: --upload-retries: must be an integer in "
+                        f"[0, 100], got \"{value}\"\n")
+
+
+def test_upload_retries_takes_both_ends():
+    for value in ("0", "100"):
+        Bridge({1: "udp:127.0.0.1:9:1"}, upload_retries=value).stop()

@@ -62,12 +62,13 @@ class MavsdkVehicle:
 class PymavlinkVehicle(threading.Thread):
     """Answers a mission upload on udp 127.0.0.1:port as system `sysid`: requests every
     item, then MISSION_ACK `final` (0 accepted); with max_items, a MISSION_COUNT above
-    it gets MAV_MISSION_NO_SPACE at once. A fussy vehicle ignores the first MISSION_COUNT
+    it gets MAV_MISSION_NO_SPACE at once, and so do the first `refuse_first` MISSION_COUNTs
+    (a vehicle still booting). A fussy vehicle ignores the first MISSION_COUNT
     (the sender must resend it), asks with the older MISSION_REQUEST, and asks for the
     items from the last to the first, each twice."""
 
     def __init__(self, port: int, sysid: int = 1, final: int = 0,
-                 max_items: Optional[int] = None, fussy: bool = False):
+                 max_items: Optional[int] = None, fussy: bool = False, refuse_first: int = 0):
         super().__init__(daemon=True)
         import os
         os.environ["MAVLINK20"] = "1"
@@ -78,6 +79,7 @@ class PymavlinkVehicle(threading.Thread):
         self.final = final
         self.max_items = max_items
         self.fussy = fussy
+        self.refuse_first = refuse_first
         self.counts: List[int] = []
         self.items: List[list] = []
         self._halt = threading.Event()
@@ -106,6 +108,9 @@ class PymavlinkVehicle(threading.Thread):
                 if self.fussy and len(self.counts) == 1:
                     continue  # lost: the sender's timeout must resend it
                 peer = (msg.get_srcSystem(), msg.get_srcComponent())
+                if len(self.counts) <= self.refuse_first:
+                    self.conn.mav.mission_ack_send(*peer, m.MAV_MISSION_NO_SPACE, 0)
+                    continue
                 if self.max_items is not None and msg.count > self.max_items:
                     self.conn.mav.mission_ack_send(*peer, m.MAV_MISSION_NO_SPACE, 0)
                     continue

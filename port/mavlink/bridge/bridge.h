@@ -25,6 +25,11 @@
 #define BRIDGE_DEFAULT_SYSTEM               250
 #define BRIDGE_DEFAULT_REPORT_MS            1000
 #define BRIDGE_DEFAULT_HEARTBEAT_TIMEOUT_MS 3000
+/// A failed upload is tried again this many times (--upload-retries), the first after
+/// BRIDGE_RETRY_FIRST_MS, each next wait twice the one before, at most BRIDGE_RETRY_MAX_MS.
+#define BRIDGE_DEFAULT_UPLOAD_RETRIES 5
+#define BRIDGE_RETRY_FIRST_MS         2000
+#define BRIDGE_RETRY_MAX_MS           60000
 
 /// The command line.
 typedef struct bridge_options {
@@ -33,6 +38,7 @@ typedef struct bridge_options {
     long own_system;
     long timeout_ms;
     long retries;
+    long upload_retries;        ///< a failed upload is tried again this many times
     bool ardupilot;             ///< a home item 0 first
     long report_ms;             ///< host ms between two reports of a vehicle
     long heartbeat_timeout_ms;  ///< silent longer than this: reported LOST
@@ -58,7 +64,16 @@ typedef struct vehicle_slot {
     sva_mavlink_vehicle_t link;
     sva_mavlink_item_t flown[SVA_MAVLINK_MAX_ITEMS];  ///< the last mission it accepted or got
     size_t flown_count;
-    int64_t plan_id;         ///< plan of the upload in progress
+    /// The targets of `flown` in visit order: ids and window starts (ticks), to tell a
+    /// target left out of a replan because it was served or is under way (its window
+    /// has started) from one that is gone (cancelled before its window).
+    int32_t flown_target_ids[SVA_MAVLINK_MAX_ROUTE_TARGETS];
+    int32_t flown_target_starts[SVA_MAVLINK_MAX_ROUTE_TARGETS];
+    size_t flown_target_count;
+    int64_t plan_id;       ///< plan of the upload in progress
+    int32_t retries_done;  ///< tries again of the mission in link.items so far
+    bool retry_pending;    ///< a failed upload is tried again at retry_due_ms
+    int64_t retry_due_ms;
     bool reported;           ///< its result was printed
     uint32_t said_connects;  ///< link events printed so far
     uint32_t said_drops;
@@ -76,9 +91,13 @@ void bridge_say(const vehicle_slot_t* s, const char* prefix, const char* text);
 /// Opens a link per --vehicle into bridge_slots. False after one error line on stderr
 /// (a host that does not resolve, no socket).
 bool bridge_vehicles_open(const bridge_options_t* o);
+/// Starts uploading link.items to s for plan_id (a retry pending is dropped: this
+/// mission replaces it).
+void bridge_vehicles_upload(vehicle_slot_t* s, int64_t plan_id);
 /// Services every link at now_ms and prints what happened: an upload's result ("plan
-/// N: uav ID (...): uploaded 8 items" or "...: error: ..."), a TCP connection made,
-/// lost, or its first failed attempt.
+/// N: uav ID (...): uploaded 8 items"; a failure "...: retry 1 of 5 in 2000 ms: ..."
+/// while tries again are left, then "...: error: ..."), a retry started when due, a TCP
+/// connection made, lost, or its first failed attempt.
 void bridge_vehicles_service(int64_t now_ms);
 void bridge_vehicles_close(void);
 

@@ -11,21 +11,23 @@
 #define PROGRAM "sva_mavlink_bridge"
 
 // Ranges of the numeric options.
-#define MAX_SYSTEM        255
-#define MAX_TIMEOUT_MS    600000
-#define MAX_RETRIES       100
-#define MIN_REPORT_MS     10
-#define MAX_REPORT_MS     3600000
-#define MAX_HB_TIMEOUT_MS 600000
-#define MAX_FUEL_CELLS    ((long)SVA_MAX_FUEL)
-#define MAX_CRUISE_M_S    100.0
+#define MAX_SYSTEM         255
+#define MAX_TIMEOUT_MS     600000
+#define MAX_RETRIES        100
+#define MAX_UPLOAD_RETRIES 100
+#define MIN_REPORT_MS      10
+#define MAX_REPORT_MS      3600000
+#define MAX_HB_TIMEOUT_MS  600000
+#define MAX_FUEL_CELLS     ((long)SVA_MAX_FUEL)
+#define MAX_CRUISE_M_S     100.0
 
 static void usage(FILE* f)
 {
     fprintf(f,
             "usage: " PROGRAM " --vehicle UAV_ID=udp:HOST:PORT[:SYSID] [--vehicle ...]\n"
             "                          [--url URL] [--prefix P] [--system N] [--timeout-ms N]\n"
-            "                          [--retries N] [--ardupilot] [--report-ms N]\n"
+            "                          [--retries N] [--upload-retries N] [--ardupilot]\n"
+            "                          [--report-ms N]\n"
             "                          [--heartbeat-timeout-ms N] [--fuel-capacity CELLS]\n"
             "                          [--cruise-speed M_S]\n"
             "       " PROGRAM " --help | --version\n"
@@ -37,6 +39,10 @@ static void usage(FILE* f)
             "  --system      this side's MAVLink system id, [1, %d] (default %d)\n"
             "  --timeout-ms  wait per message before resending, [1, %d] (default %d)\n"
             "  --retries     resends of one message before giving up, [0, %d] (default %d)\n"
+            "  --upload-retries\n"
+            "                a failed upload is tried again this many times, [0, %d]\n"
+            "                (default %d), after %d ms, then twice the wait before, at most\n"
+            "                %d ms; a newer mission for the vehicle replaces it\n"
             "  --ardupilot   put a home item 0 first (ArduPilot overwrites item 0 with home)\n"
             "  --report-ms   host ms between two reports of a vehicle, [%d, %d] (default %d)\n"
             "  --heartbeat-timeout-ms\n"
@@ -52,8 +58,10 @@ static void usage(FILE* f)
             "  --version     print \"" PROGRAM " VERSION\" (the sva library's)\n",
             SVA_MAVLINK_RECONNECT_MS, BRIDGE_DEFAULT_URL, BRIDGE_DEFAULT_PREFIX, MAX_SYSTEM,
             BRIDGE_DEFAULT_SYSTEM, MAX_TIMEOUT_MS, SVA_MAVLINK_TIMEOUT_MS, MAX_RETRIES,
-            SVA_MAVLINK_RETRIES, MIN_REPORT_MS, MAX_REPORT_MS, BRIDGE_DEFAULT_REPORT_MS,
-            MAX_HB_TIMEOUT_MS, BRIDGE_DEFAULT_HEARTBEAT_TIMEOUT_MS, MAX_FUEL_CELLS, MAX_CRUISE_M_S);
+            SVA_MAVLINK_RETRIES, MAX_UPLOAD_RETRIES, BRIDGE_DEFAULT_UPLOAD_RETRIES,
+            BRIDGE_RETRY_FIRST_MS, BRIDGE_RETRY_MAX_MS, MIN_REPORT_MS, MAX_REPORT_MS,
+            BRIDGE_DEFAULT_REPORT_MS, MAX_HB_TIMEOUT_MS, BRIDGE_DEFAULT_HEARTBEAT_TIMEOUT_MS,
+            MAX_FUEL_CELLS, MAX_CRUISE_M_S);
 }
 
 static bool int_arg(const char* name, const char* text, long lo, long hi, long* out)
@@ -117,6 +125,9 @@ static bool take(bridge_options_t* o, const char* a, const char* v)
     if (strcmp(a, "--retries") == 0) {
         return int_arg(a, v, 0, MAX_RETRIES, &o->retries);
     }
+    if (strcmp(a, "--upload-retries") == 0) {
+        return int_arg(a, v, 0, MAX_UPLOAD_RETRIES, &o->upload_retries);
+    }
     if (strcmp(a, "--report-ms") == 0) {
         return int_arg(a, v, MIN_REPORT_MS, MAX_REPORT_MS, &o->report_ms);
     }
@@ -156,6 +167,7 @@ bridge_parse_t bridge_options_parse(int argc, char** argv, bridge_options_t* o)
     o->own_system = BRIDGE_DEFAULT_SYSTEM;
     o->timeout_ms = SVA_MAVLINK_TIMEOUT_MS;
     o->retries = SVA_MAVLINK_RETRIES;
+    o->upload_retries = BRIDGE_DEFAULT_UPLOAD_RETRIES;
     o->report_ms = BRIDGE_DEFAULT_REPORT_MS;
     o->heartbeat_timeout_ms = BRIDGE_DEFAULT_HEARTBEAT_TIMEOUT_MS;
     for (int i = 1; i < argc; i++) {

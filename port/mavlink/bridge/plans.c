@@ -55,8 +55,10 @@ static void say_vehicle(const vehicle_slot_t* s, int64_t plan_id, const char* te
     bridge_say(s, prefix, text);
 }
 
+// Uploads items[0..count) for plan_id; targets[0..target_count) are its targets in
+// visit order (none for a return home), kept for the changed-route rule.
 static void start_upload(vehicle_slot_t* s, const sva_mavlink_item_t* items, size_t count,
-                         int64_t plan_id)
+                         const sva_mavlink_target_t* targets, size_t target_count, int64_t plan_id)
 {
     memcpy(s->link.items, items, count * sizeof items[0]);
     s->link.item_count = count;
@@ -65,12 +67,42 @@ static void start_upload(vehicle_slot_t* s, const sva_mavlink_item_t* items, siz
     }
     memcpy(s->flown, items, count * sizeof items[0]);
     s->flown_count = count;
-    s->plan_id = plan_id;
-    s->reported = false;
-    char text[64];
-    snprintf(text, sizeof text, "uploading %zu items", s->link.item_count);
-    say_vehicle(s, plan_id, text);
-    (void)sva_mavlink_vehicle_start(&s->link, sva_mavlink_now_ms());
+    for (size_t k = 0; k < target_count; k++) {
+        s->flown_target_ids[k] = targets[k].id;
+        s->flown_target_starts[k] = targets[k].start;
+    }
+    s->flown_target_count = target_count;
+    bridge_vehicles_upload(s, plan_id);
+}
+
+// The changed-route rule of a replan at now_ticks for a vehicle flying s->flown whose
+// new route is items[0..count) over targets[0..target_count): unchanged when the new
+// waypoints, holds and return are the last ones of what it has, its targets the last
+// ones of the targets it has, and every target left out before them has a window that
+// started by now_ticks (served or under way). A target left out whose window is still to
+// come was not served: it is gone (cancelled), and the vehicle must not fly to it.
+static bool same_remaining_route(const vehicle_slot_t* s, const sva_mavlink_item_t* items,
+                                 size_t count, const sva_mavlink_target_t* targets,
+                                 size_t target_count, int32_t now_ticks)
+{
+    if (!sva_mavlink_same_remaining(s->flown, s->flown_count, items, count)) {
+        return false;
+    }
+    if (target_count > s->flown_target_count) {
+        return false;
+    }
+    const size_t left_out = s->flown_target_count - target_count;
+    for (size_t k = 0; k < target_count; k++) {
+        if (s->flown_target_ids[left_out + k] != targets[k].id) {
+            return false;
+        }
+    }
+    for (size_t k = 0; k < left_out; k++) {
+        if (s->flown_target_starts[k] > now_ticks) {
+            return false;
+        }
+    }
+    return true;
 }
 
 static bool in_list(const int32_t* uavs, int listed, int32_t uav_id)
@@ -175,7 +207,7 @@ static void dispatch(const sva_lcm_plan_t* p, const sva_lcm_fleet_state_t* f,
         if (rp != NULL) {
             changed = in_list(rp->dropped_uav, rp->dropped_listed, route->uav_id) ||
                       in_list(rp->added_uav, rp->added_listed, route->uav_id) ||
-                      !sva_mavlink_same_remaining(s->flown, s->flown_count, built, count);
+                      !same_remaining_route(s, built, count, route_targets, n, rp->now_ticks);
         } else {
             changed = !sva_mavlink_same_items(s->flown, s->flown_count, built, count);
         }
@@ -196,7 +228,7 @@ static void dispatch(const sva_lcm_plan_t* p, const sva_lcm_fleet_state_t* f,
             built[0].z = 0.0f;
             count = 1;
         }
-        start_upload(s, built, count, p->plan_id);
+        start_upload(s, built, count, route_targets, n, p->plan_id);
     }
     sva_frame_geodesy_close(geo);
 }

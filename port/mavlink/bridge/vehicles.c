@@ -9,6 +9,8 @@
 vehicle_slot_t bridge_slots[BRIDGE_MAX_VEHICLES];
 size_t bridge_slot_count;
 
+static int32_t upload_retries;  // --upload-retries
+
 void bridge_say(const vehicle_slot_t* s, const char* prefix, const char* text)
 {
     const sva_mavlink_vehicle_spec_t* sp = &s->link.spec;
@@ -20,6 +22,7 @@ void bridge_say(const vehicle_slot_t* s, const char* prefix, const char* text)
 bool bridge_vehicles_open(const bridge_options_t* o)
 {
     char err[SVA_MAVLINK_ERROR_SIZE];
+    upload_retries = (int32_t)o->upload_retries;
     for (size_t k = 0; k < o->spec_count; k++) {
         vehicle_slot_t* s = &bridge_slots[k];
         if (!sva_mavlink_vehicle_open(&s->link, &o->specs[k], (uint8_t)o->own_system, err,
@@ -37,8 +40,39 @@ bool bridge_vehicles_open(const bridge_options_t* o)
     return true;
 }
 
-// The end of an upload: one line with its result.
-static void say_upload_result(vehicle_slot_t* s)
+static void start(vehicle_slot_t* s, int64_t now_ms)
+{
+    s->reported = false;
+    (void)sva_mavlink_vehicle_start(&s->link, now_ms);
+}
+
+void bridge_vehicles_upload(vehicle_slot_t* s, int64_t plan_id)
+{
+    s->plan_id = plan_id;
+    s->retries_done = 0;
+    s->retry_pending = false;
+    char prefix[32];
+    snprintf(prefix, sizeof prefix, "plan %" PRId64 ":", plan_id);
+    char text[64];
+    snprintf(text, sizeof text, "uploading %zu items", s->link.item_count);
+    bridge_say(s, prefix, text);
+    start(s, sva_mavlink_now_ms());
+}
+
+// The wait before try again number `retry` (1 for the first): BRIDGE_RETRY_FIRST_MS,
+// doubled each time, at most BRIDGE_RETRY_MAX_MS.
+static int64_t backoff_ms(int32_t retry)
+{
+    int64_t wait_ms = BRIDGE_RETRY_FIRST_MS;
+    for (int32_t k = 1; k < retry && wait_ms < BRIDGE_RETRY_MAX_MS; k++) {
+        wait_ms *= 2;
+    }
+    return wait_ms < BRIDGE_RETRY_MAX_MS ? wait_ms : BRIDGE_RETRY_MAX_MS;
+}
+
+// The end of an upload: one line with its result. A failure with tries again left is
+// tried again after the backoff; the last failure forgets what the vehicle holds.
+static void say_upload_result(vehicle_slot_t* s, int64_t now_ms)
 {
     if (s->reported || sva_mavlink_vehicle_busy(&s->link)) {
         return;
@@ -46,14 +80,32 @@ static void say_upload_result(vehicle_slot_t* s)
     s->reported = true;
     char prefix[32];
     snprintf(prefix, sizeof prefix, "plan %" PRId64 ":", s->plan_id);
-    char text[SVA_MAVLINK_ERROR_SIZE + 16];
+    char text[SVA_MAVLINK_ERROR_SIZE + 64];
     if (s->link.upload.state == SVA_MAVLINK_UPLOAD_DONE) {
         snprintf(text, sizeof text, "uploaded %u items", (unsigned)s->link.upload.count);
+    } else if (s->retries_done < upload_retries) {
+        s->retries_done++;
+        const int64_t wait_ms = backoff_ms(s->retries_done);
+        s->retry_pending = true;
+        s->retry_due_ms = now_ms + wait_ms;
+        snprintf(text, sizeof text, "retry %d of %d in %" PRId64 " ms: %s", (int)s->retries_done,
+                 (int)upload_retries, wait_ms, s->link.upload.error);
     } else {
         snprintf(text, sizeof text, "error: %s", s->link.upload.error);
         s->flown_count = 0;  // unknown what it holds: the next plan uploads again
+        s->flown_target_count = 0;
     }
     bridge_say(s, prefix, text);
+}
+
+// A retry due: the same mission again (a newer one would have dropped the retry).
+static void start_due_retry(vehicle_slot_t* s, int64_t now_ms)
+{
+    if (!s->retry_pending || now_ms < s->retry_due_ms || sva_mavlink_vehicle_busy(&s->link)) {
+        return;
+    }
+    s->retry_pending = false;
+    start(s, now_ms);
 }
 
 // TCP links: connections made and lost, and the first failed attempt of each outage.
@@ -86,7 +138,8 @@ void bridge_vehicles_service(int64_t now_ms)
         vehicle_slot_t* s = &bridge_slots[k];
         sva_mavlink_vehicle_service(&s->link, now_ms);
         say_link_events(s);
-        say_upload_result(s);
+        say_upload_result(s, now_ms);
+        start_due_retry(s, now_ms);
     }
 }
 
