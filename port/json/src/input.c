@@ -4,6 +4,7 @@
 #include "input.h"
 
 #include <errno.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -81,4 +82,15 @@ sva_json_result_t sva_json_read_input(const char* path, char** text, size_t* len
     sva_json_result_t result = read_stream(in, shown, text, len, err, err_size);
     fclose(in);
     return result;
+}
+
+sva_json_result_t sva_json_refuse(char* err, size_t size, const char* fmt, ...)
+{
+    va_list args;
+    va_start(args, fmt);
+    if (size > 0) {
+        vsnprintf(err, size, fmt, args);
+    }
+    va_end(args);
+    return SVA_JSON_BAD_INPUT;
 }

@@ -16,6 +16,14 @@
 sva_json_result_t sva_json_read_input(const char* path, char** text, size_t* len, char* err,
                                       size_t err_size);
 
+/// Writes one printf-style error line into err (when size > 0) and returns
+/// SVA_JSON_BAD_INPUT: the one way a document's rule is refused.
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((format(printf, 3, 4)))
+#endif
+sva_json_result_t
+sva_json_refuse(char* err, size_t size, const char* fmt, ...);
+
 /// The SPEC section 4 name of a JSON value's type: object, array, string, integer,
 /// real, boolean or null.
 const char* sva_json_type_name(const json_t* value);

@@ -2,7 +2,6 @@
 // document `sva replan` reads (mission, plan in force, events, now) and the replan it
 // prints (the plan with its changes and the live state). The plan in force is checked
 // against the mission by plan_check.c before anything starts.
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,36 +11,23 @@
 #include "input.h"
 #include "plan_check.h"
 
-#if defined(__GNUC__) || defined(__clang__)
-__attribute__((format(printf, 3, 4)))
-#endif
-static sva_json_result_t
-fail(char* err, size_t size, const char* fmt, ...)
-{
-    va_list args;
-    va_start(args, fmt);
-    if (size > 0) {
-        vsnprintf(err, size, fmt, args);
-    }
-    va_end(args);
-    return SVA_JSON_BAD_INPUT;
-}
-
 // A required or optional integer member of `object` that must fit int32.
 static sva_json_result_t member_int(const json_t* object, const char* path, const char* key,
                                     bool optional, int32_t* out, char* err, size_t size)
 {
     const json_t* value = json_object_get(object, key);
     if (value == NULL) {
-        return optional ? SVA_JSON_OK : fail(err, size, "%s: missing key \"%s\"", path, key);
+        return optional ? SVA_JSON_OK
+                        : sva_json_refuse(err, size, "%s: missing key \"%s\"", path, key);
     }
     if (!json_is_integer(value)) {
-        return fail(err, size, "%s.%s: must be an integer, got %s", path, key,
-                    sva_json_type_name(value));
+        return sva_json_refuse(err, size, "%s.%s: must be an integer, got %s", path, key,
+                               sva_json_type_name(value));
     }
     if (json_integer_value(value) < INT32_MIN || json_integer_value(value) > INT32_MAX) {
-        return fail(err, size, "%s.%s: must be an integer in [%ld, %ld], got %lld", path, key,
-                    (long)INT32_MIN, (long)INT32_MAX, (long long)json_integer_value(value));
+        return sva_json_refuse(err, size, "%s.%s: must be an integer in [%ld, %ld], got %lld", path,
+                               key, (long)INT32_MIN, (long)INT32_MAX,
+                               (long long)json_integer_value(value));
     }
     *out = (int32_t)json_integer_value(value);
     return SVA_JSON_OK;
@@ -60,7 +46,7 @@ static sva_json_result_t known_keys(const json_t* object, const char* path, cons
             known = known || strcmp(*k, key) == 0;
         }
         if (!known) {
-            return fail(err, size, "%s: unknown key \"%s\"", path, key);
+            return sva_json_refuse(err, size, "%s: unknown key \"%s\"", path, key);
         }
     }
     return SVA_JSON_OK;
@@ -86,21 +72,23 @@ static sva_json_result_t parse_plan(const json_t* doc, const sva_mission_t* m, s
                                        "cost",    "routes",    "stranded", "stats",   "frame",
                                        "changes", "live",      NULL};
     if (!json_is_object(doc)) {
-        return fail(err, size, "plan: must be an object, got %s", sva_json_type_name(doc));
+        return sva_json_refuse(err, size, "plan: must be an object, got %s",
+                               sva_json_type_name(doc));
     }
     if (known_keys(doc, "plan", keys, err, size) != SVA_JSON_OK) {
         return SVA_JSON_BAD_INPUT;
     }
     const json_t* routes = json_object_get(doc, "routes");
     if (routes == NULL) {
-        return fail(err, size, "plan: missing key \"routes\"");
+        return sva_json_refuse(err, size, "plan: missing key \"routes\"");
     }
     if (!json_is_array(routes)) {
-        return fail(err, size, "plan.routes: must be an array, got %s", sva_json_type_name(routes));
+        return sva_json_refuse(err, size, "plan.routes: must be an array, got %s",
+                               sva_json_type_name(routes));
     }
     if (json_array_size(routes) > SVA_MAX_UAVS) {
-        return fail(err, size, "plan.routes: %zu entries exceed SVA_MAX_UAVS (%ld)",
-                    json_array_size(routes), (long)SVA_MAX_UAVS);
+        return sva_json_refuse(err, size, "plan.routes: %zu entries exceed SVA_MAX_UAVS (%ld)",
+                               json_array_size(routes), (long)SVA_MAX_UAVS);
     }
     memset(plan, 0, sizeof *plan);
     plan->route_count = (uint16_t)json_array_size(routes);
@@ -111,8 +99,8 @@ static sva_json_result_t parse_plan(const json_t* doc, const sva_mission_t* m, s
         snprintf(path, sizeof path, "plan.routes[%zu]", r);
         int32_t uav = 0;
         if (!json_is_object(route)) {
-            return fail(err, size, "%s: must be an object, got %s", path,
-                        sva_json_type_name(route));
+            return sva_json_refuse(err, size, "%s: must be an object, got %s", path,
+                                   sva_json_type_name(route));
         }
         if (known_keys(route, path, route_keys, err, size) != SVA_JSON_OK ||
             member_int(route, path, "uav", false, &uav, err, size) != SVA_JSON_OK) {
@@ -120,28 +108,30 @@ static sva_json_result_t parse_plan(const json_t* doc, const sva_mission_t* m, s
         }
         const json_t* targets = json_object_get(route, "targets");
         if (targets == NULL) {
-            return fail(err, size, "%s: missing key \"targets\"", path);
+            return sva_json_refuse(err, size, "%s: missing key \"targets\"", path);
         }
         if (!json_is_array(targets)) {
-            return fail(err, size, "%s.targets: must be an array, got %s", path,
-                        sva_json_type_name(targets));
+            return sva_json_refuse(err, size, "%s.targets: must be an array, got %s", path,
+                                   sva_json_type_name(targets));
         }
         if (json_array_size(targets) > SVA_MAX_ROUTE_TARGETS) {
-            return fail(err, size, "%s.targets: %zu entries exceed SVA_MAX_ROUTE_TARGETS (%ld)",
-                        path, json_array_size(targets), (long)SVA_MAX_ROUTE_TARGETS);
+            return sva_json_refuse(err, size,
+                                   "%s.targets: %zu entries exceed SVA_MAX_ROUTE_TARGETS (%ld)",
+                                   path, json_array_size(targets), (long)SVA_MAX_ROUTE_TARGETS);
         }
         plan->routes[r].uav_id = uav;
         plan->routes[r].target_count = (uint16_t)json_array_size(targets);
         for (size_t k = 0; k < json_array_size(targets); ++k) {
             const json_t* id = json_array_get(targets, k);
             if (!json_is_integer(id)) {
-                return fail(err, size, "%s.targets[%zu]: must be an integer, got %s", path, k,
-                            sva_json_type_name(id));
+                return sva_json_refuse(err, size, "%s.targets[%zu]: must be an integer, got %s",
+                                       path, k, sva_json_type_name(id));
             }
             const int32_t t = target_index(m, json_integer_value(id));
             if (t < 0) {
-                return fail(err, size, "%s.targets[%zu]: not a target id of the mission, got %lld",
-                            path, k, (long long)json_integer_value(id));
+                return sva_json_refuse(err, size,
+                                       "%s.targets[%zu]: not a target id of the mission, got %lld",
+                                       path, k, (long long)json_integer_value(id));
             }
             plan->routes[r].targets[k] = (uint16_t)t;
         }
@@ -165,15 +155,16 @@ static sva_json_result_t parse_event(const json_t* doc, const char* path, sva_ev
     };
     memset(e, 0, sizeof *e);
     if (!json_is_object(doc)) {
-        return fail(err, size, "%s: must be an object", path);
+        return sva_json_refuse(err, size, "%s: must be an object", path);
     }
     const json_t* type = json_object_get(doc, "type");
     if (!json_is_string(type) ||
         sva_event_type_from_name(json_string_value(type), &e->type) != SVA_OK) {
-        return fail(err, size,
-                    "%s.type: must be one of clock, uav_lost, uav_back, fuel, target_added, "
-                    "target_cancelled, target_changed, position",
-                    path);
+        return sva_json_refuse(
+            err, size,
+            "%s.type: must be one of clock, uav_lost, uav_back, fuel, target_added, "
+            "target_cancelled, target_changed, position",
+            path);
     }
     if (known_keys(doc, path, keys[e->type], err, size) != SVA_JSON_OK ||
         member_int(doc, path, "at", false, &e->at_ticks, err, size) != SVA_JSON_OK) {
@@ -197,7 +188,7 @@ static sva_json_result_t parse_event(const json_t* doc, const char* path, sva_ev
         snprintf(target_path, sizeof target_path, "%s.target", path);
         const json_t* target = json_object_get(doc, "target");
         if (target == NULL) {
-            return fail(err, size, "%s: missing key \"target\"", path);
+            return sva_json_refuse(err, size, "%s: missing key \"target\"", path);
         }
         return sva_json_target_from(target, target_path, &e->target, err, size)
                    ? SVA_JSON_OK
@@ -211,28 +202,30 @@ static sva_json_result_t parse_live(const json_t* root, sva_json_live_t* live, c
 {
     static const char* const keys[] = {"mission", "plan", "events", "now", NULL};
     if (!json_is_object(root)) {
-        return fail(err, size, "live mission: must be an object, got %s", sva_json_type_name(root));
+        return sva_json_refuse(err, size, "live mission: must be an object, got %s",
+                               sva_json_type_name(root));
     }
     if (known_keys(root, "live mission", keys, err, size) != SVA_JSON_OK) {
         return SVA_JSON_BAD_INPUT;
     }
     const json_t* mission = json_object_get(root, "mission");
     if (mission == NULL) {
-        return fail(err, size, "live mission: missing key \"mission\"");
+        return sva_json_refuse(err, size, "live mission: missing key \"mission\"");
     }
     char inner[SVA_JSON_ERROR_SIZE];
     if (sva_json_mission_from(mission, &live->mission, live->name, inner, sizeof inner) !=
         SVA_JSON_OK) {
-        return fail(err, size, "%s%s", strncmp(inner, "mission", 7) == 0 ? "" : "mission.", inner);
+        return sva_json_refuse(err, size, "%s%s",
+                               strncmp(inner, "mission", 7) == 0 ? "" : "mission.", inner);
     }
     if (sva_json_mission_frame(mission, &live->frame, &live->has_frame, inner, sizeof inner) !=
         SVA_JSON_OK) {
-        return fail(err, size, "mission.%s", inner);
+        return sva_json_refuse(err, size, "mission.%s", inner);
     }
     sva_diag_t diag;
     if (sva_mission_validate(&live->mission, &diag) != SVA_OK) {
         (void)sva_diag_format(&diag, inner, sizeof inner);
-        return fail(err, size, "mission.%s", inner);
+        return sva_json_refuse(err, size, "mission.%s", inner);
     }
     const json_t* plan = json_object_get(root, "plan");
     live->has_plan = plan != NULL;
@@ -243,16 +236,17 @@ static sva_json_result_t parse_live(const json_t* root, sva_json_live_t* live, c
     }
     const json_t* events = json_object_get(root, "events");
     if (events != NULL && !json_is_array(events)) {
-        return fail(err, size, "events: must be an array, got %s", sva_json_type_name(events));
+        return sva_json_refuse(err, size, "events: must be an array, got %s",
+                               sva_json_type_name(events));
     }
     const size_t count = events != NULL ? json_array_size(events) : 0;
     if (count > SVA_JSON_MAX_EVENTS) {
-        return fail(err, size, "events: %zu entries exceed SVA_JSON_MAX_EVENTS (%ld)", count,
-                    (long)SVA_JSON_MAX_EVENTS);
+        return sva_json_refuse(err, size, "events: %zu entries exceed SVA_JSON_MAX_EVENTS (%ld)",
+                               count, (long)SVA_JSON_MAX_EVENTS);
     }
     live->events = count > 0 ? calloc(count, sizeof *live->events) : NULL;
     if (count > 0 && live->events == NULL) {
-        return fail(err, size, "events: out of memory");
+        return sva_json_refuse(err, size, "events: out of memory");
     }
     live->event_count = count;
     for (size_t i = 0; i < count; ++i) {
@@ -282,9 +276,9 @@ sva_json_result_t sva_json_load_live(const char* path, sva_json_live_t* live, ch
     json_t* root = json_loadb(text, len, JSON_REJECT_DUPLICATES, &error);
     free(text);
     if (root == NULL) {
-        return fail(err, err_size, "%s:%d:%d: invalid JSON: %s",
-                    strcmp(path, "-") == 0 ? SVA_JSON_STDIN_NAME : path, error.line, error.column,
-                    error.text);
+        return sva_json_refuse(err, err_size, "%s:%d:%d: invalid JSON: %s",
+                               strcmp(path, "-") == 0 ? SVA_JSON_STDIN_NAME : path, error.line,
+                               error.column, error.text);
     }
     result = parse_live(root, live, err, err_size);
     json_decref(root);

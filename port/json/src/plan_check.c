@@ -5,24 +5,10 @@
 // fuel; then the coverage of the targets in mission order.
 #include "plan_check.h"
 
-#include <stdarg.h>
+#include "input.h"
+
 #include <stdint.h>
 #include <stdio.h>
-
-#if defined(__GNUC__) || defined(__clang__)
-__attribute__((format(printf, 3, 4)))
-#endif
-static sva_json_result_t
-fail(char* err, size_t size, const char* fmt, ...)
-{
-    va_list args;
-    va_start(args, fmt);
-    if (size > 0) {
-        vsnprintf(err, size, fmt, args);
-    }
-    va_end(args);
-    return SVA_JSON_BAD_INPUT;
-}
 
 // A rule the core words (sva_diag_format()), on the plan document.
 static sva_json_result_t fail_diag(char* err, size_t size, sva_field_t field, sva_rule_t rule,
@@ -33,7 +19,7 @@ static sva_json_result_t fail_diag(char* err, size_t size, sva_field_t field, sv
     char text[SVA_JSON_ERROR_SIZE];
     sva_diag_set(&diag, field, rule, index, value, limit, limit_name);
     (void)sva_diag_format(&diag, text, sizeof text);
-    return fail(err, size, "plan.%s", text);
+    return sva_json_refuse(err, size, "plan.%s", text);
 }
 
 static int64_t cells(int32_t ax, int32_t ay, int32_t bx, int32_t by)
@@ -90,19 +76,21 @@ static sva_json_result_t check_route(const sva_mission_t* m, const sva_route_t* 
         const int64_t leg = cells(x, y, t->x, t->y);
         const int64_t arrive = free_at + leg * m->ticks_per_cell;
         if (arrive > t->start_ticks && k == 0) {
-            return fail(err, size,
-                        "plan.routes[%u].targets[0]: uav %ld reaches target %ld at tick %lld, "
-                        "after its start %ld (ready_at %ld, %lld cells)",
-                        (unsigned)u, (long)uav->id, (long)t->id, (long long)arrive,
-                        (long)t->start_ticks, (long)uav->ready_at_ticks, (long long)leg);
+            return sva_json_refuse(
+                err, size,
+                "plan.routes[%u].targets[0]: uav %ld reaches target %ld at tick %lld, "
+                "after its start %ld (ready_at %ld, %lld cells)",
+                (unsigned)u, (long)uav->id, (long)t->id, (long long)arrive, (long)t->start_ticks,
+                (long)uav->ready_at_ticks, (long long)leg);
         }
         if (arrive > t->start_ticks) {
             const sva_target_t* a = &m->targets[r->targets[k - 1]];
-            return fail(err, size,
-                        "plan.routes[%u].targets[%u]: uav %ld leaves target %ld at its end %ld "
-                        "and reaches target %ld at tick %lld, after its start %ld",
-                        (unsigned)u, (unsigned)k, (long)uav->id, (long)a->id, (long)a->end_ticks,
-                        (long)t->id, (long long)arrive, (long)t->start_ticks);
+            return sva_json_refuse(
+                err, size,
+                "plan.routes[%u].targets[%u]: uav %ld leaves target %ld at its end %ld "
+                "and reaches target %ld at tick %lld, after its start %ld",
+                (unsigned)u, (unsigned)k, (long)uav->id, (long)a->id, (long)a->end_ticks,
+                (long)t->id, (long long)arrive, (long)t->start_ticks);
         }
         distance += leg;
         x = t->x;
@@ -112,10 +100,11 @@ static sva_json_result_t check_route(const sva_mission_t* m, const sva_route_t* 
     distance += cells(x, y, m->depot_x, m->depot_y);
     const int64_t fuel = distance + (int64_t)m->hover_fuel * r->target_count;
     if (fuel > uav->fuel) {
-        return fail(err, size,
-                    "plan.routes[%u]: the route of uav %ld needs %lld fuel (return leg and hover "
-                    "included), more than its fuel %ld",
-                    (unsigned)u, (long)uav->id, (long long)fuel, (long)uav->fuel);
+        return sva_json_refuse(
+            err, size,
+            "plan.routes[%u]: the route of uav %ld needs %lld fuel (return leg and hover "
+            "included), more than its fuel %ld",
+            (unsigned)u, (long)uav->id, (long long)fuel, (long)uav->fuel);
     }
     return SVA_JSON_OK;
 }
@@ -143,11 +132,12 @@ sva_json_result_t sva_json_check_plan(const sva_mission_t* m, const sva_plan_t* 
     for (uint16_t t = 0; t < m->target_count; ++t) {
         const sva_target_t* target = &m->targets[t];
         if (served[t] != 0 && served[t] != target->need) {
-            return fail(err, size,
-                        "plan.routes: target %ld is served by %u UAV%s, must be served by "
-                        "exactly its need (%ld) or by none",
-                        (long)target->id, (unsigned)served[t], served[t] == 1 ? "" : "s",
-                        (long)target->need);
+            return sva_json_refuse(
+                err, size,
+                "plan.routes: target %ld is served by %u UAV%s, must be served by "
+                "exactly its need (%ld) or by none",
+                (long)target->id, (unsigned)served[t], served[t] == 1 ? "" : "s",
+                (long)target->need);
         }
     }
     return SVA_JSON_OK;
