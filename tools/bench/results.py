@@ -43,6 +43,7 @@ SECTIONS = [
     ("flow_vs_ref", "flow against the exact optimum"),
     ("flow_vs_peer", "flow against the OR-tools routing peer"),
     ("live", "Live missions"),
+    ("sitl", "Flights in ArduCopter SITL"),
     ("campaign", "Regression campaigns"),
     ("paper", "The paper's evaluation"),
     ("lcm_latency", "LCM latency"),

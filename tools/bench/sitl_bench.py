@@ -26,6 +26,8 @@ node's replan and to the bridge's last upload of that replan (vehicle time, p50/
 Flights and logs are kept under --work (default build/sitl_bench/).
 """
 import argparse
+import contextlib
+import io
 import json
 import math
 import os
@@ -308,8 +310,38 @@ def main(argv=None):
     ap.add_argument("--frame", default=None, help="--legs: sva-tools sitl --frame (default its own)")
     ap.add_argument("--work", default=os.path.join(ROOT, "build", "sitl_bench"),
                     help="scenarios and logs (default build/sitl_bench/)")
+    ap.add_argument("--write", action="store_true",
+                    help="also write the figures to docs/results/ (sitl.md, or sitl.legs.md)")
     args = ap.parse_args(argv)
-    return run_legs(args) if args.legs else run_results(args)
+    if not args.write:
+        return run_legs(args) if args.legs else run_results(args)
+    load_start = " ".join(f"{x:.2f}" for x in os.getloadavg())
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        rc = run_legs(args) if args.legs else run_results(args)
+    print(out.getvalue(), end="")
+    if rc == 0:
+        sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+        import results as page  # tools/bench/results.py
+        argv_shown = " ".join(a for a in (argv if argv is not None else sys.argv[1:]))
+        cmd = f".venv/bin/python tools/bench/sitl_bench.py {argv_shown}"
+        if args.legs:
+            title, name = "Leg timing against the plan's grid", "sitl.legs"
+            intro = ("Three UAVs fly chains of legs whose windows leave no slack (`--legs`: the "
+                     "grid's arrival is the window's start), with the default frame and the bridge "
+                     "commanding 10 m/s. Lateness = arrival - the grid's arrival, vehicle clock, at "
+                     "the waypoint (within 2 m) and into the coverage radius (docs/sitl.md).")
+        else:
+            title, name = None, "sitl"
+            intro = ("Scenarios from `sva-tools gen --events` (3 to 8 UAVs, need 1 and 2 in turn) "
+                     "flown by `sva-tools sitl` (one ArduCopter SITL process per UAV, sva_node and "
+                     "the bridge over LCM), by `sva-tools sim` (the same planner, the simulator's "
+                     "physics) and solved at tick 0 by `sva-tools ref` (the optimum without events). "
+                     "Coverage in SITL is judged from the vehicles' telemetry (docs/sitl.md).")
+        body = intro + "\n\n```\n" + out.getvalue().strip("\n") + "\n```\n" \
+            if args.legs else intro + "\n\n" + out.getvalue()
+        page.write(ROOT, name, cmd, body, title=title, load_start=load_start)
+    return rc
 
 
 if __name__ == "__main__":
