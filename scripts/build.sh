@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Installs what a part needs (scripts/setup.sh), configures and builds it into build/
 # (or $SVA_BUILD_DIR), one line per step on stderr.
-# Usage: scripts/build.sh [--part demo|live|all] [extra cmake -D options]
+# Usage: scripts/build.sh [--part demo|live|flight|all] [extra cmake -D options]
 #   demo, live  the sva CLI only (target sva); a fresh build dir is configured without
 #               tests and ports, an existing one is kept as it is
+#   flight      the CLI, sva_node, sva_mavlink_bridge and the LCM Python types (ports
+#               on, tests off in a fresh build dir)
 #   all         (default) everything: the core, the CLI, the ports, the tests
 # The part may also come from $SVA_SETUP_PART (scripts/demo.sh --live sets it).
 set -euo pipefail
@@ -14,7 +16,7 @@ log() { printf 'build: %s\n' "$*" >&2; }
 
 part=${SVA_SETUP_PART:-all}
 case "${1:-}" in
-    --part) part=${2:?--part needs a value (demo, live or all)}; shift 2 ;;
+    --part) part=${2:?--part needs a value (demo, live, flight or all)}; shift 2 ;;
     --part=*) part=${1#--part=}; shift ;;
 esac
 build=${SVA_BUILD_DIR:-build}
@@ -27,6 +29,17 @@ if [ "$part" = all ]; then
           -DSVA_BUILD_TESTS=ON -DSVA_BUILD_PORTS=ON -DPython3_EXECUTABLE="$root/.venv/bin/python" "$@" >/dev/null
     log "building $build/ (all targets, $jobs jobs)"
     cmake --build "$build" -j "$jobs"
+elif [ "$part" = flight ]; then
+    if [ ! -f "$build/CMakeCache.txt" ] || [ $# -gt 0 ]; then
+        log "configuring $build/ (the CLI and the ports, no tests)"
+        cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+              -DSVA_BUILD_TESTS=OFF -DSVA_BUILD_PORTS=ON "$@" >/dev/null
+    fi
+    log "building sva, sva_node, sva_mavlink_bridge ($jobs jobs)"
+    if ! out=$(cmake --build "$build" -j "$jobs" --target sva sva_node sva_mavlink_bridge sva_lcm_python 2>&1); then
+        printf '%s\n' "$out" >&2
+        exit 1
+    fi
 else
     if [ ! -f "$build/CMakeCache.txt" ] || [ $# -gt 0 ]; then
         log "configuring $build/ (the sva CLI only: no tests, no ports)"

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Installs what a part of the project needs and is missing, one line per step on stderr.
 # Safe to run again: it installs nothing that is already there.
-# Usage: scripts/setup.sh [--part demo|live|all]   (as root on Debian, or with sudo)
+# Usage: scripts/setup.sh [--part demo|live|flight|all]   (as root on Debian, or with sudo)
 #   demo  the sva CLI's build: scripts/deps/apt-demo.txt; no Python
 #   live  the live demo: demo + scripts/deps/apt-live.txt and a venv (.venv) from
 #         scripts/deps/requirements-live.txt with the host tools (tools/)
+#   flight  the flight demo: live + scripts/deps/apt-flight.txt and
+#         scripts/deps/requirements-flight.txt (LCM, pymavlink, pymap3d)
 #   all   (default) the whole build and test suite: demo + live + scripts/deps/apt.txt
 #         and the venv from the pinned requirements.txt
 # The part may also come from $SVA_SETUP_PART (scripts/demo.sh --live sets it).
@@ -18,19 +20,22 @@ die() { printf 'setup: error: %s\n' "$*" >&2; exit 2; }
 part=${SVA_SETUP_PART:-all}
 while [ $# -gt 0 ]; do
     case "$1" in
-        --part) [ $# -ge 2 ] || die "--part needs a value (demo, live or all)"; part=$2; shift 2 ;;
+        --part) [ $# -ge 2 ] || die "--part needs a value (demo, live, flight or all)"; part=$2; shift 2 ;;
         --part=*) part=${1#--part=}; shift ;;
         -h|--help) sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-        *) die "unknown argument \"$1\" (usage: scripts/setup.sh [--part demo|live|all])" ;;
+        *) die "unknown argument \"$1\" (usage: scripts/setup.sh [--part demo|live|flight|all])" ;;
     esac
 done
 case "$part" in
     demo) apt_files=(scripts/deps/apt-demo.txt); requirements="" ;;
     live) apt_files=(scripts/deps/apt-demo.txt scripts/deps/apt-live.txt)
           requirements=scripts/deps/requirements-live.txt ;;
-    all)  apt_files=(scripts/deps/apt-demo.txt scripts/deps/apt-live.txt scripts/deps/apt.txt)
+    flight) apt_files=(scripts/deps/apt-demo.txt scripts/deps/apt-live.txt scripts/deps/apt-flight.txt)
+          requirements=scripts/deps/requirements-flight.txt ;;
+    all)  apt_files=(scripts/deps/apt-demo.txt scripts/deps/apt-live.txt scripts/deps/apt-flight.txt
+                     scripts/deps/apt.txt)
           requirements=requirements.txt ;;
-    *) die "unknown part \"$part\" (known: demo, live, all)" ;;
+    *) die "unknown part \"$part\" (known: demo, live, flight, all)" ;;
 esac
 
 # --- Debian packages -------------------------------------------------------------
