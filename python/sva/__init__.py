@@ -104,24 +104,30 @@ def plan(mission: Document, algo: str = "sva", *, flow_work: int | None = None) 
     return result
 
 
-def replan_text(live: Document, algo: str = "sva", *, flow_work: int | None = None) -> str:
+def replan_text(live: Document, algo: str = "sva", *, flow_work: int | None = None,
+                source: str = "<live>") -> str:
     """The last replan of the live document `live` (SPEC section 12.5) as JSON text, as
-    `sva replan --algo ALGO` prints it."""
+    `sva replan --algo ALGO` prints it; `source` names the document in errors, as the
+    file name does for the CLI."""
     data = _document(live)
-    # The JSON layer reads live files from a path: a private temporary file.
+    # The JSON layer reads live files from a path: a private temporary file, named in
+    # errors by `source`.
     handle, path = tempfile.mkstemp(prefix="sva-live-", suffix=".json")
     try:
         with os.fdopen(handle, "wb") as file:
             file.write(data)
-        return _result(*_native.replan(path, algo, _budget(flow_work)))
+        code, text = _native.replan(path, algo, _budget(flow_work))
+        return _result(code, text if code == _native.OK else text.replace(path, source))
     finally:
         os.unlink(path)
 
 
-def replan(live: Document, algo: str = "sva", *, flow_work: int | None = None) -> dict[str, Any]:
+def replan(live: Document, algo: str = "sva", *, flow_work: int | None = None,
+           source: str = "<live>") -> dict[str, Any]:
     """Replays the live mission `live` (mission, plan in force, events, now; SPEC section
     12.5) as `sva replan` does and returns its last replan as a dict. Errors as plan()."""
-    result: dict[str, Any] = json.loads(replan_text(live, algo, flow_work=flow_work))
+    text = replan_text(live, algo, flow_work=flow_work, source=source)
+    result: dict[str, Any] = json.loads(text)
     return result
 
 

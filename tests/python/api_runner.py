@@ -21,7 +21,7 @@ def call(request: dict) -> dict:
             plan = sva.plan(mission, request["algo"])
             text = json.dumps(plan)
         else:
-            text = sva.replan_text(json.loads(data), request["algo"])
+            text = sva.replan_text(json.loads(data), request["algo"], source=request["source"])
     except sva.Error as error:
         return {"error": type(error).__name__, "message": error.message}
     return {"text": text}

@@ -222,6 +222,48 @@ def write_json(doc: Any, path: Optional[str]) -> None:
     os.replace(tmp, path)
 
 
+# Our file kinds, told apart by their top-level keys: what each is and which command takes
+# it (the C CLI's port/json names them in the same words).
+KIND_TEXT = {
+    "mission": "a mission (name, depot, uavs, targets): sva plan takes it",
+    "plan": "a plan (mission, algorithm, status, routes): sva-tools check MISSION PLAN takes it",
+    "live mission": "a live mission (mission, plan, events, now): sva replan takes it",
+    "scenario": "a scenario (mission, events, change_penalty): sva-tools sim takes it",
+    "flight log": ("a flight log (scenario, uavs, targets, replans): sva-tools sim writes it, "
+                   "and takes its scenario"),
+}
+
+
+def kind_of(doc: Any, expected: str = "") -> str:
+    """The kind (a KIND_TEXT key) `doc` is by its top-level keys, "" when none. A
+    {mission, events} document is both a scenario and a live mission: it is `expected`
+    when that is one of the two, else a scenario."""
+    if not isinstance(doc, dict):
+        return ""
+    if "scenario" in doc and "replans" in doc:
+        return "flight log"
+    if "routes" in doc:
+        return "plan"
+    if isinstance(doc.get("mission"), dict):
+        if "change_penalty" in doc:
+            return "scenario"
+        if "plan" in doc or "now" in doc or "events" not in doc:
+            return "live mission"
+        return expected if expected in ("scenario", "live mission") else "scenario"
+    if "mission" not in doc and any(k in doc for k in ("depot", "uavs", "targets")):
+        return "mission"
+    return ""
+
+
+def wrong_kind(doc: Any, expected: str, taker: str) -> None:
+    """Raises InputError "this is KIND (KEYS): COMMAND takes it; TAKER" when `doc` is
+    another of our kinds than `expected` (taker: what the command takes, e.g. "sva-tools
+    sim takes a scenario (mission, events, change_penalty; SPEC 12.5)")."""
+    kind = kind_of(doc, expected)
+    if kind and kind != expected:
+        raise InputError(f"this is {KIND_TEXT[kind]}; {taker}")
+
+
 def fail(path: str, err: InputError) -> int:
     where = f"{path}:{err.where}" if err.where else path
     print(f"sva-tools: error: {shown(where)}: {shown(err)}", file=sys.stderr)

@@ -5,12 +5,15 @@ covered, red when not; label "T<id> n<need> [start,end]") and each UAV's route (
 colour per UAV, from its position through its targets to the depot). Right: a Gantt
 chart, one row per UAV (flight legs leaving as early as possible, waiting hatched,
 serving solid) under one row per target window.
+
+A plan that is not a plan of the mission (`sva-tools check` finds a violation) is
+refused with the first violation, one line, exit status 2.
 """
 from __future__ import annotations
 
 import argparse
 
-from . import io
+from . import check, io
 from . import model as M
 from .text import shown
 
@@ -135,6 +138,10 @@ def add_parser(sub) -> None:
 def run(args) -> int:
     m = io.load_mission(args.mission)
     p = io.load_plan(args.plan)
+    violations = check.check_plan(m, p)
+    if violations:
+        raise io.InputError(f"not a plan of this mission (SPEC section 1): {violations[0]}",
+                            args.plan)
     out = args.out or (args.plan[:-5] if args.plan.endswith(".json") else args.plan) + ".png"
     render(m, p, out)
     print(shown(out))

@@ -88,6 +88,8 @@ def parse_scenario(doc) -> Tuple[M.Mission, List[dict], Optional[int]]:
     is checked here; whether each event may be applied is the planner's to judge."""
     if not isinstance(doc, dict):
         raise io.InputError("file: must be a JSON object")
+    io.wrong_kind(doc, "scenario",
+                  "sva-tools sim takes a scenario (mission, events, change_penalty; SPEC 12.5)")
     for k in doc:
         if k not in ("mission", "events", "change_penalty"):
             raise io.InputError(f"{k}: unknown key")

@@ -4,7 +4,9 @@
 Kinds: mission, plan, trace (JSON Lines, one record a line), bound (`ref --bound`
 output), cache-entry (`bench --cache`). Without --kind: a `.jsonl` file is a trace; an
 object with "routes" is a plan, with "complete_possible" a bound, with "key" and
-"result" a cache entry; anything else a mission.
+"result" a cache entry; anything else a mission. A live mission, scenario or flight log
+(told apart by their top-level keys) is refused without --kind, naming what it is and
+the command that takes it.
 
 Prints `ok: FILE: KIND ...` per valid file; the first error of the first invalid file
 is one line `sva-tools: error: FILE: FIELD: RULE` and exit status 2.
@@ -15,6 +17,9 @@ import argparse
 from typing import Any
 
 from . import io, schema
+
+
+TAKER = "sva-tools validate takes a mission, plan, trace, bound or cache entry (SPEC 9)"
 
 
 def guess_kind(path: str, doc: Any) -> str:
@@ -37,6 +42,8 @@ def validate_file(path: str, kind: str = "") -> str:
         return f"ok: {path}: trace, {len(recs)} records"
     try:
         doc = io.read_json(path)
+        if not kind:
+            io.wrong_kind(doc, guess_kind(path, doc), TAKER)
         kind = kind or guess_kind(path, doc)
         io.check(doc, kind)
     except io.InputError as e:

@@ -1,10 +1,11 @@
-// input.c -- read a whole mission document (see input.h).
+// input.c -- read a whole mission document; tell our file kinds apart (see input.h).
 #define _POSIX_C_SOURCE 200809L
 
 #include "input.h"
 
 #include <errno.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -93,4 +94,44 @@ sva_json_result_t sva_json_refuse(char* err, size_t size, const char* fmt, ...)
     }
     va_end(args);
     return SVA_JSON_BAD_INPUT;
+}
+
+const char* sva_json_other_kind(const json_t* root, const char* expected)
+{
+    static const char MISSION[] = "a mission (name, depot, uavs, targets): sva plan takes it";
+    static const char PLAN[] =
+        "a plan (mission, algorithm, status, routes): sva-tools check MISSION PLAN takes it";
+    static const char LIVE[] = "a live mission (mission, plan, events, now): sva replan takes it";
+    static const char SCENARIO[] =
+        "a scenario (mission, events, change_penalty): sva-tools sim takes it";
+    static const char LOG[] = "a flight log (scenario, uavs, targets, replans): sva-tools sim "
+                              "writes it, and takes its scenario";
+    if (!json_is_object(root)) {
+        return NULL;
+    }
+    const bool live_expected = strcmp(expected, "live mission") == 0;
+    const char* kind = NULL;
+    if (json_object_get(root, "scenario") != NULL && json_object_get(root, "replans") != NULL) {
+        kind = LOG;
+    } else if (json_object_get(root, "routes") != NULL) {
+        kind = PLAN;
+    } else if (json_is_object(json_object_get(root, "mission"))) {
+        // {mission, events} is both a scenario and a live mission.
+        if (json_object_get(root, "change_penalty") != NULL) {
+            kind = SCENARIO;
+        } else if (json_object_get(root, "plan") != NULL || json_object_get(root, "now") != NULL ||
+                   json_object_get(root, "events") == NULL || live_expected) {
+            kind = LIVE;
+        } else {
+            kind = SCENARIO;
+        }
+    } else if (json_object_get(root, "mission") == NULL &&
+               (json_object_get(root, "depot") != NULL || json_object_get(root, "uavs") != NULL ||
+                json_object_get(root, "targets") != NULL)) {
+        kind = MISSION;
+    }
+    if (kind == (live_expected ? LIVE : MISSION)) {
+        return NULL;
+    }
+    return kind;
 }

@@ -1,5 +1,5 @@
 // input.h -- read a whole mission document from a file or standard input; the names
-// of JSON types in messages (private).
+// of JSON types in messages; which of our file kinds a document is (private).
 #ifndef SVA_JSON_INPUT_H
 #define SVA_JSON_INPUT_H
 
@@ -27,5 +27,11 @@ sva_json_refuse(char* err, size_t size, const char* fmt, ...);
 /// The SPEC section 4 name of a JSON value's type: object, array, string, integer,
 /// real, boolean or null.
 const char* sva_json_type_name(const json_t* value);
+
+/// Names a document of another of our kinds (mission, plan, live mission, scenario,
+/// flight log; told apart by their top-level keys) given where an `expected` one was
+/// ("mission" or "live mission"): "a scenario (mission, events, change_penalty):
+/// sva-tools sim takes it", or NULL when `root` is of the expected kind or of none.
+const char* sva_json_other_kind(const json_t* root, const char* expected);
 
 #endif  // SVA_JSON_INPUT_H

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include <sva/sva_json.h>
+#include <sva/sva_text.h>
 
 #include "input.h"
 #include "plan_check.h"
@@ -279,6 +280,17 @@ sva_json_result_t sva_json_load_live(const char* path, sva_json_live_t* live, ch
         return sva_json_refuse(err, err_size, "%s:%d:%d: invalid JSON: %s",
                                strcmp(path, "-") == 0 ? SVA_JSON_STDIN_NAME : path, error.line,
                                error.column, error.text);
+    }
+    const char* other = sva_json_other_kind(root, "live mission");
+    if (other != NULL) {
+        char shown[SVA_JSON_ERROR_SIZE];
+        (void)sva_text_escape(shown, sizeof shown,
+                              strcmp(path, "-") == 0 ? SVA_JSON_STDIN_NAME : path);
+        json_decref(root);
+        return sva_json_refuse(err, err_size,
+                               "%s: this is %s; sva replan takes a live mission (mission, plan, "
+                               "events, now; SPEC 12.5)",
+                               shown, other);
     }
     result = parse_live(root, live, err, err_size);
     json_decref(root);

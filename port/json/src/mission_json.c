@@ -398,6 +398,15 @@ static sva_json_result_t parse_text(const char* text, size_t len, const char* so
         fail(&sink, "%s:%d:%d: invalid JSON: %s", source, error.line, error.column, error.text);
         return SVA_JSON_BAD_INPUT;
     }
+    const char* other = sva_json_other_kind(root, "mission");
+    if (other != NULL) {
+        fail(&sink,
+             "%s: this is %s; sva plan and sva validate take a mission (name, depot, uavs, "
+             "targets; SPEC 3)",
+             source, other);
+        json_decref(root);
+        return SVA_JSON_BAD_INPUT;
+    }
     bool ok = parse_root(root, mission, name, frame, present, &sink);
     json_decref(root);
     if (!ok) {
