@@ -59,24 +59,6 @@ def fly(tmp_path, scenario, algo, *extra):
     return json.loads(out.read_text())
 
 
-def comparable(log):
-    """What two flights of one scenario must share: the ground truth (tracks, visits,
-    outcomes, summary) and every replan (residual mission, plan with its plan id,
-    changes, live figures, and each node message's answer), times and revisions aside."""
-    replans = []
-    for r in log["replans"]:
-        plan = dict(r["plan"])
-        stats = {k: v for k, v in plan.pop("stats", {}).items()
-                 if k not in ("solve_us", "fleet_revision", "mission_revision")}
-        msgs = [{k: m.get(k) for k in ("channel", "event", "accepted", "now", "revision",
-                                       "plan_id")} for m in r["node"]["messages"]]
-        replans.append({"at": r["at"], "cause": r["cause"], "mission": r["mission"],
-                        "plan": plan, "stats": stats, "changes": r["changes"],
-                        "live": r["live"], "plan_id": r["node"]["plan_id"], "messages": msgs})
-    return {"end_tick": log["end_tick"], "targets": log["targets"], "uavs": log["uavs"],
-            "summary": log["summary"], "replans": replans}
-
-
 @pytest.mark.parametrize("scenario, algo", [("hand_events", "sva"), ("gen_25t5u_events", "flow"),
                                             ("hand_loss", "hga")])
 def test_killed_node_flies_as_the_uninterrupted_one(tmp_path, scenario, algo):
@@ -85,7 +67,7 @@ def test_killed_node_flies_as_the_uninterrupted_one(tmp_path, scenario, algo):
     messages = 1 + len(events) + (0 if any(e["at"] == 0 for e in events) else 1)
     whole = fly(tmp_path, path, algo)
     assert "node_kills" not in whole and whole["node"]["restarts"] == 0
-    want = comparable(whole)
+    want = simnode.comparable_flight(whole)
     kills = 0
     moments = {}
     for seed in SEEDS:
@@ -94,7 +76,7 @@ def test_killed_node_flies_as_the_uninterrupted_one(tmp_path, scenario, algo):
         # the seed's moments, drawn again the same
         assert moments[seed] == [k for k, _ in simnode.kill_plan(events, KILLS, seed)]
         assert check_flight(log) == []
-        assert comparable(log) == want, f"seed {seed}: the flight differs after its kills"
+        assert simnode.comparable_flight(log) == want, f"seed {seed}: the flight differs after its kills"
         done = log["node_kills"]
         assert len(done) == KILLS == log["node"]["restarts"]
         assert [k["after_message"] for k in done] == sorted(k["after_message"] for k in done)

@@ -48,23 +48,6 @@ BUNDLED = "hand_events,hand_loss,gen_25t5u_events,replan_budget"
 KINDS = "uav_lost,uav_back,fuel,target_added,target_cancelled,target_changed,position"
 
 
-def comparable(log: dict) -> dict:
-    """What a killed flight must share with the uninterrupted one (times and revisions
-    aside: the revisions name the run)."""
-    replans = []
-    for r in log["replans"]:
-        plan = dict(r["plan"])
-        stats = {k: v for k, v in plan.pop("stats", {}).items()
-                 if k not in ("solve_us", "fleet_revision", "mission_revision")}
-        msgs = [{k: m.get(k) for k in ("channel", "event", "accepted", "now", "revision",
-                                       "plan_id")} for m in r["node"]["messages"]]
-        replans.append({"at": r["at"], "cause": r["cause"], "mission": r["mission"],
-                        "plan": plan, "stats": stats, "changes": r["changes"],
-                        "live": r["live"], "plan_id": r["node"]["plan_id"], "messages": msgs})
-    return {"end_tick": log["end_tick"], "targets": log["targets"], "uavs": log["uavs"],
-            "summary": log["summary"], "replans": replans}
-
-
 def event_round_trips(log: dict) -> list:
     return [m["round_trip_us"] for r in log["replans"] for m in r["node"]["messages"]
             if m["channel"] == "REPLAN"]
@@ -133,7 +116,7 @@ def main(argv=None) -> int:
                 name = os.path.basename(path)
                 try:
                     whole = fly(path, algo, 0, 0)
-                    want = comparable(whole)
+                    want = simnode.comparable_flight(whole)
                     round_trips["without"] += event_round_trips(whole)
                 except (simnode.NodeError, sim.SimError) as e:
                     failures.append({"scenario": name, "algo": algo, "seed": None, "error": str(e)})
@@ -151,7 +134,7 @@ def main(argv=None) -> int:
                     row["survived"] += len(log["node_kills"])
                     round_trips["with"] += event_round_trips(log)
                     restarts += [k["resume_ms"] for k in log["node_kills"]]
-                    if comparable(log) == want:
+                    if simnode.comparable_flight(log) == want:
                         row["identical"] += 1
                     else:
                         failures.append({"scenario": name, "algo": algo, "seed": seed,

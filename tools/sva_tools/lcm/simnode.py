@@ -364,3 +364,23 @@ def reexec_in_netns(argv: List[str]) -> int:
               "(ip netns: needs root and iproute2)", file=sys.stderr)
         return 2
     return rc
+
+
+def comparable_flight(log: dict) -> dict:
+    """What a flight through the node must share with another flight of the same
+    scenario to count as the same flight (e.g. one whose node was killed and resumed):
+    the ground truth (tracks, visits, outcomes, summary) and every replan (residual
+    mission, plan with its plan id, changes, live figures, each node message's answer);
+    times and revisions aside, as the revisions name the run."""
+    replans = []
+    for r in log["replans"]:
+        plan = dict(r["plan"])
+        stats = {k: v for k, v in plan.pop("stats", {}).items()
+                 if k not in ("solve_us", "fleet_revision", "mission_revision")}
+        msgs = [{k: m.get(k) for k in ("channel", "event", "accepted", "now", "revision",
+                                       "plan_id")} for m in r["node"]["messages"]]
+        replans.append({"at": r["at"], "cause": r["cause"], "mission": r["mission"],
+                        "plan": plan, "stats": stats, "changes": r["changes"],
+                        "live": r["live"], "plan_id": r["node"]["plan_id"], "messages": msgs})
+    return {"end_tick": log["end_tick"], "targets": log["targets"], "uavs": log["uavs"],
+            "summary": log["summary"], "replans": replans}
