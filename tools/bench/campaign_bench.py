@@ -15,7 +15,7 @@ mean wall time of a task inside its worker, and the per-task overhead (the worke
 busy time not spent in a task: scheduling, transfer, Parquet writes, and idle workers
 at the end); then each kind of task's mean wall time with the first worker count.
 The estimate: T(N) = M * (sum over a mission's tasks of (mean task time + overhead))
-/ (N * C), for M = 100,000 missions on N machines of C workers (C = this machine's
+/ (N * C), for M = 100,000 missions on N machines of C workers (C = the measuring machine's
 cores), with the costs measured with the first worker count (default 1); also without
 the ref task. It assumes tasks as costly as these, one worker per core as fast as one
 worker alone here, and a scheduler that keeps up (not measured beyond 2 workers here).
@@ -126,7 +126,7 @@ def main(argv):
                   f"{runs[0]['workers']} to {runs[-1]['workers']} workers only, where the campaign ran "
                   f"{runs[0]['compute_s'] / runs[-1]['compute_s']:.2f}x as fast (tasks took "
                   f"{runs[-1]['busy_s'] / runs[0]['busy_s']:.2f}x as long with {runs[-1]['workers']} workers on "
-                  "this machine's cores, shared with other work: see the load average)."]
+                  "the cores of the machine named above, shared with other work: see its load average)."]
     body = "\n".join(lines)
     print(body)
     if args.results:
