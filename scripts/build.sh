@@ -24,9 +24,16 @@ build=${SVA_BUILD_DIR:-build}
 scripts/setup.sh --part "$part"
 jobs=$(nproc)
 if [ "$part" = all ]; then
+    # Unity, the C tests' framework, comes by FetchContent from its public repository;
+    # a copy of the same release beside the checkout serves builds without internet.
+    unity=()
+    if [ -f "$root/../shared/unity/src/unity.c" ]; then
+        unity=(-DFETCHCONTENT_SOURCE_DIR_UNITY="$(cd "$root/../shared/unity" && pwd)")
+    fi
     log "configuring $build/ (everything: core, CLI, ports, tests)"
     cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-          -DSVA_BUILD_TESTS=ON -DSVA_BUILD_PORTS=ON -DPython3_EXECUTABLE="$root/.venv/bin/python" "$@" >/dev/null
+          -DSVA_BUILD_TESTS=ON -DSVA_BUILD_PORTS=ON -DPython3_EXECUTABLE="$root/.venv/bin/python" \
+          "${unity[@]}" "$@" >/dev/null
     log "building $build/ (all targets, $jobs jobs)"
     cmake --build "$build" -j "$jobs"
 elif [ "$part" = flight ]; then

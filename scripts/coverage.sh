@@ -11,8 +11,12 @@ cd "$root"
 scripts/setup.sh
 out=build-coverage
 jobs=$(( $(nproc) < 2 ? $(nproc) : 2 ))
+unity=()  # Unity's release beside the checkout, for builds without internet
+if [ -f "$root/../shared/unity/src/unity.c" ]; then
+    unity=(-DFETCHCONTENT_SOURCE_DIR_UNITY="$(cd "$root/../shared/unity" && pwd)")
+fi
 cmake -S . -B "$out" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_FLAGS="--coverage -O0" \
-      -DSVA_BUILD_PORTS=OFF -DSVA_SANITIZE_TESTS=OFF >/dev/null
+      -DSVA_BUILD_PORTS=OFF -DSVA_SANITIZE_TESTS=OFF "${unity[@]}" >/dev/null
 cmake --build "$out" -j "$jobs" >/dev/null
 lcov_rc=(--rc lcov_branch_coverage=1)
 lcov "${lcov_rc[@]}" --quiet --zerocounters --directory "$out"

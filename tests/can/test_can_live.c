@@ -6,13 +6,11 @@
 // frame past a window start makes the visit under way (and, the plan in force kept,
 // sends nothing); a position off the track is a position event; a BEGIN of another
 // protocol version is refused with NACK BAD_VERSION.
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
 
-#include <cmocka.h>
+#include "sva_unity.h"
 
 #include "can_live.h"
 #include "sva/sva.h"
@@ -32,9 +30,8 @@ static uint8_t bridge_counter;
 
 // UAVs 1 and 2 at the depot; T1 at (5, 0) and T2 at (0, 5) in [10, 20]; T3 at (3, 3) in
 // [40, 50]; one UAV each.
-static int setup(void** state)
+void setUp(void)
 {
-    (void)state;
     sva_mission_init(&mission);
     mission.uav_count = 2U;
     mission.uavs[0] = (sva_uav_t){.id = 1, .x = 0, .y = 0, .fuel = 100};
@@ -44,18 +41,17 @@ static int setup(void** state)
     mission.targets[1] = (sva_target_t){2, 0, 5, 10, 20, 1};
     mission.targets[2] = (sva_target_t){3, 3, 3, 40, 50, 1};
     sva_can_loopback_init(&bus);
-    assert_int_equal(sva_can_loopback_transport(&bus, 0, &node_tp), SVA_CAN_OK);
-    assert_int_equal(sva_can_loopback_transport(&bus, 1, &bridge_tp), SVA_CAN_OK);
-    assert_int_equal(sva_can_sender_init(&sender, &node_tp, NULL), SVA_CAN_OK);
-    assert_int_equal(sva_can_receiver_init(&receiver, &bridge_tp, 0), SVA_CAN_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_loopback_transport(&bus, 0, &node_tp));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_loopback_transport(&bus, 1, &bridge_tp));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_init(&sender, &node_tp, NULL));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_receiver_init(&receiver, &bridge_tp, 0));
     memset(&node, 0, sizeof node);
     node.track_tolerance_cells = SVA_CAN_LIVE_TRACK_TOLERANCE;
     now_ms = 1000u;
     bridge_counter = 0u;
     char err[200];
-    assert_int_equal(sva_can_live_start(&node, &mission, SVA_ALGO_SVA, err, sizeof err), 0);
-    assert_int_equal(sva_can_sender_start(&sender, &node.wire, now_ms), SVA_CAN_OK);
-    return 0;
+    TEST_ASSERT_EQUAL_INT(0, sva_can_live_start(&node, &mission, SVA_ALGO_SVA, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_start(&sender, &node.wire, now_ms));
 }
 
 // Moves every frame across until the bus is quiet, as the node's loop does: the
@@ -66,10 +62,10 @@ static void pump(void)
     for (int round = 0; round < 64; ++round) {
         sva_can_frame_t f;
         int moved = 0;
-        assert_int_equal(sva_can_sender_poll(&sender, now_ms), SVA_CAN_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_poll(&sender, now_ms));
         while (sva_can_loopback_take(&bus, 1, &f) == SVA_CAN_OK) {
             const sva_can_status_t st = sva_can_receiver_on_frame(&receiver, &f, now_ms);
-            assert_true((st == SVA_CAN_OK) || (st == SVA_CAN_APPLIED));
+            TEST_ASSERT_TRUE((st == SVA_CAN_OK) || (st == SVA_CAN_APPLIED));
             moved = 1;
         }
         while (sva_can_loopback_take(&bus, 0, &f) == SVA_CAN_OK) {
@@ -78,14 +74,14 @@ static void pump(void)
             if (sva_can_sender_on_frame(&sender, &f, now_ms) != SVA_CAN_IGNORED) {
                 continue;
             }
-            assert_int_equal(sva_can_decode(&f, &m), SVA_CAN_OK);
+            TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_decode(&f, &m));
             (void)sva_can_live_on_msg(&node, &m, now_ms);
         }
         now_ms += 50u;
         const int changed = sva_can_live_poll(&node, now_ms, SETTLE_MS);
-        assert_true(changed >= 0);
+        TEST_ASSERT_TRUE(changed >= 0);
         if (changed > 0) {
-            assert_int_equal(sva_can_sender_start(&sender, &node.wire, now_ms), SVA_CAN_OK);
+            TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_start(&sender, &node.wire, now_ms));
             moved = 1;
         }
         if (!moved && (node.pending == 0u) && (sender.state != SVA_CAN_TX_SENDING) &&
@@ -93,7 +89,7 @@ static void pump(void)
             return;
         }
     }
-    fail_msg("the bus never went quiet");
+    SVA_TEST_FAIL("the bus never went quiet");
 }
 
 static void bridge_send(sva_can_msg_t m)
@@ -101,8 +97,8 @@ static void bridge_send(sva_can_msg_t m)
     sva_can_frame_t f;
     m.counter = bridge_counter;
     bridge_counter = (uint8_t)((bridge_counter + 1u) & 0x0Fu);
-    assert_int_equal(sva_can_encode(&m, &f), SVA_CAN_OK);
-    assert_int_equal(bridge_tp.send(bridge_tp.ctx, &f), SVA_CAN_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_encode(&m, &f));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, bridge_tp.send(bridge_tp.ctx, &f));
 }
 
 static void send_clock(uint32_t tick)
@@ -154,65 +150,64 @@ static sva_target_state_t state_of(int32_t id)
             return (sva_target_state_t)node.live.target_state[i];
         }
     }
-    fail_msg("no target %d", (int)id);
+    SVA_TEST_FAIL("no target %d", (int)id);
     return SVA_TARGET_STATE_COUNT_;
 }
 
-static void test_live_mission_over_loopback(void** state)
+void test_live_mission_over_loopback(void)
 {
-    (void)state;
     pump();
-    assert_true(receiver.has_active);
-    assert_int_equal(receiver.stats.plans_applied, 1);
-    assert_int_equal(receiver.active.plan_id, 1);
-    assert_int_equal(items_of(&receiver.active, 1, 0) + items_of(&receiver.active, 2, 0), 3);
-    assert_int_equal(items_of(&receiver.active, 2, 0) > 0, 1);
+    TEST_ASSERT_TRUE(receiver.has_active);
+    TEST_ASSERT_EQUAL_INT(1, receiver.stats.plans_applied);
+    TEST_ASSERT_EQUAL_INT(1, receiver.active.plan_id);
+    TEST_ASSERT_EQUAL_INT(3, items_of(&receiver.active, 1, 0) + items_of(&receiver.active, 2, 0));
+    TEST_ASSERT_EQUAL_INT(1, items_of(&receiver.active, 2, 0) > 0);
 
     // A clock frame past the windows' start: both visits under way. The plan in force
     // stays: nothing is sent.
     send_clock(12u);
     pump();
-    assert_int_equal(node.live.now_ticks, 12);
-    assert_int_equal(state_of(1), SVA_TARGET_UNDER_WAY);
-    assert_int_equal(state_of(2), SVA_TARGET_UNDER_WAY);
-    assert_int_equal(node.stats.replans, 1);
-    assert_int_equal(node.stats.unchanged, 1);
-    assert_int_equal(receiver.stats.plans_applied, 1);
+    TEST_ASSERT_EQUAL_INT(12, node.live.now_ticks);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_UNDER_WAY, state_of(1));
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_UNDER_WAY, state_of(2));
+    TEST_ASSERT_EQUAL_INT(1, node.stats.replans);
+    TEST_ASSERT_EQUAL_INT(1, node.stats.unchanged);
+    TEST_ASSERT_EQUAL_INT(1, receiver.stats.plans_applied);
 
     // Frames that agree with the flight model change nothing: UAV 1 on T1's cell, its
     // fuel as the model has it (5 cells flown).
     send_status(1, SVA_CAN_VEHICLE_BUSY, 5, 0);
     send_fuel(1, 95u);
     pump();
-    assert_int_equal(node.stats.events_applied, 1);
+    TEST_ASSERT_EQUAL_INT(1, node.stats.events_applied);
 
     // A loss frame: UAV 2 leaves service during its visit of T2 (lost); the node sends a
     // plan without it.
     send_status(2, SVA_CAN_VEHICLE_UNAVAILABLE, 0, 5);
     pump();
-    assert_int_equal(state_of(2), SVA_TARGET_LOST);
-    assert_int_equal(receiver.stats.plans_applied, 2);
-    assert_int_equal(receiver.active.plan_id, 2);
-    assert_int_equal(items_of(&receiver.active, 2, 0), 0);
-    assert_int_equal(items_of(&receiver.active, 1, 1), 1);  // its visit under way stays
-    assert_int_equal(items_of(&receiver.active, 1, 3), 1);  // and it takes T3
-    assert_int_equal(receiver.active.route_count, 1);
-    assert_int_equal(sva_can_live_in_service(&node), 1);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_LOST, state_of(2));
+    TEST_ASSERT_EQUAL_INT(2, receiver.stats.plans_applied);
+    TEST_ASSERT_EQUAL_INT(2, receiver.active.plan_id);
+    TEST_ASSERT_EQUAL_INT(0, items_of(&receiver.active, 2, 0));
+    TEST_ASSERT_EQUAL_INT(1, items_of(&receiver.active, 1, 1));  // its visit under way stays
+    TEST_ASSERT_EQUAL_INT(1, items_of(&receiver.active, 1, 3));  // and it takes T3
+    TEST_ASSERT_EQUAL_INT(1, receiver.active.route_count);
+    TEST_ASSERT_EQUAL_INT(1, sva_can_live_in_service(&node));
 
     // UAV 1 blown off T1's cell during the visit: a position event; T1 is lost too.
     send_status(1, SVA_CAN_VEHICLE_BUSY, 5, 4);
     pump();
-    assert_int_equal(state_of(1), SVA_TARGET_LOST);
-    assert_int_equal(receiver.stats.plans_applied, 3);
-    assert_int_equal(items_of(&receiver.active, 1, 1), 0);
-    assert_int_equal(items_of(&receiver.active, 1, 3), 1);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_LOST, state_of(1));
+    TEST_ASSERT_EQUAL_INT(3, receiver.stats.plans_applied);
+    TEST_ASSERT_EQUAL_INT(0, items_of(&receiver.active, 1, 1));
+    TEST_ASSERT_EQUAL_INT(1, items_of(&receiver.active, 1, 3));
     int32_t x = 0;
     int32_t y = 0;
     int32_t fuel = 0;
     int32_t ready = 0;
-    assert_true(sva_live_uav_at(&node.live, 0U, 12, &x, &y, &fuel, &ready));
-    assert_int_equal(x, 5);
-    assert_int_equal(y, 4);
+    TEST_ASSERT_TRUE(sva_live_uav_at(&node.live, 0U, 12, &x, &y, &fuel, &ready));
+    TEST_ASSERT_EQUAL_INT(5, x);
+    TEST_ASSERT_EQUAL_INT(4, y);
 
     // UAV 2 back where it says, with the fuel last heard; frames for unknown UAVs and a
     // clock going back are refused and change nothing.
@@ -221,19 +216,18 @@ static void test_live_mission_over_loopback(void** state)
     send_status(9, SVA_CAN_VEHICLE_AVAILABLE, 1, 1);
     send_clock(5u);
     pump();
-    assert_int_equal(sva_can_live_in_service(&node), 2);
-    assert_true(sva_live_uav_at(&node.live, 1U, 12, &x, &y, &fuel, &ready));
-    assert_int_equal(fuel, 60);
-    assert_int_equal(node.stats.events_refused, 2);
-    assert_int_equal(node.live.now_ticks, 12);
-    assert_int_equal(sender.stats.nacks, 0);
+    TEST_ASSERT_EQUAL_INT(2, sva_can_live_in_service(&node));
+    TEST_ASSERT_TRUE(sva_live_uav_at(&node.live, 1U, 12, &x, &y, &fuel, &ready));
+    TEST_ASSERT_EQUAL_INT(60, fuel);
+    TEST_ASSERT_EQUAL_INT(2, node.stats.events_refused);
+    TEST_ASSERT_EQUAL_INT(12, node.live.now_ticks);
+    TEST_ASSERT_EQUAL_INT(0, sender.stats.nacks);
 }
 
 // A receiver refuses a BEGIN of another protocol version: NACK BAD_VERSION back on
 // the bus, nothing applied; the node's sender sees the NACK.
-static void test_other_version_refused(void** state)
+void test_other_version_refused(void)
 {
-    (void)state;
     pump();
     sva_can_msg_t m;
     sva_can_frame_t f;
@@ -243,23 +237,14 @@ static void test_other_version_refused(void** state)
     m.u.begin.plan_id = 77;
     m.u.begin.item_count = 1;
     m.u.begin.plan_status = SVA_CAN_PLAN_COMPLETE;
-    assert_int_equal(sva_can_encode(&m, &f), SVA_CAN_OK);
-    assert_int_equal(sva_can_receiver_on_frame(&receiver, &f, now_ms), SVA_CAN_ERR_VERSION);
-    assert_int_equal(receiver.stats.bad_version, 1);
-    assert_int_equal(receiver.active.plan_id, 1);
-    assert_int_equal(sva_can_loopback_take(&bus, 0, &f), SVA_CAN_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_encode(&m, &f));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_VERSION, sva_can_receiver_on_frame(&receiver, &f, now_ms));
+    TEST_ASSERT_EQUAL_INT(1, receiver.stats.bad_version);
+    TEST_ASSERT_EQUAL_INT(1, receiver.active.plan_id);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_loopback_take(&bus, 0, &f));
     sva_can_msg_t ack;
-    assert_int_equal(sva_can_decode(&f, &ack), SVA_CAN_OK);
-    assert_int_equal(ack.kind, SVA_CAN_MSG_PLAN_ACK);
-    assert_int_equal(ack.u.ack.result, SVA_CAN_ACK_BAD_VERSION);
-    assert_int_equal(ack.u.ack.plan_id, 77);
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test_setup(test_live_mission_over_loopback, setup),
-        cmocka_unit_test_setup(test_other_version_refused, setup),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_decode(&f, &ack));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_MSG_PLAN_ACK, ack.kind);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ACK_BAD_VERSION, ack.u.ack.result);
+    TEST_ASSERT_EQUAL_INT(77, ack.u.ack.plan_id);
 }

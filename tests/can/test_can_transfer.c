@@ -1,13 +1,11 @@
 // State machine tests over the loopback transport: a clean transfer, every kind of
 // corrupted traffic (rejected, counted, active plan unchanged), timeouts, retries,
 // aborts, transport back-pressure, clock wrap-around and core plan conversion.
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
 
-#include <cmocka.h>
+#include "unity.h"
 
 #include "sva/sva.h"
 #include "sva/sva_can.h"
@@ -41,34 +39,32 @@ static void make_plan(sva_can_plan_t* p, uint16_t id, uint16_t n, int salt)
     }
 }
 
-static int setup(void** state)
+void setUp(void)
 {
-    (void)state;
     sva_can_loopback_init(&bus);
-    assert_int_equal(sva_can_loopback_transport(&bus, 0, &tp_tx), SVA_CAN_OK);
-    assert_int_equal(sva_can_loopback_transport(&bus, 1, &tp_rx), SVA_CAN_OK);
-    assert_int_equal(sva_can_sender_init(&sender, &tp_tx, NULL), SVA_CAN_OK);
-    assert_int_equal(sva_can_receiver_init(&receiver, &tp_rx, 1000), SVA_CAN_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_loopback_transport(&bus, 0, &tp_tx));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_loopback_transport(&bus, 1, &tp_rx));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_init(&sender, &tp_tx, NULL));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_receiver_init(&receiver, &tp_rx, 1000));
     make_plan(&plan_a, 1, 25, 0);
     make_plan(&plan_b, 2, 40, 3);
-    return 0;
 }
 
 static void assert_plans_equal(const sva_can_plan_t* a, const sva_can_plan_t* b)
 {
     uint16_t i;
-    assert_int_equal(a->plan_id, b->plan_id);
-    assert_int_equal(a->algorithm, b->algorithm);
-    assert_int_equal(a->plan_status, b->plan_status);
-    assert_int_equal(a->route_count, b->route_count);
-    assert_int_equal(a->item_count, b->item_count);
+    TEST_ASSERT_EQUAL_INT(b->plan_id, a->plan_id);
+    TEST_ASSERT_EQUAL_INT(b->algorithm, a->algorithm);
+    TEST_ASSERT_EQUAL_INT(b->plan_status, a->plan_status);
+    TEST_ASSERT_EQUAL_INT(b->route_count, a->route_count);
+    TEST_ASSERT_EQUAL_INT(b->item_count, a->item_count);
     for (i = 0; i < a->item_count; ++i) {
-        assert_int_equal(a->items[i].uav_id, b->items[i].uav_id);
-        assert_int_equal(a->items[i].target_id, b->items[i].target_id);
-        assert_int_equal(a->items[i].x, b->items[i].x);
-        assert_int_equal(a->items[i].y, b->items[i].y);
-        assert_int_equal(a->items[i].arrive_by_ticks, b->items[i].arrive_by_ticks);
-        assert_int_equal(a->items[i].hold_until_ticks, b->items[i].hold_until_ticks);
+        TEST_ASSERT_EQUAL_INT(b->items[i].uav_id, a->items[i].uav_id);
+        TEST_ASSERT_EQUAL_INT(b->items[i].target_id, a->items[i].target_id);
+        TEST_ASSERT_EQUAL_INT(b->items[i].x, a->items[i].x);
+        TEST_ASSERT_EQUAL_INT(b->items[i].y, a->items[i].y);
+        TEST_ASSERT_EQUAL_INT(b->items[i].arrive_by_ticks, a->items[i].arrive_by_ticks);
+        TEST_ASSERT_EQUAL_INT(b->items[i].hold_until_ticks, a->items[i].hold_until_ticks);
     }
 }
 
@@ -78,7 +74,7 @@ static void deliver_acks(uint32_t now)
     sva_can_frame_t f;
     while (sva_can_loopback_take(&bus, 0, &f) == SVA_CAN_OK) {
         sva_can_status_t st = sva_can_sender_on_frame(&sender, &f, now);
-        assert_true(st == SVA_CAN_OK || st == SVA_CAN_IGNORED);
+        TEST_ASSERT_TRUE(st == SVA_CAN_OK || st == SVA_CAN_IGNORED);
     }
 }
 
@@ -98,31 +94,30 @@ static int deliver_frames(uint32_t now, sva_can_status_t* last)
 static void apply_plan_a(void)
 {
     sva_can_status_t last = SVA_CAN_OK;
-    assert_int_equal(sva_can_sender_start(&sender, &plan_a, 0), SVA_CAN_OK);
-    assert_int_equal(sender.state, SVA_CAN_TX_WAIT_ACK);
-    assert_int_equal(deliver_frames(1, &last), 2 * 25 + 2);
-    assert_int_equal(last, SVA_CAN_APPLIED);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_start(&sender, &plan_a, 0));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_TX_WAIT_ACK, sender.state);
+    TEST_ASSERT_EQUAL_INT(2 * 25 + 2, deliver_frames(1, &last));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_APPLIED, last);
     deliver_acks(2);
-    assert_int_equal(sender.state, SVA_CAN_TX_DONE);
-    assert_true(receiver.has_active);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_TX_DONE, sender.state);
+    TEST_ASSERT_TRUE(receiver.has_active);
     assert_plans_equal(&receiver.active, &plan_a);
     snapshot = receiver.active;
 }
 
-static void test_clean_transfer(void** state)
+void test_clean_transfer(void)
 {
-    (void)state;
     apply_plan_a();
-    assert_int_equal(receiver.stats.plans_applied, 1);
-    assert_int_equal(receiver.stats.acks_sent, 1);
-    assert_int_equal(sender.stats.frames_sent, 52);
-    assert_int_equal(sender.stats.attempts, 1);
+    TEST_ASSERT_EQUAL_INT(1, receiver.stats.plans_applied);
+    TEST_ASSERT_EQUAL_INT(1, receiver.stats.acks_sent);
+    TEST_ASSERT_EQUAL_INT(52, sender.stats.frames_sent);
+    TEST_ASSERT_EQUAL_INT(1, sender.stats.attempts);
     // A second plan replaces the first.
     {
         sva_can_status_t last = SVA_CAN_OK;
-        assert_int_equal(sva_can_sender_start(&sender, &plan_b, 10), SVA_CAN_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_start(&sender, &plan_b, 10));
         deliver_frames(11, &last);
-        assert_int_equal(last, SVA_CAN_APPLIED);
+        TEST_ASSERT_EQUAL_INT(SVA_CAN_APPLIED, last);
         assert_plans_equal(&receiver.active, &plan_b);
     }
 }
@@ -154,13 +149,13 @@ static sva_can_status_t send_corrupted(corruption_t kind, uint32_t now)
     uint8_t counter;
     sva_can_frame_t f;
     sva_can_status_t worst = SVA_CAN_OK;
-    assert_int_equal(sva_can_sender_start(&sender, &plan_b, now), SVA_CAN_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_start(&sender, &plan_b, now));
     while (sva_can_loopback_take(&bus, 1, &f) == SVA_CAN_OK) {
         if (f.id != SVA_CAN_ID_PLAN_ABORT) {  // a superseded earlier attempt's ABORT
             frames[n++] = f;
         }
     }
-    assert_int_equal(n, 2 * 40 + 2);
+    TEST_ASSERT_EQUAL_INT(2 * 40 + 2, n);
     counter = (uint8_t)(frames[0].data[0] & 0x0Fu);
     switch (kind) {
     case CORRUPT_CRC:
@@ -196,7 +191,7 @@ static sva_can_status_t send_corrupted(corruption_t kind, uint32_t now)
         frames[6].data[3] = 0xFF;
         break;
     default:
-        fail();
+        TEST_FAIL();
     }
     if (kind != CORRUPT_CRC && kind != CORRUPT_DROP && kind != CORRUPT_SHORT_DLC) {
         for (i = 0; i < n; ++i) {
@@ -205,7 +200,7 @@ static sva_can_status_t send_corrupted(corruption_t kind, uint32_t now)
     }
     for (i = 0; i < n; ++i) {
         const sva_can_status_t st = sva_can_receiver_on_frame(&receiver, &frames[i], now + 1);
-        assert_true(st != SVA_CAN_APPLIED);
+        TEST_ASSERT_TRUE(st != SVA_CAN_APPLIED);
         if ((st < 0) && (worst == SVA_CAN_OK)) {
             worst = st;
         }
@@ -220,122 +215,112 @@ static void check_corruption(corruption_t kind, sva_can_status_t expect, const u
     const uint32_t before = *counter;
     const uint32_t nacks = receiver.stats.nacks_sent;
     const sva_can_status_t st = send_corrupted(kind, 100);
-    assert_int_equal(st, expect);
-    assert_true(*counter > before);
-    assert_true(receiver.stats.nacks_sent > nacks);  // the sender hears why
-    assert_int_equal(receiver.stats.plans_applied, 1);
+    TEST_ASSERT_EQUAL_INT(expect, st);
+    TEST_ASSERT_TRUE(*counter > before);
+    TEST_ASSERT_TRUE(receiver.stats.nacks_sent > nacks);  // the sender hears why
+    TEST_ASSERT_EQUAL_INT(1, receiver.stats.plans_applied);
     assert_plans_equal(&receiver.active, &snapshot);  // never changed by corrupt traffic
 }
 
-static void test_corruption_bad_crc(void** state)
+void test_corruption_bad_crc(void)
 {
-    (void)state;
     apply_plan_a();
     check_corruption(CORRUPT_CRC, SVA_CAN_ERR_CRC, &receiver.stats.bad_crc);
 }
 
-static void test_corruption_counter_jump(void** state)
+void test_corruption_counter_jump(void)
 {
-    (void)state;
     apply_plan_a();
     check_corruption(CORRUPT_DROP, SVA_CAN_ERR_COUNTER, &receiver.stats.counter_jumps);
 }
 
-static void test_corruption_short_dlc(void** state)
+void test_corruption_short_dlc(void)
 {
-    (void)state;
     apply_plan_a();
     check_corruption(CORRUPT_SHORT_DLC, SVA_CAN_ERR_DLC, &receiver.stats.bad_dlc);
 }
 
-static void test_corruption_item_out_of_order(void** state)
+void test_corruption_item_out_of_order(void)
 {
-    (void)state;
     apply_plan_a();
     check_corruption(CORRUPT_SWAP, SVA_CAN_ERR_SEQUENCE, &receiver.stats.out_of_order);
     check_corruption(CORRUPT_DUP_ITEM, SVA_CAN_ERR_SEQUENCE, &receiver.stats.out_of_order);
 }
 
-static void test_corruption_item_missing(void** state)
+void test_corruption_item_missing(void)
 {
-    (void)state;
     apply_plan_a();
     check_corruption(CORRUPT_MISSING, SVA_CAN_ERR_SEQUENCE, &receiver.stats.out_of_order);
 }
 
-static void test_corruption_commit_crc_mismatch(void** state)
+void test_corruption_commit_crc_mismatch(void)
 {
-    (void)state;
     apply_plan_a();
     check_corruption(CORRUPT_TAMPER, SVA_CAN_ERR_PLAN_CRC, &receiver.stats.plan_crc_mismatch);
 }
 
-static void test_corruption_bad_value(void** state)
+void test_corruption_bad_value(void)
 {
-    (void)state;
     apply_plan_a();
     check_corruption(CORRUPT_BAD_VALUE, SVA_CAN_ERR_VALUE, &receiver.stats.bad_value);
 }
 
-static void test_frames_without_begin_are_rejected(void** state)
+void test_frames_without_begin_are_rejected(void)
 {
     sva_can_frame_t f;
     sva_can_status_t last = SVA_CAN_OK;
     size_t i = 0;
-    (void)state;
     apply_plan_a();
-    assert_int_equal(sva_can_sender_start(&sender, &plan_b, 50), SVA_CAN_OK);
-    assert_int_equal(sva_can_loopback_take(&bus, 1, &f), SVA_CAN_OK);  // BEGIN lost
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_start(&sender, &plan_b, 50));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_loopback_take(&bus, 1, &f));  // BEGIN lost
     while (sva_can_loopback_take(&bus, 1, &f) == SVA_CAN_OK) {
         last = sva_can_receiver_on_frame(&receiver, &f, 51);
-        assert_int_equal(last, SVA_CAN_ERR_SEQUENCE);
+        TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_SEQUENCE, last);
         ++i;
     }
-    assert_int_equal(i, 81);
-    assert_int_equal(receiver.stats.out_of_order, 81);
+    TEST_ASSERT_EQUAL_INT(81, i);
+    TEST_ASSERT_EQUAL_INT(81, receiver.stats.out_of_order);
     assert_plans_equal(&receiver.active, &snapshot);
 }
 
-static void test_receiver_timeout(void** state)
+void test_receiver_timeout(void)
 {
     sva_can_frame_t f;
     int i;
-    (void)state;
     apply_plan_a();
-    assert_int_equal(sva_can_sender_start(&sender, &plan_b, 100), SVA_CAN_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_start(&sender, &plan_b, 100));
     for (i = 0; i < 20; ++i) {  // half the transfer arrives
-        assert_int_equal(sva_can_loopback_take(&bus, 1, &f), SVA_CAN_OK);
-        assert_int_equal(sva_can_receiver_on_frame(&receiver, &f, 100), SVA_CAN_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_loopback_take(&bus, 1, &f));
+        TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_receiver_on_frame(&receiver, &f, 100));
     }
-    assert_int_equal(sva_can_receiver_poll(&receiver, 1099), SVA_CAN_OK);
-    assert_int_equal(sva_can_receiver_poll(&receiver, 1100), SVA_CAN_ERR_TIMEOUT);
-    assert_int_equal(receiver.stats.timeouts, 1);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_receiver_poll(&receiver, 1099));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_TIMEOUT, sva_can_receiver_poll(&receiver, 1100));
+    TEST_ASSERT_EQUAL_INT(1, receiver.stats.timeouts);
     // The rest arrives late: nothing of it applies.
     while (sva_can_loopback_take(&bus, 1, &f) == SVA_CAN_OK) {
-        assert_int_equal(sva_can_receiver_on_frame(&receiver, &f, 1200), SVA_CAN_ERR_SEQUENCE);
+        TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_SEQUENCE, sva_can_receiver_on_frame(&receiver, &f, 1200));
     }
-    assert_int_equal(receiver.stats.plans_applied, 1);
+    TEST_ASSERT_EQUAL_INT(1, receiver.stats.plans_applied);
     assert_plans_equal(&receiver.active, &snapshot);
 }
 
-static void test_sender_ack_timeout_retries_then_aborts(void** state)
+void test_sender_ack_timeout_retries_then_aborts(void)
 {
     sva_can_frame_t f;
     sva_can_msg_t m;
     uint32_t t;
-    (void)state;
-    assert_int_equal(sva_can_sender_start(&sender, &plan_a, 0), SVA_CAN_OK);
-    assert_int_equal(sender.state, SVA_CAN_TX_WAIT_ACK);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_start(&sender, &plan_a, 0));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_TX_WAIT_ACK, sender.state);
     // No bridge answers. Attempts 2 and 3 go out after each ACK timeout (250 ms).
     for (t = 0; t <= 1000; t += 10) {
-        assert_int_equal(sva_can_sender_poll(&sender, t), SVA_CAN_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_poll(&sender, t));
     }
-    assert_int_equal(sender.stats.attempts, 3);
-    assert_int_equal(sender.stats.ack_timeouts, 3);
-    assert_int_equal(sender.state, SVA_CAN_TX_FAILED);
-    assert_int_equal(sender.last_abort_reason, SVA_CAN_ABORT_RETRIES);
-    assert_int_equal(sender.stats.aborts_sent, 1);
-    assert_int_equal(sender.stats.frames_sent, 3 * 52 + 1);
+    TEST_ASSERT_EQUAL_INT(3, sender.stats.attempts);
+    TEST_ASSERT_EQUAL_INT(3, sender.stats.ack_timeouts);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_TX_FAILED, sender.state);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ABORT_RETRIES, sender.last_abort_reason);
+    TEST_ASSERT_EQUAL_INT(1, sender.stats.aborts_sent);
+    TEST_ASSERT_EQUAL_INT(3 * 52 + 1, sender.stats.frames_sent);
     // The last frame on the bus is the ABORT for plan 1, and the receiver drops its
     // transfer on it.
     {
@@ -345,76 +330,73 @@ static void test_sender_ack_timeout_retries_then_aborts(void** state)
             last = f;
             ++n;
         }
-        assert_int_equal(n, 3 * 52 + 1);
-        assert_int_equal(sva_can_decode(&last, &m), SVA_CAN_OK);
-        assert_int_equal(m.kind, SVA_CAN_MSG_PLAN_ABORT);
-        assert_int_equal(m.u.abort_.reason, SVA_CAN_ABORT_RETRIES);
-        assert_int_equal(m.u.abort_.plan_id, 1);
+        TEST_ASSERT_EQUAL_INT(3 * 52 + 1, n);
+        TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_decode(&last, &m));
+        TEST_ASSERT_EQUAL_INT(SVA_CAN_MSG_PLAN_ABORT, m.kind);
+        TEST_ASSERT_EQUAL_INT(SVA_CAN_ABORT_RETRIES, m.u.abort_.reason);
+        TEST_ASSERT_EQUAL_INT(1, m.u.abort_.plan_id);
     }
 }
 
-static void test_sender_transfer_deadline(void** state)
+void test_sender_transfer_deadline(void)
 {
     sva_can_sender_config_t c = sva_can_sender_default_config();
     sva_can_frame_t f;
     sva_can_msg_t m;
-    (void)state;
     c.max_attempts = 200;  // only the deadline can stop it
     c.transfer_timeout_ms = 700;
-    assert_int_equal(sva_can_sender_init(&sender, &tp_tx, &c), SVA_CAN_OK);
-    assert_int_equal(sva_can_sender_start(&sender, &plan_a, 0), SVA_CAN_OK);
-    assert_int_equal(sva_can_sender_poll(&sender, 699), SVA_CAN_OK);
-    assert_int_not_equal(sender.state, SVA_CAN_TX_FAILED);
-    assert_int_equal(sva_can_sender_poll(&sender, 700), SVA_CAN_OK);
-    assert_int_equal(sender.state, SVA_CAN_TX_FAILED);
-    assert_int_equal(sender.last_abort_reason, SVA_CAN_ABORT_TIMEOUT);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_init(&sender, &tp_tx, &c));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_start(&sender, &plan_a, 0));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_poll(&sender, 699));
+    TEST_ASSERT_NOT_EQUAL_INT(SVA_CAN_TX_FAILED, sender.state);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_poll(&sender, 700));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_TX_FAILED, sender.state);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ABORT_TIMEOUT, sender.last_abort_reason);
     while (sva_can_loopback_take(&bus, 1, &f) == SVA_CAN_OK) {
         m.kind = SVA_CAN_MSG_NONE;
-        assert_int_equal(sva_can_decode(&f, &m), SVA_CAN_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_decode(&f, &m));
     }
-    assert_int_equal(m.kind, SVA_CAN_MSG_PLAN_ABORT);
-    assert_int_equal(m.u.abort_.reason, SVA_CAN_ABORT_TIMEOUT);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_MSG_PLAN_ABORT, m.kind);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ABORT_TIMEOUT, m.u.abort_.reason);
 }
 
-static void test_nack_then_retry_succeeds(void** state)
+void test_nack_then_retry_succeeds(void)
 {
     sva_can_status_t last = SVA_CAN_OK;
-    (void)state;
     apply_plan_a();
     // First attempt of plan_b corrupted -> NACK -> the sender resends at once.
-    assert_int_equal(send_corrupted(CORRUPT_CRC, 100), SVA_CAN_ERR_CRC);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_CRC, send_corrupted(CORRUPT_CRC, 100));
     deliver_acks(101);
-    assert_int_equal(sender.stats.nacks, 1);
-    assert_int_equal(sender.last_nack, SVA_CAN_ACK_BAD_SEQUENCE);
-    assert_int_equal(sender.state, SVA_CAN_TX_WAIT_ACK);
-    assert_int_equal(sender.stats.attempts, 3);  // plan_a 1 + plan_b 2
-    assert_int_equal(deliver_frames(102, &last), 82);
-    assert_int_equal(last, SVA_CAN_APPLIED);
+    TEST_ASSERT_EQUAL_INT(1, sender.stats.nacks);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ACK_BAD_SEQUENCE, sender.last_nack);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_TX_WAIT_ACK, sender.state);
+    TEST_ASSERT_EQUAL_INT(3, sender.stats.attempts);  // plan_a 1 + plan_b 2
+    TEST_ASSERT_EQUAL_INT(82, deliver_frames(102, &last));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_APPLIED, last);
     deliver_acks(103);
-    assert_int_equal(sender.state, SVA_CAN_TX_DONE);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_TX_DONE, sender.state);
     assert_plans_equal(&receiver.active, &plan_b);
 }
 
-static void test_superseded_plan_is_aborted(void** state)
+void test_superseded_plan_is_aborted(void)
 {
     sva_can_frame_t f;
     sva_can_msg_t m;
     sva_can_status_t last = SVA_CAN_OK;
     int seen_abort = 0;
-    (void)state;
-    assert_int_equal(sva_can_sender_start(&sender, &plan_a, 0), SVA_CAN_OK);
-    assert_int_equal(sva_can_sender_start(&sender, &plan_b, 5), SVA_CAN_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_start(&sender, &plan_a, 0));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_start(&sender, &plan_b, 5));
     while (sva_can_loopback_take(&bus, 1, &f) == SVA_CAN_OK) {
         if ((sva_can_decode(&f, &m) == SVA_CAN_OK) && (m.kind == SVA_CAN_MSG_PLAN_ABORT)) {
-            assert_int_equal(m.u.abort_.reason, SVA_CAN_ABORT_SUPERSEDED);
-            assert_int_equal(m.u.abort_.plan_id, 1);
+            TEST_ASSERT_EQUAL_INT(SVA_CAN_ABORT_SUPERSEDED, m.u.abort_.reason);
+            TEST_ASSERT_EQUAL_INT(1, m.u.abort_.plan_id);
             seen_abort = 1;
         }
         last = sva_can_receiver_on_frame(&receiver, &f, 6);
     }
-    assert_true(seen_abort);
-    assert_int_equal(last, SVA_CAN_APPLIED);
-    assert_int_equal(receiver.stats.plans_applied, 2);  // plan_a completed before b began
+    TEST_ASSERT_TRUE(seen_abort);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_APPLIED, last);
+    TEST_ASSERT_EQUAL_INT(2, receiver.stats.plans_applied);  // plan_a completed before b began
     assert_plans_equal(&receiver.active, &plan_b);
 }
 
@@ -429,91 +411,87 @@ static sva_can_status_t stingy_send(void* ctx, const sva_can_frame_t* f)
     return tp_tx.send(ctx, f);
 }
 
-static void test_back_pressure(void** state)
+void test_back_pressure(void)
 {
     sva_can_transport_t stingy;
     sva_can_status_t last = SVA_CAN_OK;
     uint32_t t;
-    (void)state;
     stingy = tp_tx;
     stingy.send = stingy_send;
-    assert_int_equal(sva_can_sender_init(&sender, &stingy, NULL), SVA_CAN_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_init(&sender, &stingy, NULL));
     budget = 1;
-    assert_int_equal(sva_can_sender_start(&sender, &plan_a, 0), SVA_CAN_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_start(&sender, &plan_a, 0));
     for (t = 1; (t < 200) && (sender.state == SVA_CAN_TX_SENDING); ++t) {
         budget = 1;
-        assert_int_equal(sva_can_sender_poll(&sender, t), SVA_CAN_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_poll(&sender, t));
     }
-    assert_int_equal(sender.state, SVA_CAN_TX_WAIT_ACK);
-    assert_int_equal(sender.stats.frames_sent, 52);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_TX_WAIT_ACK, sender.state);
+    TEST_ASSERT_EQUAL_INT(52, sender.stats.frames_sent);
     deliver_frames(t, &last);
-    assert_int_equal(last, SVA_CAN_APPLIED);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_APPLIED, last);
     assert_plans_equal(&receiver.active, &plan_a);
 }
 
-static void test_time_wraps_around(void** state)
+void test_time_wraps_around(void)
 {
     sva_can_frame_t f;
     const uint32_t t0 = 0xFFFFFF00u;  // 256 ms before the uint32 wrap
     int i;
-    (void)state;
-    assert_int_equal(sva_can_sender_start(&sender, &plan_a, t0), SVA_CAN_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_start(&sender, &plan_a, t0));
     for (i = 0; i < 10; ++i) {
-        assert_int_equal(sva_can_loopback_take(&bus, 1, &f), SVA_CAN_OK);
-        assert_int_equal(sva_can_receiver_on_frame(&receiver, &f, t0), SVA_CAN_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_loopback_take(&bus, 1, &f));
+        TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_receiver_on_frame(&receiver, &f, t0));
     }
-    assert_int_equal(sva_can_receiver_poll(&receiver, t0 + 999u), SVA_CAN_OK);  // wrapped
-    assert_int_equal(sva_can_receiver_poll(&receiver, t0 + 1000u), SVA_CAN_ERR_TIMEOUT);
-    assert_int_equal(sva_can_sender_poll(&sender, t0 + 249u), SVA_CAN_OK);
-    assert_int_equal(sender.stats.ack_timeouts, 0);
-    assert_int_equal(sva_can_sender_poll(&sender, t0 + 250u), SVA_CAN_OK);
-    assert_int_equal(sender.stats.ack_timeouts, 1);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_receiver_poll(&receiver, t0 + 999u));  // wrapped
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_TIMEOUT, sva_can_receiver_poll(&receiver, t0 + 1000u));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_poll(&sender, t0 + 249u));
+    TEST_ASSERT_EQUAL_INT(0, sender.stats.ack_timeouts);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_sender_poll(&sender, t0 + 250u));
+    TEST_ASSERT_EQUAL_INT(1, sender.stats.ack_timeouts);
 }
 
-static void test_too_large_and_bad_version(void** state)
+void test_too_large_and_bad_version(void)
 {
     sva_can_msg_t m;
     sva_can_frame_t f;
-    (void)state;
     memset(&m, 0, sizeof m);
     m.kind = SVA_CAN_MSG_PLAN_BEGIN;
     m.u.begin.version = SVA_CAN_PROTOCOL_VERSION;
     m.u.begin.plan_id = 9;
     m.u.begin.item_count = SVA_CAN_MAX_ITEMS + 1;
     m.u.begin.plan_status = SVA_CAN_PLAN_COMPLETE;
-    assert_int_equal(sva_can_encode(&m, &f), SVA_CAN_OK);
-    assert_int_equal(sva_can_receiver_on_frame(&receiver, &f, 0), SVA_CAN_ERR_LIMIT);
-    assert_int_equal(receiver.stats.too_large, 1);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_encode(&m, &f));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_LIMIT, sva_can_receiver_on_frame(&receiver, &f, 0));
+    TEST_ASSERT_EQUAL_INT(1, receiver.stats.too_large);
     m.u.begin.item_count = 1;
     m.u.begin.version = SVA_CAN_PROTOCOL_VERSION + 1;
-    assert_int_equal(sva_can_encode(&m, &f), SVA_CAN_OK);
-    assert_int_equal(sva_can_receiver_on_frame(&receiver, &f, 0), SVA_CAN_ERR_VERSION);
-    assert_int_equal(receiver.stats.bad_version, 1);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_encode(&m, &f));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_VERSION, sva_can_receiver_on_frame(&receiver, &f, 0));
+    TEST_ASSERT_EQUAL_INT(1, receiver.stats.bad_version);
     // Version 1 (the protocol before SVA_MISSION_CLOCK) is another version too.
     m.u.begin.version = 1;
-    assert_int_equal(sva_can_encode(&m, &f), SVA_CAN_OK);
-    assert_int_equal(sva_can_receiver_on_frame(&receiver, &f, 0), SVA_CAN_ERR_VERSION);
-    assert_int_equal(receiver.stats.bad_version, 2);
-    assert_string_equal(sva_can_status_name(SVA_CAN_ERR_VERSION), "version");
-    assert_int_equal(receiver.stats.nacks_sent, 3);
-    assert_false(receiver.has_active);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_encode(&m, &f));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_VERSION, sva_can_receiver_on_frame(&receiver, &f, 0));
+    TEST_ASSERT_EQUAL_INT(2, receiver.stats.bad_version);
+    TEST_ASSERT_EQUAL_STRING("version", sva_can_status_name(SVA_CAN_ERR_VERSION));
+    TEST_ASSERT_EQUAL_INT(3, receiver.stats.nacks_sent);
+    TEST_ASSERT_FALSE(receiver.has_active);
 }
 
-static void test_api_misuse(void** state)
+void test_api_misuse(void)
 {
     sva_can_plan_t* p = &plan_a;
-    (void)state;
-    assert_int_equal(sva_can_sender_init(NULL, &tp_tx, NULL), SVA_CAN_ERR_ARGUMENT);
-    assert_int_equal(sva_can_sender_init(&sender, NULL, NULL), SVA_CAN_ERR_ARGUMENT);
-    assert_int_equal(sva_can_sender_start(&sender, NULL, 0), SVA_CAN_ERR_ARGUMENT);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_ARGUMENT, sva_can_sender_init(NULL, &tp_tx, NULL));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_ARGUMENT, sva_can_sender_init(&sender, NULL, NULL));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_ARGUMENT, sva_can_sender_start(&sender, NULL, 0));
     p->plan_id = 0;
-    assert_int_equal(sva_can_sender_start(&sender, p, 0), SVA_CAN_ERR_ARGUMENT);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_ARGUMENT, sva_can_sender_start(&sender, p, 0));
     p->plan_id = 1;
     p->items[3].target_id = 5000;  // wider than its signal: refused before any frame
-    assert_int_equal(sva_can_sender_start(&sender, p, 0), SVA_CAN_ERR_ARGUMENT);
-    assert_int_equal(sender.stats.frames_sent, 0);
-    assert_int_equal(sva_can_loopback_transport(&bus, 2, &tp_tx), SVA_CAN_ERR_ARGUMENT);
-    assert_int_equal(sva_can_receiver_on_frame(NULL, NULL, 0), SVA_CAN_ERR_ARGUMENT);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_ARGUMENT, sva_can_sender_start(&sender, p, 0));
+    TEST_ASSERT_EQUAL_INT(0, sender.stats.frames_sent);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_ARGUMENT, sva_can_loopback_transport(&bus, 2, &tp_tx));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_ARGUMENT, sva_can_receiver_on_frame(NULL, NULL, 0));
 }
 
 // The core's plan becomes wire items route by route, in visit order.
@@ -521,7 +499,7 @@ static sva_mission_t mission;
 static sva_planner_t planner;
 static sva_plan_t core_plan;
 
-static void test_plan_from_core(void** state)
+void test_plan_from_core(void)
 {
     sva_diag_t diag;
     sva_can_plan_t* w = &plan_b;
@@ -529,7 +507,6 @@ static void test_plan_from_core(void** state)
     uint16_t k;
     uint16_t n = 0;
     int i;
-    (void)state;
     sva_mission_init(&mission);
     mission.uav_count = 3;
     for (i = 0; i < 3; ++i) {
@@ -548,83 +525,55 @@ static void test_plan_from_core(void** state)
         mission.targets[i].end_ticks = 40 + 40 * i;
         mission.targets[i].need = 1 + (i % 2);
     }
-    assert_int_equal(sva_can_mission_check(&mission, &diag), SVA_CAN_OK);
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
-    assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_SVA, &core_plan, &diag), SVA_OK);
-    assert_int_equal(sva_can_plan_from_core(w, &mission, &core_plan, 42), SVA_CAN_OK);
-    assert_int_equal(w->plan_id, 42);
-    assert_int_equal(w->route_count, 3);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_mission_check(&mission, &diag));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&planner, &mission, SVA_ALGO_SVA, &core_plan, &diag));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_plan_from_core(w, &mission, &core_plan, 42));
+    TEST_ASSERT_EQUAL_INT(42, w->plan_id);
+    TEST_ASSERT_EQUAL_INT(3, w->route_count);
     for (r = 0; r < core_plan.route_count; ++r) {
         for (k = 0; k < core_plan.routes[r].target_count; ++k) {
             const sva_target_t* t = &mission.targets[core_plan.routes[r].targets[k]];
-            assert_int_equal(w->items[n].uav_id, core_plan.routes[r].uav_id);
-            assert_int_equal(w->items[n].target_id, t->id);
-            assert_int_equal(w->items[n].x, t->x);
-            assert_int_equal(w->items[n].y, t->y);
-            assert_int_equal(w->items[n].arrive_by_ticks, t->start_ticks);
-            assert_int_equal(w->items[n].hold_until_ticks, t->end_ticks);
+            TEST_ASSERT_EQUAL_INT(core_plan.routes[r].uav_id, w->items[n].uav_id);
+            TEST_ASSERT_EQUAL_INT(t->id, w->items[n].target_id);
+            TEST_ASSERT_EQUAL_INT(t->x, w->items[n].x);
+            TEST_ASSERT_EQUAL_INT(t->y, w->items[n].y);
+            TEST_ASSERT_EQUAL_INT(t->start_ticks, w->items[n].arrive_by_ticks);
+            TEST_ASSERT_EQUAL_INT(t->end_ticks, w->items[n].hold_until_ticks);
             ++n;
         }
     }
-    assert_int_equal(w->item_count, n);
-    assert_true(n >= 4);  // needs 1+2+1+2 when covered
+    TEST_ASSERT_EQUAL_INT(n, w->item_count);
+    TEST_ASSERT_TRUE(n >= 4);  // needs 1+2+1+2 when covered
 }
 
-static void test_mission_check_names_limits(void** state)
+void test_mission_check_names_limits(void)
 {
     sva_diag_t diag;
     char msg[160];
-    (void)state;
     sva_mission_init(&mission);
     mission.uav_count = 1;
     mission.uavs[0].id = 256;
     mission.uavs[0].fuel = 10;
-    assert_int_equal(sva_can_mission_check(&mission, &diag), SVA_CAN_ERR_LIMIT);
-    assert_int_equal(diag.field, SVA_FIELD_UAV_ID);
-    assert_int_equal(diag.value, 256);
-    assert_string_equal(diag.limit_name, "SVA_CAN_MAX_UAV_ID");
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_LIMIT, sva_can_mission_check(&mission, &diag));
+    TEST_ASSERT_EQUAL_INT(SVA_FIELD_UAV_ID, diag.field);
+    TEST_ASSERT_EQUAL_INT(256, diag.value);
+    TEST_ASSERT_EQUAL_STRING("SVA_CAN_MAX_UAV_ID", diag.limit_name);
     (void)sva_diag_format(&diag, msg, sizeof msg);
-    assert_non_null(strstr(msg, "SVA_CAN_MAX_UAV_ID"));
+    TEST_ASSERT_NOT_NULL(strstr(msg, "SVA_CAN_MAX_UAV_ID"));
     mission.uavs[0].id = 255;
     mission.target_count = 1;
     mission.targets[0].id = 4096;
     mission.targets[0].start_ticks = 0;
     mission.targets[0].end_ticks = 5;
     mission.targets[0].need = 1;
-    assert_int_equal(sva_can_mission_check(&mission, &diag), SVA_CAN_ERR_LIMIT);
-    assert_string_equal(diag.limit_name, "SVA_CAN_MAX_TARGET_ID");
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_LIMIT, sva_can_mission_check(&mission, &diag));
+    TEST_ASSERT_EQUAL_STRING("SVA_CAN_MAX_TARGET_ID", diag.limit_name);
     mission.targets[0].id = 4095;
     mission.targets[0].end_ticks = SVA_CAN_MAX_TICK + 1;
-    assert_int_equal(sva_can_mission_check(&mission, &diag), SVA_CAN_ERR_LIMIT);
-    assert_int_equal(diag.field, SVA_FIELD_TARGET_END);
-    assert_string_equal(diag.limit_name, "SVA_CAN_MAX_TICK");
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_LIMIT, sva_can_mission_check(&mission, &diag));
+    TEST_ASSERT_EQUAL_INT(SVA_FIELD_TARGET_END, diag.field);
+    TEST_ASSERT_EQUAL_STRING("SVA_CAN_MAX_TICK", diag.limit_name);
     mission.targets[0].end_ticks = SVA_CAN_MAX_TICK;
-    assert_int_equal(sva_can_mission_check(&mission, &diag), SVA_CAN_OK);
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test_setup(test_clean_transfer, setup),
-        cmocka_unit_test_setup(test_corruption_bad_crc, setup),
-        cmocka_unit_test_setup(test_corruption_counter_jump, setup),
-        cmocka_unit_test_setup(test_corruption_short_dlc, setup),
-        cmocka_unit_test_setup(test_corruption_item_out_of_order, setup),
-        cmocka_unit_test_setup(test_corruption_item_missing, setup),
-        cmocka_unit_test_setup(test_corruption_commit_crc_mismatch, setup),
-        cmocka_unit_test_setup(test_corruption_bad_value, setup),
-        cmocka_unit_test_setup(test_frames_without_begin_are_rejected, setup),
-        cmocka_unit_test_setup(test_receiver_timeout, setup),
-        cmocka_unit_test_setup(test_sender_ack_timeout_retries_then_aborts, setup),
-        cmocka_unit_test_setup(test_sender_transfer_deadline, setup),
-        cmocka_unit_test_setup(test_nack_then_retry_succeeds, setup),
-        cmocka_unit_test_setup(test_superseded_plan_is_aborted, setup),
-        cmocka_unit_test_setup(test_back_pressure, setup),
-        cmocka_unit_test_setup(test_time_wraps_around, setup),
-        cmocka_unit_test_setup(test_too_large_and_bad_version, setup),
-        cmocka_unit_test_setup(test_api_misuse, setup),
-        cmocka_unit_test_setup(test_plan_from_core, setup),
-        cmocka_unit_test_setup(test_mission_check_names_limits, setup),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_mission_check(&mission, &diag));
 }

@@ -1,27 +1,24 @@
 // Unit tests of sva_text_escape() (port/json, sva/sva_text.h): what is kept, what is
 // escaped, cuts that never split an escape or a character, and escaping twice.
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
 
-#include <cmocka.h>
+#include "unity.h"
 #include <sva/sva_text.h>
 
 static void expect(const char* in, const char* want)
 {
     char out[256];
-    assert_ptr_equal(sva_text_escape(out, sizeof out, in), out);
-    assert_string_equal(out, want);
+    TEST_ASSERT_EQUAL_PTR(out, sva_text_escape(out, sizeof out, in));
+    TEST_ASSERT_EQUAL_STRING(want, out);
     // escaping the result again changes nothing
     char again[256];
-    assert_string_equal(sva_text_escape(again, sizeof again, out), want);
+    TEST_ASSERT_EQUAL_STRING(want, sva_text_escape(again, sizeof again, out));
 }
 
-static void printable_ascii_and_utf8_are_kept(void** state)
+void test_printable_ascii_and_utf8_are_kept(void)
 {
-    (void)state;
     expect("plain name 42 \\ \"q\" ~", "plain name 42 \\ \"q\" ~");
     expect("\xc3\xa9t\xc3\xa9 \xe2\x82\xac \xf0\x9f\x9b\xb8",
            "\xc3\xa9t\xc3\xa9 \xe2\x82\xac \xf0\x9f\x9b\xb8");
@@ -29,9 +26,8 @@ static void printable_ascii_and_utf8_are_kept(void** state)
     expect("", "");
 }
 
-static void controls_are_escaped(void** state)
+void test_controls_are_escaped(void)
 {
-    (void)state;
     expect("a\nb\rc\td", "a\\nb\\rc\\td");
     expect("\x1b[2J\x1b]0;title\x07", "\\x1b[2J\\x1b]0;title\\x07");
     expect("\x01\x1f\x7f", "\\x01\\x1f\\x7f");
@@ -41,9 +37,8 @@ static void controls_are_escaped(void** state)
     expect("\xc2\x85", "\\xc2\\x85");  // C1 NEL
 }
 
-static void malformed_utf8_is_escaped_byte_by_byte(void** state)
+void test_malformed_utf8_is_escaped_byte_by_byte(void)
 {
-    (void)state;
     expect("\xc0\x80", "\\xc0\\x80");                    // overlong NUL
     expect("\xe0\x80\xaf", "\\xe0\\x80\\xaf");           // overlong '/'
     expect("\xed\xa0\x80", "\\xed\\xa0\\x80");           // surrogate U+D800
@@ -53,37 +48,24 @@ static void malformed_utf8_is_escaped_byte_by_byte(void** state)
     expect("\xe2\x82z", "\\xe2\\x82z");  // truncated before ASCII
 }
 
-static void null_text_is_empty(void** state)
+void test_null_text_is_empty(void)
 {
-    (void)state;
     char out[4] = "xyz";
-    assert_string_equal(sva_text_escape(out, sizeof out, NULL), "");
+    TEST_ASSERT_EQUAL_STRING("", sva_text_escape(out, sizeof out, NULL));
 }
 
-static void cuts_never_split_an_escape_or_a_character(void** state)
+void test_cuts_never_split_an_escape_or_a_character(void)
 {
-    (void)state;
     char out[8];
     // "ab" + "\x1b" (4) = 6 chars fits in 8 with the NUL; the next escape does not
-    assert_string_equal(sva_text_escape(out, sizeof out, "ab\x1b\x1b"), "ab\\x1b");
-    assert_string_equal(sva_text_escape(out, 6, "ab\x1b"), "ab");
-    assert_string_equal(sva_text_escape(out, 4, "ab\xe2\x82\xac"), "ab");  // euro sign: 3 bytes
-    assert_string_equal(sva_text_escape(out, 5, "a\n"), "a\\n");
-    assert_string_equal(sva_text_escape(out, 1, "abc"), "");
+    TEST_ASSERT_EQUAL_STRING("ab\\x1b", sva_text_escape(out, sizeof out, "ab\x1b\x1b"));
+    TEST_ASSERT_EQUAL_STRING("ab", sva_text_escape(out, 6, "ab\x1b"));
+    TEST_ASSERT_EQUAL_STRING("ab",
+                             sva_text_escape(out, 4, "ab\xe2\x82\xac"));  // euro sign: 3 bytes
+    TEST_ASSERT_EQUAL_STRING("a\\n", sva_text_escape(out, 5, "a\n"));
+    TEST_ASSERT_EQUAL_STRING("", sva_text_escape(out, 1, "abc"));
     // a full-size buffer always holds the escape
     const char* worst = "\x01\x02\x03";
     char fits[SVA_TEXT_ESCAPED_SIZE(3)];
-    assert_string_equal(sva_text_escape(fits, sizeof fits, worst), "\\x01\\x02\\x03");
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(printable_ascii_and_utf8_are_kept),
-        cmocka_unit_test(controls_are_escaped),
-        cmocka_unit_test(malformed_utf8_is_escaped_byte_by_byte),
-        cmocka_unit_test(null_text_is_empty),
-        cmocka_unit_test(cuts_never_split_an_escape_or_a_character),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    TEST_ASSERT_EQUAL_STRING("\\x01\\x02\\x03", sva_text_escape(fits, sizeof fits, worst));
 }

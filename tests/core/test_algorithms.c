@@ -1,10 +1,8 @@
 // Algorithms on hand-made missions whose plans are worked out by hand in the comments.
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
-#include <cmocka.h>
+#include "sva_unity.h"
 
 #include "spec_checker.h"
 #include "sva/sva.h"
@@ -29,17 +27,16 @@ static void run(sva_algorithm_t algorithm)
 {
     sva_diag_t diag;
     char why[200] = "";
-    assert_int_equal(sva_plan(&planner, &mission, algorithm, &plan, &diag), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&planner, &mission, algorithm, &plan, &diag));
     if (spec_check_plan(&mission, &plan, why, sizeof(why)) != 0) {
-        fail_msg("%s: %s", sva_algorithm_name(algorithm), why);
+        SVA_TEST_FAIL("%s: %s", sva_algorithm_name(algorithm), why);
     }
 }
 
 // One target at (5,7), need 2, three UAVs at the depot: the two lowest ids go,
 // each flying 12 out and 12 back (SPEC section 3 example: distance 24 each).
-static void test_need_two_lowest_ids_go(void** state)
+void test_need_two_lowest_ids_go(void)
 {
-    (void)state;
     sva_mission_init(&mission);
     mission.uav_count = 3;
     mission.uavs[0] = uav(3, 0, 0, 60);
@@ -49,20 +46,19 @@ static void test_need_two_lowest_ids_go(void** state)
     mission.targets[0] = target(1, 5, 7, 12, 20, 2);
     for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
         run((sva_algorithm_t)a);
-        assert_int_equal(plan.status, SVA_PLAN_COMPLETE);
-        assert_int_equal(plan.cost, 48);
-        assert_int_equal(plan.routes[0].target_count, 0);  // id 3 stays
-        assert_int_equal(plan.routes[1].distance_cells, 24);
-        assert_int_equal(plan.routes[2].distance_cells, 24);
+        TEST_ASSERT_EQUAL_INT(SVA_PLAN_COMPLETE, plan.status);
+        TEST_ASSERT_EQUAL_INT(48, plan.cost);
+        TEST_ASSERT_EQUAL_INT(0, plan.routes[0].target_count);  // id 3 stays
+        TEST_ASSERT_EQUAL_INT(24, plan.routes[1].distance_cells);
+        TEST_ASSERT_EQUAL_INT(24, plan.routes[2].distance_cells);
     }
 }
 
 // Fuel with hover and return (SPEC section 1): the round trip is 24 and hover 3, so
 // fuel 27 serves the target and fuel 26 does not; a target that cannot be covered in
 // full takes no UAV at all.
-static void test_fuel_binds_exactly(void** state)
+void test_fuel_binds_exactly(void)
 {
-    (void)state;
     sva_mission_init(&mission);
     mission.hover_fuel = 3;
     mission.uav_count = 1;
@@ -72,21 +68,20 @@ static void test_fuel_binds_exactly(void** state)
     for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
         mission.uavs[0].fuel = 27;
         run((sva_algorithm_t)a);
-        assert_int_equal(plan.covered, 1);
-        assert_int_equal(plan.routes[0].fuel_used, 27);
+        TEST_ASSERT_EQUAL_INT(1, plan.covered);
+        TEST_ASSERT_EQUAL_INT(27, plan.routes[0].fuel_used);
         mission.uavs[0].fuel = 26;
         run((sva_algorithm_t)a);
-        assert_int_equal(plan.status, SVA_PLAN_PARTIAL);
-        assert_int_equal(plan.cost, 0);
-        assert_int_equal(plan.uncovered_count, 1);
+        TEST_ASSERT_EQUAL_INT(SVA_PLAN_PARTIAL, plan.status);
+        TEST_ASSERT_EQUAL_INT(0, plan.cost);
+        TEST_ASSERT_EQUAL_INT(1, plan.uncovered_count);
     }
 }
 
 // Time with ticks_per_cell: 12 cells take 12 ticks at 1 tick per cell (arrives at the
 // start, 12) but 24 ticks at 2 per cell (too late).
-static void test_ticks_per_cell_decides_reachability(void** state)
+void test_ticks_per_cell_decides_reachability(void)
 {
-    (void)state;
     sva_mission_init(&mission);
     mission.uav_count = 1;
     mission.uavs[0] = uav(1, 0, 0, 100);
@@ -95,18 +90,17 @@ static void test_ticks_per_cell_decides_reachability(void** state)
     for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
         mission.ticks_per_cell = 1;
         run((sva_algorithm_t)a);
-        assert_int_equal(plan.covered, 1);
+        TEST_ASSERT_EQUAL_INT(1, plan.covered);
         mission.ticks_per_cell = 2;
         run((sva_algorithm_t)a);
-        assert_int_equal(plan.covered, 0);
+        TEST_ASSERT_EQUAL_INT(0, plan.covered);
     }
 }
 
 // A UAV 10 cells from the depot with fuel 9 is stranded: reported, not planned for;
 // a need-3 target with only two other UAVs is not half-covered.
-static void test_stranded_and_never_half_cover(void** state)
+void test_stranded_and_never_half_cover(void)
 {
-    (void)state;
     sva_mission_init(&mission);
     mission.uav_count = 3;
     mission.uavs[0] = uav(1, 4, 6, 9);
@@ -117,12 +111,12 @@ static void test_stranded_and_never_half_cover(void** state)
     mission.targets[1] = target(2, 1, 1, 30, 40, 1);
     for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
         run((sva_algorithm_t)a);
-        assert_int_equal(plan.stranded_count, 1);
-        assert_true(plan.routes[0].stranded);
-        assert_int_equal(plan.routes[0].distance_cells, 0);
-        assert_int_equal(plan.covered, 1);
-        assert_int_equal(plan.uncovered[0], 0);  // target 1 (need 3) left whole
-        assert_int_equal(plan.cost, 4);          // UAV 2 to (1,1) and back
+        TEST_ASSERT_EQUAL_INT(1, plan.stranded_count);
+        TEST_ASSERT_TRUE(plan.routes[0].stranded);
+        TEST_ASSERT_EQUAL_INT(0, plan.routes[0].distance_cells);
+        TEST_ASSERT_EQUAL_INT(1, plan.covered);
+        TEST_ASSERT_EQUAL_INT(0, plan.uncovered[0]);  // target 1 (need 3) left whole
+        TEST_ASSERT_EQUAL_INT(4, plan.cost);          // UAV 2 to (1,1) and back
     }
 }
 
@@ -130,9 +124,8 @@ static void test_stranded_and_never_half_cover(void** state)
 // tick 11, windows overlapping (one cluster). Greedy gives A the nearest UAV (X, 1) and
 // B gets Y (6): legs 7. The transportation problem sends X to B (1) and Y to A (4):
 // legs 5. Both return one cell each, so ga costs 9 and sva/hga/bfa cost 7.
-static void test_transport_beats_greedy(void** state)
+void test_transport_beats_greedy(void)
 {
-    (void)state;
     sva_mission_init(&mission);
     mission.uav_count = 2;
     mission.uavs[0] = uav(1, 0, 0, 100);
@@ -141,21 +134,20 @@ static void test_transport_beats_greedy(void** state)
     mission.targets[0] = target(1, 1, 0, 10, 20, 1);
     mission.targets[1] = target(2, 0, 1, 11, 21, 1);
     run(SVA_ALGO_GA);
-    assert_int_equal(plan.cost, 9);
+    TEST_ASSERT_EQUAL_INT(9, plan.cost);
     for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
         if (a != SVA_ALGO_GA) {
             run((sva_algorithm_t)a);
-            assert_int_equal(plan.cost, 7);
-            assert_int_equal(plan.routes[0].targets[0], 1);  // X serves B
+            TEST_ASSERT_EQUAL_INT(7, plan.cost);
+            TEST_ASSERT_EQUAL_INT(1, plan.routes[0].targets[0]);  // X serves B
         }
     }
 }
 
 // Chaining across clusters: one UAV serves A [0,10] at (3,0) then B [20,30] at (3,4)
 // (4 cells, 4 ticks <= 10 ticks of slack): distance 3 + 4 + 7 = 14.
-static void test_one_uav_chains_clusters(void** state)
+void test_one_uav_chains_clusters(void)
 {
-    (void)state;
     sva_mission_init(&mission);
     mission.uav_count = 1;
     mission.uavs[0] = uav(1, 0, 0, 100);
@@ -164,17 +156,16 @@ static void test_one_uav_chains_clusters(void** state)
     mission.targets[1] = target(5, 3, 0, 3, 10, 1);
     for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
         run((sva_algorithm_t)a);
-        assert_int_equal(plan.status, SVA_PLAN_COMPLETE);
-        assert_int_equal(plan.routes[0].target_count, 2);
-        assert_int_equal(plan.routes[0].targets[0], 1);  // the earlier window first
-        assert_int_equal(plan.cost, 14);
+        TEST_ASSERT_EQUAL_INT(SVA_PLAN_COMPLETE, plan.status);
+        TEST_ASSERT_EQUAL_INT(2, plan.routes[0].target_count);
+        TEST_ASSERT_EQUAL_INT(1, plan.routes[0].targets[0]);  // the earlier window first
+        TEST_ASSERT_EQUAL_INT(14, plan.cost);
     }
 }
 
 // Same input, same plan; UAVs listed in another order get the same targets by id.
-static void test_deterministic_and_order_independent(void** state)
+void test_deterministic_and_order_independent(void)
 {
-    (void)state;
     sva_mission_init(&mission);
     mission.uav_count = 3;
     mission.uavs[0] = uav(10, 0, 0, 100);
@@ -187,47 +178,45 @@ static void test_deterministic_and_order_independent(void** state)
         run((sva_algorithm_t)a);
         const int32_t first = plan.routes[0].target_count;
         const int32_t second = plan.routes[1].target_count;
-        assert_int_equal(first + second, 2);  // ids 10 and 20 go, 30 stays
+        TEST_ASSERT_EQUAL_INT(2, first + second);  // ids 10 and 20 go, 30 stays
         const sva_uav_t swap = mission.uavs[0];
         mission.uavs[0] = mission.uavs[2];
         mission.uavs[2] = swap;
         run((sva_algorithm_t)a);
-        assert_int_equal(plan.routes[2].target_count, first);  // id 10, now listed last
-        assert_int_equal(plan.routes[0].target_count, 0);      // id 30
+        TEST_ASSERT_EQUAL_INT(first, plan.routes[2].target_count);  // id 10, now listed last
+        TEST_ASSERT_EQUAL_INT(0, plan.routes[0].target_count);      // id 30
         mission.uavs[2] = mission.uavs[0];
         mission.uavs[0] = swap;
     }
 }
 
 // No UAVs, no targets: trivially complete; no UAVs with targets: partial, cost 0.
-static void test_empty_fleet_and_empty_mission(void** state)
+void test_empty_fleet_and_empty_mission(void)
 {
-    (void)state;
     sva_mission_init(&mission);
     for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
         run((sva_algorithm_t)a);
-        assert_int_equal(plan.status, SVA_PLAN_COMPLETE);
+        TEST_ASSERT_EQUAL_INT(SVA_PLAN_COMPLETE, plan.status);
     }
     mission.target_count = 1;
     mission.targets[0] = target(1, 1, 1, 5, 6, 1);
     for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
         run((sva_algorithm_t)a);
-        assert_int_equal(plan.status, SVA_PLAN_PARTIAL);
-        assert_int_equal(plan.cost, 0);
+        TEST_ASSERT_EQUAL_INT(SVA_PLAN_PARTIAL, plan.status);
+        TEST_ASSERT_EQUAL_INT(0, plan.cost);
     }
 }
 
 // A UAV away from the depot that serves nothing still flies home (SPEC section 1).
-static void test_idle_uav_flies_home(void** state)
+void test_idle_uav_flies_home(void)
 {
-    (void)state;
     sva_mission_init(&mission);
     mission.uav_count = 1;
     mission.uavs[0] = uav(1, 3, -4, 100);
     for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
         run((sva_algorithm_t)a);
-        assert_int_equal(plan.routes[0].distance_cells, 7);
-        assert_int_equal(plan.cost, 7);
+        TEST_ASSERT_EQUAL_INT(7, plan.routes[0].distance_cells);
+        TEST_ASSERT_EQUAL_INT(7, plan.cost);
     }
 }
 
@@ -236,9 +225,8 @@ static void test_idle_uav_flies_home(void** state)
 // (8 out, 8 back) and A 24 (two UAVs, 12 each). A plain per-unit big M filled A. Now
 // unmet demand is priced per whole target: the LP splits 1 + 1, A is short and dropped,
 // B is covered.
-static void test_whole_targets_not_units_decide(void** state)
+void test_whole_targets_not_units_decide(void)
 {
-    (void)state;
     sva_mission_init(&mission);
     mission.uav_count = 2;
     mission.uavs[0] = uav(1, 0, 0, 100);
@@ -251,26 +239,14 @@ static void test_whole_targets_not_units_decide(void** state)
             continue;  // greedy fills the earliest target first by design (A: 24)
         }
         run((sva_algorithm_t)a);
-        assert_int_equal(plan.covered, 1);
-        assert_int_equal(plan.uncovered[0], 0);
-        assert_int_equal(plan.cost, 16);
+        TEST_ASSERT_EQUAL_INT(1, plan.covered);
+        TEST_ASSERT_EQUAL_INT(0, plan.uncovered[0]);
+        TEST_ASSERT_EQUAL_INT(16, plan.cost);
     }
 }
 
-int main(void)
+// Every test starts from a freshly initialised planner.
+void setUp(void)
 {
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_need_two_lowest_ids_go),
-        cmocka_unit_test(test_fuel_binds_exactly),
-        cmocka_unit_test(test_ticks_per_cell_decides_reachability),
-        cmocka_unit_test(test_stranded_and_never_half_cover),
-        cmocka_unit_test(test_transport_beats_greedy),
-        cmocka_unit_test(test_one_uav_chains_clusters),
-        cmocka_unit_test(test_deterministic_and_order_independent),
-        cmocka_unit_test(test_empty_fleet_and_empty_mission),
-        cmocka_unit_test(test_idle_uav_flies_home),
-        cmocka_unit_test(test_whole_targets_not_units_decide),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
 }

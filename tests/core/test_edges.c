@@ -3,12 +3,10 @@
 // names out of range, a cluster larger than SVA_MAX_TP_SINKS (solved in chunks), and
 // (max profile) needs whose least common multiple is too large for the tableau's
 // per-unit cost scaling, which then falls back to unscaled costs.
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
-#include <cmocka.h>
+#include "unity.h"
 
 #include "spec_checker.h"
 #include "sva/sva.h"
@@ -17,44 +15,41 @@ static sva_planner_t planner;
 static sva_mission_t mission;
 static sva_plan_t plan;
 
-static void test_cleared_diag_formats_as_ok(void** state)
+void test_cleared_diag_formats_as_ok(void)
 {
-    (void)state;
     sva_diag_t d;
     memset(&d, 0x5a, sizeof d);
     sva_diag_clear(&d);
-    assert_int_equal(d.field, SVA_FIELD_NONE);
-    assert_int_equal(d.rule, SVA_RULE_NONE);
-    assert_int_equal(d.index, -1);
-    assert_null(d.limit_name);
+    TEST_ASSERT_EQUAL_INT(SVA_FIELD_NONE, d.field);
+    TEST_ASSERT_EQUAL_INT(SVA_RULE_NONE, d.rule);
+    TEST_ASSERT_EQUAL_INT(-1, d.index);
+    TEST_ASSERT_NULL(d.limit_name);
     char buf[64];
     const size_t n = sva_diag_format(&d, buf, sizeof buf);
-    assert_string_equal(buf, "mission: ok");
-    assert_int_equal(n, strlen("mission: ok"));
+    TEST_ASSERT_EQUAL_STRING("mission: ok", buf);
+    TEST_ASSERT_EQUAL_INT(strlen("mission: ok"), n);
 }
 
-static void test_out_of_range_enums(void** state)
+void test_out_of_range_enums(void)
 {
-    (void)state;
-    assert_string_equal(sva_field_name(SVA_FIELD_COUNT_), "");
-    assert_string_equal(sva_field_name((sva_field_t)-1), "");
-    assert_string_equal(sva_algorithm_name(SVA_ALGO_COUNT_), "");
+    TEST_ASSERT_EQUAL_STRING("", sva_field_name(SVA_FIELD_COUNT_));
+    TEST_ASSERT_EQUAL_STRING("", sva_field_name((sva_field_t)-1));
+    TEST_ASSERT_EQUAL_STRING("", sva_algorithm_name(SVA_ALGO_COUNT_));
     sva_diag_t d;
     sva_diag_set(&d, SVA_FIELD_TARGET_NEED, SVA_RULE_COUNT_, 2, 0, 0, NULL);
     char buf[64];
     (void)sva_diag_format(&d, buf, sizeof buf);
-    assert_string_equal(buf, "targets[2].need: unknown rule");
+    TEST_ASSERT_EQUAL_STRING("targets[2].need: unknown rule", buf);
     sva_algorithm_t algo = SVA_ALGO_GA;
-    assert_int_equal(sva_algorithm_from_name("nope", &algo), SVA_ERR_ARGUMENT);
-    assert_int_equal(algo, SVA_ALGO_GA);  // untouched on error
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT, sva_algorithm_from_name("nope", &algo));
+    TEST_ASSERT_EQUAL_INT(SVA_ALGO_GA, algo);  // untouched on error
 }
 
 // SVA_MAX_TP_SINKS + 1 targets in one window form one cluster, solved as two chunks.
-static void test_cluster_larger_than_the_tableau_is_chunked(void** state)
+void test_cluster_larger_than_the_tableau_is_chunked(void)
 {
-    (void)state;
 #if SVA_MAX_TP_SINKS + 1 > SVA_MAX_TARGETS || SVA_MAX_TP_SINKS + 1 > SVA_MAX_UAVS
-    skip();  // the profile cannot hold such a mission
+    TEST_IGNORE();  // the profile cannot hold such a mission
 #else
     const int n = SVA_MAX_TP_SINKS + 1;
     sva_mission_init(&mission);
@@ -66,18 +61,18 @@ static void test_cluster_larger_than_the_tableau_is_chunked(void** state)
     }
     mission.uav_count = (uint16_t)n;
     mission.target_count = (uint16_t)n;
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
     for (int a = 0; a < 2; a++) {
         const sva_algorithm_t algo = (a == 0) ? SVA_ALGO_SVA : SVA_ALGO_HGA;
         sva_diag_t d;
-        assert_int_equal(sva_plan(&planner, &mission, algo, &plan, &d), SVA_OK);
-        assert_int_equal(plan.stats.clusters, 1);
-        assert_int_equal(plan.stats.largest_cluster, n);
-        assert_int_equal(plan.stats.chunked_clusters, 1);
-        assert_int_equal(plan.stats.transport_problems, 2);
-        assert_int_equal(plan.covered, n);
+        TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&planner, &mission, algo, &plan, &d));
+        TEST_ASSERT_EQUAL_INT(1, plan.stats.clusters);
+        TEST_ASSERT_EQUAL_INT(n, plan.stats.largest_cluster);
+        TEST_ASSERT_EQUAL_INT(1, plan.stats.chunked_clusters);
+        TEST_ASSERT_EQUAL_INT(2, plan.stats.transport_problems);
+        TEST_ASSERT_EQUAL_INT(n, plan.covered);
         char msg[256];
-        assert_int_equal(spec_check_plan(&mission, &plan, msg, sizeof msg), 0);
+        TEST_ASSERT_EQUAL_INT(0, spec_check_plan(&mission, &plan, msg, sizeof msg));
     }
 #endif
 }
@@ -87,11 +82,10 @@ static void test_cluster_larger_than_the_tableau_is_chunked(void** state)
 // the tableau uses L = 1. The plan must still be complete and pass the checker.
 // Regression: with L = 1 the unmet-demand cost big_m * (L / need) was 0 for every
 // need above 1, so the simplex left such targets unserved (8 of 9 covered here).
-static void test_needs_lcm_overflow_falls_back(void** state)
+void test_needs_lcm_overflow_falls_back(void)
 {
-    (void)state;
 #if SVA_MAX_UAVS < 221 || SVA_MAX_TP_SINKS < 9
-    skip();  // only the max profile holds such a mission
+    TEST_IGNORE();  // only the max profile holds such a mission
 #else
     static const int32_t needs[9] = {11, 13, 17, 19, 23, 29, 31, 37, 41};
     const int uavs = 221;
@@ -110,23 +104,12 @@ static void test_needs_lcm_overflow_falls_back(void** state)
     }
     mission.uav_count = (uint16_t)uavs;
     mission.target_count = 9;
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
     sva_diag_t d;
-    assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_SVA, &plan, &d), SVA_OK);
-    assert_int_equal(plan.status, SVA_PLAN_COMPLETE);
-    assert_int_equal(plan.covered, 9);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&planner, &mission, SVA_ALGO_SVA, &plan, &d));
+    TEST_ASSERT_EQUAL_INT(SVA_PLAN_COMPLETE, plan.status);
+    TEST_ASSERT_EQUAL_INT(9, plan.covered);
     char msg[256];
-    assert_int_equal(spec_check_plan(&mission, &plan, msg, sizeof msg), 0);
+    TEST_ASSERT_EQUAL_INT(0, spec_check_plan(&mission, &plan, msg, sizeof msg));
 #endif
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_cleared_diag_formats_as_ok),
-        cmocka_unit_test(test_out_of_range_enums),
-        cmocka_unit_test(test_cluster_larger_than_the_tableau_is_chunked),
-        cmocka_unit_test(test_needs_lcm_overflow_falls_back),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -10,13 +10,11 @@
 // - past its graph bounds it falls back to the better of ga and sva, bound 0, not
 //   optimal; the caller's observer stays silent.
 // Seeds are printed and replayable (SVA_TEST_SEED=...).
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
-#include <cmocka.h>
+#include "sva_unity.h"
 
 #include "brute_force.h"
 #include "mission_gen.h"
@@ -29,9 +27,8 @@ static sva_mission_t mission;
 static sva_plan_t plan;
 static sva_plan_t other;
 
-static void test_tiny_missions_equal_brute_force(void** state)
+void test_tiny_missions_equal_brute_force(void)
 {
-    (void)state;
     const uint64_t seed = test_seed(0xF10EULL);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
@@ -61,21 +58,20 @@ static void test_tiny_missions_equal_brute_force(void** state)
         for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
             must_plan_checked(&planner, &mission, (sva_algorithm_t)a, &other, seed, round);
             if (other.covered > plan.covered) {
-                fail_msg("seed %llu round %d: %s covers %d, flow %d", (unsigned long long)seed,
-                         round, sva_algorithm_name((sva_algorithm_t)a), other.covered,
-                         plan.covered);
+                SVA_TEST_FAIL("seed %llu round %d: %s covers %d, flow %d", (unsigned long long)seed,
+                              round, sva_algorithm_name((sva_algorithm_t)a), other.covered,
+                              plan.covered);
             }
         }
     }
     printf("# %d tiny missions: flow proven optimal on %d, branched on %d\n", rounds, proven,
            fuel_bound);
-    assert_true(proven == rounds);  // tiny searches always finish within the budget
-    assert_true(fuel_bound > 0);    // the generator does reach the branch and bound
+    TEST_ASSERT_TRUE(proven == rounds);  // tiny searches always finish within the budget
+    TEST_ASSERT_TRUE(fuel_bound > 0);    // the generator does reach the branch and bound
 }
 
-static void test_without_fuel_limit_root_is_optimal(void** state)
+void test_without_fuel_limit_root_is_optimal(void)
 {
-    (void)state;
     const uint64_t seed = test_seed(0xF1A7ULL);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
@@ -99,21 +95,21 @@ static void test_without_fuel_limit_root_is_optimal(void** state)
         must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
         check_certificate(&plan, seed, round);
         if (!plan.stats.optimal || plan.stats.search_nodes != 1U) {
-            fail_msg("seed %llu round %d: not optimal at the root (nodes %llu)",
-                     (unsigned long long)seed, round, (unsigned long long)plan.stats.search_nodes);
+            SVA_TEST_FAIL("seed %llu round %d: not optimal at the root (nodes %llu)",
+                          (unsigned long long)seed, round,
+                          (unsigned long long)plan.stats.search_nodes);
         }
         must_plan_checked(&planner, &mission, SVA_ALGO_BFA, &other, seed, round);
         if (other.covered != plan.covered || other.cost != plan.cost) {
-            fail_msg("seed %llu round %d: flow (%d, %lld), bfa (%d, %lld)",
-                     (unsigned long long)seed, round, plan.covered, (long long)plan.cost,
-                     other.covered, (long long)other.cost);
+            SVA_TEST_FAIL("seed %llu round %d: flow (%d, %lld), bfa (%d, %lld)",
+                          (unsigned long long)seed, round, plan.covered, (long long)plan.cost,
+                          other.covered, (long long)other.cost);
         }
     }
 }
 
-static void test_paper_sizes_never_worse_than_the_paper(void** state)
+void test_paper_sizes_never_worse_than_the_paper(void)
 {
-    (void)state;
     const uint64_t seed = test_seed(0xF25ULL);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
@@ -145,15 +141,16 @@ static void test_paper_sizes_never_worse_than_the_paper(void** state)
             for (size_t r = 0; r < sizeof(rivals) / sizeof(rivals[0]); r++) {
                 must_plan_checked(&planner, &mission, rivals[r], &other, seed, round);
                 if (other.covered > plan.covered) {
-                    fail_msg("seed %llu round %d: %s covers %d, flow %d", (unsigned long long)seed,
-                             round, sva_algorithm_name(rivals[r]), other.covered, plan.covered);
+                    SVA_TEST_FAIL("seed %llu round %d: %s covers %d, flow %d",
+                                  (unsigned long long)seed, round, sva_algorithm_name(rivals[r]),
+                                  other.covered, plan.covered);
                 }
                 if (rivals[r] != SVA_ALGO_HGA &&
                     spec_better(other.covered, other.cost, plan.covered, plan.cost)) {
-                    fail_msg("seed %llu round %d: %s (%d, %lld) beats flow (%d, %lld)",
-                             (unsigned long long)seed, round, sva_algorithm_name(rivals[r]),
-                             other.covered, (long long)other.cost, plan.covered,
-                             (long long)plan.cost);
+                    SVA_TEST_FAIL("seed %llu round %d: %s (%d, %lld) beats flow (%d, %lld)",
+                                  (unsigned long long)seed, round, sva_algorithm_name(rivals[r]),
+                                  other.covered, (long long)other.cost, plan.covered,
+                                  (long long)plan.cost);
                 }
                 better_than_all = better_than_all &&
                                   spec_better(plan.covered, plan.cost, other.covered, other.cost);
@@ -162,12 +159,11 @@ static void test_paper_sizes_never_worse_than_the_paper(void** state)
         }
     }
     printf("# flow strictly better than sva, ga and hga on %d of 120 missions\n", strictly_better);
-    assert_true(strictly_better > 0);
+    TEST_ASSERT_TRUE(strictly_better > 0);
 }
 
-static void test_small_budget_gives_a_checked_unproven_plan(void** state)
+void test_small_budget_gives_a_checked_unproven_plan(void)
 {
-    (void)state;
     const uint64_t seed = test_seed(0xB0D6E7ULL);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
@@ -192,11 +188,11 @@ static void test_small_budget_gives_a_checked_unproven_plan(void** state)
         check_certificate(&plan, seed, round);
         if (!plan.stats.optimal) {
             unproven++;
-            assert_int_not_equal(plan.stats.flow_incomplete, SVA_FLOW_COMPLETE);
+            TEST_ASSERT_NOT_EQUAL_INT(SVA_FLOW_COMPLETE, plan.stats.flow_incomplete);
         }
     }
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
-    assert_true(unproven > 0);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
+    TEST_ASSERT_TRUE(unproven > 0);
 }
 
 // What a phase did on a run of missions against brute force.
@@ -245,7 +241,7 @@ static phase_counts_t against_brute_force(uint64_t seed_default, int rounds, uin
             counts.best += (plan.covered == best.covered && plan.cost == best.cost) ? 1 : 0;
         }
     }
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
     return counts;
 }
 
@@ -271,53 +267,50 @@ static bool ruin_ran(const sva_plan_t* p)
 
 // A budget the search cannot finish in hands over to the Lagrangian phase: its bound
 // must stay at or below the optimum, its "optimal" must be true, and its plans checked.
-static void test_lagrangian_phase_bound_and_claims_hold(void** state)
+void test_lagrangian_phase_bound_and_claims_hold(void)
 {
-    (void)state;
     const int rounds = 400;
     const phase_counts_t c = against_brute_force(0x1A6EULL, rounds, 1000U, 4, lagrangian_phase_ran);
     printf(
         "# %d missions: Lagrangian phase ran on %d, proved %d, bound equal to the optimum on %d\n",
         rounds, c.ran, c.proven, c.tight);
-    assert_true(c.ran >= rounds / 10);
-    assert_true(c.tight > 0);
+    TEST_ASSERT_TRUE(c.ran >= rounds / 10);
+    TEST_ASSERT_TRUE(c.tight > 0);
 }
 
 // The route master's prices (flow_lp.c), at a budget that leaves the master room
 // after a short search: on small missions against brute force, the bound never
 // exceeds the optimum and every claim holds; the master runs, and its bound reaches
 // the optimum on some missions the search alone left unproven.
-static void test_route_master_bound_and_claims_hold(void** state)
+void test_route_master_bound_and_claims_hold(void)
 {
-    (void)state;
     const int rounds = 300;
     const phase_counts_t c = against_brute_force(0x10C0ULL, rounds, 6000U, 5, route_master_ran);
     printf(
         "# %d missions: the route master ran on %d, proved %d, bound equal to the optimum on %d\n",
         rounds, c.ran, c.proven, c.tight);
 #if SVA_FLOW_LP_ROWS >= 2
-    assert_true(c.ran >= rounds / 10);
-    assert_true(c.tight >= c.ran / 4);
+    TEST_ASSERT_TRUE(c.ran >= rounds / 10);
+    TEST_ASSERT_TRUE(c.tight >= c.ran / 4);
 #else
-    assert_int_equal(c.ran, 0);  // the profile has no master
+    TEST_ASSERT_EQUAL_INT(0, c.ran);  // the profile has no master
 #endif
 }
 
 // The dive on the route master (flow_lp.c) at the same budget: it runs, its plans
 // pass the checks of against_brute_force (valid, never claimed optimal wrongly), and
 // flow's final plan is optimal on most of the missions it ran on.
-static void test_route_master_dive_plans_hold(void** state)
+void test_route_master_dive_plans_hold(void)
 {
-    (void)state;
     const int rounds = 300;
     const phase_counts_t c = against_brute_force(0xD17EULL, rounds, 6000U, 5, dive_ran);
     printf("# %d missions: the dive ran on %d; flow's plan optimal on %d of them\n", rounds, c.ran,
            c.best);
 #if SVA_FLOW_LP_ROWS >= 2
-    assert_true(c.ran >= rounds / 10);
-    assert_true(c.best >= c.ran / 2);
+    TEST_ASSERT_TRUE(c.ran >= rounds / 10);
+    TEST_ASSERT_TRUE(c.best >= c.ran / 2);
 #else
-    assert_int_equal(c.ran, 0);  // the profile has no master
+    TEST_ASSERT_EQUAL_INT(0, c.ran);  // the profile has no master
 #endif
 }
 
@@ -379,9 +372,8 @@ static bool column_is_route(const sva_flow_lp_t* lp, uint16_t col, uint16_t u)
 // Every route column of the route master, after flow has planned, is a route its UAV
 // state can fly. Where fuel binds, the labels' merging (flow_lagrange.c) yields paths
 // that break fuel: pricing must pass over them.
-static void test_route_master_holds_only_real_routes(void** state)
+void test_route_master_holds_only_real_routes(void)
 {
-    (void)state;
     const uint64_t seed = test_seed(0xF0E1ULL);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
@@ -414,10 +406,10 @@ static void test_route_master_holds_only_real_routes(void** state)
             while (u < mission.uav_count && !column_has_row(lp, col, lp->group_row[u])) {
                 u++;
             }
-            assert_true(u < mission.uav_count);
+            TEST_ASSERT_TRUE(u < mission.uav_count);
             if (!column_is_route(lp, col, u)) {
-                fail_msg("seed %llu round %d: master column %u is no route of UAV %u",
-                         (unsigned long long)seed, round, col, u);
+                SVA_TEST_FAIL("seed %llu round %d: master column %u is no route of UAV %u",
+                              (unsigned long long)seed, round, col, u);
             }
             columns++;
         }
@@ -425,7 +417,7 @@ static void test_route_master_holds_only_real_routes(void** state)
     }
     printf("# %d master columns checked\n", columns);
 #if SVA_FLOW_LP_ROWS >= 2
-    assert_true(columns > 0);
+    TEST_ASSERT_TRUE(columns > 0);
 #endif
 }
 
@@ -434,24 +426,22 @@ static void test_route_master_holds_only_real_routes(void** state)
 // it ran on. It is skipped where the coverage is proven and the plan within 1/64 of
 // its bound, and the coverage search proves coverage on many of these small missions:
 // 500 missions give it the 30 runs that 300 gave it without that search.
-static void test_ruin_and_recreate_plans_hold(void** state)
+void test_ruin_and_recreate_plans_hold(void)
 {
-    (void)state;
     const int rounds = 500;
     const phase_counts_t c = against_brute_force(0x2E1ULL, rounds, 6000U, 5, ruin_ran);
     printf("# %d missions: ruin and recreate ran on %d; flow's plan optimal on %d of them\n",
            rounds, c.ran, c.best);
-    assert_true(c.ran >= 30);
-    assert_true(c.best >= c.ran / 2);
+    TEST_ASSERT_TRUE(c.ran >= 30);
+    TEST_ASSERT_TRUE(c.best >= c.ran / 2);
 }
 
 static sva_mission_t second;
 static sva_plan_t again;
 
 // Same mission, same plan: whatever the planner planned before (no state carried over).
-static void test_plans_do_not_depend_on_the_planners_history(void** state)
+void test_plans_do_not_depend_on_the_planners_history(void)
 {
-    (void)state;
     const uint64_t seed = test_seed(0x4157ULL);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
@@ -471,52 +461,50 @@ static void test_plans_do_not_depend_on_the_planners_history(void** state)
                                      0};
         test_gen_mission(&rng, &p, &mission);
         test_gen_mission(&rng, &p, &second);
-        assert_int_equal(sva_planner_init(&planner), SVA_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
         must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
         const sva_mission_t kept = mission;
         mission = second;
         must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &other, seed, round);
         mission = kept;
         must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &again, seed, round);
-        assert_int_equal(plan.cost, again.cost);
-        assert_int_equal(plan.covered, again.covered);
-        assert_int_equal(plan.stats.lower_bound, again.stats.lower_bound);
-        assert_int_equal(plan.stats.optimal, again.stats.optimal);
-        assert_int_equal(plan.stats.flow_work, again.stats.flow_work);
+        TEST_ASSERT_EQUAL_INT(again.cost, plan.cost);
+        TEST_ASSERT_EQUAL_INT(again.covered, plan.covered);
+        TEST_ASSERT_EQUAL_INT(again.stats.lower_bound, plan.stats.lower_bound);
+        TEST_ASSERT_EQUAL_INT(again.stats.optimal, plan.stats.optimal);
+        TEST_ASSERT_EQUAL_INT(again.stats.flow_work, plan.stats.flow_work);
         for (uint16_t u = 0U; u < plan.route_count; u++) {
-            assert_int_equal(plan.routes[u].target_count, again.routes[u].target_count);
-            assert_memory_equal(plan.routes[u].targets, again.routes[u].targets,
-                                sizeof(uint16_t) * plan.routes[u].target_count);
+            TEST_ASSERT_EQUAL_INT(again.routes[u].target_count, plan.routes[u].target_count);
+            SVA_TEST_ASSERT_EQUAL_BYTES(again.routes[u].targets, plan.routes[u].targets,
+                                        sizeof(uint16_t) * plan.routes[u].target_count);
         }
     }
 }
 
-static void test_past_its_graph_bounds_flow_falls_back_honestly(void** state)
+void test_past_its_graph_bounds_flow_falls_back_honestly(void)
 {
-    (void)state;
     sva_mission_init(&mission);
     mission.uav_count = 1;
     mission.uavs[0] = (sva_uav_t){1, 0, 0, 100, 0};
     const int32_t need = 1;
     const int32_t targets = (int32_t)SVA_FLOW_MAX_COPIES + 1;
     if (targets > SVA_MAX_TARGETS) {
-        skip();  // this profile cannot express too many copies with need 1
+        TEST_IGNORE();  // this profile cannot express too many copies with need 1
     }
     mission.target_count = (uint16_t)targets;
     for (int32_t t = 0; (t < targets) && (t < SVA_MAX_TARGETS); t++) {
         mission.targets[t] = (sva_target_t){t + 1, 1, 1, 10 * t + 5, 10 * t + 8, need};
     }
     must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, 0U, 0);
-    assert_int_equal(plan.stats.flow_incomplete, SVA_FLOW_OVER_COPIES);
-    assert_false(plan.stats.optimal);
-    assert_int_equal(plan.stats.lower_bound, 0);
+    TEST_ASSERT_EQUAL_INT(SVA_FLOW_OVER_COPIES, plan.stats.flow_incomplete);
+    TEST_ASSERT_FALSE(plan.stats.optimal);
+    TEST_ASSERT_EQUAL_INT(0, plan.stats.lower_bound);
     must_plan_checked(&planner, &mission, SVA_ALGO_SVA, &other, 0U, 0);
-    assert_false(spec_better(other.covered, other.cost, plan.covered, plan.cost));
+    TEST_ASSERT_FALSE(spec_better(other.covered, other.cost, plan.covered, plan.cost));
 }
 
-static void test_dense_graph_past_the_arc_bound_falls_back(void** state)
+void test_dense_graph_past_the_arc_bound_falls_back(void)
 {
-    (void)state;
     // Every window chains into every later one: about U*T + T*T/2 arcs.
     sva_mission_init(&mission);
     mission.uav_count = SVA_MAX_UAVS;
@@ -530,19 +518,19 @@ static void test_dense_graph_past_the_arc_bound_falls_back(void** state)
     const long arcs =
         (long)SVA_MAX_UAVS * SVA_MAX_TARGETS + ((long)SVA_MAX_TARGETS * (SVA_MAX_TARGETS - 1)) / 2;
     if (arcs <= (long)SVA_FLOW_MAX_ARCS) {
-        skip();  // this profile's arc bound holds the dense graph
+        TEST_IGNORE();  // this profile's arc bound holds the dense graph
     }
     must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, 0U, 0);
-    assert_int_equal(plan.stats.flow_incomplete, SVA_FLOW_OVER_ARCS);
-    assert_true(plan.stats.flow_graph_arcs > (uint32_t)SVA_FLOW_MAX_ARCS);
-    assert_false(plan.stats.optimal);
-    assert_int_equal(plan.stats.lower_bound, 0);
-    assert_int_equal(plan.covered, SVA_MAX_TARGETS);
-    assert_true(plan.stats.flow_ruin_rounds > 0U);
+    TEST_ASSERT_EQUAL_INT(SVA_FLOW_OVER_ARCS, plan.stats.flow_incomplete);
+    TEST_ASSERT_TRUE(plan.stats.flow_graph_arcs > (uint32_t)SVA_FLOW_MAX_ARCS);
+    TEST_ASSERT_FALSE(plan.stats.optimal);
+    TEST_ASSERT_EQUAL_INT(0, plan.stats.lower_bound);
+    TEST_ASSERT_EQUAL_INT(SVA_MAX_TARGETS, plan.covered);
+    TEST_ASSERT_TRUE(plan.stats.flow_ruin_rounds > 0U);
     // The seeds, repaired and improved: never worse than sva or ga.
     for (int a = 0; a < 2; a++) {
         must_plan_checked(&planner, &mission, a == 0 ? SVA_ALGO_SVA : SVA_ALGO_GA, &other, 0U, 0);
-        assert_false(spec_better(other.covered, other.cost, plan.covered, plan.cost));
+        TEST_ASSERT_FALSE(spec_better(other.covered, other.cost, plan.covered, plan.cost));
     }
 }
 
@@ -556,15 +544,14 @@ static const sva_route_t* route_of(int32_t id)
             return &plan.routes[u];
         }
     }
-    fail_msg("no UAV %d", (int)id);
+    SVA_TEST_FAIL("no UAV %d", (int)id);
     return &plan.routes[0];
 }
 
-static void test_alike_uavs_take_routes_in_id_order(void** state)
+void test_alike_uavs_take_routes_in_id_order(void)
 {
-    (void)state;
     if (SVA_MAX_UAVS < 3) {
-        skip();
+        TEST_IGNORE();
     }
     sva_mission_init(&mission);
     mission.uav_count = 3;
@@ -577,13 +564,13 @@ static void test_alike_uavs_take_routes_in_id_order(void** state)
             mission.uavs[u] = (sva_uav_t){ids[(listing == 0) ? u : (2 - u)], 0, 0, 100, 0};
         }
         must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, 0U, listing);
-        assert_int_equal(plan.cost, 20);
-        assert_true(plan.stats.optimal);
-        assert_int_equal(route_of(3)->target_count, 1);
-        assert_int_equal(route_of(3)->targets[0], 1);  // index of target id 1
-        assert_int_equal(route_of(5)->target_count, 1);
-        assert_int_equal(route_of(5)->targets[0], 0);
-        assert_int_equal(route_of(7)->target_count, 0);
+        TEST_ASSERT_EQUAL_INT(20, plan.cost);
+        TEST_ASSERT_TRUE(plan.stats.optimal);
+        TEST_ASSERT_EQUAL_INT(1, route_of(3)->target_count);
+        TEST_ASSERT_EQUAL_INT(1, route_of(3)->targets[0]);  // index of target id 1
+        TEST_ASSERT_EQUAL_INT(1, route_of(5)->target_count);
+        TEST_ASSERT_EQUAL_INT(0, route_of(5)->targets[0]);
+        TEST_ASSERT_EQUAL_INT(0, route_of(7)->target_count);
     }
 }
 
@@ -595,9 +582,8 @@ static void count_call(void* user, const sva_tp_view_t* problem)
     calls++;
 }
 
-static void test_observer_silent_and_stats_only_for_flow(void** state)
+void test_observer_silent_and_stats_only_for_flow(void)
 {
-    (void)state;
     test_rng_t rng;
     test_rng_seed(&rng, 11U);
     const test_gen_params_t p = {10, 3, 20, 10, 20, 40, 1, 60, 100, 1, 1, 0, 0};
@@ -605,34 +591,18 @@ static void test_observer_silent_and_stats_only_for_flow(void** state)
     planner.on_transport = count_call;
     calls = 0;
     must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, 11U, 0);
-    assert_int_equal(calls, 0);  // flow's seeding runs sva without the caller's observer
-    assert_ptr_equal(planner.on_transport, count_call);
-    assert_true(plan.stats.has_bound);
-    assert_true(plan.stats.flow_solves >= 1U);
+    TEST_ASSERT_EQUAL_INT(0, calls);  // flow's seeding runs sva without the caller's observer
+    TEST_ASSERT_EQUAL_PTR(count_call, planner.on_transport);
+    TEST_ASSERT_TRUE(plan.stats.has_bound);
+    TEST_ASSERT_TRUE(plan.stats.flow_solves >= 1U);
     must_plan_checked(&planner, &mission, SVA_ALGO_SVA, &other, 11U, 0);
-    assert_true(calls > 0);
-    assert_false(other.stats.has_bound);
+    TEST_ASSERT_TRUE(calls > 0);
+    TEST_ASSERT_FALSE(other.stats.has_bound);
     planner.on_transport = NULL;
 }
 
-int main(void)
+// Every test starts from a freshly initialised planner.
+void setUp(void)
 {
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_tiny_missions_equal_brute_force),
-        cmocka_unit_test(test_without_fuel_limit_root_is_optimal),
-        cmocka_unit_test(test_paper_sizes_never_worse_than_the_paper),
-        cmocka_unit_test(test_small_budget_gives_a_checked_unproven_plan),
-        cmocka_unit_test(test_lagrangian_phase_bound_and_claims_hold),
-        cmocka_unit_test(test_route_master_bound_and_claims_hold),
-        cmocka_unit_test(test_route_master_dive_plans_hold),
-        cmocka_unit_test(test_route_master_holds_only_real_routes),
-        cmocka_unit_test(test_ruin_and_recreate_plans_hold),
-        cmocka_unit_test(test_plans_do_not_depend_on_the_planners_history),
-        cmocka_unit_test(test_alike_uavs_take_routes_in_id_order),
-        cmocka_unit_test(test_past_its_graph_bounds_flow_falls_back_honestly),
-        cmocka_unit_test(test_dense_graph_past_the_arc_bound_falls_back),
-        cmocka_unit_test(test_observer_silent_and_stats_only_for_flow),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
 }

@@ -10,13 +10,11 @@
 // - flow with it: every plan checked, every "optimal" claim true, and the most
 //   coverage on every mission where the search ran.
 // Seeds are printed and replayable (SVA_TEST_SEED=...).
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
-#include <cmocka.h>
+#include "sva_unity.h"
 
 #include "brute_force.h"
 #include "flow_certificate.h"
@@ -57,9 +55,8 @@ static sva_flow_cover_result_t cover(int64_t covered, uint64_t budget, uint16_t*
     return sva_flow_cover(&planner.priv, &mission, &plan, covered, budget, nodes);
 }
 
-static void test_search_is_exact_against_brute_force(void** state)
+void test_search_is_exact_against_brute_force(void)
 {
-    (void)state;
     const uint64_t seed = test_seed(0xC0FE4ULL);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
@@ -72,8 +69,8 @@ static void test_search_is_exact_against_brute_force(void** state)
         // One more than the most: no plan, and proven with room to finish.
         const sva_flow_cover_result_t none = cover(best.covered, UINT64_MAX / 2U, &nodes);
         if (none != SVA_FLOW_COVER_PROVEN) {
-            fail_msg("seed %llu round %d: %d targets the most, the search answered %d",
-                     (unsigned long long)seed, round, best.covered, (int)none);
+            SVA_TEST_FAIL("seed %llu round %d: %d targets the most, the search answered %d",
+                          (unsigned long long)seed, round, best.covered, (int)none);
         }
         proven++;
         if (best.covered == 0) {
@@ -81,27 +78,26 @@ static void test_search_is_exact_against_brute_force(void** state)
         }
         // The most less one: a plan covering the most, within the SPEC's rules.
         const sva_flow_cover_result_t more = cover(best.covered - 1, UINT64_MAX / 2U, &nodes);
-        assert_int_equal(more, SVA_FLOW_COVER_FOUND);
+        TEST_ASSERT_EQUAL_INT(SVA_FLOW_COVER_FOUND, more);
         sva_plan_finish(&planner.priv, &mission, &plan);
         char msg[256];
         if (spec_check_plan(&mission, &plan, msg, sizeof msg) != 0) {
-            fail_msg("seed %llu round %d: the search's plan breaks the SPEC: %s",
-                     (unsigned long long)seed, round, msg);
+            SVA_TEST_FAIL("seed %llu round %d: the search's plan breaks the SPEC: %s",
+                          (unsigned long long)seed, round, msg);
         }
         if (plan.covered != best.covered) {
-            fail_msg("seed %llu round %d: the search's plan covers %d, the most is %d",
-                     (unsigned long long)seed, round, (int)plan.covered, best.covered);
+            SVA_TEST_FAIL("seed %llu round %d: the search's plan covers %d, the most is %d",
+                          (unsigned long long)seed, round, (int)plan.covered, best.covered);
         }
         found++;
     }
     printf("# %d missions: %d proven the most, %d plans covering the most found\n", ROUNDS, proven,
            found);
-    assert_true(found > ROUNDS / 2);
+    TEST_ASSERT_TRUE(found > ROUNDS / 2);
 }
 
-static void test_small_budget_is_never_wrong(void** state)
+void test_small_budget_is_never_wrong(void)
 {
-    (void)state;
     const uint64_t seed = test_seed(0xB0D6E7ULL);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
@@ -118,35 +114,34 @@ static void test_small_budget_is_never_wrong(void** state)
             // FOUND only below the most, PROVEN only at it.
             if (((r == SVA_FLOW_COVER_FOUND) && (asked >= best.covered)) ||
                 ((r == SVA_FLOW_COVER_PROVEN) && (asked < best.covered))) {
-                fail_msg("seed %llu round %d: asked for more than %lld (the most %d): answer %d",
-                         (unsigned long long)seed, round, (long long)asked, best.covered, (int)r);
+                SVA_TEST_FAIL(
+                    "seed %llu round %d: asked for more than %lld (the most %d): answer %d",
+                    (unsigned long long)seed, round, (long long)asked, best.covered, (int)r);
             }
         }
     }
     printf("# %d missions at a budget of 40 units: %d answers open\n", ROUNDS, open);
-    assert_true(open > 0);
+    TEST_ASSERT_TRUE(open > 0);
 }
 
-static void test_past_its_bounds_it_gives_up(void** state)
+void test_past_its_bounds_it_gives_up(void)
 {
-    (void)state;
     test_rng_t rng;
     test_rng_seed(&rng, 7U);
     const test_gen_params_t p = {
         SVA_FLOW_COVER_TARGETS + 1, 2, 20, 4, 15, 200, 1, 60, 90, 0, 1, 0, 0};
     if (SVA_FLOW_COVER_TARGETS + 1 > SVA_MAX_TARGETS) {
-        skip();  // the profile cannot hold such a mission
+        TEST_IGNORE();  // the profile cannot hold such a mission
     }
     test_gen_mission(&rng, &p, &mission);
     uint16_t nodes = 0U;
-    assert_int_equal(cover(0, UINT64_MAX / 2U, &nodes), SVA_FLOW_COVER_OPEN);
-    assert_int_equal(nodes, 0U);
-    assert_int_equal(planner.priv.flow.work, 0U);
+    TEST_ASSERT_EQUAL_INT(SVA_FLOW_COVER_OPEN, cover(0, UINT64_MAX / 2U, &nodes));
+    TEST_ASSERT_EQUAL_INT(0U, nodes);
+    TEST_ASSERT_EQUAL_INT(0U, planner.priv.flow.work);
 }
 
-static void test_flow_covers_the_most_where_the_search_ran(void** state)
+void test_flow_covers_the_most_where_the_search_ran(void)
 {
-    (void)state;
     const uint64_t seed = test_seed(0xF10C0ULL);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
@@ -160,29 +155,18 @@ static void test_flow_covers_the_most_where_the_search_ran(void** state)
         if (plan.stats.flow_cover_nodes > 0U) {
             ran++;
             if ((int)plan.covered != best.covered) {
-                fail_msg("seed %llu round %d: the search ran, flow covers %d, the most is %d",
-                         (unsigned long long)seed, round, (int)plan.covered, best.covered);
+                SVA_TEST_FAIL("seed %llu round %d: the search ran, flow covers %d, the most is %d",
+                              (unsigned long long)seed, round, (int)plan.covered, best.covered);
             }
         }
     }
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
     printf("# %d missions: the coverage search ran in flow on %d\n", ROUNDS, ran);
-    assert_true(ran > 0);
+    TEST_ASSERT_TRUE(ran > 0);
 }
 
-static int setup(void** state)
+// The planner starts in its initial state for every test.
+void setUp(void)
 {
-    (void)state;
-    return (sva_planner_init(&planner) == SVA_OK) ? 0 : -1;
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_search_is_exact_against_brute_force),
-        cmocka_unit_test(test_small_budget_is_never_wrong),
-        cmocka_unit_test(test_past_its_bounds_it_gives_up),
-        cmocka_unit_test(test_flow_covers_the_most_where_the_search_ran),
-    };
-    return cmocka_run_group_tests(tests, setup, NULL);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
 }

@@ -7,13 +7,11 @@
 //   sva's; the same mission with need 1 everywhere is exact;
 // - needs summed past SVA_FLOW_MAX_COPIES: the fallback (SVA_FLOW_OVER_COPIES, bound 0).
 // Every plan passes the independent SPEC checker (tests/support/spec_checker.c).
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
-#include <cmocka.h>
+#include "sva_unity.h"
 
 #include "checked_plan.h"
 #include "spec_checker.h"
@@ -28,13 +26,12 @@ static void must_plan(sva_algorithm_t algorithm, sva_plan_t* out)
 {
     char why[320] = "";
     if (checked_plan(&planner, &mission, algorithm, out, why, sizeof(why)) != 0) {
-        fail_msg("%s", why);
+        SVA_TEST_FAIL("%s", why);
     }
 }
 
-static void test_route_branch_skips_a_stranded_uav(void** state)
+void test_route_branch_skips_a_stranded_uav(void)
 {
-    (void)state;
     // UAV 1 cannot get home (100 cells, fuel 10): stranded, listed first. UAV 2 could
     // chain A -> B -> C in time, but that route needs 60 cells + 3 x 10 hover = 90 >
     // 80 fuel, so the root relaxation breaks the fuel rule and flow branches on the
@@ -49,16 +46,16 @@ static void test_route_branch_skips_a_stranded_uav(void** state)
     mission.targets[1] = (sva_target_t){2, 20, 0, 40, 45, 1};
     mission.targets[2] = (sva_target_t){3, 30, 0, 60, 65, 1};
     must_plan(SVA_ALGO_FLOW, &plan);
-    assert_true(plan.routes[0].stranded);
-    assert_int_equal(plan.stranded_count, 1);
-    assert_int_equal(plan.covered, 2);
-    assert_int_equal(plan.cost, 40);
-    assert_true(plan.stats.search_nodes > 1U);  // it branched
-    assert_true(plan.stats.optimal);
-    assert_int_equal(plan.stats.lower_bound, 40);
+    TEST_ASSERT_TRUE(plan.routes[0].stranded);
+    TEST_ASSERT_EQUAL_INT(1, plan.stranded_count);
+    TEST_ASSERT_EQUAL_INT(2, plan.covered);
+    TEST_ASSERT_EQUAL_INT(40, plan.cost);
+    TEST_ASSERT_TRUE(plan.stats.search_nodes > 1U);  // it branched
+    TEST_ASSERT_TRUE(plan.stats.optimal);
+    TEST_ASSERT_EQUAL_INT(40, plan.stats.lower_bound);
     must_plan(SVA_ALGO_BFA, &other);  // the exhaustive optimum agrees
-    assert_int_equal(other.covered, plan.covered);
-    assert_int_equal(other.cost, plan.cost);
+    TEST_ASSERT_EQUAL_INT(plan.covered, other.covered);
+    TEST_ASSERT_EQUAL_INT(plan.cost, other.cost);
 }
 
 // Seven targets with distinct prime needs (their lcm is about 5.8e11) at the far
@@ -80,39 +77,37 @@ static void build_prime_needs(bool need_one)
     }
 }
 
-static void test_needs_past_exact_rewards_are_reported(void** state)
+void test_needs_past_exact_rewards_are_reported(void)
 {
-    (void)state;
     if (SVA_MAX_UAVS < 61 || SVA_FLOW_MAX_COPIES < 342) {
-        skip();  // this profile cannot hold needs up to 61
+        TEST_IGNORE();  // this profile cannot hold needs up to 61
     }
     build_prime_needs(false);
     must_plan(SVA_ALGO_FLOW, &plan);
-    assert_int_equal(plan.stats.flow_incomplete,
-                     SVA_FLOW_INCOMPLETE_REWARD);  // needs' lcm too large
-    assert_false(plan.stats.optimal);
-    assert_true(plan.stats.has_bound);
-    assert_true(plan.stats.lower_bound >= 0);
-    assert_true(plan.stats.lower_bound <= plan.cost);
-    assert_int_equal(plan.covered, 1);  // only the need-1 target is within two UAVs
-    assert_int_equal(plan.cost, 14);    // depot -> (3, 4) -> depot: 7 + 7 cells
+    TEST_ASSERT_EQUAL_INT(SVA_FLOW_INCOMPLETE_REWARD,
+                          plan.stats.flow_incomplete);  // needs' lcm too large
+    TEST_ASSERT_FALSE(plan.stats.optimal);
+    TEST_ASSERT_TRUE(plan.stats.has_bound);
+    TEST_ASSERT_TRUE(plan.stats.lower_bound >= 0);
+    TEST_ASSERT_TRUE(plan.stats.lower_bound <= plan.cost);
+    TEST_ASSERT_EQUAL_INT(1, plan.covered);  // only the need-1 target is within two UAVs
+    TEST_ASSERT_EQUAL_INT(14, plan.cost);    // depot -> (3, 4) -> depot: 7 + 7 cells
     must_plan(SVA_ALGO_SVA, &other);
-    assert_false(spec_better(other.covered, other.cost, plan.covered, plan.cost));
+    TEST_ASSERT_FALSE(spec_better(other.covered, other.cost, plan.covered, plan.cost));
 
     // The control: the same mission with need 1 everywhere has exact rewards.
     build_prime_needs(true);
     must_plan(SVA_ALGO_FLOW, &plan);
-    assert_int_not_equal(plan.stats.flow_incomplete, SVA_FLOW_INCOMPLETE_REWARD);
+    TEST_ASSERT_NOT_EQUAL_INT(SVA_FLOW_INCOMPLETE_REWARD, plan.stats.flow_incomplete);
 }
 
-static void test_needs_past_the_copy_bound_fall_back(void** state)
+void test_needs_past_the_copy_bound_fall_back(void)
 {
-    (void)state;
     // need = SVA_MAX_UAVS on every target, one target more than the copies allow.
     const int32_t need = SVA_MAX_UAVS;
     const int32_t targets = ((int32_t)SVA_FLOW_MAX_COPIES / need) + 1;
     if (targets > SVA_MAX_TARGETS) {
-        skip();  // this profile's copy bound holds every mission
+        TEST_IGNORE();  // this profile's copy bound holds every mission
     }
     sva_mission_init(&mission);
     mission.uav_count = (uint16_t)SVA_MAX_UAVS;
@@ -124,25 +119,20 @@ static void test_needs_past_the_copy_bound_fall_back(void** state)
         mission.targets[t] = (sva_target_t){t + 1, 2, 3, (100 * t) + 10, (100 * t) + 20, need};
     }
     must_plan(SVA_ALGO_FLOW, &plan);
-    assert_int_equal(plan.stats.flow_incomplete,
-                     SVA_FLOW_OVER_COPIES);  // needs summed above the bound
-    assert_false(plan.stats.optimal);
-    assert_int_equal(plan.stats.lower_bound, 0);
-    assert_int_equal(plan.stats.flow_graph_arcs, 0);  // no graph was built
+    TEST_ASSERT_EQUAL_INT(SVA_FLOW_OVER_COPIES,
+                          plan.stats.flow_incomplete);  // needs summed above the bound
+    TEST_ASSERT_FALSE(plan.stats.optimal);
+    TEST_ASSERT_EQUAL_INT(0, plan.stats.lower_bound);
+    TEST_ASSERT_EQUAL_INT(0, plan.stats.flow_graph_arcs);  // no graph was built
     must_plan(SVA_ALGO_SVA, &other);
-    assert_false(spec_better(other.covered, other.cost, plan.covered, plan.cost));
+    TEST_ASSERT_FALSE(spec_better(other.covered, other.cost, plan.covered, plan.cost));
     must_plan(SVA_ALGO_GA, &other);
-    assert_false(spec_better(other.covered, other.cost, plan.covered, plan.cost));
-    assert_int_equal(plan.covered, targets);  // every UAV serves every target in turn
+    TEST_ASSERT_FALSE(spec_better(other.covered, other.cost, plan.covered, plan.cost));
+    TEST_ASSERT_EQUAL_INT(targets, plan.covered);  // every UAV serves every target in turn
 }
 
-int main(void)
+// Every test starts from a freshly initialised planner.
+void setUp(void)
 {
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_route_branch_skips_a_stranded_uav),
-        cmocka_unit_test(test_needs_past_exact_rewards_are_reported),
-        cmocka_unit_test(test_needs_past_the_copy_bound_fall_back),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
 }

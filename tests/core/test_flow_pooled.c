@@ -12,13 +12,11 @@
 //   flow takes them as the optimum with no search (search_nodes 0), and brute force
 //   agrees.
 // Seeds are printed and replayable (SVA_TEST_SEED=...).
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
-#include <cmocka.h>
+#include "sva_unity.h"
 
 #include "brute_force.h"
 #include "flow_certificate.h"
@@ -51,9 +49,8 @@ static void next_mission(test_rng_t* rng, int targets_min, int targets_max, bool
     test_gen_mission(rng, &p, &mission);
 }
 
-static void test_pooled_relaxation_equals_the_copies(void** state)
+void test_pooled_relaxation_equals_the_copies(void)
 {
-    (void)state;
     const uint64_t seed = test_seed(0x9001EDULL);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
@@ -66,24 +63,24 @@ static void test_pooled_relaxation_equals_the_copies(void** state)
             continue;  // the copies do not fit this core
         }
         const uint32_t copy_arcs = plan.stats.flow_graph_arcs;
-        assert_true(sva_flow_solve(&priv->flow, &plan.stats));
+        TEST_ASSERT_TRUE(sva_flow_solve(&priv->flow, &plan.stats));
         const int64_t copies_value = priv->flow.value;
-        assert_int_equal(sva_flow_build(priv, &mission, &plan, true, &plan.stats), 0);
-        assert_true(plan.stats.flow_graph_arcs <= copy_arcs);
-        assert_true(sva_flow_solve(&priv->flow, &plan.stats));
+        TEST_ASSERT_EQUAL_INT(0, sva_flow_build(priv, &mission, &plan, true, &plan.stats));
+        TEST_ASSERT_TRUE(plan.stats.flow_graph_arcs <= copy_arcs);
+        TEST_ASSERT_TRUE(sva_flow_solve(&priv->flow, &plan.stats));
         if (priv->flow.value != copies_value) {
-            fail_msg("seed %llu round %d: pooled value %lld, copies %lld", (unsigned long long)seed,
-                     round, (long long)priv->flow.value, (long long)copies_value);
+            SVA_TEST_FAIL("seed %llu round %d: pooled value %lld, copies %lld",
+                          (unsigned long long)seed, round, (long long)priv->flow.value,
+                          (long long)copies_value);
         }
         compared++;
     }
     printf("# pooled and copies' relaxations compared on %d of 400 missions\n", compared);
-    assert_true(compared >= 100);
+    TEST_ASSERT_TRUE(compared >= 100);
 }
 
-static void test_pooled_bounds_and_plans_against_brute_force(void** state)
+void test_pooled_bounds_and_plans_against_brute_force(void)
 {
-    (void)state;
     const uint64_t seed = test_seed(0x9002EDULL);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
@@ -99,20 +96,21 @@ static void test_pooled_bounds_and_plans_against_brute_force(void** state)
         check_against_optimum(&plan, &best, seed, round);
         if ((plan.stats.flow_graph_arcs <= (uint32_t)SVA_FLOW_MAX_ARCS) &&
             (plan.stats.search_nodes == 0U)) {
-            assert_true(plan.stats.optimal);  // and check_against_optimum held it to that
+            TEST_ASSERT_TRUE(plan.stats.optimal);  // and check_against_optimum held it to that
             taken++;
         }
         if (plan.stats.flow_graph_arcs > (uint32_t)SVA_FLOW_MAX_ARCS) {
-            assert_int_equal(plan.stats.flow_incomplete,
-                             plan.stats.optimal ? SVA_FLOW_COMPLETE : SVA_FLOW_OVER_ARCS);
+            TEST_ASSERT_EQUAL_INT(plan.stats.optimal ? SVA_FLOW_COMPLETE : SVA_FLOW_OVER_ARCS,
+                                  plan.stats.flow_incomplete);
             // The pooled routes come first; ga and sva seed it unless they are proven.
             for (int a = 0; a < 2; a++) {
                 const sva_algorithm_t rival = (a == 0) ? SVA_ALGO_SVA : SVA_ALGO_GA;
                 must_plan_checked(&planner, &mission, rival, &other, seed, round);
                 if (spec_better(other.covered, other.cost, plan.covered, plan.cost)) {
-                    fail_msg("seed %llu round %d: flow (%d, %lld) behind %s (%d, %lld)",
-                             (unsigned long long)seed, round, plan.covered, (long long)plan.cost,
-                             (a == 0) ? "sva" : "ga", other.covered, (long long)other.cost);
+                    SVA_TEST_FAIL("seed %llu round %d: flow (%d, %lld) behind %s (%d, %lld)",
+                                  (unsigned long long)seed, round, plan.covered,
+                                  (long long)plan.cost, (a == 0) ? "sva" : "ga", other.covered,
+                                  (long long)other.cost);
                 }
             }
             past++;
@@ -131,16 +129,15 @@ static void test_pooled_bounds_and_plans_against_brute_force(void** state)
            "bound, %d "
            "proven optimal; under it, the pooled root taken on %d\n",
            past, full, bounded, proven, taken);
-    assert_true(taken > 0);
-    assert_true(past >= 100);
-    assert_true(full >= 15);
-    assert_int_equal(bounded, full);
-    assert_true(proven > 0);
+    TEST_ASSERT_TRUE(taken > 0);
+    TEST_ASSERT_TRUE(past >= 100);
+    TEST_ASSERT_TRUE(full >= 15);
+    TEST_ASSERT_EQUAL_INT(full, bounded);
+    TEST_ASSERT_TRUE(proven > 0);
 }
 
-static void test_need_one_past_the_arc_bound_has_no_bound(void** state)
+void test_need_one_past_the_arc_bound_has_no_bound(void)
 {
-    (void)state;
     // 12 chained windows, 2 UAVs, need 1: 2 * 12 + 66 + 12 + 2 = 104 arcs.
     sva_mission_init(&mission);
     mission.uav_count = 2;
@@ -152,26 +149,21 @@ static void test_need_one_past_the_arc_bound_has_no_bound(void** state)
         mission.targets[t] = (sva_target_t){t + 1, t % 3, t % 4, 100 + (20 * t), 105 + (20 * t), 1};
     }
     must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, 0U, 0);
-    assert_true(plan.stats.flow_graph_arcs > (uint32_t)SVA_FLOW_MAX_ARCS);
-    assert_int_equal(plan.stats.flow_incomplete, SVA_FLOW_OVER_ARCS);
-    assert_int_equal(plan.stats.lower_bound, 0);
-    assert_false(plan.stats.optimal);
+    TEST_ASSERT_TRUE(plan.stats.flow_graph_arcs > (uint32_t)SVA_FLOW_MAX_ARCS);
+    TEST_ASSERT_EQUAL_INT(SVA_FLOW_OVER_ARCS, plan.stats.flow_incomplete);
+    TEST_ASSERT_EQUAL_INT(0, plan.stats.lower_bound);
+    TEST_ASSERT_FALSE(plan.stats.optimal);
     // With need 2 the pooled graph holds the same 104 arcs: still past, still no bound.
     for (int32_t t = 0; t < 12; t++) {
         mission.targets[t].need = 2;
     }
     must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, 0U, 1);
-    assert_int_equal(plan.stats.flow_incomplete, SVA_FLOW_OVER_ARCS);
-    assert_int_equal(plan.stats.lower_bound, 0);
+    TEST_ASSERT_EQUAL_INT(SVA_FLOW_OVER_ARCS, plan.stats.flow_incomplete);
+    TEST_ASSERT_EQUAL_INT(0, plan.stats.lower_bound);
 }
 
-int main(void)
+// Every test starts from a freshly initialised planner.
+void setUp(void)
 {
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_pooled_relaxation_equals_the_copies),
-        cmocka_unit_test(test_pooled_bounds_and_plans_against_brute_force),
-        cmocka_unit_test(test_need_one_past_the_arc_bound_has_no_bound),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
 }

@@ -2,15 +2,13 @@
 // visit states, the flight model, every event and every rejected event (the live state
 // byte for byte unchanged), and the replan's candidates and objective. Random live
 // missions check every replan's plan with the independent SPEC checker.
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include <cmocka.h>
+#include "sva_unity.h"
 
 #include "live_gen.h"
 #include "mission_gen.h"
@@ -42,8 +40,8 @@ static void start_hand(int32_t change_penalty)
     plan.routes[0] = (sva_route_t){.uav_id = 1, .target_count = 2U, .targets = {0U, 1U}};
     plan.routes[1] = (sva_route_t){.uav_id = 2, .target_count = 2U, .targets = {0U, 2U}};
     sva_diag_t diag;
-    assert_int_equal(sva_live_init(&live, &mission, &plan, &diag), SVA_OK);
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_live_init(&live, &mission, &plan, &diag));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
 }
 
 static void apply_ok(sva_event_t e)
@@ -53,7 +51,8 @@ static void apply_ok(sva_event_t e)
     const sva_status_t status = sva_live_apply(&live, &e, &diag);
     (void)sva_diag_format(&diag, msg, sizeof msg);
     if (status != SVA_OK) {
-        fail_msg("event %s at %d rejected: %s", sva_event_type_name(e.type), (int)e.at_ticks, msg);
+        SVA_TEST_FAIL("event %s at %d rejected: %s", sva_event_type_name(e.type), (int)e.at_ticks,
+                      msg);
     }
 }
 
@@ -64,7 +63,7 @@ static sva_target_state_t state_of(int32_t id)
             return (sva_target_state_t)live.target_state[i];
         }
     }
-    fail_msg("no target %d", (int)id);
+    SVA_TEST_FAIL("no target %d", (int)id);
     return SVA_TARGET_STATE_COUNT_;
 }
 
@@ -72,11 +71,11 @@ static void replan_ok(sva_algorithm_t algo, sva_live_result_t* result)
 {
     sva_diag_t diag;
     char msg[200];
-    assert_int_equal(sva_live_replan(&live, &planner, algo, result, &diag), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_live_replan(&live, &planner, algo, result, &diag));
     if (spec_check_plan(result->residual, result->plan, msg, sizeof msg) != 0) {
-        fail_msg("replan (%s) breaks SPEC: %s", sva_algorithm_name(algo), msg);
+        SVA_TEST_FAIL("replan (%s) breaks SPEC: %s", sva_algorithm_name(algo), msg);
     }
-    assert_int_equal(result->covered, result->under_way + result->plan->covered);
+    TEST_ASSERT_EQUAL_INT(result->under_way + result->plan->covered, result->covered);
 }
 
 // The residual target index of target `id`, or -1.
@@ -90,75 +89,72 @@ static int residual_index(const sva_live_result_t* r, int32_t id)
     return -1;
 }
 
-static void test_flight_model_and_clock(void** state)
+void test_flight_model_and_clock(void)
 {
-    (void)state;
     start_hand(0);
     int32_t x = 0;
     int32_t y = 0;
     int32_t fuel = 0;
     int32_t ready = 0;
     // x first: 3 cells east at tick 3.
-    assert_true(sva_live_uav_at(&live, 0U, 3, &x, &y, &fuel, &ready));
-    assert_int_equal(x, 3);
-    assert_int_equal(y, 0);
-    assert_int_equal(fuel, 97);
-    assert_int_equal(ready, 3);
-    assert_int_equal(state_of(1), SVA_TARGET_WAITING);
+    TEST_ASSERT_TRUE(sva_live_uav_at(&live, 0U, 3, &x, &y, &fuel, &ready));
+    TEST_ASSERT_EQUAL_INT(3, x);
+    TEST_ASSERT_EQUAL_INT(0, y);
+    TEST_ASSERT_EQUAL_INT(97, fuel);
+    TEST_ASSERT_EQUAL_INT(3, ready);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_WAITING, state_of(1));
     apply_ok(test_event_at(SVA_EVENT_CLOCK, 10));
-    assert_int_equal(state_of(1), SVA_TARGET_UNDER_WAY);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_UNDER_WAY, state_of(1));
     // Under way: at the target until the window ends.
-    assert_true(sva_live_uav_at(&live, 1U, 12, &x, &y, &fuel, &ready));
-    assert_int_equal(x, 5);
-    assert_int_equal(ready, 20);
+    TEST_ASSERT_TRUE(sva_live_uav_at(&live, 1U, 12, &x, &y, &fuel, &ready));
+    TEST_ASSERT_EQUAL_INT(5, x);
+    TEST_ASSERT_EQUAL_INT(20, ready);
     apply_ok(test_event_at(SVA_EVENT_CLOCK, 20));
-    assert_int_equal(state_of(1), SVA_TARGET_DONE);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_DONE, state_of(1));
     // UAV 2 leaves T1 at 20 for T3 (1, 6): 4 cells west first, then north.
-    assert_true(sva_live_uav_at(&live, 1U, 27, &x, &y, &fuel, &ready));
-    assert_int_equal(x, 1);
-    assert_int_equal(y, 3);
+    TEST_ASSERT_TRUE(sva_live_uav_at(&live, 1U, 27, &x, &y, &fuel, &ready));
+    TEST_ASSERT_EQUAL_INT(1, x);
+    TEST_ASSERT_EQUAL_INT(3, y);
     apply_ok(test_event_at(SVA_EVENT_CLOCK, 45));
-    assert_int_equal(state_of(2), SVA_TARGET_DONE);
-    assert_int_equal(state_of(3), SVA_TARGET_DONE);
-    assert_int_equal(live.revision, 3U);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_DONE, state_of(2));
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_DONE, state_of(3));
+    TEST_ASSERT_EQUAL_INT(3U, live.revision);
 }
 
-static void test_lost_uav_breaks_visit_under_way(void** state)
+void test_lost_uav_breaks_visit_under_way(void)
 {
-    (void)state;
     start_hand(0);
     sva_event_t lost = test_event_at(SVA_EVENT_UAV_LOST, 15);
     lost.uav_id = 1;
     apply_ok(lost);
     // T1 was under way with both UAVs: it can no longer be covered; UAV 2 is free now.
-    assert_int_equal(state_of(1), SVA_TARGET_LOST);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_LOST, state_of(1));
     int32_t x = 0;
     int32_t y = 0;
     int32_t fuel = 0;
     int32_t ready = 0;
-    assert_true(sva_live_uav_at(&live, 1U, 15, &x, &y, &fuel, &ready));
-    assert_int_equal(x, 5);
-    assert_int_equal(y, 0);
-    assert_int_equal(ready, 15);
-    assert_false(sva_live_uav_at(&live, 0U, 15, &x, &y, &fuel, &ready));
+    TEST_ASSERT_TRUE(sva_live_uav_at(&live, 1U, 15, &x, &y, &fuel, &ready));
+    TEST_ASSERT_EQUAL_INT(5, x);
+    TEST_ASSERT_EQUAL_INT(0, y);
+    TEST_ASSERT_EQUAL_INT(15, ready);
+    TEST_ASSERT_FALSE(sva_live_uav_at(&live, 0U, 15, &x, &y, &fuel, &ready));
     sva_live_result_t r;
     replan_ok(SVA_ALGO_FLOW, &r);
-    assert_int_equal(r.residual->uav_count, 1);
-    assert_int_equal(r.residual->uavs[0].ready_at_ticks, 15);
-    assert_int_equal(r.residual->target_count, 2);
+    TEST_ASSERT_EQUAL_INT(1, r.residual->uav_count);
+    TEST_ASSERT_EQUAL_INT(15, r.residual->uavs[0].ready_at_ticks);
+    TEST_ASSERT_EQUAL_INT(2, r.residual->target_count);
     // One UAV, two windows at once: one target. Change penalty 0: the cheaper T2
     // (5 + 10) beats keeping T3 (10 + 7): two changed visits.
-    assert_int_equal(r.plan->covered, 1);
-    assert_false(r.kept);
-    assert_int_equal(r.plan->cost, 15);
-    assert_int_equal(r.dropped, 1U);
-    assert_int_equal(r.added, 1U);
-    assert_int_equal(r.objective, 15);
+    TEST_ASSERT_EQUAL_INT(1, r.plan->covered);
+    TEST_ASSERT_FALSE(r.kept);
+    TEST_ASSERT_EQUAL_INT(15, r.plan->cost);
+    TEST_ASSERT_EQUAL_INT(1U, r.dropped);
+    TEST_ASSERT_EQUAL_INT(1U, r.added);
+    TEST_ASSERT_EQUAL_INT(15, r.objective);
 }
 
-static void test_change_penalty_keeps_standing_visits(void** state)
+void test_change_penalty_keeps_standing_visits(void)
 {
-    (void)state;
     start_hand(10);
     sva_event_t lost = test_event_at(SVA_EVENT_UAV_LOST, 15);
     lost.uav_id = 1;
@@ -166,99 +162,96 @@ static void test_change_penalty_keeps_standing_visits(void** state)
     sva_live_result_t r;
     replan_ok(SVA_ALGO_FLOW, &r);
     // 17 for keeping T3 against 15 + 2 * 10 for switching to T2.
-    assert_true(r.kept);
-    assert_int_equal(r.plan->cost, 17);
-    assert_int_equal(r.dropped + r.added, 0U);
-    assert_int_equal(r.objective, 17);
+    TEST_ASSERT_TRUE(r.kept);
+    TEST_ASSERT_EQUAL_INT(17, r.plan->cost);
+    TEST_ASSERT_EQUAL_INT(0U, r.dropped + r.added);
+    TEST_ASSERT_EQUAL_INT(17, r.objective);
     const int t3 = residual_index(&r, 3);
-    assert_true(t3 >= 0);
-    assert_int_equal(r.plan->routes[0].target_count, 1);
-    assert_int_equal(r.plan->routes[0].targets[0], t3);
+    TEST_ASSERT_TRUE(t3 >= 0);
+    TEST_ASSERT_EQUAL_INT(1, r.plan->routes[0].target_count);
+    TEST_ASSERT_EQUAL_INT(t3, r.plan->routes[0].targets[0]);
     // The kept plan is the plan in force now: flying on, T3 is covered.
     apply_ok(test_event_at(SVA_EVENT_CLOCK, 41));
-    assert_int_equal(state_of(3), SVA_TARGET_DONE);
-    assert_int_equal(state_of(2), SVA_TARGET_EXPIRED);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_DONE, state_of(3));
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_EXPIRED, state_of(2));
 }
 
-static void test_replan_keeps_visits_under_way(void** state)
+void test_replan_keeps_visits_under_way(void)
 {
-    (void)state;
     start_hand(0);
     apply_ok(test_event_at(SVA_EVENT_CLOCK, 12));
     for (int algo = 0; algo < (int)SVA_ALGO_COUNT_; algo++) {
         sva_live_result_t r;
         replan_ok((sva_algorithm_t)algo, &r);
         // T1 is under way: not in the residual mission; both UAVs wait there until 20.
-        assert_int_equal(residual_index(&r, 1), -1);
-        assert_int_equal(r.under_way, 1);
+        TEST_ASSERT_EQUAL_INT(-1, residual_index(&r, 1));
+        TEST_ASSERT_EQUAL_INT(1, r.under_way);
         for (uint16_t u = 0U; u < 2U; u++) {
-            assert_int_equal(r.residual->uavs[u].x, 5);
-            assert_int_equal(r.residual->uavs[u].ready_at_ticks, 20);
+            TEST_ASSERT_EQUAL_INT(5, r.residual->uavs[u].x);
+            TEST_ASSERT_EQUAL_INT(20, r.residual->uavs[u].ready_at_ticks);
         }
-        assert_int_equal(r.covered, 3);
-        assert_int_equal(state_of(1), SVA_TARGET_UNDER_WAY);
+        TEST_ASSERT_EQUAL_INT(3, r.covered);
+        TEST_ASSERT_EQUAL_INT(SVA_TARGET_UNDER_WAY, state_of(1));
     }
     apply_ok(test_event_at(SVA_EVENT_CLOCK, 45));
-    assert_int_equal(state_of(1), SVA_TARGET_DONE);
-    assert_int_equal(state_of(2), SVA_TARGET_DONE);
-    assert_int_equal(state_of(3), SVA_TARGET_DONE);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_DONE, state_of(1));
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_DONE, state_of(2));
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_DONE, state_of(3));
 }
 
-static void test_targets_added_cancelled_changed(void** state)
+void test_targets_added_cancelled_changed(void)
 {
-    (void)state;
     start_hand(0);
     sva_event_t added = test_event_at(SVA_EVENT_TARGET_ADDED, 5);
     added.target = (sva_target_t){9, 2, 2, 50, 60, 1};
     apply_ok(added);
-    assert_int_equal(live.mission.target_count, 4);
+    TEST_ASSERT_EQUAL_INT(4, live.mission.target_count);
     sva_live_result_t r;
     replan_ok(SVA_ALGO_FLOW, &r);
-    assert_true(residual_index(&r, 9) >= 0);
-    assert_int_equal(r.covered, 4);
-    assert_int_equal(r.added, 1U);
+    TEST_ASSERT_TRUE(residual_index(&r, 9) >= 0);
+    TEST_ASSERT_EQUAL_INT(4, r.covered);
+    TEST_ASSERT_EQUAL_INT(1U, r.added);
     // Cancel T2 before its start: the UAV going there is free.
     sva_event_t cancel = test_event_at(SVA_EVENT_TARGET_CANCELLED, 25);
     cancel.target.id = 2;
     apply_ok(cancel);
-    assert_int_equal(state_of(2), SVA_TARGET_CANCELLED);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_CANCELLED, state_of(2));
     replan_ok(SVA_ALGO_FLOW, &r);
-    assert_int_equal(residual_index(&r, 2), -1);
+    TEST_ASSERT_EQUAL_INT(-1, residual_index(&r, 2));
     // T3 moves before its start; the replan flies to its new place.
     sva_event_t moved = test_event_at(SVA_EVENT_TARGET_CHANGED, 26);
     moved.target = (sva_target_t){3, 2, 7, 33, 40, 1};
     apply_ok(moved);
     replan_ok(SVA_ALGO_FLOW, &r);
     const int t3 = residual_index(&r, 3);
-    assert_true(t3 >= 0);
-    assert_int_equal(r.residual->targets[t3].x, 2);
-    assert_int_equal(r.residual->targets[t3].start_ticks, 33);
+    TEST_ASSERT_TRUE(t3 >= 0);
+    TEST_ASSERT_EQUAL_INT(2, r.residual->targets[t3].x);
+    TEST_ASSERT_EQUAL_INT(33, r.residual->targets[t3].start_ticks);
     apply_ok(test_event_at(SVA_EVENT_CLOCK, 61));
-    assert_int_equal(state_of(3), SVA_TARGET_DONE);
-    assert_int_equal(state_of(9), SVA_TARGET_DONE);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_DONE, state_of(3));
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_DONE, state_of(9));
 }
 
-static void test_uav_back_and_fuel(void** state)
+void test_uav_back_and_fuel(void)
 {
-    (void)state;
     start_hand(0);
     sva_event_t lost = test_event_at(SVA_EVENT_UAV_LOST, 2);
     lost.uav_id = 2;
     apply_ok(lost);
     // T1 needs two UAVs: with one lost before its start it can no longer be covered.
-    assert_int_equal(state_of(1), SVA_TARGET_EXPIRED);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_EXPIRED, state_of(1));
     sva_event_t back = test_event_at(SVA_EVENT_UAV_BACK, 3);
     back.uav_id = 2;
     back.x = 4;
     back.y = 0;
     back.fuel = 50;
     apply_ok(back);
-    assert_int_equal(state_of(1), SVA_TARGET_WAITING);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_WAITING, state_of(1));
     sva_live_result_t r;
     replan_ok(SVA_ALGO_FLOW, &r);
-    assert_int_equal(r.residual->uavs[1].x, 4);
-    assert_int_equal(r.residual->uavs[1].fuel, 50);
-    assert_int_equal(r.covered, 3);
+    TEST_ASSERT_EQUAL_INT(4, r.residual->uavs[1].x);
+    TEST_ASSERT_EQUAL_INT(50, r.residual->uavs[1].fuel);
+    TEST_ASSERT_EQUAL_INT(3, r.covered);
     // A fuel reading too low for the rest of a route: the replan drops what does not fit.
     sva_event_t fuel = test_event_at(SVA_EVENT_FUEL, 4);
     fuel.uav_id = 1;
@@ -268,11 +261,11 @@ static void test_uav_back_and_fuel(void** state)
     int32_t y = 0;
     int32_t f = 0;
     int32_t ready = 0;
-    assert_true(sva_live_uav_at(&live, 0U, 4, &x, &y, &f, &ready));
-    assert_int_equal(f, 12);
+    TEST_ASSERT_TRUE(sva_live_uav_at(&live, 0U, 4, &x, &y, &f, &ready));
+    TEST_ASSERT_EQUAL_INT(12, f);
     replan_ok(SVA_ALGO_FLOW, &r);
-    assert_true(r.plan->routes[0].fuel_used <= 12);
-    assert_int_equal(r.residual->uavs[0].fuel, 12);
+    TEST_ASSERT_TRUE(r.plan->routes[0].fuel_used <= 12);
+    TEST_ASSERT_EQUAL_INT(12, r.residual->uavs[0].fuel);
 }
 
 static void position_ok(int32_t at, int32_t uav, int32_t x, int32_t y, int32_t fuel)
@@ -291,18 +284,17 @@ static void assert_uav_at(uint16_t u, int32_t at, int32_t x, int32_t y, int32_t 
     int32_t gy = 0;
     int32_t gf = 0;
     int32_t gr = 0;
-    assert_true(sva_live_uav_at(&live, u, at, &gx, &gy, &gf, &gr));
-    assert_int_equal(gx, x);
-    assert_int_equal(gy, y);
-    assert_int_equal(gf, fuel);
-    assert_int_equal(gr, ready);
+    TEST_ASSERT_TRUE(sva_live_uav_at(&live, u, at, &gx, &gy, &gf, &gr));
+    TEST_ASSERT_EQUAL_INT(x, gx);
+    TEST_ASSERT_EQUAL_INT(y, gy);
+    TEST_ASSERT_EQUAL_INT(fuel, gf);
+    TEST_ASSERT_EQUAL_INT(ready, gr);
 }
 
 // A position report rebases the UAV: its route goes on from there, and a UAV reported
 // off its target's cell during a visit under way breaks that visit.
-static void test_position_event(void** state)
+void test_position_event(void)
 {
-    (void)state;
     start_hand(0);
     assert_uav_at(0U, 3, 3, 0, 97, 3);
     position_ok(3, 1, 0, 3, 90);
@@ -311,30 +303,30 @@ static void test_position_event(void** state)
     assert_uav_at(0U, 4, 1, 3, 89, 4);
     // 8 cells from (0, 3) to T1 at (5, 0): arriving at 11, after T1's start; with one
     // UAV able to be there in time, T1 (need 2) can no longer be covered.
-    assert_int_equal(state_of(1), SVA_TARGET_EXPIRED);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_EXPIRED, state_of(1));
     sva_live_result_t r;
     replan_ok(SVA_ALGO_FLOW, &r);
-    assert_int_equal(r.residual->uavs[0].x, 0);
-    assert_int_equal(r.residual->uavs[0].y, 3);
-    assert_int_equal(r.residual->uavs[0].fuel, 90);
+    TEST_ASSERT_EQUAL_INT(0, r.residual->uavs[0].x);
+    TEST_ASSERT_EQUAL_INT(3, r.residual->uavs[0].y);
+    TEST_ASSERT_EQUAL_INT(90, r.residual->uavs[0].fuel);
 
     start_hand(0);
     apply_ok(test_event_at(SVA_EVENT_CLOCK, 12));
-    assert_int_equal(state_of(1), SVA_TARGET_UNDER_WAY);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_UNDER_WAY, state_of(1));
     // On station: only the fuel changes; the visit goes on until its end.
     position_ok(13, 2, 5, 0, 70);
-    assert_int_equal(state_of(1), SVA_TARGET_UNDER_WAY);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_UNDER_WAY, state_of(1));
     assert_uav_at(1U, 13, 5, 0, 70, 20);
     // Off station during the visit: T1 is lost, both UAVs are free now.
     position_ok(14, 1, 6, 0, 80);
-    assert_int_equal(state_of(1), SVA_TARGET_LOST);
+    TEST_ASSERT_EQUAL_INT(SVA_TARGET_LOST, state_of(1));
     assert_uav_at(0U, 14, 6, 0, 80, 14);
     assert_uav_at(1U, 14, 5, 0, 70, 14);
     replan_ok(SVA_ALGO_FLOW, &r);
-    assert_int_equal(residual_index(&r, 1), -1);
-    assert_int_equal(r.under_way, 0);
-    assert_int_equal(r.covered, 2);
-    assert_int_equal(live.revision, 3U);
+    TEST_ASSERT_EQUAL_INT(-1, residual_index(&r, 1));
+    TEST_ASSERT_EQUAL_INT(0, r.under_way);
+    TEST_ASSERT_EQUAL_INT(2, r.covered);
+    TEST_ASSERT_EQUAL_INT(3U, live.revision);
 }
 
 // A rejected event: the status, the message, and the live state byte for byte.
@@ -343,15 +335,14 @@ static void rejected(sva_event_t e, const char* message)
     sva_diag_t diag;
     char msg[200];
     (void)memcpy(&before, &live, sizeof(live));
-    assert_int_equal(sva_live_apply(&live, &e, &diag), SVA_ERR_INVALID);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_live_apply(&live, &e, &diag));
     (void)sva_diag_format(&diag, msg, sizeof msg);
-    assert_string_equal(msg, message);
-    assert_memory_equal(&live, &before, sizeof(live));
+    TEST_ASSERT_EQUAL_STRING(message, msg);
+    TEST_ASSERT_EQUAL_MEMORY(&before, &live, sizeof(live));
 }
 
-static void test_rejected_events_change_nothing(void** state)
+void test_rejected_events_change_nothing(void)
 {
-    (void)state;
     start_hand(0);
     apply_ok(test_event_at(SVA_EVENT_CLOCK, 12));
     sva_event_t lost = test_event_at(SVA_EVENT_UAV_LOST, 13);
@@ -420,34 +411,33 @@ static void test_rejected_events_change_nothing(void** state)
     rejected(e, "event.target: the target is done");
 }
 
-static void test_rejected_starts(void** state)
+void test_rejected_starts(void)
 {
-    (void)state;
     start_hand(0);
     sva_diag_t diag;
     char msg[160];
     mission.change_penalty = -1;
-    assert_int_equal(sva_live_init(&live, &mission, &plan, &diag), SVA_ERR_INVALID);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_live_init(&live, &mission, &plan, &diag));
     (void)sva_diag_format(&diag, msg, sizeof msg);
-    assert_string_equal(msg, "change_penalty: must be >= 0, got -1");
+    TEST_ASSERT_EQUAL_STRING("change_penalty: must be >= 0, got -1", msg);
     mission.change_penalty = 2000000;
-    assert_int_equal(sva_live_init(&live, &mission, &plan, &diag), SVA_ERR_INVALID);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_live_init(&live, &mission, &plan, &diag));
     (void)sva_diag_format(&diag, msg, sizeof msg);
-    assert_string_equal(msg,
-                        "change_penalty: must be <= SVA_MAX_CHANGE_PENALTY (1000000), got 2000000");
+    TEST_ASSERT_EQUAL_STRING(
+        "change_penalty: must be <= SVA_MAX_CHANGE_PENALTY (1000000), got 2000000", msg);
     mission.change_penalty = 0;
     plan.routes[1].targets[1] = 0U;
-    assert_int_equal(sva_live_init(&live, &mission, &plan, &diag), SVA_ERR_INVALID);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_live_init(&live, &mission, &plan, &diag));
     (void)sva_diag_format(&diag, msg, sizeof msg);
-    assert_string_equal(msg, "routes[1].targets: duplicate id 1 (first at index 0)");
+    TEST_ASSERT_EQUAL_STRING("routes[1].targets: duplicate id 1 (first at index 0)", msg);
     plan.routes[1].targets[1] = 7U;
-    assert_int_equal(sva_live_init(&live, &mission, &plan, &diag), SVA_ERR_INVALID);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_live_init(&live, &mission, &plan, &diag));
     (void)sva_diag_format(&diag, msg, sizeof msg);
-    assert_string_equal(msg, "routes[1].targets: must be <= 2, got 7");
+    TEST_ASSERT_EQUAL_STRING("routes[1].targets: must be <= 2, got 7", msg);
     plan.routes[1].uav_id = 5;
-    assert_int_equal(sva_live_init(&live, &mission, &plan, &diag), SVA_ERR_INVALID);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_live_init(&live, &mission, &plan, &diag));
     (void)sva_diag_format(&diag, msg, sizeof msg);
-    assert_string_equal(msg, "routes[1].uav: must follow the mission's UAVs (2), got 5");
+    TEST_ASSERT_EQUAL_STRING("routes[1].uav: must follow the mission's UAVs (2), got 5", msg);
 }
 
 // The plan in force carried over, recomputed here from SPEC section 1 alone: the
@@ -516,9 +506,8 @@ static int carried_coverage(const sva_mission_t* m, const sva_plan_t* previous)
 // algorithm that fits. Every replan's plan passes the SPEC checker on its residual
 // mission, never covers fewer targets than the plan in force carried over, and keeps
 // the visits under way out of the residual mission.
-static void test_random_live_missions(void** state)
+void test_random_live_missions(void)
 {
-    (void)state;
     const uint64_t seed = test_seed(20261125U);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
@@ -529,12 +518,12 @@ static void test_random_live_missions(void** state)
             continue;
         }
         const sva_algorithm_t algo = (sva_algorithm_t)(n % (int)SVA_ALGO_COUNT_);
-        assert_int_equal(sva_planner_init(&planner), SVA_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
         if (sva_plan(&planner, &mission, algo, &plan, NULL) != SVA_OK) {
             continue;
         }
         mission.change_penalty = test_rng_range(&rng, 0, 1) * 50;
-        assert_int_equal(sva_live_init(&live, &mission, &plan, NULL), SVA_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_OK, sva_live_init(&live, &mission, &plan, NULL));
         int32_t at = 0;
         for (int k = 0; k < 6; k++) {
             at += test_rng_range(&rng, 1, 12);
@@ -543,7 +532,7 @@ static void test_random_live_missions(void** state)
             sva_diag_t diag;
             (void)memcpy(&before, &live, sizeof(live));
             if (sva_live_apply(&live, &e, &diag) != SVA_OK) {
-                assert_memory_equal(&live, &before, sizeof(live));
+                TEST_ASSERT_EQUAL_MEMORY(&before, &live, sizeof(live));
                 continue;
             }
             sva_live_result_t r;
@@ -552,40 +541,23 @@ static void test_random_live_missions(void** state)
             }
             char msg[200];
             if (spec_check_plan(r.residual, r.plan, msg, sizeof msg) != 0) {
-                fail_msg("seed %llu mission %d event %d (%s): %s", (unsigned long long)seed, n, k,
-                         sva_algorithm_name(algo), msg);
+                SVA_TEST_FAIL("seed %llu mission %d event %d (%s): %s", (unsigned long long)seed, n,
+                              k, sva_algorithm_name(algo), msg);
             }
             if ((int)r.plan->covered < carried_coverage(r.residual, r.previous)) {
-                fail_msg("seed %llu mission %d event %d (%s): covers %d, the plan in force %d",
-                         (unsigned long long)seed, n, k, sva_algorithm_name(algo),
-                         (int)r.plan->covered, carried_coverage(r.residual, r.previous));
+                SVA_TEST_FAIL("seed %llu mission %d event %d (%s): covers %d, the plan in force %d",
+                              (unsigned long long)seed, n, k, sva_algorithm_name(algo),
+                              (int)r.plan->covered, carried_coverage(r.residual, r.previous));
             }
             for (uint16_t i = 0U; i < r.residual->target_count; i++) {
                 const sva_target_t* t = &r.residual->targets[i];
-                assert_true(t->start_ticks >= r.now_ticks);
-                assert_int_equal(state_of(t->id), SVA_TARGET_WAITING);
+                TEST_ASSERT_TRUE(t->start_ticks >= r.now_ticks);
+                TEST_ASSERT_EQUAL_INT(SVA_TARGET_WAITING, state_of(t->id));
             }
             replans++;
         }
     }
     printf("random live missions (seed %llu): %d replans checked\n", (unsigned long long)seed,
            replans);
-    assert_true(replans > 50);
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_flight_model_and_clock),
-        cmocka_unit_test(test_lost_uav_breaks_visit_under_way),
-        cmocka_unit_test(test_change_penalty_keeps_standing_visits),
-        cmocka_unit_test(test_replan_keeps_visits_under_way),
-        cmocka_unit_test(test_targets_added_cancelled_changed),
-        cmocka_unit_test(test_uav_back_and_fuel),
-        cmocka_unit_test(test_position_event),
-        cmocka_unit_test(test_rejected_events_change_nothing),
-        cmocka_unit_test(test_rejected_starts),
-        cmocka_unit_test(test_random_live_missions),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    TEST_ASSERT_TRUE(replans > 50);
 }

@@ -3,15 +3,13 @@
 // flow keeps the standing visits that still fit and adds what it can; without either it
 // plans as sva_plan() always has. Under its replan budget (flow_replan_work) it covers
 // as many targets as with its full budget.
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include <cmocka.h>
+#include "sva_unity.h"
 
 #include "live_gen.h"
 #include "mission_gen.h"
@@ -147,82 +145,79 @@ static void pop_up(int32_t change_penalty, sva_live_result_t* r)
     plan.routes[0] = (sva_route_t){.uav_id = 1, .target_count = 2U, .targets = {0U, 3U}};
     plan.routes[1] = (sva_route_t){.uav_id = 2, .target_count = 2U, .targets = {1U, 2U}};
     sva_diag_t diag;
-    assert_int_equal(sva_live_init(&live, &mission, &plan, &diag), SVA_OK);
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_live_init(&live, &mission, &plan, &diag));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
     sva_event_t e = test_event_at(SVA_EVENT_TARGET_ADDED, 1);
     e.target = (sva_target_t){5, 5, 0, 10, 12, 1};
-    assert_int_equal(sva_live_apply(&live, &e, &diag), SVA_OK);
-    assert_int_equal(sva_live_replan(&live, &planner, SVA_ALGO_FLOW, r, &diag), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_live_apply(&live, &e, &diag));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_live_replan(&live, &planner, SVA_ALGO_FLOW, r, &diag));
     char msg[200];
     if (spec_check_plan(r->residual, r->plan, msg, sizeof msg) != 0) {
-        fail_msg("replan breaks SPEC: %s", msg);
+        SVA_TEST_FAIL("replan breaks SPEC: %s", msg);
     }
-    assert_null(planner.standing);  // set for the replan's sva_plan() only
+    TEST_ASSERT_NULL(planner.standing);  // set for the replan's sva_plan() only
 }
 
-static void test_pop_up_without_penalty_reshuffles(void** state)
+void test_pop_up_without_penalty_reshuffles(void)
 {
-    (void)state;
     sva_live_result_t r;
     pop_up(0, &r);
-    assert_int_equal(r.covered, 5U);
+    TEST_ASSERT_EQUAL_INT(5U, r.covered);
     // The cheapest plan: UAV 1 T5, T1, T3 and UAV 2 T2, T4; T3 and T4 change hands.
-    assert_false(r.kept);
-    assert_int_equal(r.dropped, 2U);
-    assert_int_equal(r.added, 3U);
+    TEST_ASSERT_FALSE(r.kept);
+    TEST_ASSERT_EQUAL_INT(2U, r.dropped);
+    TEST_ASSERT_EQUAL_INT(3U, r.added);
 }
 
-static void test_pop_up_large_penalty_keeps_standing_visits(void** state)
+void test_pop_up_large_penalty_keeps_standing_visits(void)
 {
-    (void)state;
     sva_live_result_t r;
     pop_up(LARGE_PENALTY, &r);
     // Every standing visit stays and target 5 joins: one target more, nothing dropped.
-    assert_int_equal(r.covered, 5U);
-    assert_int_equal(carry(r.residual, r.previous), 4);
-    assert_int_equal(r.plan->covered, 5U);
-    assert_false(r.kept);
-    assert_int_equal(r.dropped, 0U);
-    assert_int_equal(r.added, 1U);
-    assert_true(keeps_all(r.previous, r.plan));
+    TEST_ASSERT_EQUAL_INT(5U, r.covered);
+    TEST_ASSERT_EQUAL_INT(4, carry(r.residual, r.previous));
+    TEST_ASSERT_EQUAL_INT(5U, r.plan->covered);
+    TEST_ASSERT_FALSE(r.kept);
+    TEST_ASSERT_EQUAL_INT(0U, r.dropped);
+    TEST_ASSERT_EQUAL_INT(1U, r.added);
+    TEST_ASSERT_TRUE(keeps_all(r.previous, r.plan));
     const int t5 = 4;
-    assert_int_equal(r.residual->targets[t5].id, 5);
-    assert_true(has_visit(&r.plan->routes[0], (uint16_t)t5));
-    assert_int_equal(r.objective, r.plan->cost + LARGE_PENALTY);
+    TEST_ASSERT_EQUAL_INT(5, r.residual->targets[t5].id);
+    TEST_ASSERT_TRUE(has_visit(&r.plan->routes[0], (uint16_t)t5));
+    TEST_ASSERT_EQUAL_INT(r.plan->cost + LARGE_PENALTY, r.objective);
 }
 
 // flow alone, the standing plan set or not: with no penalty the standing plan only
 // seeds the search (under flow_replan_work), which still proves the same optimum.
-static void test_no_penalty_standing_only_seeds(void** state)
+void test_no_penalty_standing_only_seeds(void)
 {
-    (void)state;
     sva_live_result_t r;
     pop_up(0, &r);
     (void)carry(r.residual, r.previous);
-    assert_int_equal(sva_plan(&planner, r.residual, SVA_ALGO_FLOW, &fresh, NULL), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&planner, r.residual, SVA_ALGO_FLOW, &fresh, NULL));
     planner.standing = &carried;
-    assert_int_equal(sva_plan(&planner, r.residual, SVA_ALGO_FLOW, &again, NULL), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&planner, r.residual, SVA_ALGO_FLOW, &again, NULL));
     planner.standing = NULL;
-    assert_true(fresh.stats.optimal);
-    assert_true(again.stats.optimal);
-    assert_int_equal(again.covered, fresh.covered);
-    assert_int_equal(again.cost, fresh.cost);
+    TEST_ASSERT_TRUE(fresh.stats.optimal);
+    TEST_ASSERT_TRUE(again.stats.optimal);
+    TEST_ASSERT_EQUAL_INT(fresh.covered, again.covered);
+    TEST_ASSERT_EQUAL_INT(fresh.cost, again.cost);
     // With the penalty and no standing plan, the same again.
     mission = *r.residual;
     mission.change_penalty = LARGE_PENALTY;
-    assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_FLOW, &again, NULL), SVA_OK);
-    assert_memory_equal(&fresh, &again, sizeof(fresh));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&planner, &mission, SVA_ALGO_FLOW, &again, NULL));
+    TEST_ASSERT_EQUAL_MEMORY(&again, &fresh, sizeof(fresh));
     // With both, the standing visits stay (they all fit) and target 5 joins them.
     planner.standing = &carried;
-    assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_FLOW, &again, NULL), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&planner, &mission, SVA_ALGO_FLOW, &again, NULL));
     planner.standing = NULL;
-    assert_int_equal(again.covered, fresh.covered);
-    assert_int_equal(changes(&carried, &again), 1);
-    assert_true(keeps_all(&carried, &again));
-    assert_true(again.cost > fresh.cost);
-    assert_true(again.stats.has_bound);
-    assert_false(again.stats.optimal);  // the cheapest plan is fresh's
-    assert_true(again.stats.lower_bound <= fresh.cost);
+    TEST_ASSERT_EQUAL_INT(fresh.covered, again.covered);
+    TEST_ASSERT_EQUAL_INT(1, changes(&carried, &again));
+    TEST_ASSERT_TRUE(keeps_all(&carried, &again));
+    TEST_ASSERT_TRUE(again.cost > fresh.cost);
+    TEST_ASSERT_TRUE(again.stats.has_bound);
+    TEST_ASSERT_FALSE(again.stats.optimal);  // the cheapest plan is fresh's
+    TEST_ASSERT_TRUE(again.stats.lower_bound <= fresh.cost);
 }
 
 // Random live missions with a large penalty and random events: after each replan,
@@ -230,9 +225,8 @@ static void test_no_penalty_standing_only_seeds(void** state)
 // targets, keeps every carried visit unless it covers more, and never has more changed
 // visits against the plan in force than the carried plan's forced ones unless it covers
 // more. The live replan never drops a visit the carried plan keeps unless it covers more.
-static void test_random_large_penalty(void** state)
+void test_random_large_penalty(void)
 {
-    (void)state;
     const uint64_t seed = test_seed(20261126U);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
@@ -243,13 +237,13 @@ static void test_random_large_penalty(void** state)
         if ((mission.target_count > SVA_MAX_TARGETS - 4) || (mission.uav_count > SVA_MAX_UAVS)) {
             continue;
         }
-        assert_int_equal(sva_planner_init(&planner), SVA_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
         // A plan in force from ga: cheap, and often far from flow's.
         if (sva_plan(&planner, &mission, SVA_ALGO_GA, &plan, NULL) != SVA_OK) {
             continue;
         }
         mission.change_penalty = LARGE_PENALTY;
-        assert_int_equal(sva_live_init(&live, &mission, &plan, NULL), SVA_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_OK, sva_live_init(&live, &mission, &plan, NULL));
         int32_t at = 0;
         for (int k = 0; k < 6; k++) {
             at += test_rng_range(&rng, 1, 12);
@@ -258,30 +252,34 @@ static void test_random_large_penalty(void** state)
                 continue;
             }
             sva_live_result_t r;
-            assert_int_equal(sva_live_replan(&live, &planner, SVA_ALGO_FLOW, &r, NULL), SVA_OK);
+            TEST_ASSERT_EQUAL_INT(SVA_OK,
+                                  sva_live_replan(&live, &planner, SVA_ALGO_FLOW, &r, NULL));
             const int carried_covered = carry(r.residual, r.previous);
             const int forced = changes(r.previous, &carried);
             // flow's own plan of the residual mission with the carried plan standing.
             planner.standing = &carried;
-            assert_int_equal(sva_plan(&planner, r.residual, SVA_ALGO_FLOW, &fresh, NULL), SVA_OK);
+            TEST_ASSERT_EQUAL_INT(SVA_OK,
+                                  sva_plan(&planner, r.residual, SVA_ALGO_FLOW, &fresh, NULL));
             planner.standing = NULL;
             char msg[200];
             if (spec_check_plan(r.residual, &fresh, msg, sizeof msg) != 0) {
-                fail_msg("seed %llu mission %d event %d: %s", (unsigned long long)seed, n, k, msg);
+                SVA_TEST_FAIL("seed %llu mission %d event %d: %s", (unsigned long long)seed, n, k,
+                              msg);
             }
             const bool covers_more = (int)fresh.covered > carried_covered;
             if (((int)fresh.covered < carried_covered) ||
                 (!covers_more && !keeps_all(&carried, &fresh)) ||
                 (!covers_more && (changes(r.previous, &fresh) > forced))) {
-                fail_msg("seed %llu mission %d event %d: flow covers %d with %d changes, the "
-                         "carried plan %d with %d",
-                         (unsigned long long)seed, n, k, (int)fresh.covered,
-                         changes(r.previous, &fresh), carried_covered, forced);
+                SVA_TEST_FAIL("seed %llu mission %d event %d: flow covers %d with %d changes, the "
+                              "carried plan %d with %d",
+                              (unsigned long long)seed, n, k, (int)fresh.covered,
+                              changes(r.previous, &fresh), carried_covered, forced);
             }
             if (((int)r.plan->covered == carried_covered) &&
                 ((int)(r.dropped + r.added) > forced)) {
-                fail_msg("seed %llu mission %d event %d: the replan changes %d visits, %d forced",
-                         (unsigned long long)seed, n, k, (int)(r.dropped + r.added), forced);
+                SVA_TEST_FAIL(
+                    "seed %llu mission %d event %d: the replan changes %d visits, %d forced",
+                    (unsigned long long)seed, n, k, (int)(r.dropped + r.added), forced);
             }
             fewer_changes += (!covers_more && (forced > 0)) ? 1 : 0;
             replans++;
@@ -290,7 +288,7 @@ static void test_random_large_penalty(void** state)
     printf("random live missions, large penalty (seed %llu): %d replans checked, %d with "
            "forced changes\n",
            (unsigned long long)seed, replans, fewer_changes);
-    assert_true(replans > 30);
+    TEST_ASSERT_TRUE(replans > 30);
 }
 
 // Random need-2 live missions where fuel binds, no penalty: after each event, flow's
@@ -298,9 +296,8 @@ static void test_random_large_penalty(void** state)
 // flow_replan_work) covers as many targets as its full-budget plan without it, but for
 // at most one replan in 20 (the budget trades rare coverage for speed; the default
 // seed's replans all keep it).
-static void test_random_replan_budget_keeps_coverage(void** state)
+void test_random_replan_budget_keeps_coverage(void)
 {
-    (void)state;
     static sva_planner_t full;
     const uint64_t seed = test_seed(20261125U);
     test_rng_t rng;
@@ -321,17 +318,17 @@ static void test_random_replan_budget_keeps_coverage(void** state)
     int replans = 0;
     int budget_bound = 0;
     int fewer = 0;
-    assert_int_equal(sva_planner_init(&full), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&full));
     for (int n = 0; n < 12; n++) {
         test_gen_mission(&rng, &params, &mission);
         if ((mission.target_count > SVA_MAX_TARGETS - 6) || (mission.uav_count > SVA_MAX_UAVS)) {
             continue;
         }
-        assert_int_equal(sva_planner_init(&planner), SVA_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
         if (sva_plan(&planner, &mission, SVA_ALGO_GA, &plan, NULL) != SVA_OK) {
             continue;
         }
-        assert_int_equal(sva_live_init(&live, &mission, &plan, NULL), SVA_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_OK, sva_live_init(&live, &mission, &plan, NULL));
         int32_t at = 0;
         for (int k = 0; k < 6; k++) {
             at += test_rng_range(&rng, 1, 15);
@@ -351,15 +348,18 @@ static void test_random_replan_budget_keeps_coverage(void** state)
                 continue;
             }
             sva_live_result_t r;
-            assert_int_equal(sva_live_replan(&live, &planner, SVA_ALGO_FLOW, &r, NULL), SVA_OK);
+            TEST_ASSERT_EQUAL_INT(SVA_OK,
+                                  sva_live_replan(&live, &planner, SVA_ALGO_FLOW, &r, NULL));
             (void)carry(r.residual, r.previous);
             planner.standing = &carried;
-            assert_int_equal(sva_plan(&planner, r.residual, SVA_ALGO_FLOW, &fresh, NULL), SVA_OK);
+            TEST_ASSERT_EQUAL_INT(SVA_OK,
+                                  sva_plan(&planner, r.residual, SVA_ALGO_FLOW, &fresh, NULL));
             planner.standing = NULL;
-            assert_int_equal(sva_plan(&full, r.residual, SVA_ALGO_FLOW, &again, NULL), SVA_OK);
+            TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&full, r.residual, SVA_ALGO_FLOW, &again, NULL));
             char msg[200];
             if (spec_check_plan(r.residual, &fresh, msg, sizeof msg) != 0) {
-                fail_msg("seed %llu mission %d event %d: %s", (unsigned long long)seed, n, k, msg);
+                SVA_TEST_FAIL("seed %llu mission %d event %d: %s", (unsigned long long)seed, n, k,
+                              msg);
             }
             if ((fresh.covered < again.covered) || (r.plan->covered < again.covered)) {
                 // the budget's trade (DESIGN.md "Replans"): rare, and counted below
@@ -379,19 +379,7 @@ static void test_random_replan_budget_keeps_coverage(void** state)
     printf("random need-2 live missions (seed %llu): %d replans checked, %d stopped by the "
            "replan budget, %d covering fewer than the full budget\n",
            (unsigned long long)seed, replans, budget_bound, fewer);
-    assert_true(replans > 30);
-    assert_true(budget_bound > 0);       // the budget is what the check is about
-    assert_true(fewer * 20 <= replans);  // at most one replan in 20 pays for the budget
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_pop_up_without_penalty_reshuffles),
-        cmocka_unit_test(test_pop_up_large_penalty_keeps_standing_visits),
-        cmocka_unit_test(test_no_penalty_standing_only_seeds),
-        cmocka_unit_test(test_random_replan_budget_keeps_coverage),
-        cmocka_unit_test(test_random_large_penalty),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    TEST_ASSERT_TRUE(replans > 30);
+    TEST_ASSERT_TRUE(budget_bound > 0);       // the budget is what the check is about
+    TEST_ASSERT_TRUE(fewer * 20 <= replans);  // at most one replan in 20 pays for the budget
 }

@@ -3,12 +3,10 @@
 // NULL pointers and enum values out of range return SVA_ERR_ARGUMENT instead of
 // asserting; bfa's node budget is SVA_ERR_LIMIT naming it; the pivot budget is
 // SVA_ERR_SOLVER. Every failure leaves the plan empty (all-or-nothing).
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
-#include <cmocka.h>
+#include "unity.h"
 
 #include "sva/sva.h"
 
@@ -20,36 +18,35 @@ static sva_planner_t planner;
 static sva_mission_t mission;
 static sva_plan_t plan;
 
-static void test_null_and_enum_misuse_is_an_argument_error(void** state)
+void test_null_and_enum_misuse_is_an_argument_error(void)
 {
-    (void)state;
     sva_diag_t d;
     sva_mission_init(&mission);
-    assert_int_equal(sva_planner_init(NULL), SVA_ERR_ARGUMENT);
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
-    assert_int_equal(sva_mission_validate(NULL, &d), SVA_ERR_ARGUMENT);
-    assert_int_equal(sva_plan(NULL, &mission, SVA_ALGO_SVA, &plan, &d), SVA_ERR_ARGUMENT);
-    assert_int_equal(sva_plan(&planner, NULL, SVA_ALGO_SVA, &plan, &d), SVA_ERR_ARGUMENT);
-    assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_SVA, NULL, &d), SVA_ERR_ARGUMENT);
-    assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_COUNT_, &plan, &d), SVA_ERR_ARGUMENT);
-    assert_int_equal(sva_plan(&planner, &mission, (sva_algorithm_t)-1, &plan, &d),
-                     SVA_ERR_ARGUMENT);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT, sva_planner_init(NULL));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT, sva_mission_validate(NULL, &d));
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT, sva_plan(NULL, &mission, SVA_ALGO_SVA, &plan, &d));
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT, sva_plan(&planner, NULL, SVA_ALGO_SVA, &plan, &d));
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT, sva_plan(&planner, &mission, SVA_ALGO_SVA, NULL, &d));
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT,
+                          sva_plan(&planner, &mission, SVA_ALGO_COUNT_, &plan, &d));
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT,
+                          sva_plan(&planner, &mission, (sva_algorithm_t)-1, &plan, &d));
     sva_algorithm_t algo = SVA_ALGO_HGA;
-    assert_int_equal(sva_algorithm_from_name(NULL, &algo), SVA_ERR_ARGUMENT);
-    assert_int_equal(sva_algorithm_from_name("sva", NULL), SVA_ERR_ARGUMENT);
-    assert_int_equal(algo, SVA_ALGO_HGA);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT, sva_algorithm_from_name(NULL, &algo));
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT, sva_algorithm_from_name("sva", NULL));
+    TEST_ASSERT_EQUAL_INT(SVA_ALGO_HGA, algo);
     char buf[8] = "xyz";
-    assert_int_equal(sva_diag_format(NULL, buf, sizeof buf), 0);
-    assert_int_equal(sva_diag_format(&d, NULL, 4), 0);
+    TEST_ASSERT_EQUAL_INT(0, sva_diag_format(NULL, buf, sizeof buf));
+    TEST_ASSERT_EQUAL_INT(0, sva_diag_format(&d, NULL, 4));
     sva_diag_clear(NULL);  // must not crash
-    assert_string_equal(buf, "xyz");
+    TEST_ASSERT_EQUAL_STRING("xyz", buf);
 }
 
 // Ten targets in consecutive windows, five UAVs at the depot: far more than 1000
 // search nodes.
-static void test_bfa_node_budget_is_a_limit_error(void** state)
+void test_bfa_node_budget_is_a_limit_error(void)
 {
-    (void)state;
     sva_mission_init(&mission);
     for (int i = 0; i < 5; i++) {
         mission.uavs[i] =
@@ -65,23 +62,22 @@ static void test_bfa_node_budget_is_a_limit_error(void** state)
     }
     mission.uav_count = 5;
     mission.target_count = 10;
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
     sva_diag_t d;
-    assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_BFA, &plan, &d), SVA_ERR_LIMIT);
-    assert_int_equal(plan.status, SVA_PLAN_NONE);
-    assert_int_equal(plan.route_count, 0);
-    assert_int_equal(d.rule, SVA_RULE_ALGO_LIMIT);
-    assert_non_null(d.limit_name);
-    assert_string_equal(d.limit_name, "SVA_BFA_MAX_NODES");
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_LIMIT, sva_plan(&planner, &mission, SVA_ALGO_BFA, &plan, &d));
+    TEST_ASSERT_EQUAL_INT(SVA_PLAN_NONE, plan.status);
+    TEST_ASSERT_EQUAL_INT(0, plan.route_count);
+    TEST_ASSERT_EQUAL_INT(SVA_RULE_ALGO_LIMIT, d.rule);
+    TEST_ASSERT_NOT_NULL(d.limit_name);
+    TEST_ASSERT_EQUAL_STRING("SVA_BFA_MAX_NODES", d.limit_name);
     // The same mission within bfa's size limits plans with the other algorithms.
-    assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_GA, &plan, &d), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&planner, &mission, SVA_ALGO_GA, &plan, &d));
 }
 
 // Twenty UAVs at distinct positions and twenty targets in one window: the tableau needs
 // at least one pivot per served sink, more than the 16 allowed.
-static void test_pivot_budget_is_a_solver_error(void** state)
+void test_pivot_budget_is_a_solver_error(void)
 {
-    (void)state;
     sva_mission_init(&mission);
     const int n = (SVA_MAX_UAVS < 20) ? SVA_MAX_UAVS : 20;
     for (int i = 0; i < n; i++) {
@@ -92,19 +88,9 @@ static void test_pivot_budget_is_a_solver_error(void** state)
     }
     mission.uav_count = (uint16_t)n;
     mission.target_count = (uint16_t)n;
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
     sva_diag_t d;
-    assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_SVA, &plan, &d), SVA_ERR_SOLVER);
-    assert_int_equal(plan.status, SVA_PLAN_NONE);
-    assert_int_equal(plan.route_count, 0);
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_null_and_enum_misuse_is_an_argument_error),
-        cmocka_unit_test(test_bfa_node_budget_is_a_limit_error),
-        cmocka_unit_test(test_pivot_budget_is_a_solver_error),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_SOLVER, sva_plan(&planner, &mission, SVA_ALGO_SVA, &plan, &d));
+    TEST_ASSERT_EQUAL_INT(SVA_PLAN_NONE, plan.status);
+    TEST_ASSERT_EQUAL_INT(0, plan.route_count);
 }

@@ -4,13 +4,11 @@
 // - every transportation problem sva solves is optimal for the sinks it kept
 //   (checked by an enumeration written here), and its dropped sinks carry no flow;
 // - planning twice gives the same plan.
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
-#include <cmocka.h>
+#include "sva_unity.h"
 
 #include "brute_force.h"
 #include "mission_gen.h"
@@ -27,13 +25,12 @@ static void plan_ok(sva_algorithm_t algorithm, uint64_t seed, int round)
 {
     char why[320] = "";
     if (checked_plan(&planner, &mission, algorithm, &plan, why, sizeof(why)) != 0) {
-        fail_msg("seed %llu round %d %s", (unsigned long long)seed, round, why);
+        SVA_TEST_FAIL("seed %llu round %d %s", (unsigned long long)seed, round, why);
     }
 }
 
-static void test_tiny_missions_bfa_is_optimal_and_never_beaten(void** state)
+void test_tiny_missions_bfa_is_optimal_and_never_beaten(void)
 {
-    (void)state;
     const uint64_t seed = test_seed(0x5A1EULL);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
@@ -58,15 +55,15 @@ static void test_tiny_missions_bfa_is_optimal_and_never_beaten(void** state)
         const brute_result_t best = brute_force_optimum(&mission);
         plan_ok(SVA_ALGO_BFA, seed, round);
         if (plan.covered != best.covered || plan.cost != best.cost) {
-            fail_msg("seed %llu round %d: bfa (%d, %lld) vs brute force (%d, %lld)",
-                     (unsigned long long)seed, round, plan.covered, (long long)plan.cost,
-                     best.covered, best.cost);
+            SVA_TEST_FAIL("seed %llu round %d: bfa (%d, %lld) vs brute force (%d, %lld)",
+                          (unsigned long long)seed, round, plan.covered, (long long)plan.cost,
+                          best.covered, best.cost);
         }
         for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
             plan_ok((sva_algorithm_t)a, seed, round);
             if (spec_better(plan.covered, plan.cost, best.covered, best.cost)) {
-                fail_msg("seed %llu round %d: %s beats the optimum", (unsigned long long)seed,
-                         round, sva_algorithm_name((sva_algorithm_t)a));
+                SVA_TEST_FAIL("seed %llu round %d: %s beats the optimum", (unsigned long long)seed,
+                              round, sva_algorithm_name((sva_algorithm_t)a));
             }
             if (a == SVA_ALGO_SVA &&
                 spec_better(best.covered, best.cost, plan.covered, plan.cost)) {
@@ -75,7 +72,7 @@ static void test_tiny_missions_bfa_is_optimal_and_never_beaten(void** state)
         }
     }
     printf("# %d tiny missions: bfa strictly better than sva on %d\n", rounds, bfa_better_than_sva);
-    assert_true(bfa_better_than_sva > 0);  // the generator does reach the heuristics' gaps
+    TEST_ASSERT_TRUE(bfa_better_than_sva > 0);  // the generator does reach the heuristics' gaps
 }
 
 // Minimum cost of the kept sinks by enumeration (small problems only): -1 if infeasible.
@@ -142,9 +139,8 @@ static void check_problem(void* user, const sva_tp_view_t* tp)
     }
 }
 
-static void test_paper_sizes_feasible_and_problems_optimal(void** state)
+void test_paper_sizes_feasible_and_problems_optimal(void)
 {
-    (void)state;
     const uint64_t seed = test_seed(0xC0FFEEULL);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
@@ -182,14 +178,15 @@ static void test_paper_sizes_feasible_and_problems_optimal(void** state)
                 planned++;
                 // Determinism: the same mission plans to the same plan.
                 sva_diag_t diag;
-                assert_int_equal(sva_plan(&planner, &mission, (sva_algorithm_t)a, &again, &diag),
-                                 SVA_OK);
-                assert_int_equal(again.cost, plan.cost);
-                assert_int_equal(again.covered, plan.covered);
+                TEST_ASSERT_EQUAL_INT(
+                    SVA_OK, sva_plan(&planner, &mission, (sva_algorithm_t)a, &again, &diag));
+                TEST_ASSERT_EQUAL_INT(plan.cost, again.cost);
+                TEST_ASSERT_EQUAL_INT(plan.covered, again.covered);
                 for (int u = 0; u < mission.uav_count; u++) {
-                    assert_int_equal(again.routes[u].target_count, plan.routes[u].target_count);
-                    assert_memory_equal(again.routes[u].targets, plan.routes[u].targets,
-                                        plan.routes[u].target_count * sizeof(uint16_t));
+                    TEST_ASSERT_EQUAL_INT(plan.routes[u].target_count,
+                                          again.routes[u].target_count);
+                    SVA_TEST_ASSERT_EQUAL_BYTES(plan.routes[u].targets, again.routes[u].targets,
+                                                plan.routes[u].target_count * sizeof(uint16_t));
                 }
             }
         }
@@ -197,16 +194,12 @@ static void test_paper_sizes_feasible_and_problems_optimal(void** state)
     planner.on_transport = NULL;
     printf("# %d plans checked; %d transportation problems, %d enumerated\n", planned,
            seen.problems, seen.checked);
-    assert_int_equal(seen.failures, 0);
-    assert_true(seen.checked > 100);
+    TEST_ASSERT_EQUAL_INT(0, seen.failures);
+    TEST_ASSERT_TRUE(seen.checked > 100);
 }
 
-int main(void)
+// Every test starts from a freshly initialised planner.
+void setUp(void)
 {
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_tiny_missions_bfa_is_optimal_and_never_beaten),
-        cmocka_unit_test(test_paper_sizes_feasible_and_problems_optimal),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
 }

@@ -6,13 +6,11 @@
 // flow_repair.c intends, and branching splits it.
 // Every algorithm must plan such missions with routes of at most 2 targets, each plan
 // checked by the independent SPEC checker. Seeds are printed (SVA_TEST_SEED=...).
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
-#include <cmocka.h>
+#include "sva_unity.h"
 
 #include "mission_gen.h"
 #include "checked_plan.h"
@@ -30,27 +28,25 @@ static void must_plan(sva_algorithm_t algorithm, uint64_t seed, int round)
 {
     char why[320] = "";
     if (checked_plan(&planner, &mission, algorithm, &plan, why, sizeof(why)) != 0) {
-        fail_msg("seed %llu round %d %s", (unsigned long long)seed, round, why);
+        SVA_TEST_FAIL("seed %llu round %d %s", (unsigned long long)seed, round, why);
     }
     for (uint16_t u = 0U; u < plan.route_count; u++) {
         if (plan.routes[u].target_count > 2U) {
-            fail_msg("seed %llu round %d %s: route of UAV %d has %u targets",
-                     (unsigned long long)seed, round, sva_algorithm_name(algorithm),
-                     (int)plan.routes[u].uav_id, (unsigned)plan.routes[u].target_count);
+            SVA_TEST_FAIL("seed %llu round %d %s: route of UAV %d has %u targets",
+                          (unsigned long long)seed, round, sva_algorithm_name(algorithm),
+                          (int)plan.routes[u].uav_id, (unsigned)plan.routes[u].target_count);
         }
     }
 }
 
-static void test_bound_is_two(void** state)
+void test_bound_is_two(void)
 {
-    (void)state;
-    assert_int_equal(SVA_MAX_ROUTE_TARGETS, 2);
-    assert_int_equal(sva_limits().max_route_targets, 2);
+    TEST_ASSERT_EQUAL_INT(2, SVA_MAX_ROUTE_TARGETS);
+    TEST_ASSERT_EQUAL_INT(2, sva_limits().max_route_targets);
 }
 
-static void test_one_uav_three_chained_targets(void** state)
+void test_one_uav_three_chained_targets(void)
 {
-    (void)state;
     // One UAV could serve A, B and C in turn (flow's relaxation route has 3 targets);
     // with routes of at most 2 the best plan serves A and B (40 cells).
     sva_mission_init(&mission);
@@ -62,15 +58,14 @@ static void test_one_uav_three_chained_targets(void** state)
     mission.targets[2] = (sva_target_t){3, 30, 0, 60, 65, 1};
     for (size_t a = 0; a < sizeof(algorithms) / sizeof(algorithms[0]); a++) {
         must_plan(algorithms[a], 0U, 0);
-        assert_int_equal(plan.covered, 2);
-        assert_int_equal(plan.cost, 40);
+        TEST_ASSERT_EQUAL_INT(2, plan.covered);
+        TEST_ASSERT_EQUAL_INT(40, plan.cost);
     }
-    assert_true(plan.stats.optimal);  // flow, last: proven under the route bound
+    TEST_ASSERT_TRUE(plan.stats.optimal);  // flow, last: proven under the route bound
 }
 
-static void test_random_missions_keep_routes_short(void** state)
+void test_random_missions_keep_routes_short(void)
 {
-    (void)state;
     const uint64_t seed = test_seed(0x5407A11ULL);
     test_rng_t rng;
     test_rng_seed(&rng, seed);
@@ -84,13 +79,8 @@ static void test_random_missions_keep_routes_short(void** state)
     }
 }
 
-int main(void)
+// Every test starts from a freshly initialised planner.
+void setUp(void)
 {
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_bound_is_two),
-        cmocka_unit_test(test_one_uav_three_chained_targets),
-        cmocka_unit_test(test_random_missions_keep_routes_short),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
 }

@@ -1,13 +1,11 @@
 // The integer tableau simplex against hand-solved problems and against an enumeration
 // written here (independent of the core): the tableau's optimum delivers the most
 // units, then costs least; hga's enumeration agrees on problems it can cover in full.
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
-#include <cmocka.h>
+#include "sva_unity.h"
 
 #include "mission_gen.h"
 #include "paper/paper.h"
@@ -39,26 +37,25 @@ static void assert_flow_feasible(const sva_tp_t* tp)
     for (int s = 0; s < m; s++) {
         int32_t out = 0;
         for (int k = 0; k < n; k++) {
-            assert_true(tp->flow[s * n + k] >= 0);
+            TEST_ASSERT_TRUE(tp->flow[s * n + k] >= 0);
             if (tp->cost[s * n + k] == NO) {
-                assert_int_equal(tp->flow[s * n + k], 0);
+                TEST_ASSERT_EQUAL_INT(0, tp->flow[s * n + k]);
             }
             out += tp->flow[s * n + k];
         }
-        assert_true(out <= tp->supply[s]);
+        TEST_ASSERT_TRUE(out <= tp->supply[s]);
     }
     for (int k = 0; k < n; k++) {
         int32_t in = 0;
         for (int s = 0; s < m; s++) {
             in += tp->flow[s * n + k];
         }
-        assert_true(in <= tp->demand[k]);
+        TEST_ASSERT_TRUE(in <= tp->demand[k]);
     }
 }
 
-static void test_hand_solved_problem(void** state)
+void test_hand_solved_problem(void)
 {
-    (void)state;
     sva_tp_t* tp = &planner.priv.tp;
     sva_stats_t stats = {0};
     int32_t unmet[4];
@@ -66,28 +63,27 @@ static void test_hand_solved_problem(void** state)
     // A->k0 4, A->k1 6, B->k0 1, B->k1 9. Best: B->k0 (1), A->k1 x2 (12) = 13.
     const int32_t supply[] = {2, 1}, demand[] = {1, 2}, cost[] = {4, 6, 1, 9};
     load(tp, 2, 2, supply, demand, cost);
-    assert_int_equal(sva_tableau_solve(&planner.priv.tableau, tp, unmet, &stats), SVA_OK);
-    assert_int_equal(sva_tp_flow_cost(tp), 13);
-    assert_int_equal(tp->flow[1], 2);
-    assert_int_equal(tp->flow[2], 1);
-    assert_int_equal(unmet[0] + unmet[1], 0);
-    assert_true(stats.pivots > 0);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_tableau_solve(&planner.priv.tableau, tp, unmet, &stats));
+    TEST_ASSERT_EQUAL_INT(13, sva_tp_flow_cost(tp));
+    TEST_ASSERT_EQUAL_INT(2, tp->flow[1]);
+    TEST_ASSERT_EQUAL_INT(1, tp->flow[2]);
+    TEST_ASSERT_EQUAL_INT(0, unmet[0] + unmet[1]);
+    TEST_ASSERT_TRUE(stats.pivots > 0);
 }
 
-static void test_surplus_stays_and_missing_arcs_are_unmet(void** state)
+void test_surplus_stays_and_missing_arcs_are_unmet(void)
 {
-    (void)state;
     sva_tp_t* tp = &planner.priv.tp;
     sva_stats_t stats = {0};
     int32_t unmet[4];
     // 3 units at the only source, one sink of need 1 reachable, one unreachable.
     const int32_t supply[] = {3}, demand[] = {1, 2}, cost[] = {5, NO};
     load(tp, 1, 2, supply, demand, cost);
-    assert_int_equal(sva_tableau_solve(&planner.priv.tableau, tp, unmet, &stats), SVA_OK);
-    assert_int_equal(tp->flow[0], 1);
-    assert_int_equal(tp->flow[1], 0);
-    assert_int_equal(unmet[0], 0);
-    assert_int_equal(unmet[1], 2);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_tableau_solve(&planner.priv.tableau, tp, unmet, &stats));
+    TEST_ASSERT_EQUAL_INT(1, tp->flow[0]);
+    TEST_ASSERT_EQUAL_INT(0, tp->flow[1]);
+    TEST_ASSERT_EQUAL_INT(0, unmet[0]);
+    TEST_ASSERT_EQUAL_INT(2, unmet[1]);
 }
 
 static long long lcm_of_demands(const sva_tp_t* tp)
@@ -146,9 +142,8 @@ static void enumerate(const sva_tp_t* tp, int cell, int32_t* left, int32_t* got,
     }
 }
 
-static void test_random_problems_match_enumeration(void** state)
+void test_random_problems_match_enumeration(void)
 {
-    (void)state;
     test_rng_t rng;
     test_rng_seed(&rng, test_seed(20261121));
     sva_tp_t* tp = &planner.priv.tp;
@@ -170,35 +165,25 @@ static void test_random_problems_match_enumeration(void** state)
         long long best_u = -1, best_c = 0;
         enumerate(tp, 0, left, got, 0, 0, &best_u, &best_c);
         sva_stats_t stats = {0};
-        assert_int_equal(sva_tableau_solve(&planner.priv.tableau, tp, unmet, &stats), SVA_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_OK, sva_tableau_solve(&planner.priv.tableau, tp, unmet, &stats));
         assert_flow_feasible(tp);
         int32_t got_tab[4] = {0};
         for (int k = 0; k < n; k++) {
             got_tab[k] = demand[k] - unmet[k];
         }
         if (weighted_unmet(tp, got_tab) != best_u || sva_tp_flow_cost(tp) != best_c) {
-            fail_msg("round %d: tableau (%lld weighted unmet, %lld) vs enumeration (%lld, %lld)",
-                     round, weighted_unmet(tp, got_tab), (long long)sva_tp_flow_cost(tp), best_u,
-                     best_c);
+            SVA_TEST_FAIL(
+                "round %d: tableau (%lld weighted unmet, %lld) vs enumeration (%lld, %lld)", round,
+                weighted_unmet(tp, got_tab), (long long)sva_tp_flow_cost(tp), best_u, best_c);
         }
         if (best_u == 0) {  // coverable in full: hga's enumeration agrees
             full++;
             load(tp, m, n, supply, demand, cost);
             sva_hga_solve(&planner.priv.hga, tp, &stats);
-            assert_int_equal(sva_tp_covered(tp), n);
-            assert_int_equal(sva_tp_flow_cost(tp), best_c);
+            TEST_ASSERT_EQUAL_INT(n, sva_tp_covered(tp));
+            TEST_ASSERT_EQUAL_INT(best_c, sva_tp_flow_cost(tp));
         }
     }
     printf("# 3000 random problems, %d coverable in full\n", full);
-    assert_true(full > 100);
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_hand_solved_problem),
-        cmocka_unit_test(test_surplus_stays_and_missing_arcs_are_unmet),
-        cmocka_unit_test(test_random_problems_match_enumeration),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    TEST_ASSERT_TRUE(full > 100);
 }

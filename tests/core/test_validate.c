@@ -1,12 +1,10 @@
 // Validation (SPEC section 4) and bounds: every rule fills the diagnostic with the
 // field, the rule and the limit; exactly at a bound succeeds, one over fails naming it.
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
-#include <cmocka.h>
+#include "sva_unity.h"
 
 #include "mission_gen.h"
 #include "spec_checker.h"
@@ -34,27 +32,25 @@ static void expect_invalid(const sva_mission_t* m, const char* message)
 {
     sva_diag_t diag;
     char buf[160];
-    assert_int_equal(sva_mission_validate(m, &diag), SVA_ERR_INVALID);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_mission_validate(m, &diag));
     (void)sva_diag_format(&diag, buf, sizeof(buf));
-    assert_string_equal(buf, message);
+    TEST_ASSERT_EQUAL_STRING(message, buf);
     // sva_plan rejects it the same way and leaves no plan (all-or-nothing).
-    assert_int_equal(sva_plan(&planner, m, SVA_ALGO_SVA, &plan, &diag), SVA_ERR_INVALID);
-    assert_int_equal(plan.status, SVA_PLAN_NONE);
-    assert_int_equal(plan.route_count, 0);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_plan(&planner, m, SVA_ALGO_SVA, &plan, &diag));
+    TEST_ASSERT_EQUAL_INT(SVA_PLAN_NONE, plan.status);
+    TEST_ASSERT_EQUAL_INT(0, plan.route_count);
 }
 
-static void test_valid_mission_passes(void** state)
+void test_valid_mission_passes(void)
 {
-    (void)state;
     sva_diag_t diag;
     small_mission(&mission);
-    assert_int_equal(sva_mission_validate(&mission, &diag), SVA_OK);
-    assert_int_equal(diag.rule, SVA_RULE_NONE);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_mission_validate(&mission, &diag));
+    TEST_ASSERT_EQUAL_INT(SVA_RULE_NONE, diag.rule);
 }
 
-static void test_each_rule_names_field_rule_and_limit(void** state)
+void test_each_rule_names_field_rule_and_limit(void)
 {
-    (void)state;
     char expect[160];
     small_mission(&mission);
     mission.targets[1].need = 0;
@@ -119,9 +115,8 @@ static void test_each_rule_names_field_rule_and_limit(void** state)
     expect_invalid(&mission, expect);
 }
 
-static void test_first_error_wins(void** state)
+void test_first_error_wins(void)
 {
-    (void)state;
     small_mission(&mission);
     mission.targets[0].need = 0;  // later in field order
     mission.uavs[1].fuel = -3;    // earlier: UAVs before targets
@@ -129,9 +124,8 @@ static void test_first_error_wins(void** state)
 }
 
 // A mission exactly at SVA_MAX_UAVS and SVA_MAX_TARGETS plans; one more of either fails.
-static void test_count_bounds(void** state)
+void test_count_bounds(void)
 {
-    (void)state;
     char expect[160];
     test_rng_t rng;
     test_rng_seed(&rng, 7);
@@ -144,11 +138,12 @@ static void test_count_bounds(void** state)
         }
         sva_diag_t diag;
         char why[200] = "";
-        assert_int_equal(sva_plan(&planner, &mission, (sva_algorithm_t)a, &plan, &diag), SVA_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_OK,
+                              sva_plan(&planner, &mission, (sva_algorithm_t)a, &plan, &diag));
         if (spec_check_plan(&mission, &plan, why, sizeof(why)) != 0) {
-            fail_msg("%s: %s", sva_algorithm_name((sva_algorithm_t)a), why);
+            SVA_TEST_FAIL("%s: %s", sva_algorithm_name((sva_algorithm_t)a), why);
         }
-        assert_true(plan.covered > 0);
+        TEST_ASSERT_TRUE(plan.covered > 0);
     }
     mission.uav_count = SVA_MAX_UAVS + 1;
     snprintf(expect, sizeof(expect), "uavs: %d entries exceed SVA_MAX_UAVS (%d)", SVA_MAX_UAVS + 1,
@@ -161,9 +156,8 @@ static void test_count_bounds(void** state)
     expect_invalid(&mission, expect);
 }
 
-static void test_value_bounds_inclusive(void** state)
+void test_value_bounds_inclusive(void)
 {
-    (void)state;
     sva_diag_t diag;
     small_mission(&mission);
     mission.depot_x = -32768;
@@ -176,23 +170,22 @@ static void test_value_bounds_inclusive(void** state)
     mission.hover_fuel = (int32_t)SVA_MAX_HOVER_FUEL;
     mission.overlap_percent = 100;
     mission.targets[0].need = SVA_MAX_UAVS;
-    assert_int_equal(sva_mission_validate(&mission, &diag), SVA_OK);
-    assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_SVA, &plan, &diag), SVA_OK);
-    assert_int_equal(spec_check_plan(&mission, &plan, NULL, 0), 0);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_mission_validate(&mission, &diag));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&planner, &mission, SVA_ALGO_SVA, &plan, &diag));
+    TEST_ASSERT_EQUAL_INT(0, spec_check_plan(&mission, &plan, NULL, 0));
 
     mission.ticks_per_cell = (int32_t)SVA_MAX_TICKS_PER_CELL + 1;
-    assert_int_equal(sva_mission_validate(&mission, &diag), SVA_ERR_INVALID);
-    assert_string_equal(diag.limit_name, "SVA_MAX_TICKS_PER_CELL");
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_mission_validate(&mission, &diag));
+    TEST_ASSERT_EQUAL_STRING("SVA_MAX_TICKS_PER_CELL", diag.limit_name);
     mission.ticks_per_cell = 1;
     mission.targets[1].end_ticks = (int32_t)SVA_MAX_TICK + 1;
-    assert_int_equal(sva_mission_validate(&mission, &diag), SVA_ERR_INVALID);
-    assert_int_equal(diag.field, SVA_FIELD_TARGET_END);
-    assert_string_equal(diag.limit_name, "SVA_MAX_TICK");
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_mission_validate(&mission, &diag));
+    TEST_ASSERT_EQUAL_INT(SVA_FIELD_TARGET_END, diag.field);
+    TEST_ASSERT_EQUAL_STRING("SVA_MAX_TICK", diag.limit_name);
 }
 
-static void test_bfa_limits_are_errors_not_hours(void** state)
+void test_bfa_limits_are_errors_not_hours(void)
 {
-    (void)state;
     char buf[160], expect[160];
     sva_diag_t diag;
     test_rng_t rng;
@@ -200,84 +193,70 @@ static void test_bfa_limits_are_errors_not_hours(void** state)
     const test_gen_params_t params = {
         SVA_BFA_MAX_TARGETS + 1, 2, 20, 10, 20, 100, 1, 100, 200, 0, 1, 0, 0};
     test_gen_mission(&rng, &params, &mission);
-    assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_BFA, &plan, &diag), SVA_ERR_LIMIT);
-    assert_int_equal(plan.status, SVA_PLAN_NONE);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_LIMIT, sva_plan(&planner, &mission, SVA_ALGO_BFA, &plan, &diag));
+    TEST_ASSERT_EQUAL_INT(SVA_PLAN_NONE, plan.status);
     (void)sva_diag_format(&diag, buf, sizeof(buf));
     snprintf(expect, sizeof(expect), "targets: %d entries exceed SVA_BFA_MAX_TARGETS (%d)",
              SVA_BFA_MAX_TARGETS + 1, SVA_BFA_MAX_TARGETS);
-    assert_string_equal(buf, expect);
+    TEST_ASSERT_EQUAL_STRING(expect, buf);
 
     const test_gen_params_t wide = {2, SVA_BFA_MAX_UAVS + 1, 20, 10, 20, 100, 1, 100, 200, 0, 1, 0,
                                     0};
     test_gen_mission(&rng, &wide, &mission);
-    assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_BFA, &plan, &diag), SVA_ERR_LIMIT);
-    assert_string_equal(diag.limit_name, "SVA_BFA_MAX_UAVS");
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_LIMIT, sva_plan(&planner, &mission, SVA_ALGO_BFA, &plan, &diag));
+    TEST_ASSERT_EQUAL_STRING("SVA_BFA_MAX_UAVS", diag.limit_name);
 }
 
-static void test_diag_format_truncates_like_snprintf(void** state)
+void test_diag_format_truncates_like_snprintf(void)
 {
-    (void)state;
     sva_diag_t diag;
     char small[8], full[160];
     small_mission(&mission);
     mission.targets[1].need = 0;
-    assert_int_equal(sva_mission_validate(&mission, &diag), SVA_ERR_INVALID);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_mission_validate(&mission, &diag));
     const size_t len = sva_diag_format(&diag, full, sizeof(full));
-    assert_int_equal(len, strlen(full));
-    assert_int_equal(sva_diag_format(&diag, small, sizeof(small)), len);
-    assert_int_equal(strlen(small), sizeof(small) - 1);
-    assert_memory_equal(small, full, sizeof(small) - 1);
-    assert_int_equal(sva_diag_format(&diag, NULL, 0), len);
+    TEST_ASSERT_EQUAL_INT(strlen(full), len);
+    TEST_ASSERT_EQUAL_INT(len, sva_diag_format(&diag, small, sizeof(small)));
+    TEST_ASSERT_EQUAL_INT(sizeof(small) - 1, strlen(small));
+    TEST_ASSERT_EQUAL_MEMORY(full, small, sizeof(small) - 1);
+    TEST_ASSERT_EQUAL_INT(len, sva_diag_format(&diag, NULL, 0));
     // INT64 extremes format exactly.
     diag.rule = SVA_RULE_MIN;
     diag.value = INT64_MIN;
     diag.limit = INT64_MAX;
     (void)sva_diag_format(&diag, full, sizeof(full));
-    assert_string_equal(
-        full, "targets[1].need: must be >= 9223372036854775807, got -9223372036854775808");
+    TEST_ASSERT_EQUAL_STRING(
+        "targets[1].need: must be >= 9223372036854775807, got -9223372036854775808", full);
 }
 
-static void test_algorithm_names(void** state)
+void test_algorithm_names(void)
 {
-    (void)state;
     for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
         sva_algorithm_t back;
-        assert_int_equal(sva_algorithm_from_name(sva_algorithm_name((sva_algorithm_t)a), &back),
-                         SVA_OK);
-        assert_int_equal(back, a);
+        TEST_ASSERT_EQUAL_INT(
+            SVA_OK, sva_algorithm_from_name(sva_algorithm_name((sva_algorithm_t)a), &back));
+        TEST_ASSERT_EQUAL_INT(a, back);
     }
     sva_algorithm_t out = SVA_ALGO_GA;
-    assert_int_equal(sva_algorithm_from_name("svaa", &out), SVA_ERR_ARGUMENT);
-    assert_int_equal(sva_algorithm_from_name("", &out), SVA_ERR_ARGUMENT);
-    assert_int_equal(out, SVA_ALGO_GA);
-    assert_string_equal(sva_algorithm_name(SVA_ALGO_COUNT_), "");
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT, sva_algorithm_from_name("svaa", &out));
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT, sva_algorithm_from_name("", &out));
+    TEST_ASSERT_EQUAL_INT(SVA_ALGO_GA, out);
+    TEST_ASSERT_EQUAL_STRING("", sva_algorithm_name(SVA_ALGO_COUNT_));
 }
 
-static void test_limits_report_compiled_bounds(void** state)
+void test_limits_report_compiled_bounds(void)
 {
-    (void)state;
     const sva_limits_t l = sva_limits();
-    assert_int_equal(l.max_uavs, SVA_MAX_UAVS);
-    assert_int_equal(l.max_targets, SVA_MAX_TARGETS);
-    assert_int_equal(l.planner_bytes, sizeof(sva_planner_t));
-    assert_int_equal(l.plan_bytes, sizeof(sva_plan_t));
+    TEST_ASSERT_EQUAL_INT(SVA_MAX_UAVS, l.max_uavs);
+    TEST_ASSERT_EQUAL_INT(SVA_MAX_TARGETS, l.max_targets);
+    TEST_ASSERT_EQUAL_INT(sizeof(sva_planner_t), l.planner_bytes);
+    TEST_ASSERT_EQUAL_INT(sizeof(sva_plan_t), l.plan_bytes);
     printf("# sizes: planner %u B, plan %u B, mission %u B\n", l.planner_bytes, l.plan_bytes,
            l.mission_bytes);
 }
 
-int main(void)
+// Every test starts from a freshly initialised planner.
+void setUp(void)
 {
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_valid_mission_passes),
-        cmocka_unit_test(test_each_rule_names_field_rule_and_limit),
-        cmocka_unit_test(test_first_error_wins),
-        cmocka_unit_test(test_count_bounds),
-        cmocka_unit_test(test_value_bounds_inclusive),
-        cmocka_unit_test(test_bfa_limits_are_errors_not_hours),
-        cmocka_unit_test(test_diag_format_truncates_like_snprintf),
-        cmocka_unit_test(test_algorithm_names),
-        cmocka_unit_test(test_limits_report_compiled_bounds),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
 }

@@ -8,15 +8,13 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include <dirent.h>
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
-#include <cmocka.h>
+#include "sva_unity.h"
 #include <jansson.h>
 #include <sva/sva.h>
 
@@ -67,9 +65,12 @@ static size_t list_json(const char* dir, char names[][128], size_t max)
     return count;
 }
 
-static void test_golden_plan(void** state)
+// The case test_golden_plan() checks (main() sets it before each run).
+static const golden_case_t* current;
+
+static void test_golden_plan(void)
 {
-    const golden_case_t* c = *state;
+    const golden_case_t* c = current;
     const char* algo = sva_algorithm_name(c->algorithm);
     char mission_path[PATH_SIZE];
     char golden_path[PATH_SIZE];
@@ -81,9 +82,9 @@ static void test_golden_plan(void** state)
     char name[SVA_JSON_NAME_MAX + 1];
     char err[SVA_JSON_ERROR_SIZE];
     if (sva_json_load_mission(mission_path, &g_mission, name, err, sizeof err) != SVA_JSON_OK) {
-        fail_msg("%s: %s", mission_path, err);
+        SVA_TEST_FAIL("%s: %s", mission_path, err);
     }
-    assert_int_equal(sva_planner_init(&g_planner), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&g_planner));
     sva_diag_t diag;
     sva_status_t status = sva_plan(&g_planner, &g_mission, c->algorithm, &g_plan, &diag);
 
@@ -91,46 +92,45 @@ static void test_golden_plan(void** state)
         if (c->algorithm == SVA_ALGO_BFA && status == SVA_ERR_LIMIT) {
             return;  // bfa refuses the mission: no golden plan expected
         }
-        fail_msg("%s: missing golden plan (run tools/regen-golden.sh), sva_plan status %d",
-                 golden_path, (int)status);
+        SVA_TEST_FAIL("%s: missing golden plan (run tools/regen-golden.sh), sva_plan status %d",
+                      golden_path, (int)status);
     }
     if (status != SVA_OK) {
-        fail_msg("%s with %s: sva_plan status %d, but %s exists", c->mission, algo, (int)status,
-                 golden_path);
+        SVA_TEST_FAIL("%s with %s: sva_plan status %d, but %s exists", c->mission, algo,
+                      (int)status, golden_path);
     }
     json_error_t error;
     json_t* golden = json_load_file(golden_path, JSON_REJECT_DUPLICATES, &error);
     if (golden == NULL) {
-        fail_msg("%s:%d:%d: %s", golden_path, error.line, error.column, error.text);
+        SVA_TEST_FAIL("%s:%d:%d: %s", golden_path, error.line, error.column, error.text);
     }
     json_t* actual = sva_json_plan(&g_mission, name, &g_plan, 0);
-    assert_non_null(actual);
+    TEST_ASSERT_NOT_NULL(actual);
     json_object_del(golden, "stats");
     json_object_del(actual, "stats");
     if (!json_equal(golden, actual)) {
         char* want = json_dumps(golden, JSON_COMPACT | JSON_PRESERVE_ORDER);
         char* got = json_dumps(actual, JSON_COMPACT | JSON_PRESERVE_ORDER);
-        print_error("golden %s\n  want %s\n  got  %s\n", golden_path, want, got);
+        printf("golden %s\n  want %s\n  got  %s\n", golden_path, want, got);
         free(want);
         free(got);
         json_decref(golden);
         json_decref(actual);
-        fail();
+        TEST_FAIL();
     }
     json_decref(golden);
     json_decref(actual);
 }
 
 // A golden file whose mission no longer exists is stale.
-static void test_no_stale_golden_files(void** state)
+static void test_no_stale_golden_files(void)
 {
-    (void)state;
     static char missions[MAX_MISSIONS][128];
     static char goldens[MAX_MISSIONS][128];
     char dir[PATH_SIZE];
     snprintf(dir, sizeof dir, "%s/missions", SVA_FIXTURES_DIR);
     size_t mission_count = list_json(dir, missions, MAX_MISSIONS);
-    assert_true(mission_count > 0);
+    TEST_ASSERT_TRUE(mission_count > 0);
     for (int a = 0; a < (int)SVA_ALGO_COUNT_; ++a) {
         snprintf(dir, sizeof dir, "%s/golden/%s", SVA_FIXTURES_DIR,
                  sva_algorithm_name((sva_algorithm_t)a));
@@ -138,10 +138,19 @@ static void test_no_stale_golden_files(void** state)
         for (size_t g = 0; g < golden_count; ++g) {
             if (bsearch(goldens[g], missions, mission_count, sizeof missions[0], cmp_names) ==
                 NULL) {
-                fail_msg("%s/%s.json: no mission of that name", dir, goldens[g]);
+                SVA_TEST_FAIL("%s/%s.json: no mission of that name", dir, goldens[g]);
             }
         }
     }
+}
+
+// One Unity test per mission and algorithm, named algorithm/mission, after the stale
+// file check (a hand-written runner: the cases come from the fixtures folder).
+void setUp(void)
+{
+}
+void tearDown(void)
+{
 }
 
 int main(void)
@@ -149,23 +158,23 @@ int main(void)
     static char missions[MAX_MISSIONS][128];
     static golden_case_t cases[MAX_MISSIONS * SVA_ALGO_COUNT_];
     static char names[MAX_MISSIONS * SVA_ALGO_COUNT_][160];
-    static struct CMUnitTest tests[MAX_MISSIONS * SVA_ALGO_COUNT_ + 1];
     char dir[PATH_SIZE];
     snprintf(dir, sizeof dir, "%s/missions", SVA_FIXTURES_DIR);
     size_t mission_count = list_json(dir, missions, MAX_MISSIONS);
+    UnityBegin("golden");
+    RUN_TEST(test_no_stale_golden_files);
     size_t n = 0;
-    tests[n++] =
-        (struct CMUnitTest){"no_stale_golden_files", test_no_stale_golden_files, NULL, NULL, NULL};
     for (size_t m = 0; m < mission_count; ++m) {
         for (int a = 0; a < (int)SVA_ALGO_COUNT_; ++a) {
-            golden_case_t* c = &cases[n - 1];
+            golden_case_t* c = &cases[n];
             snprintf(c->mission, sizeof c->mission, "%.127s", missions[m]);
             c->algorithm = (sva_algorithm_t)a;
-            snprintf(names[n - 1], sizeof names[0], "%.8s/%.127s", sva_algorithm_name(c->algorithm),
+            snprintf(names[n], sizeof names[0], "%.8s/%.127s", sva_algorithm_name(c->algorithm),
                      missions[m]);
-            tests[n] = (struct CMUnitTest){names[n - 1], test_golden_plan, NULL, NULL, c};
+            current = c;
+            UnityDefaultTestRun(test_golden_plan, names[n], __LINE__);
             ++n;
         }
     }
-    return _cmocka_run_group_tests("golden", tests, n, NULL, NULL);
+    return UnityEnd();
 }

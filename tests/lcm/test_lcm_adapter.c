@@ -1,13 +1,11 @@
 // Unit tests of the LCM adapter over memq:// and direct calls: codec round trip, every
 // rejection reason, change detection, and zero heap allocations per message.
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
-#include <cmocka.h>
+#include "unity.h"
 
 #include "sva/sva_lcm.h"
 
@@ -76,8 +74,8 @@ static int capture(void* user, const char* channel, const void* data, unsigned i
 {
     (void)user;
     if (strstr(channel, "REPLAN") != NULL) {
-        assert_int_equal(size, SVA_LCM_REPLAN_BYTES);
-        assert_int_equal(sva_lcm_replan_t_decode(data, 0, (int)size, &got_replan), (int)size);
+        TEST_ASSERT_EQUAL_INT(SVA_LCM_REPLAN_BYTES, size);
+        TEST_ASSERT_EQUAL_INT((int)size, sva_lcm_replan_t_decode(data, 0, (int)size, &got_replan));
         replans_seen++;
     } else if (strstr(channel, "PLAN") != NULL) {
         if (size <= sizeof last_plan_bytes) {
@@ -161,7 +159,7 @@ static int enc_mission(void)
 
 static void node_setup(sva_algorithm_t algo)
 {
-    assert_int_equal(sva_lcm_node_init(&node, NULL, "T_", algo), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_lcm_node_init(&node, NULL, "T_", algo));
     node.publish = capture;
     node.log = count_log;
     plans_seen = 0;
@@ -203,110 +201,108 @@ static void direct_from_wire(void)
 static void assert_plan_matches_core(const sva_lcm_plan_t* p, sva_algorithm_t algo)
 {
     direct_from_wire();
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
-    assert_int_equal(sva_plan(&planner, &direct_mission, algo, &direct_plan, NULL), SVA_OK);
-    assert_int_equal(p->algorithm, (int)algo);
-    assert_int_equal(p->status, direct_plan.status == SVA_PLAN_COMPLETE
-                                    ? SVA_LCM_PLAN_T_STATUS_COMPLETE
-                                    : SVA_LCM_PLAN_T_STATUS_PARTIAL);
-    assert_int_equal(p->covered, direct_plan.covered);
-    assert_int_equal(p->cost, direct_plan.cost);
-    assert_int_equal(p->uncovered_count, direct_plan.uncovered_count);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&planner, &direct_mission, algo, &direct_plan, NULL));
+    TEST_ASSERT_EQUAL_INT((int)algo, p->algorithm);
+    TEST_ASSERT_EQUAL_INT(direct_plan.status == SVA_PLAN_COMPLETE ? SVA_LCM_PLAN_T_STATUS_COMPLETE
+                                                                  : SVA_LCM_PLAN_T_STATUS_PARTIAL,
+                          p->status);
+    TEST_ASSERT_EQUAL_INT(direct_plan.covered, p->covered);
+    TEST_ASSERT_EQUAL_INT(direct_plan.cost, p->cost);
+    TEST_ASSERT_EQUAL_INT(direct_plan.uncovered_count, p->uncovered_count);
     for (int i = 0; i < p->uncovered_count; ++i) {
-        assert_int_equal(p->uncovered[i], direct_mission.targets[direct_plan.uncovered[i]].id);
+        TEST_ASSERT_EQUAL_INT(direct_mission.targets[direct_plan.uncovered[i]].id, p->uncovered[i]);
     }
-    assert_int_equal(p->route_count, direct_plan.route_count);
+    TEST_ASSERT_EQUAL_INT(direct_plan.route_count, p->route_count);
     int k = 0;
     for (int r = 0; r < p->route_count; ++r) {
         const sva_route_t* d = &direct_plan.routes[r];
-        assert_int_equal(p->routes[r].uav_id, d->uav_id);
-        assert_int_equal(p->routes[r].target_count, d->target_count);
-        assert_int_equal(p->routes[r].distance_cells, d->distance_cells);
-        assert_int_equal(p->routes[r].fuel_used, d->fuel_used);
-        assert_int_equal(p->routes[r].stranded, d->stranded ? 1 : 0);
+        TEST_ASSERT_EQUAL_INT(d->uav_id, p->routes[r].uav_id);
+        TEST_ASSERT_EQUAL_INT(d->target_count, p->routes[r].target_count);
+        TEST_ASSERT_EQUAL_INT(d->distance_cells, p->routes[r].distance_cells);
+        TEST_ASSERT_EQUAL_INT(d->fuel_used, p->routes[r].fuel_used);
+        TEST_ASSERT_EQUAL_INT(d->stranded ? 1 : 0, p->routes[r].stranded);
         for (int j = 0; j < d->target_count; ++j) {
-            assert_int_equal(p->route_targets[k++], direct_mission.targets[d->targets[j]].id);
+            TEST_ASSERT_EQUAL_INT(direct_mission.targets[d->targets[j]].id, p->route_targets[k++]);
         }
     }
-    assert_int_equal(p->item_count, k);
+    TEST_ASSERT_EQUAL_INT(k, p->item_count);
     for (; k < SVA_LCM_PLAN_T_MAX_ROUTE_ITEMS; ++k) {
-        assert_int_equal(p->route_targets[k], 0);
+        TEST_ASSERT_EQUAL_INT(0, p->route_targets[k]);
     }
     // flow's certificate travels as the core made it; the other algorithms send zeros.
     const sva_stats_t* st = &direct_plan.stats;
-    assert_int_equal(st->has_bound, algo == SVA_ALGO_FLOW);
-    assert_int_equal(p->has_bound, st->has_bound ? 1 : 0);
-    assert_int_equal(p->lower_bound, st->has_bound ? st->lower_bound : 0);
-    assert_int_equal(p->optimal, (st->has_bound && st->optimal) ? 1 : 0);
-    assert_int_equal(p->flow_incomplete, st->has_bound ? st->flow_incomplete : 0);
+    TEST_ASSERT_EQUAL_INT(algo == SVA_ALGO_FLOW, st->has_bound);
+    TEST_ASSERT_EQUAL_INT(st->has_bound ? 1 : 0, p->has_bound);
+    TEST_ASSERT_EQUAL_INT(st->has_bound ? st->lower_bound : 0, p->lower_bound);
+    TEST_ASSERT_EQUAL_INT((st->has_bound && st->optimal) ? 1 : 0, p->optimal);
+    TEST_ASSERT_EQUAL_INT(st->has_bound ? st->flow_incomplete : 0, p->flow_incomplete);
     if (p->has_bound == 1) {
-        assert_true(p->lower_bound >= 0);
-        assert_true(p->lower_bound <= p->cost);
+        TEST_ASSERT_TRUE(p->lower_bound >= 0);
+        TEST_ASSERT_TRUE(p->lower_bound <= p->cost);
         if (p->optimal == 1) {
-            assert_int_equal(p->lower_bound, p->cost);
-            assert_int_equal(p->flow_incomplete, 0);
+            TEST_ASSERT_EQUAL_INT(p->cost, p->lower_bound);
+            TEST_ASSERT_EQUAL_INT(0, p->flow_incomplete);
         }
     }
 }
 
 static void decode_last_plan(void)
 {
-    assert_int_equal(last_plan_size, SVA_LCM_PLAN_BYTES);
-    assert_int_equal(sva_lcm_plan_t_decode(last_plan_bytes, 0, (int)last_plan_size, &got_plan),
-                     SVA_LCM_PLAN_BYTES);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_PLAN_BYTES, last_plan_size);
+    TEST_ASSERT_EQUAL_INT(
+        SVA_LCM_PLAN_BYTES,
+        sva_lcm_plan_t_decode(last_plan_bytes, 0, (int)last_plan_size, &got_plan));
 }
 
 // --- tests ------------------------------------------------------------------------------
 
-static void test_encoded_sizes(void** state)
+void test_encoded_sizes(void)
 {
-    (void)state;
     make_inputs(1);
     static sva_lcm_plan_t p;
     static sva_lcm_node_status_t s;
-    assert_int_equal(sva_lcm_fleet_state_t_encoded_size(&fleet), SVA_LCM_FLEET_BYTES);
-    assert_int_equal(sva_lcm_mission_t_encoded_size(&mission), SVA_LCM_MISSION_BYTES);
-    assert_int_equal(sva_lcm_plan_t_encoded_size(&p), SVA_LCM_PLAN_BYTES);
-    assert_int_equal(sva_lcm_node_status_t_encoded_size(&s), SVA_LCM_STATUS_BYTES);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_FLEET_BYTES, sva_lcm_fleet_state_t_encoded_size(&fleet));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_MISSION_BYTES, sva_lcm_mission_t_encoded_size(&mission));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_PLAN_BYTES, sva_lcm_plan_t_encoded_size(&p));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_STATUS_BYTES, sva_lcm_node_status_t_encoded_size(&s));
     static sva_lcm_event_t e;
     static sva_lcm_replan_t r;
-    assert_int_equal(sva_lcm_event_t_encoded_size(&e), SVA_LCM_EVENT_BYTES);
-    assert_int_equal(sva_lcm_replan_t_encoded_size(&r), SVA_LCM_REPLAN_BYTES);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_EVENT_BYTES, sva_lcm_event_t_encoded_size(&e));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REPLAN_BYTES, sva_lcm_replan_t_encoded_size(&r));
     static sva_lcm_report_t rp;
-    assert_int_equal(sva_lcm_report_t_encoded_size(&rp), SVA_LCM_REPORT_BYTES);
-    assert_true(SVA_LCM_REPLAN_BYTES + 64 <= 65499);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REPORT_BYTES, sva_lcm_report_t_encoded_size(&rp));
+    TEST_ASSERT_TRUE(SVA_LCM_REPLAN_BYTES + 64 <= 65499);
     // one udpm datagram (LCM_SHORT_MESSAGE_MAX_SIZE) with the longest channel name
-    assert_true(SVA_LCM_PLAN_BYTES + 64 <= 65499);
+    TEST_ASSERT_TRUE(SVA_LCM_PLAN_BYTES + 64 <= 65499);
 }
 
-static void test_channel_escape(void** state)
+void test_channel_escape(void)
 {
-    (void)state;
     char out[16];
-    assert_int_equal(sva_lcm_channel_escape("A_b9", out, sizeof out), SVA_OK);
-    assert_string_equal(out, "A_b9");
-    assert_int_equal(sva_lcm_channel_escape("a.b*[c]", out, sizeof out), SVA_OK);
-    assert_string_equal(out, "a\\.b\\*\\[c\\]");
-    assert_int_equal(sva_lcm_channel_escape("x.y", out, 4), SVA_ERR_ARGUMENT);
-    assert_string_equal(out, "");
-    assert_int_equal(sva_lcm_channel_escape("xy", out, 3), SVA_OK);
-    assert_int_equal(sva_lcm_channel_escape(NULL, out, sizeof out), SVA_ERR_ARGUMENT);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_lcm_channel_escape("A_b9", out, sizeof out));
+    TEST_ASSERT_EQUAL_STRING("A_b9", out);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_lcm_channel_escape("a.b*[c]", out, sizeof out));
+    TEST_ASSERT_EQUAL_STRING("a\\.b\\*\\[c\\]", out);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT, sva_lcm_channel_escape("x.y", out, 4));
+    TEST_ASSERT_EQUAL_STRING("", out);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_lcm_channel_escape("xy", out, 3));
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT, sva_lcm_channel_escape(NULL, out, sizeof out));
 }
 
-static void test_init_arguments(void** state)
+void test_init_arguments(void)
 {
-    (void)state;
     char prefix[80];
     memset(prefix, 'P', sizeof prefix);
     prefix[SVA_LCM_PREFIX_MAX + 1] = '\0';
-    assert_int_equal(sva_lcm_node_init(&node, NULL, prefix, SVA_ALGO_SVA), SVA_ERR_ARGUMENT);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT, sva_lcm_node_init(&node, NULL, prefix, SVA_ALGO_SVA));
     prefix[SVA_LCM_PREFIX_MAX] = '\0';
-    assert_int_equal(sva_lcm_node_init(&node, NULL, prefix, SVA_ALGO_SVA), SVA_OK);
-    assert_int_equal(strlen(node.channel_mission), 63);
-    assert_int_equal(sva_lcm_node_init(&node, NULL, "X", SVA_ALGO_COUNT_), SVA_ERR_ARGUMENT);
-    assert_int_equal(sva_lcm_node_init(&node, NULL, "X", SVA_ALGO_GA), SVA_OK);
-    assert_string_equal(node.channel_plan, "XPLAN");
-    assert_int_equal(sva_lcm_node_subscribe(&node), SVA_ERR_ARGUMENT);  // no lcm
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_lcm_node_init(&node, NULL, prefix, SVA_ALGO_SVA));
+    TEST_ASSERT_EQUAL_INT(63, strlen(node.channel_mission));
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT, sva_lcm_node_init(&node, NULL, "X", SVA_ALGO_COUNT_));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_lcm_node_init(&node, NULL, "X", SVA_ALGO_GA));
+    TEST_ASSERT_EQUAL_STRING("XPLAN", node.channel_plan);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT, sva_lcm_node_subscribe(&node));  // no lcm
 }
 
 // The real path: lcm_publish -> memq -> lcm_handle -> raw handler -> plan -> lcm_publish.
@@ -333,53 +329,52 @@ static void drain(lcm_t* lcm)
     }
 }
 
-static void test_memq_round_trip(void** state)
+void test_memq_round_trip(void)
 {
-    (void)state;
     lcm_t* lcm = lcm_create("memq://");
-    assert_non_null(lcm);
+    TEST_ASSERT_NOT_NULL(lcm);
     // a prefix with regex metacharacters: subscriptions must match it exactly
-    assert_int_equal(sva_lcm_node_init(&node, lcm, "a.b+", SVA_ALGO_SVA), SVA_OK);
-    assert_int_equal(sva_lcm_node_subscribe(&node), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_lcm_node_init(&node, lcm, "a.b+", SVA_ALGO_SVA));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_lcm_node_subscribe(&node));
     lcm_subscription_t* sub = lcm_subscribe(lcm, "a\\.b\\+PLAN", on_memq_plan, NULL);
-    assert_non_null(sub);
+    TEST_ASSERT_NOT_NULL(sub);
     memq_plans = 0;
     make_inputs(7);
     const int nf = enc_fleet();
     const int nm = enc_mission();
-    assert_int_equal(nf, SVA_LCM_FLEET_BYTES);
-    assert_int_equal(nm, SVA_LCM_MISSION_BYTES);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_FLEET_BYTES, nf);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_MISSION_BYTES, nm);
     // "aXb+FLEET" matches the unescaped regex a.b+FLEET: the node must ignore it
-    assert_int_equal(lcm_publish(lcm, "aXbbFLEET", fleet_buf, (unsigned)nf), 0);
-    assert_int_equal(lcm_publish(lcm, "a.b+FLEET", fleet_buf, (unsigned)nf), 0);
-    assert_int_equal(lcm_publish(lcm, "a.b+MISSION", mission_buf, (unsigned)nm), 0);
+    TEST_ASSERT_EQUAL_INT(0, lcm_publish(lcm, "aXbbFLEET", fleet_buf, (unsigned)nf));
+    TEST_ASSERT_EQUAL_INT(0, lcm_publish(lcm, "a.b+FLEET", fleet_buf, (unsigned)nf));
+    TEST_ASSERT_EQUAL_INT(0, lcm_publish(lcm, "a.b+MISSION", mission_buf, (unsigned)nm));
     drain(lcm);
-    assert_int_equal(node.counters.fleet_rx, 1);
-    assert_int_equal(node.counters.mission_rx, 1);
-    assert_int_equal(memq_plans, 1);
-    assert_int_equal(sva_lcm_plan_t_decode(memq_plan_bytes, 0, SVA_LCM_PLAN_BYTES, &got_plan),
-                     SVA_LCM_PLAN_BYTES);
-    assert_int_equal(got_plan.plan_id, 1);
-    assert_int_equal(got_plan.fleet_revision, 7);
-    assert_int_equal(got_plan.mission_revision, 7);
+    TEST_ASSERT_EQUAL_INT(1, node.counters.fleet_rx);
+    TEST_ASSERT_EQUAL_INT(1, node.counters.mission_rx);
+    TEST_ASSERT_EQUAL_INT(1, memq_plans);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_PLAN_BYTES,
+                          sva_lcm_plan_t_decode(memq_plan_bytes, 0, SVA_LCM_PLAN_BYTES, &got_plan));
+    TEST_ASSERT_EQUAL_INT(1, got_plan.plan_id);
+    TEST_ASSERT_EQUAL_INT(7, got_plan.fleet_revision);
+    TEST_ASSERT_EQUAL_INT(7, got_plan.mission_revision);
     assert_plan_matches_core(&got_plan, SVA_ALGO_SVA);
-    assert_true(got_plan.covered >= 1);
+    TEST_ASSERT_TRUE(got_plan.covered >= 1);
     lcm_unsubscribe(lcm, sub);
     sva_lcm_node_unsubscribe(&node);
     lcm_destroy(lcm);
 }
 
-static void test_every_algorithm(void** state)
+void test_every_algorithm(void)
 {
-    (void)state;
     for (int a = 0; a < (int)SVA_ALGO_COUNT_; ++a) {
         node_setup((sva_algorithm_t)a);
         make_inputs(3);
-        assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-        assert_int_equal(plans_seen, 0);  // no mission yet
-        assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                         SVA_LCM_ACCEPTED);
-        assert_int_equal(plans_seen, 1);
+        TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                              sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+        TEST_ASSERT_EQUAL_INT(0, plans_seen);  // no mission yet
+        TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                              sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
+        TEST_ASSERT_EQUAL_INT(1, plans_seen);
         decode_last_plan();
         assert_plan_matches_core(&got_plan, (sva_algorithm_t)a);
     }
@@ -388,32 +383,32 @@ static void test_every_algorithm(void** state)
 // A flow plan over LCM carries its certificate, and only a plan that delivers
 // routes does (the node's wire plan is reused: a rejected or too large plan after a flow
 // plan must not inherit its bound).
-static void test_flow_certificate(void** state)
+void test_flow_certificate(void)
 {
-    (void)state;
     node_setup(SVA_ALGO_FLOW);
     make_inputs(50);
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
     decode_last_plan();
     assert_plan_matches_core(&got_plan, SVA_ALGO_FLOW);
     // 6 targets, 5 UAVs: flow's search finishes and proves its plan optimal.
-    assert_int_equal(got_plan.has_bound, 1);
-    assert_int_equal(got_plan.optimal, 1);
-    assert_true(got_plan.lower_bound > 0);
-    assert_int_equal(got_plan.lower_bound, got_plan.cost);
+    TEST_ASSERT_EQUAL_INT(1, got_plan.has_bound);
+    TEST_ASSERT_EQUAL_INT(1, got_plan.optimal);
+    TEST_ASSERT_TRUE(got_plan.lower_bound > 0);
+    TEST_ASSERT_EQUAL_INT(got_plan.cost, got_plan.lower_bound);
 
     // the core rejects the next mission: the REJECTED plan has no certificate
     mission.targets[3].id = mission.targets[1].id;
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
     decode_last_plan();
-    assert_int_equal(got_plan.status, SVA_LCM_PLAN_T_STATUS_REJECTED);
-    assert_int_equal(got_plan.has_bound, 0);
-    assert_int_equal(got_plan.lower_bound, 0);
-    assert_int_equal(got_plan.optimal, 0);
-    assert_int_equal(got_plan.flow_incomplete, 0);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_PLAN_T_STATUS_REJECTED, got_plan.status);
+    TEST_ASSERT_EQUAL_INT(0, got_plan.has_bound);
+    TEST_ASSERT_EQUAL_INT(0, got_plan.lower_bound);
+    TEST_ASSERT_EQUAL_INT(0, got_plan.optimal);
+    TEST_ASSERT_EQUAL_INT(0, got_plan.flow_incomplete);
 
     // 64 UAVs and 40 targets needing 13 each: 520 copies, above SVA_FLOW_MAX_COPIES
     // (512), so flow has no relaxation (flow_incomplete 4, lower_bound 0).
@@ -423,16 +418,17 @@ static void test_flow_certificate(void** state)
     for (int i = 0; i < 40; ++i) {
         mission.targets[i] = (sva_lcm_target_t){i + 1, i % 7, i % 5, 20 * i + 10, 20 * i + 15, 13};
     }
-    assert_true(13 * 40 > SVA_FLOW_MAX_COPIES);
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
+    TEST_ASSERT_TRUE(13 * 40 > SVA_FLOW_MAX_COPIES);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
     decode_last_plan();
     assert_plan_matches_core(&got_plan, SVA_ALGO_FLOW);
-    assert_int_equal(got_plan.has_bound, 1);
-    assert_int_equal(got_plan.flow_incomplete, 4);
-    assert_int_equal(got_plan.optimal, 0);
-    assert_int_equal(got_plan.lower_bound, 0);
+    TEST_ASSERT_EQUAL_INT(1, got_plan.has_bound);
+    TEST_ASSERT_EQUAL_INT(4, got_plan.flow_incomplete);
+    TEST_ASSERT_EQUAL_INT(0, got_plan.optimal);
+    TEST_ASSERT_EQUAL_INT(0, got_plan.lower_bound);
 
     // 65 back-to-back targets at the depot needing all 64 UAVs: 4160 route items, more
     // than MAX_ROUTE_ITEMS. The core's plan has a bound; the TOO_LARGE plan carries none.
@@ -442,58 +438,61 @@ static void test_flow_certificate(void** state)
     for (int i = 0; i < 65; ++i) {
         mission.targets[i] = (sva_lcm_target_t){i + 1, 0, 0, 10 * i + 1, 10 * i + 5, SVA_MAX_UAVS};
     }
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
     decode_last_plan();
-    assert_int_equal(got_plan.status, SVA_LCM_PLAN_T_STATUS_TOO_LARGE);
-    assert_true(node.priv.plan.stats.has_bound);
-    assert_int_equal(got_plan.has_bound, 0);
-    assert_int_equal(got_plan.lower_bound, 0);
-    assert_int_equal(got_plan.optimal, 0);
-    assert_int_equal(got_plan.flow_incomplete, 0);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_PLAN_T_STATUS_TOO_LARGE, got_plan.status);
+    TEST_ASSERT_TRUE(node.priv.plan.stats.has_bound);
+    TEST_ASSERT_EQUAL_INT(0, got_plan.has_bound);
+    TEST_ASSERT_EQUAL_INT(0, got_plan.lower_bound);
+    TEST_ASSERT_EQUAL_INT(0, got_plan.optimal);
+    TEST_ASSERT_EQUAL_INT(0, got_plan.flow_incomplete);
 }
 
-static void test_unchanged_and_replan(void** state)
+void test_unchanged_and_replan(void)
 {
-    (void)state;
     node_setup(SVA_ALGO_SVA);
     make_inputs(1);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(plans_seen, 1);
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_UNCHANGED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_UNCHANGED);
-    assert_int_equal(node.counters.unchanged, 2);
-    assert_int_equal(plans_seen, 1);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(1, plans_seen);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_UNCHANGED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_UNCHANGED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
+    TEST_ASSERT_EQUAL_INT(2, node.counters.unchanged);
+    TEST_ASSERT_EQUAL_INT(1, plans_seen);
     // same revision, different content: still a change
     fleet.uavs[0].fuel = 199;
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(plans_seen, 2);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(2, plans_seen);
     decode_last_plan();
-    assert_int_equal(got_plan.plan_id, 2);
+    TEST_ASSERT_EQUAL_INT(2, got_plan.plan_id);
     assert_plan_matches_core(&got_plan, SVA_ALGO_SVA);
 }
 
-static void test_unavailable_uav_gets_nothing(void** state)
+void test_unavailable_uav_gets_nothing(void)
 {
-    (void)state;
     node_setup(SVA_ALGO_SVA);
     make_inputs(2);
     for (int i = 1; i < 5; ++i) {
         fleet.uavs[i].health = SVA_LCM_UAV_STATE_T_HEALTH_UNAVAILABLE;
     }
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
     decode_last_plan();
-    assert_int_equal(got_plan.route_count, 5);
-    assert_true(got_plan.routes[0].target_count >= 1);
+    TEST_ASSERT_EQUAL_INT(5, got_plan.route_count);
+    TEST_ASSERT_TRUE(got_plan.routes[0].target_count >= 1);
     for (int i = 1; i < 5; ++i) {
-        assert_int_equal(got_plan.routes[i].uav_id, 10 + i);
-        assert_int_equal(got_plan.routes[i].target_count, 0);
+        TEST_ASSERT_EQUAL_INT(10 + i, got_plan.routes[i].uav_id);
+        TEST_ASSERT_EQUAL_INT(0, got_plan.routes[i].target_count);
     }
 }
 
@@ -507,22 +506,22 @@ static void expect_reject(bool is_fleet, const uint8_t* data, size_t size, sva_l
     const int64_t mr = node.priv.mission_revision;
     const sva_lcm_verdict_t v =
         is_fleet ? sva_lcm_on_fleet(&node, data, size) : sva_lcm_on_mission(&node, data, size);
-    assert_int_equal(v, SVA_LCM_REJECTED);
-    assert_int_equal(node.last_reject, why);
-    assert_int_equal(node.counters.rejected[why], before + 1U);
-    assert_int_equal(plans_seen, plans);
-    assert_int_equal(node.priv.fleet_revision, fr);
-    assert_int_equal(node.priv.mission_revision, mr);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, v);
+    TEST_ASSERT_EQUAL_INT(why, node.last_reject);
+    TEST_ASSERT_EQUAL_INT(before + 1U, node.counters.rejected[why]);
+    TEST_ASSERT_EQUAL_INT(plans, plans_seen);
+    TEST_ASSERT_EQUAL_INT(fr, node.priv.fleet_revision);
+    TEST_ASSERT_EQUAL_INT(mr, node.priv.mission_revision);
 }
 
-static void test_rejections_frame(void** state)
+void test_rejections_frame(void)
 {
-    (void)state;
     node_setup(SVA_ALGO_SVA);
     make_inputs(5);
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
     fleet.revision = 6;
     mission.revision = 6;
     const size_t nf = (size_t)enc_fleet();
@@ -541,33 +540,33 @@ static void test_rejections_frame(void** state)
     fleet_buf[7] ^= 0x01U;
     mission_buf[0] ^= 0x80U;
     expect_reject(false, mission_buf, nm, SVA_LCM_REJECT_FINGERPRINT);
-    assert_int_equal(log_lines[SVA_LCM_REJECT_TRUNCATED], 1);  // logged once per reason
-    assert_int_equal(log_lines[SVA_LCM_REJECT_TRAILING], 1);
-    assert_int_equal(log_lines[SVA_LCM_REJECT_FINGERPRINT], 1);
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_TRUNCATED], 5);
+    TEST_ASSERT_EQUAL_INT(1, log_lines[SVA_LCM_REJECT_TRUNCATED]);  // logged once per reason
+    TEST_ASSERT_EQUAL_INT(1, log_lines[SVA_LCM_REJECT_TRAILING]);
+    TEST_ASSERT_EQUAL_INT(1, log_lines[SVA_LCM_REJECT_FINGERPRINT]);
+    TEST_ASSERT_EQUAL_INT(5, node.counters.rejected[SVA_LCM_REJECT_TRUNCATED]);
 }
 
-static void test_rejections_counts_and_values(void** state)
+void test_rejections_counts_and_values(void)
 {
-    (void)state;
     node_setup(SVA_ALGO_SVA);
     make_inputs(5);
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
 
     static const int16_t bad_counts[] = {SVA_MAX_UAVS + 1, -1, INT16_MAX, INT16_MIN};
     for (size_t i = 0; i < sizeof bad_counts / sizeof bad_counts[0]; ++i) {
         make_inputs(9);
         fleet.uav_count = bad_counts[i];
         expect_reject(true, fleet_buf, (size_t)enc_fleet(), SVA_LCM_REJECT_COUNT);
-        assert_int_equal(node.last_diag.field, SVA_FIELD_UAVS);
-        assert_string_equal(node.last_diag.limit_name, "SVA_MAX_UAVS");
+        TEST_ASSERT_EQUAL_INT(SVA_FIELD_UAVS, node.last_diag.field);
+        TEST_ASSERT_EQUAL_STRING("SVA_MAX_UAVS", node.last_diag.limit_name);
         make_inputs(9);
         mission.target_count =
             (int16_t)(bad_counts[i] == SVA_MAX_UAVS + 1 ? SVA_MAX_TARGETS + 1 : bad_counts[i]);
         expect_reject(false, mission_buf, (size_t)enc_mission(), SVA_LCM_REJECT_COUNT);
-        assert_int_equal(node.last_diag.field, SVA_FIELD_TARGETS);
+        TEST_ASSERT_EQUAL_INT(SVA_FIELD_TARGETS, node.last_diag.field);
     }
     // exactly the bound is accepted
     make_inputs(10);
@@ -576,7 +575,8 @@ static void test_rejections_counts_and_values(void** state)
         fleet.uavs[i].id = i + 1;
         fleet.uavs[i].fuel = 50;
     }
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
 
     struct {
         int which;  // 0 fleet, 1 mission
@@ -644,51 +644,51 @@ static void test_rejections_counts_and_values(void** state)
             mission.targets[i].id = v;
             break;
         default:
-            fail();
+            TEST_FAIL();
         }
         if (cases[c].which == 0) {
             expect_reject(true, fleet_buf, (size_t)enc_fleet(), SVA_LCM_REJECT_VALUE);
         } else {
             expect_reject(false, mission_buf, (size_t)enc_mission(), SVA_LCM_REJECT_VALUE);
         }
-        assert_int_equal(node.last_diag.field, cases[c].field);
-        assert_int_equal(node.last_diag.index, i);
-        assert_int_equal(node.last_diag.value, cases[c].value);
+        TEST_ASSERT_EQUAL_INT(cases[c].field, node.last_diag.field);
+        TEST_ASSERT_EQUAL_INT(i, node.last_diag.index);
+        TEST_ASSERT_EQUAL_INT(cases[c].value, node.last_diag.value);
     }
     make_inputs(12);
     fleet.uavs[2].health = 7;
     expect_reject(true, fleet_buf, (size_t)enc_fleet(), SVA_LCM_REJECT_VALUE);
-    assert_int_equal(log_lines[SVA_LCM_REJECT_COUNT], 1);
-    assert_int_equal(log_lines[SVA_LCM_REJECT_VALUE], 1);
+    TEST_ASSERT_EQUAL_INT(1, log_lines[SVA_LCM_REJECT_COUNT]);
+    TEST_ASSERT_EQUAL_INT(1, log_lines[SVA_LCM_REJECT_VALUE]);
 }
 
-static void test_core_rejection_and_planner_limit(void** state)
+void test_core_rejection_and_planner_limit(void)
 {
-    (void)state;
     node_setup(SVA_ALGO_SVA);
     make_inputs(20);
     mission.targets[3].id = mission.targets[1].id;  // duplicate: only the core sees it
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_INVALID], 1);
-    assert_int_equal(plans_seen, 1);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
+    TEST_ASSERT_EQUAL_INT(1, node.counters.rejected[SVA_LCM_REJECT_INVALID]);
+    TEST_ASSERT_EQUAL_INT(1, plans_seen);
     decode_last_plan();
-    assert_int_equal(got_plan.status, SVA_LCM_PLAN_T_STATUS_REJECTED);
-    assert_int_equal(got_plan.error_code, SVA_ERR_INVALID);
-    assert_int_equal(got_plan.diag_field, SVA_FIELD_TARGET_ID);
-    assert_int_equal(got_plan.diag_rule, SVA_RULE_DUPLICATE);
-    assert_int_equal(got_plan.diag_index, 3);
-    assert_int_equal(got_plan.route_count, 0);
-    assert_int_equal(log_lines[SVA_LCM_REJECT_INVALID], 1);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_PLAN_T_STATUS_REJECTED, got_plan.status);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, got_plan.error_code);
+    TEST_ASSERT_EQUAL_INT(SVA_FIELD_TARGET_ID, got_plan.diag_field);
+    TEST_ASSERT_EQUAL_INT(SVA_RULE_DUPLICATE, got_plan.diag_rule);
+    TEST_ASSERT_EQUAL_INT(3, got_plan.diag_index);
+    TEST_ASSERT_EQUAL_INT(0, got_plan.route_count);
+    TEST_ASSERT_EQUAL_INT(1, log_lines[SVA_LCM_REJECT_INVALID]);
     // window end before start: the core's rule too
     make_inputs(21);
     mission.targets[2].end_ticks = mission.targets[2].start_ticks;
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
     decode_last_plan();
-    assert_int_equal(got_plan.status, SVA_LCM_PLAN_T_STATUS_REJECTED);
-    assert_int_equal(got_plan.diag_rule, SVA_RULE_AFTER);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_PLAN_T_STATUS_REJECTED, got_plan.status);
+    TEST_ASSERT_EQUAL_INT(SVA_RULE_AFTER, got_plan.diag_rule);
 
     // bfa refuses more than SVA_BFA_MAX_TARGETS targets: STATUS_FAILED
     node_setup(SVA_ALGO_BFA);
@@ -697,18 +697,18 @@ static void test_core_rejection_and_planner_limit(void** state)
     for (int i = 0; i < mission.target_count; ++i) {
         mission.targets[i] = (sva_lcm_target_t){i + 1, i, 1, 100 * i + 10, 100 * i + 20, 1};
     }
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
     decode_last_plan();
-    assert_int_equal(got_plan.status, SVA_LCM_PLAN_T_STATUS_FAILED);
-    assert_int_equal(got_plan.error_code, SVA_ERR_LIMIT);
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_PLANNER], 1);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_PLAN_T_STATUS_FAILED, got_plan.status);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_LIMIT, got_plan.error_code);
+    TEST_ASSERT_EQUAL_INT(1, node.counters.rejected[SVA_LCM_REJECT_PLANNER]);
 }
 
-static void test_plan_too_large(void** state)
+void test_plan_too_large(void)
 {
-    (void)state;
     node_setup(SVA_ALGO_GA);
     make_inputs(30);
     // 64 UAVs at the depot serve 256 back-to-back targets there, 17 each: 4352 items.
@@ -717,51 +717,52 @@ static void test_plan_too_large(void** state)
     for (int i = 0; i < SVA_MAX_TARGETS; ++i) {
         mission.targets[i] = (sva_lcm_target_t){i + 1, 0, 0, 10 * i + 1, 10 * i + 5, 17};
     }
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
     decode_last_plan();
-    assert_int_equal(got_plan.status, SVA_LCM_PLAN_T_STATUS_TOO_LARGE);
-    assert_int_equal(got_plan.route_count, 0);
-    assert_int_equal(got_plan.item_count, 0);
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_TOO_LARGE], 1);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_PLAN_T_STATUS_TOO_LARGE, got_plan.status);
+    TEST_ASSERT_EQUAL_INT(0, got_plan.route_count);
+    TEST_ASSERT_EQUAL_INT(0, got_plan.item_count);
+    TEST_ASSERT_EQUAL_INT(1, node.counters.rejected[SVA_LCM_REJECT_TOO_LARGE]);
     // 15 each (3840 items) fits
     for (int i = 0; i < SVA_MAX_TARGETS; ++i) {
         mission.targets[i].need = 15;
     }
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
     decode_last_plan();
-    assert_int_equal(got_plan.status, SVA_LCM_PLAN_T_STATUS_COMPLETE);
-    assert_int_equal(got_plan.item_count, 15 * SVA_MAX_TARGETS);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_PLAN_T_STATUS_COMPLETE, got_plan.status);
+    TEST_ASSERT_EQUAL_INT(15 * SVA_MAX_TARGETS, got_plan.item_count);
     assert_plan_matches_core(&got_plan, SVA_ALGO_GA);
 }
 
-static void test_status(void** state)
+void test_status(void)
 {
-    (void)state;
     node_setup(SVA_ALGO_HGA);
     make_inputs(40);
     static sva_lcm_node_status_t s;
-    assert_int_equal(sva_lcm_publish_status(&node, 123), SVA_OK);
-    assert_int_equal(status_seen, 1);
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, 3), SVA_LCM_REJECTED);
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_publish_status(&node, 456), SVA_OK);
-    assert_int_equal(
-        sva_lcm_node_status_t_decode(node.priv.status_buf, 0, SVA_LCM_STATUS_BYTES, &s),
-        SVA_LCM_STATUS_BYTES);
-    assert_int_equal(s.utime, 456);
-    assert_int_equal(s.seq, 2);
-    assert_int_equal(s.state, SVA_LCM_NODE_STATUS_T_STATE_READY);
-    assert_int_equal(s.algorithm, SVA_ALGO_HGA);
-    assert_int_equal(s.fleet_revision, 40);
-    assert_int_equal(s.last_plan_id, 1);
-    assert_int_equal(s.fleet_rx, 2);
-    assert_int_equal(s.plans_published, 1);
-    assert_int_equal(s.rejected[SVA_LCM_REJECT_TRUNCATED], 1);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_lcm_publish_status(&node, 123));
+    TEST_ASSERT_EQUAL_INT(1, status_seen);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, sva_lcm_on_fleet(&node, fleet_buf, 3));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_lcm_publish_status(&node, 456));
+    TEST_ASSERT_EQUAL_INT(
+        SVA_LCM_STATUS_BYTES,
+        sva_lcm_node_status_t_decode(node.priv.status_buf, 0, SVA_LCM_STATUS_BYTES, &s));
+    TEST_ASSERT_EQUAL_INT(456, s.utime);
+    TEST_ASSERT_EQUAL_INT(2, s.seq);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_NODE_STATUS_T_STATE_READY, s.state);
+    TEST_ASSERT_EQUAL_INT(SVA_ALGO_HGA, s.algorithm);
+    TEST_ASSERT_EQUAL_INT(40, s.fleet_revision);
+    TEST_ASSERT_EQUAL_INT(1, s.last_plan_id);
+    TEST_ASSERT_EQUAL_INT(2, s.fleet_rx);
+    TEST_ASSERT_EQUAL_INT(1, s.plans_published);
+    TEST_ASSERT_EQUAL_INT(1, s.rejected[SVA_LCM_REJECT_TRUNCATED]);
 }
 
 // The port's goal: zero heap allocations per message in steady state, accepted or not,
@@ -769,7 +770,7 @@ static void test_status(void** state)
 static int send_event(const sva_lcm_event_t* e)
 {
     static uint8_t buf[SVA_LCM_EVENT_BYTES];
-    assert_int_equal(sva_lcm_event_t_encode(buf, 0, (int)sizeof buf, e), SVA_LCM_EVENT_BYTES);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_EVENT_BYTES, sva_lcm_event_t_encode(buf, 0, (int)sizeof buf, e));
     return (int)sva_lcm_on_event(&node, buf, sizeof buf);
 }
 
@@ -786,9 +787,8 @@ static const char* replan_text(void)
 // Events: refused before a mission; a plan starts the live mission; a version, a type
 // and the core's verdict refused with the live state byte for byte unchanged; a loss
 // applied and replanned as sva_live_replan does on the same live mission.
-static void test_live_events(void** state)
+void test_live_events(void)
 {
-    (void)state;
     node_setup(SVA_ALGO_SVA);
     static sva_lcm_event_t e;
     memset(&e, 0, sizeof e);
@@ -796,40 +796,42 @@ static void test_live_events(void** state)
     e.seq = 7;
     e.type = SVA_LCM_EVENT_T_TYPE_CLOCK;
     e.at_ticks = 1;
-    assert_int_equal(send_event(&e), SVA_LCM_REJECTED);
-    assert_int_equal(replans_seen, 1);
-    assert_int_equal(got_replan.accepted, 0);
-    assert_int_equal(got_replan.event_seq, 7);
-    assert_string_equal(replan_text(),
-                        "T_EVENT: no live mission: a fleet and a mission must be planned first");
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, send_event(&e));
+    TEST_ASSERT_EQUAL_INT(1, replans_seen);
+    TEST_ASSERT_EQUAL_INT(0, got_replan.accepted);
+    TEST_ASSERT_EQUAL_INT(7, got_replan.event_seq);
+    TEST_ASSERT_EQUAL_STRING(
+        "T_EVENT: no live mission: a fleet and a mission must be planned first", replan_text());
 
     make_inputs(3);
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
     static sva_live_t before;
     before = node.priv.live;
 
     e.seq = 8;
     e.version = 2;
-    assert_int_equal(send_event(&e), SVA_LCM_REJECTED);
-    assert_string_equal(replan_text(), "T_EVENT: event_t.version is 2, this node speaks version 1");
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, send_event(&e));
+    TEST_ASSERT_EQUAL_STRING("T_EVENT: event_t.version is 2, this node speaks version 1",
+                             replan_text());
     e.version = SVA_LCM_EVENT_T_VERSION;
     e.type = 9;
-    assert_int_equal(send_event(&e), SVA_LCM_REJECTED);
-    assert_int_equal(got_replan.diag_field, (int)SVA_FIELD_EVENT_TYPE);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, send_event(&e));
+    TEST_ASSERT_EQUAL_INT((int)SVA_FIELD_EVENT_TYPE, got_replan.diag_field);
     e.type = SVA_LCM_EVENT_T_TYPE_UAV_LOST;
     e.uav_id = 99;
-    assert_int_equal(send_event(&e), SVA_LCM_REJECTED);
-    assert_int_equal(got_replan.accepted, 0);
-    assert_int_equal(got_replan.plan.status, SVA_LCM_PLAN_T_STATUS_REJECTED);
-    assert_int_equal(got_replan.diag_field, (int)SVA_FIELD_EVENT_UAV);
-    assert_int_equal(got_replan.diag_rule, (int)SVA_RULE_UNKNOWN);
-    assert_int_equal(got_replan.diag_value, 99);
-    assert_memory_equal(&node.priv.live, &before, sizeof before);
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_VALUE], 2);
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_VERSION], 1);
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_INVALID], 1);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, send_event(&e));
+    TEST_ASSERT_EQUAL_INT(0, got_replan.accepted);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_PLAN_T_STATUS_REJECTED, got_replan.plan.status);
+    TEST_ASSERT_EQUAL_INT((int)SVA_FIELD_EVENT_UAV, got_replan.diag_field);
+    TEST_ASSERT_EQUAL_INT((int)SVA_RULE_UNKNOWN, got_replan.diag_rule);
+    TEST_ASSERT_EQUAL_INT(99, got_replan.diag_value);
+    TEST_ASSERT_EQUAL_MEMORY(&before, &node.priv.live, sizeof before);
+    TEST_ASSERT_EQUAL_INT(2, node.counters.rejected[SVA_LCM_REJECT_VALUE]);
+    TEST_ASSERT_EQUAL_INT(1, node.counters.rejected[SVA_LCM_REJECT_VERSION]);
+    TEST_ASSERT_EQUAL_INT(1, node.counters.rejected[SVA_LCM_REJECT_INVALID]);
 
     // A loss at tick 11: the same event on a copy of the live mission, replanned by
     // the core directly, gives the plan the node published.
@@ -839,69 +841,70 @@ static void test_live_events(void** state)
     static sva_live_t mirror;
     mirror = before;
     const sva_event_t ev = {.type = SVA_EVENT_UAV_LOST, .at_ticks = 11, .uav_id = 10};
-    assert_int_equal(sva_live_apply(&mirror, &ev, NULL), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_live_apply(&mirror, &ev, NULL));
     sva_live_result_t res;
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
-    assert_int_equal(sva_live_replan(&mirror, &planner, SVA_ALGO_SVA, &res, NULL), SVA_OK);
-    assert_int_equal(send_event(&e), SVA_LCM_ACCEPTED);
-    assert_int_equal(got_replan.accepted, 1);
-    assert_int_equal(got_replan.event_seq, 9);
-    assert_int_equal(got_replan.now_ticks, 11);
-    assert_int_equal(got_replan.revision, (int64_t)res.revision);
-    assert_int_equal(got_replan.kept, res.kept ? 1 : 0);
-    assert_int_equal(got_replan.dropped, (int32_t)res.dropped);
-    assert_int_equal(got_replan.added, (int32_t)res.added);
-    assert_int_equal(got_replan.dropped_listed, (int16_t)res.dropped);
-    assert_int_equal(got_replan.added_listed, (int16_t)res.added);
-    assert_int_equal(got_replan.objective, res.objective);
-    assert_int_equal(got_replan.residual_fleet.uav_count, (int16_t)res.residual->uav_count);
-    assert_int_equal(got_replan.residual_mission.target_count, (int16_t)res.residual->target_count);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_live_replan(&mirror, &planner, SVA_ALGO_SVA, &res, NULL));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED, send_event(&e));
+    TEST_ASSERT_EQUAL_INT(1, got_replan.accepted);
+    TEST_ASSERT_EQUAL_INT(9, got_replan.event_seq);
+    TEST_ASSERT_EQUAL_INT(11, got_replan.now_ticks);
+    TEST_ASSERT_EQUAL_INT((int64_t)res.revision, got_replan.revision);
+    TEST_ASSERT_EQUAL_INT(res.kept ? 1 : 0, got_replan.kept);
+    TEST_ASSERT_EQUAL_INT((int32_t)res.dropped, got_replan.dropped);
+    TEST_ASSERT_EQUAL_INT((int32_t)res.added, got_replan.added);
+    TEST_ASSERT_EQUAL_INT((int16_t)res.dropped, got_replan.dropped_listed);
+    TEST_ASSERT_EQUAL_INT((int16_t)res.added, got_replan.added_listed);
+    TEST_ASSERT_EQUAL_INT(res.objective, got_replan.objective);
+    TEST_ASSERT_EQUAL_INT((int16_t)res.residual->uav_count, got_replan.residual_fleet.uav_count);
+    TEST_ASSERT_EQUAL_INT((int16_t)res.residual->target_count,
+                          got_replan.residual_mission.target_count);
     for (int u = 0; u < got_replan.residual_fleet.uav_count; ++u) {
-        assert_int_not_equal(got_replan.residual_fleet.uavs[u].id, 10);  // lost
+        TEST_ASSERT_NOT_EQUAL_INT(10, got_replan.residual_fleet.uavs[u].id);  // lost
     }
-    assert_int_equal(got_replan.plan.cost, res.plan->cost);
-    assert_int_equal(got_replan.plan.covered, (int16_t)res.plan->covered);
-    assert_int_equal(got_replan.plan.route_count, (int16_t)res.plan->route_count);
-    assert_int_equal(got_replan.plan.plan_id, 2);  // after the mission's plan
-    assert_int_equal(node.counters.replans_published, 5);
+    TEST_ASSERT_EQUAL_INT(res.plan->cost, got_replan.plan.cost);
+    TEST_ASSERT_EQUAL_INT((int16_t)res.plan->covered, got_replan.plan.covered);
+    TEST_ASSERT_EQUAL_INT((int16_t)res.plan->route_count, got_replan.plan.route_count);
+    TEST_ASSERT_EQUAL_INT(2, got_replan.plan.plan_id);  // after the mission's plan
+    TEST_ASSERT_EQUAL_INT(5, node.counters.replans_published);
     // every message of the replan names its version; the mission had no frame
-    assert_int_equal(got_replan.version, SVA_LCM_REPLAN_T_VERSION);
-    assert_int_equal(got_replan.residual_fleet.version, SVA_LCM_FLEET_STATE_T_VERSION);
-    assert_int_equal(got_replan.residual_mission.version, SVA_LCM_MISSION_T_VERSION);
-    assert_int_equal(got_replan.plan.version, SVA_LCM_PLAN_T_VERSION);
-    assert_int_equal(got_replan.residual_mission.frame.present, 0);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REPLAN_T_VERSION, got_replan.version);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_FLEET_STATE_T_VERSION, got_replan.residual_fleet.version);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_MISSION_T_VERSION, got_replan.residual_mission.version);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_PLAN_T_VERSION, got_replan.plan.version);
+    TEST_ASSERT_EQUAL_INT(0, got_replan.residual_mission.frame.present);
 }
 
 // Versions: a fleet or a mission of another version is refused (REJECT_VERSION, one log
 // line naming both versions) and changes nothing; plans and status carry theirs.
-static void test_versions(void** state)
+void test_versions(void)
 {
-    (void)state;
     node_setup(SVA_ALGO_SVA);
     make_inputs(5);
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
     decode_last_plan();
-    assert_int_equal(got_plan.version, SVA_LCM_PLAN_T_VERSION);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_PLAN_T_VERSION, got_plan.version);
     make_inputs(6);
     fleet.version = 1;
     expect_reject(true, fleet_buf, (size_t)enc_fleet(), SVA_LCM_REJECT_VERSION);
-    assert_string_equal(last_log,
-                        "rejected (version; further ones only counted in T_STATUS): T_FLEET: "
-                        "fleet_state_t.version is 1, this node speaks version 2");
+    TEST_ASSERT_EQUAL_STRING("rejected (version; further ones only counted in T_STATUS): T_FLEET: "
+                             "fleet_state_t.version is 1, this node speaks version 2",
+                             last_log);
     mission.version = 3;
     expect_reject(false, mission_buf, (size_t)enc_mission(), SVA_LCM_REJECT_VERSION);
-    assert_int_equal(log_lines[SVA_LCM_REJECT_VERSION], 1);  // logged once
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_VERSION], 2);
+    TEST_ASSERT_EQUAL_INT(1, log_lines[SVA_LCM_REJECT_VERSION]);  // logged once
+    TEST_ASSERT_EQUAL_INT(2, node.counters.rejected[SVA_LCM_REJECT_VERSION]);
     static sva_lcm_node_status_t s;
-    assert_int_equal(sva_lcm_publish_status(&node, 1), SVA_OK);
-    assert_int_equal(
-        sva_lcm_node_status_t_decode(node.priv.status_buf, 0, SVA_LCM_STATUS_BYTES, &s),
-        SVA_LCM_STATUS_BYTES);
-    assert_int_equal(s.version, SVA_LCM_NODE_STATUS_T_VERSION);
-    assert_int_equal(s.rejected[SVA_LCM_NODE_STATUS_T_REJECT_VERSION], 2);
-    assert_string_equal(sva_lcm_reject_name(SVA_LCM_REJECT_VERSION), "version");
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_lcm_publish_status(&node, 1));
+    TEST_ASSERT_EQUAL_INT(
+        SVA_LCM_STATUS_BYTES,
+        sva_lcm_node_status_t_decode(node.priv.status_buf, 0, SVA_LCM_STATUS_BYTES, &s));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_NODE_STATUS_T_VERSION, s.version);
+    TEST_ASSERT_EQUAL_INT(2, s.rejected[SVA_LCM_NODE_STATUS_T_REJECT_VERSION]);
+    TEST_ASSERT_EQUAL_STRING("version", sva_lcm_reject_name(SVA_LCM_REJECT_VERSION));
 }
 
 static void set_frame(void)
@@ -917,20 +920,20 @@ static void set_frame(void)
 
 // The frame: checked by sva_frame_check (REJECT_VALUE with its message), kept by the
 // node and carried by the residual mission of every replan.
-static void test_frame_round_trip(void** state)
+void test_frame_round_trip(void)
 {
-    (void)state;
     node_setup(SVA_ALGO_SVA);
     make_inputs(5);
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
 
     make_inputs(6);
     set_frame();
     mission.frame.cell_cm = 5;
     expect_reject(false, mission_buf, (size_t)enc_mission(), SVA_LCM_REJECT_VALUE);
-    assert_string_equal(last_log,
-                        "rejected (value; further ones only counted in T_STATUS): T_MISSION: "
-                        "frame.cell_m: must be >= 0.1, got 0.05");
+    TEST_ASSERT_EQUAL_STRING("rejected (value; further ones only counted in T_STATUS): T_MISSION: "
+                             "frame.cell_m: must be >= 0.1, got 0.05",
+                             last_log);
     set_frame();
     mission.frame.lat_e7 = 850000001;
     expect_reject(false, mission_buf, (size_t)enc_mission(), SVA_LCM_REJECT_VALUE);
@@ -943,28 +946,29 @@ static void test_frame_round_trip(void** state)
     memset(&mission.frame, 0, sizeof mission.frame);
     mission.frame.tick_ms = 1000;  // present 0 with a field set
     expect_reject(false, mission_buf, (size_t)enc_mission(), SVA_LCM_REJECT_VALUE);
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_VALUE], 5);
+    TEST_ASSERT_EQUAL_INT(5, node.counters.rejected[SVA_LCM_REJECT_VALUE]);
 
     set_frame();
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
-    assert_int_equal(plans_seen, 1);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
+    TEST_ASSERT_EQUAL_INT(1, plans_seen);
     static sva_lcm_event_t e;
     memset(&e, 0, sizeof e);
     e.version = SVA_LCM_EVENT_T_VERSION;
     e.seq = 1;
     e.type = SVA_LCM_EVENT_T_TYPE_CLOCK;
     e.at_ticks = 2;
-    assert_int_equal(send_event(&e), SVA_LCM_ACCEPTED);
-    assert_int_equal(got_replan.accepted, 1);
-    assert_memory_equal(&got_replan.residual_mission.frame, &mission.frame, sizeof mission.frame);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED, send_event(&e));
+    TEST_ASSERT_EQUAL_INT(1, got_replan.accepted);
+    TEST_ASSERT_EQUAL_MEMORY(&mission.frame, &got_replan.residual_mission.frame,
+                             sizeof mission.frame);
     // the same mission without its frame is a change: it replans
     memset(&mission.frame, 0, sizeof mission.frame);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
-    assert_int_equal(plans_seen, 2);
-    assert_int_equal(send_event(&e), SVA_LCM_ACCEPTED);
-    assert_int_equal(got_replan.residual_mission.frame.present, 0);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
+    TEST_ASSERT_EQUAL_INT(2, plans_seen);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED, send_event(&e));
+    TEST_ASSERT_EQUAL_INT(0, got_replan.residual_mission.frame.present);
 }
 
 // fleet_reports: while a live mission runs, a fleet message is a report through the
@@ -972,16 +976,16 @@ static void test_frame_round_trip(void** state)
 // fuel is below its route's need a fuel event, one off its track by more than the
 // tolerance a position event, each answered by one replan
 // (event_seq -1) and no plan from scratch; a report that contradicts nothing publishes nothing.
-static void test_fleet_reports(void** state)
+void test_fleet_reports(void)
 {
-    (void)state;
     node_setup(SVA_ALGO_SVA);
     node.fleet_reports = true;
     make_inputs(4);
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
-    assert_int_equal(plans_seen, 1);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
+    TEST_ASSERT_EQUAL_INT(1, plans_seen);
     decode_last_plan();
     int busy = -1;  // a UAV with a route, other than UAV 11
     for (int r = 0; r < got_plan.route_count; ++r) {
@@ -990,61 +994,67 @@ static void test_fleet_reports(void** state)
             busy = r;
         }
     }
-    assert_true(busy >= 0);
+    TEST_ASSERT_TRUE(busy >= 0);
     const int32_t busy_id = got_plan.routes[busy].uav_id;
 
     fleet.uavs[1].health = SVA_LCM_UAV_STATE_T_HEALTH_UNAVAILABLE;  // UAV 11
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(plans_seen, 1);
-    assert_int_equal(replans_seen, 1);
-    assert_int_equal(got_replan.event_seq, -1);
-    assert_int_equal(got_replan.event_type, SVA_LCM_EVENT_T_TYPE_UAV_LOST);
-    assert_int_equal(got_replan.accepted, 1);
-    assert_int_equal(got_replan.revision, 1);
-    assert_int_equal(got_replan.residual_fleet.uav_count, 4);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(1, plans_seen);
+    TEST_ASSERT_EQUAL_INT(1, replans_seen);
+    TEST_ASSERT_EQUAL_INT(-1, got_replan.event_seq);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_EVENT_T_TYPE_UAV_LOST, got_replan.event_type);
+    TEST_ASSERT_EQUAL_INT(1, got_replan.accepted);
+    TEST_ASSERT_EQUAL_INT(1, got_replan.revision);
+    TEST_ASSERT_EQUAL_INT(4, got_replan.residual_fleet.uav_count);
     for (int u = 0; u < got_replan.residual_fleet.uav_count; ++u) {
-        assert_int_not_equal(got_replan.residual_fleet.uavs[u].id, 11);
+        TEST_ASSERT_NOT_EQUAL_INT(11, got_replan.residual_fleet.uavs[u].id);
     }
 
     fleet.uavs[busy_id - 10].fuel = 1;  // ids are 10 + index
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(replans_seen, 2);
-    assert_int_equal(got_replan.event_type, SVA_LCM_EVENT_T_TYPE_FUEL);
-    assert_int_equal(got_replan.revision, 2);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(2, replans_seen);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_EVENT_T_TYPE_FUEL, got_replan.event_type);
+    TEST_ASSERT_EQUAL_INT(2, got_replan.revision);
     int found = 0;
     for (int u = 0; u < got_replan.residual_fleet.uav_count; ++u) {
         if (got_replan.residual_fleet.uavs[u].id == busy_id) {
-            assert_int_equal(got_replan.residual_fleet.uavs[u].fuel, 1);
+            TEST_ASSERT_EQUAL_INT(1, got_replan.residual_fleet.uavs[u].fuel);
             found = 1;
         }
     }
-    assert_true(found);
+    TEST_ASSERT_TRUE(found);
     // the same report again: unchanged; more fuel than any route needs: nothing to do
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_UNCHANGED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_UNCHANGED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
     fleet.uavs[busy_id - 10].fuel = 200;
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(replans_seen, 2);
-    assert_int_equal(plans_seen, 1);
-    assert_int_equal(node.priv.live.revision, 2);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(2, replans_seen);
+    TEST_ASSERT_EQUAL_INT(1, plans_seen);
+    TEST_ASSERT_EQUAL_INT(2, node.priv.live.revision);
 
     // UAV 10 off its track: within the tolerance (2 cells) nothing; 3 cells off, a
     // position event: it flies on from the reported cell with the reported fuel.
-    assert_int_equal(node.track_tolerance_cells, SVA_LCM_TRACK_TOLERANCE_DEFAULT);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_TRACK_TOLERANCE_DEFAULT, node.track_tolerance_cells);
     const int32_t x0 = fleet.uavs[0].x;
     fleet.uavs[0].x = x0 + 1;
     fleet.uavs[0].y += 1;
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(replans_seen, 2);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(2, replans_seen);
     fleet.uavs[0].x = x0 + 2;
     fleet.uavs[0].fuel -= 3;
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(replans_seen, 3);
-    assert_int_equal(got_replan.event_type, SVA_LCM_EVENT_T_TYPE_POSITION);
-    assert_int_equal(got_replan.revision, 3);
-    assert_int_equal(got_replan.residual_fleet.uavs[0].id, 10);
-    assert_int_equal(got_replan.residual_fleet.uavs[0].x, x0 + 2);
-    assert_int_equal(got_replan.residual_fleet.uavs[0].y, fleet.uavs[0].y);
-    assert_int_equal(got_replan.residual_fleet.uavs[0].fuel, fleet.uavs[0].fuel);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(3, replans_seen);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_EVENT_T_TYPE_POSITION, got_replan.event_type);
+    TEST_ASSERT_EQUAL_INT(3, got_replan.revision);
+    TEST_ASSERT_EQUAL_INT(10, got_replan.residual_fleet.uavs[0].id);
+    TEST_ASSERT_EQUAL_INT(x0 + 2, got_replan.residual_fleet.uavs[0].x);
+    TEST_ASSERT_EQUAL_INT(fleet.uavs[0].y, got_replan.residual_fleet.uavs[0].y);
+    TEST_ASSERT_EQUAL_INT(fleet.uavs[0].fuel, got_replan.residual_fleet.uavs[0].fuel);
     // A tighter tolerance: one cell off the new track, away from where it flies next
     // (its first target, or the depot), is off it now (a cell towards it would not be).
     node.track_tolerance_cells = 0;
@@ -1056,11 +1066,12 @@ static void test_fleet_reports(void** state)
             }
         }
     }
-    assert_int_equal(got_replan.plan.routes[0].uav_id, 10);
+    TEST_ASSERT_EQUAL_INT(10, got_replan.plan.routes[0].uav_id);
     fleet.uavs[0].y += (next_y > fleet.uavs[0].y) ? -1 : 1;
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(replans_seen, 4);
-    assert_int_equal(got_replan.event_type, SVA_LCM_EVENT_T_TYPE_POSITION);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(4, replans_seen);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_EVENT_T_TYPE_POSITION, got_replan.event_type);
 }
 
 static sva_lcm_verdict_t send_report(int32_t uav, int32_t at, int8_t health, int32_t x, int32_t y,
@@ -1078,7 +1089,8 @@ static sva_lcm_verdict_t send_report(int32_t uav, int32_t at, int8_t health, int
     r.fuel = fuel;
     r.mission_seq = -1;
     r.reached_seq = -1;
-    assert_int_equal(sva_lcm_report_t_encode(buf, 0, (int)sizeof buf, &r), SVA_LCM_REPORT_BYTES);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REPORT_BYTES,
+                          sva_lcm_report_t_encode(buf, 0, (int)sizeof buf, &r));
     return sva_lcm_on_report(&node, buf, sizeof buf);
 }
 
@@ -1087,77 +1099,81 @@ static sva_lcm_verdict_t send_report(int32_t uav, int32_t at, int8_t health, int
 // the clock to its tick (an earlier tick is taken as now) and the core's rule turns it
 // into at most one event: an agreeing report publishes nothing, a lost vehicle a uav_lost
 // replan (event_seq -1), the same vehicle heard again a uav_back at its reported cell.
-static void test_vehicle_reports(void** state)
+void test_vehicle_reports(void)
 {
-    (void)state;
     node_setup(SVA_ALGO_SVA);
     make_inputs(6);
-    assert_int_equal(send_report(10, 0, 0, 0, 0, -1), SVA_LCM_REJECTED);
-    assert_int_equal(node.last_reject, SVA_LCM_REJECT_VALUE);
-    assert_non_null(strstr(last_log, "T_REPORT: no live mission"));
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
-    assert_int_equal(plans_seen, 1);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, send_report(10, 0, 0, 0, 0, -1));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECT_VALUE, node.last_reject);
+    TEST_ASSERT_NOT_NULL(strstr(last_log, "T_REPORT: no live mission"));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
+    TEST_ASSERT_EQUAL_INT(1, plans_seen);
     static sva_live_t before;
     memcpy(&before, &node.priv.live, sizeof before);
     const uint32_t values = node.counters.rejected[SVA_LCM_REJECT_VALUE];
-    assert_int_equal(send_report(10, 0, 2, 0, 0, -1), SVA_LCM_REJECTED);
-    assert_int_equal(send_report(10, -1, 0, 0, 0, -1), SVA_LCM_REJECTED);
-    assert_int_equal(send_report(10, 0, 0, 40000, 0, -1), SVA_LCM_REJECTED);
-    assert_int_equal(send_report(10, 0, 0, 0, 0, -2), SVA_LCM_REJECTED);
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_VALUE], values + 4U);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, send_report(10, 0, 2, 0, 0, -1));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, send_report(10, -1, 0, 0, 0, -1));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, send_report(10, 0, 0, 40000, 0, -1));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, send_report(10, 0, 0, 0, 0, -2));
+    TEST_ASSERT_EQUAL_INT(values + 4U, node.counters.rejected[SVA_LCM_REJECT_VALUE]);
     static uint8_t short_buf[SVA_LCM_REPORT_BYTES - 1];
-    assert_int_equal(sva_lcm_on_report(&node, short_buf, sizeof short_buf), SVA_LCM_REJECTED);
-    assert_int_equal(node.last_reject, SVA_LCM_REJECT_TRUNCATED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, sva_lcm_on_report(&node, short_buf, sizeof short_buf));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECT_TRUNCATED, node.last_reject);
     static uint8_t buf[SVA_LCM_REPORT_BYTES];
     sva_lcm_report_t r;
     memset(&r, 0, sizeof r);
     r.version = SVA_LCM_REPORT_T_VERSION + 1;
-    assert_int_equal(sva_lcm_report_t_encode(buf, 0, (int)sizeof buf, &r), SVA_LCM_REPORT_BYTES);
-    assert_int_equal(sva_lcm_on_report(&node, buf, sizeof buf), SVA_LCM_REJECTED);
-    assert_int_equal(node.last_reject, SVA_LCM_REJECT_VERSION);
-    assert_memory_equal(&before, &node.priv.live, sizeof before);
-    assert_int_equal(replans_seen, 0);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REPORT_BYTES,
+                          sva_lcm_report_t_encode(buf, 0, (int)sizeof buf, &r));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, sva_lcm_on_report(&node, buf, sizeof buf));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECT_VERSION, node.last_reject);
+    TEST_ASSERT_EQUAL_MEMORY(&node.priv.live, &before, sizeof before);
+    TEST_ASSERT_EQUAL_INT(0, replans_seen);
 
     // Agreeing: UAV 10 where the model has it at tick 1, fuel unknown; the clock moves.
     int32_t x = 0;
     int32_t y = 0;
     int32_t fuel = 0;
     int32_t ready = 0;
-    assert_true(sva_live_uav_at(&node.priv.live, 0, 1, &x, &y, &fuel, &ready));
-    assert_int_equal(send_report(10, 1, 0, x, y, -1), SVA_LCM_ACCEPTED);
-    assert_int_equal(node.priv.live.now_ticks, 1);
-    assert_int_equal(replans_seen, 0);
+    TEST_ASSERT_TRUE(sva_live_uav_at(&node.priv.live, 0, 1, &x, &y, &fuel, &ready));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED, send_report(10, 1, 0, x, y, -1));
+    TEST_ASSERT_EQUAL_INT(1, node.priv.live.now_ticks);
+    TEST_ASSERT_EQUAL_INT(0, replans_seen);
     // An earlier tick is now; lost: a replan without UAV 11.
-    assert_int_equal(send_report(11, 0, SVA_LCM_REPORT_T_HEALTH_LOST, 0, 0, -1), SVA_LCM_ACCEPTED);
-    assert_int_equal(replans_seen, 1);
-    assert_int_equal(got_replan.event_seq, -1);
-    assert_int_equal(got_replan.event_type, SVA_LCM_EVENT_T_TYPE_UAV_LOST);
-    assert_int_equal(got_replan.now_ticks, 1);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          send_report(11, 0, SVA_LCM_REPORT_T_HEALTH_LOST, 0, 0, -1));
+    TEST_ASSERT_EQUAL_INT(1, replans_seen);
+    TEST_ASSERT_EQUAL_INT(-1, got_replan.event_seq);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_EVENT_T_TYPE_UAV_LOST, got_replan.event_type);
+    TEST_ASSERT_EQUAL_INT(1, got_replan.now_ticks);
     for (int u = 0; u < got_replan.residual_fleet.uav_count; ++u) {
-        assert_int_not_equal(got_replan.residual_fleet.uavs[u].id, 11);
+        TEST_ASSERT_NOT_EQUAL_INT(11, got_replan.residual_fleet.uavs[u].id);
     }
     // Silent again: nothing; heard again at (2, -3) with fuel 150: back there.
-    assert_int_equal(send_report(11, 2, SVA_LCM_REPORT_T_HEALTH_LOST, 0, 0, -1), SVA_LCM_ACCEPTED);
-    assert_int_equal(replans_seen, 1);
-    assert_int_equal(send_report(11, 3, SVA_LCM_REPORT_T_HEALTH_OK, 2, -3, 150), SVA_LCM_ACCEPTED);
-    assert_int_equal(replans_seen, 2);
-    assert_int_equal(got_replan.event_type, SVA_LCM_EVENT_T_TYPE_UAV_BACK);
-    assert_int_equal(got_replan.now_ticks, 3);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          send_report(11, 2, SVA_LCM_REPORT_T_HEALTH_LOST, 0, 0, -1));
+    TEST_ASSERT_EQUAL_INT(1, replans_seen);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          send_report(11, 3, SVA_LCM_REPORT_T_HEALTH_OK, 2, -3, 150));
+    TEST_ASSERT_EQUAL_INT(2, replans_seen);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_EVENT_T_TYPE_UAV_BACK, got_replan.event_type);
+    TEST_ASSERT_EQUAL_INT(3, got_replan.now_ticks);
     int found = 0;
     for (int u = 0; u < got_replan.residual_fleet.uav_count; ++u) {
         const sva_lcm_uav_state_t* w = &got_replan.residual_fleet.uavs[u];
         if (w->id == 11) {
-            assert_int_equal(w->x, 2);
-            assert_int_equal(w->y, -3);
-            assert_int_equal(w->fuel, 150);
+            TEST_ASSERT_EQUAL_INT(2, w->x);
+            TEST_ASSERT_EQUAL_INT(-3, w->y);
+            TEST_ASSERT_EQUAL_INT(150, w->fuel);
             found = 1;
         }
     }
-    assert_true(found);
-    assert_int_equal(node.counters.report_rx, 11U);
-    assert_int_equal(node.counters.reports_applied, 2U);
+    TEST_ASSERT_TRUE(found);
+    TEST_ASSERT_EQUAL_INT(11U, node.counters.report_rx);
+    TEST_ASSERT_EQUAL_INT(2U, node.counters.reports_applied);
 }
 
 // The input hook (sva_lcm_input_fn): called once for each input that changes the node,
@@ -1185,65 +1201,66 @@ static int hook(void* user, sva_lcm_input_t kind, bool restarts, const void* dat
     return h->fail;
 }
 
-static void test_input_hook(void** state)
+void test_input_hook(void)
 {
-    (void)state;
     node_setup(SVA_ALGO_SVA);
     static hook_seen_t h;
     memset(&h, 0, sizeof h);
     node.input_hook = hook;
     node.input_hook_user = &h;
     make_inputs(8);
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_true((h.calls == 1) && (h.kind == SVA_LCM_INPUT_FLEET) && h.restarts);
-    assert_int_equal(h.size, SVA_LCM_FLEET_BYTES);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
-    assert_true((h.calls == 2) && (h.kind == SVA_LCM_INPUT_MISSION) && h.restarts);
-    assert_int_equal(h.answers_before, 0);  // before the plan went out
-    assert_int_equal(plans_seen, 1);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_TRUE((h.calls == 1) && (h.kind == SVA_LCM_INPUT_FLEET) && h.restarts);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_FLEET_BYTES, h.size);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
+    TEST_ASSERT_TRUE((h.calls == 2) && (h.kind == SVA_LCM_INPUT_MISSION) && h.restarts);
+    TEST_ASSERT_EQUAL_INT(0, h.answers_before);  // before the plan went out
+    TEST_ASSERT_EQUAL_INT(1, plans_seen);
     // unchanged and refused: not handed over
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_UNCHANGED);
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, 7), SVA_LCM_REJECTED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_UNCHANGED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, sva_lcm_on_fleet(&node, fleet_buf, 7));
     static sva_lcm_event_t e;
     memset(&e, 0, sizeof e);
     e.version = SVA_LCM_EVENT_T_VERSION;
     e.type = SVA_LCM_EVENT_T_TYPE_UAV_LOST;
     e.uav_id = 99;  // unknown: refused, answered, not handed over
     e.at_ticks = 2;
-    assert_int_equal(send_event(&e), SVA_LCM_REJECTED);
-    assert_int_equal(h.calls, 2);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, send_event(&e));
+    TEST_ASSERT_EQUAL_INT(2, h.calls);
     e.uav_id = 10;
-    assert_int_equal(send_event(&e), SVA_LCM_ACCEPTED);
-    assert_true((h.calls == 3) && (h.kind == SVA_LCM_INPUT_EVENT) && !h.restarts);
-    assert_int_equal(h.answers_before, 2);  // the plan and the refusal, not this replan
-    assert_int_equal(replans_seen, 2);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED, send_event(&e));
+    TEST_ASSERT_TRUE((h.calls == 3) && (h.kind == SVA_LCM_INPUT_EVENT) && !h.restarts);
+    TEST_ASSERT_EQUAL_INT(2, h.answers_before);  // the plan and the refusal, not this replan
+    TEST_ASSERT_EQUAL_INT(2, replans_seen);
     // a report that moves the clock is handed over (no answer: nothing applied)
-    assert_int_equal(send_report(10, 5, SVA_LCM_REPORT_T_HEALTH_LOST, 0, 0, -1), SVA_LCM_ACCEPTED);
-    assert_true((h.calls == 4) && (h.kind == SVA_LCM_INPUT_REPORT));
-    assert_int_equal(replans_seen, 2);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          send_report(10, 5, SVA_LCM_REPORT_T_HEALTH_LOST, 0, 0, -1));
+    TEST_ASSERT_TRUE((h.calls == 4) && (h.kind == SVA_LCM_INPUT_REPORT));
+    TEST_ASSERT_EQUAL_INT(2, replans_seen);
     // the hook fails: nothing published, the node halted
     h.fail = -1;
     e.type = SVA_LCM_EVENT_T_TYPE_CLOCK;
     e.at_ticks = 6;
-    assert_int_equal(send_event(&e), SVA_LCM_HALTED);
-    assert_true(node.halted);
-    assert_int_equal(replans_seen, 2);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_HALTED, send_event(&e));
+    TEST_ASSERT_TRUE(node.halted);
+    TEST_ASSERT_EQUAL_INT(2, replans_seen);
     h.fail = 0;
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_HALTED);
-    assert_int_equal(h.calls, 5);
-    assert_int_equal(node.counters.inputs_hooked, 4U);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_HALTED, sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(5, h.calls);
+    TEST_ASSERT_EQUAL_INT(4U, node.counters.inputs_hooked);
 }
 
-static void test_zero_allocations_per_message(void** state)
+void test_zero_allocations_per_message(void)
 {
-    (void)state;
     node_setup(SVA_ALGO_SVA);
     make_inputs(100);
-    assert_int_equal(sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()), SVA_LCM_ACCEPTED);
-    assert_int_equal(sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()),
-                     SVA_LCM_ACCEPTED);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_fleet(&node, fleet_buf, (size_t)enc_fleet()));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED,
+                          sva_lcm_on_mission(&node, mission_buf, (size_t)enc_mission()));
     // warm every logging path once
     (void)sva_lcm_on_fleet(&node, fleet_buf, 5);
     const int plans_before = plans_seen;
@@ -1254,21 +1271,21 @@ static void test_zero_allocations_per_message(void** state)
     void* volatile p = malloc(16);
     alloc_armed = 0;
     free(p);
-    assert_int_equal(alloc_count, 1);
+    TEST_ASSERT_EQUAL_INT(1, alloc_count);
 
     static uint8_t fb[200][SVA_LCM_FLEET_BYTES];
     static uint8_t mb[2][SVA_LCM_MISSION_BYTES];
     for (int i = 0; i < 200; ++i) {
         fleet.revision = 1000 + i;
         fleet.uavs[i % 5].fuel = 150 + i;
-        assert_int_equal(sva_lcm_fleet_state_t_encode(fb[i], 0, SVA_LCM_FLEET_BYTES, &fleet),
-                         SVA_LCM_FLEET_BYTES);
+        TEST_ASSERT_EQUAL_INT(SVA_LCM_FLEET_BYTES,
+                              sva_lcm_fleet_state_t_encode(fb[i], 0, SVA_LCM_FLEET_BYTES, &fleet));
     }
     for (int i = 0; i < 2; ++i) {
         mission.revision = 2000 + i;
         mission.targets[0].need = 1 + i;
-        assert_int_equal(sva_lcm_mission_t_encode(mb[i], 0, SVA_LCM_MISSION_BYTES, &mission),
-                         SVA_LCM_MISSION_BYTES);
+        TEST_ASSERT_EQUAL_INT(SVA_LCM_MISSION_BYTES,
+                              sva_lcm_mission_t_encode(mb[i], 0, SVA_LCM_MISSION_BYTES, &mission));
     }
 
     alloc_count = 0;
@@ -1277,17 +1294,17 @@ static void test_zero_allocations_per_message(void** state)
         (void)sva_lcm_on_fleet(&node, fb[i], SVA_LCM_FLEET_BYTES);
         (void)sva_lcm_on_mission(&node, mb[i % 2], SVA_LCM_MISSION_BYTES);
         (void)sva_lcm_on_fleet(&node, fb[i], SVA_LCM_FLEET_BYTES - 3);  // rejected
-        assert_int_equal(sva_lcm_publish_status(&node, i), SVA_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_OK, sva_lcm_publish_status(&node, i));
     }
     alloc_armed = 0;
-    assert_int_equal(alloc_count, 0);
-    assert_int_equal(plans_seen - plans_before, 400);
+    TEST_ASSERT_EQUAL_INT(0, alloc_count);
+    TEST_ASSERT_EQUAL_INT(400, plans_seen - plans_before);
 
     // For the record: the whole memq path (memq copies every message: LCM's, not ours).
     lcm_t* lcm = lcm_create("memq://");
-    assert_non_null(lcm);
-    assert_int_equal(sva_lcm_node_init(&node, lcm, "Z_", SVA_ALGO_SVA), SVA_OK);
-    assert_int_equal(sva_lcm_node_subscribe(&node), SVA_OK);
+    TEST_ASSERT_NOT_NULL(lcm);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_lcm_node_init(&node, lcm, "Z_", SVA_ALGO_SVA));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_lcm_node_subscribe(&node));
     (void)lcm_publish(lcm, "Z_FLEET", fb[0], SVA_LCM_FLEET_BYTES);
     (void)lcm_publish(lcm, "Z_MISSION", mb[0], SVA_LCM_MISSION_BYTES);
     drain(lcm);
@@ -1300,34 +1317,7 @@ static void test_zero_allocations_per_message(void** state)
     alloc_armed = 0;
     printf("memq provider: %.1f heap allocations per fleet message + plan (LCM's copies)\n",
            (double)alloc_count / 100.0);
-    assert_int_equal(node.counters.plans_published, 101);
+    TEST_ASSERT_EQUAL_INT(101, node.counters.plans_published);
     sva_lcm_node_unsubscribe(&node);
     lcm_destroy(lcm);
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_encoded_sizes),
-        cmocka_unit_test(test_channel_escape),
-        cmocka_unit_test(test_init_arguments),
-        cmocka_unit_test(test_memq_round_trip),
-        cmocka_unit_test(test_every_algorithm),
-        cmocka_unit_test(test_flow_certificate),
-        cmocka_unit_test(test_unchanged_and_replan),
-        cmocka_unit_test(test_unavailable_uav_gets_nothing),
-        cmocka_unit_test(test_rejections_frame),
-        cmocka_unit_test(test_rejections_counts_and_values),
-        cmocka_unit_test(test_core_rejection_and_planner_limit),
-        cmocka_unit_test(test_plan_too_large),
-        cmocka_unit_test(test_status),
-        cmocka_unit_test(test_live_events),
-        cmocka_unit_test(test_versions),
-        cmocka_unit_test(test_frame_round_trip),
-        cmocka_unit_test(test_fleet_reports),
-        cmocka_unit_test(test_vehicle_reports),
-        cmocka_unit_test(test_input_hook),
-        cmocka_unit_test(test_zero_allocations_per_message),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
 }

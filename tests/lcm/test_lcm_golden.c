@@ -2,15 +2,13 @@
 // make_golden_log.py from fixtures/missions/rand_7_2.json) and must answer with exactly
 // the plans the core makes from the same JSON (loaded here with jansson, independently
 // of the Python encoder), and count exactly the malformed events the log contains.
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include <cmocka.h>
+#include "unity.h"
 #include <jansson.h>
 
 #include "sva/sva_lcm.h"
@@ -26,7 +24,8 @@ static int capture(void* user, const char* channel, const void* data, unsigned i
 {
     (void)user;
     if ((strcmp(channel, "GOLD_PLAN") == 0) && (plan_count < 4)) {
-        assert_int_equal(sva_lcm_plan_t_decode(data, 0, (int)size, &got[plan_count]), (int)size);
+        TEST_ASSERT_EQUAL_INT((int)size,
+                              sva_lcm_plan_t_decode(data, 0, (int)size, &got[plan_count]));
         plan_count++;
     }
     return 0;
@@ -42,7 +41,7 @@ static void load_mission(const char* path)
 {
     json_error_t err;
     json_t* doc = json_load_file(path, 0, &err);
-    assert_non_null(doc);
+    TEST_ASSERT_NOT_NULL(doc);
     sva_mission_init(&mission);
     json_t* depot = json_object_get(doc, "depot");
     mission.depot_x = geti(depot, "x", 0);
@@ -76,46 +75,46 @@ static void load_mission(const char* path)
 
 static void assert_same_plan(const sva_lcm_plan_t* p)
 {
-    assert_int_equal(sva_planner_init(&planner), SVA_OK);
-    assert_int_equal(sva_plan(&planner, &mission, SVA_ALGO_SVA, &want, NULL), SVA_OK);
-    assert_int_equal(p->status, want.status == SVA_PLAN_COMPLETE ? 1 : 2);
-    assert_int_equal(p->covered, want.covered);
-    assert_int_equal(p->cost, want.cost);
-    assert_int_equal(p->uncovered_count, want.uncovered_count);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&planner, &mission, SVA_ALGO_SVA, &want, NULL));
+    TEST_ASSERT_EQUAL_INT(want.status == SVA_PLAN_COMPLETE ? 1 : 2, p->status);
+    TEST_ASSERT_EQUAL_INT(want.covered, p->covered);
+    TEST_ASSERT_EQUAL_INT(want.cost, p->cost);
+    TEST_ASSERT_EQUAL_INT(want.uncovered_count, p->uncovered_count);
     for (int i = 0; i < want.uncovered_count; ++i) {
-        assert_int_equal(p->uncovered[i], mission.targets[want.uncovered[i]].id);
+        TEST_ASSERT_EQUAL_INT(mission.targets[want.uncovered[i]].id, p->uncovered[i]);
     }
-    assert_int_equal(p->route_count, want.route_count);
+    TEST_ASSERT_EQUAL_INT(want.route_count, p->route_count);
     int k = 0;
     for (int r = 0; r < want.route_count; ++r) {
-        assert_int_equal(p->routes[r].uav_id, want.routes[r].uav_id);
-        assert_int_equal(p->routes[r].target_count, want.routes[r].target_count);
-        assert_int_equal(p->routes[r].distance_cells, want.routes[r].distance_cells);
-        assert_int_equal(p->routes[r].fuel_used, want.routes[r].fuel_used);
+        TEST_ASSERT_EQUAL_INT(want.routes[r].uav_id, p->routes[r].uav_id);
+        TEST_ASSERT_EQUAL_INT(want.routes[r].target_count, p->routes[r].target_count);
+        TEST_ASSERT_EQUAL_INT(want.routes[r].distance_cells, p->routes[r].distance_cells);
+        TEST_ASSERT_EQUAL_INT(want.routes[r].fuel_used, p->routes[r].fuel_used);
         for (int j = 0; j < want.routes[r].target_count; ++j) {
-            assert_int_equal(p->route_targets[k++], mission.targets[want.routes[r].targets[j]].id);
+            TEST_ASSERT_EQUAL_INT(mission.targets[want.routes[r].targets[j]].id,
+                                  p->route_targets[k++]);
         }
     }
-    assert_int_equal(p->item_count, k);
-    assert_false(want.stats.has_bound);  // sva: no certificate, and none on the wire
-    assert_int_equal(p->has_bound, 0);
-    assert_int_equal(p->lower_bound, 0);
-    assert_int_equal(p->optimal, 0);
+    TEST_ASSERT_EQUAL_INT(k, p->item_count);
+    TEST_ASSERT_FALSE(want.stats.has_bound);  // sva: no certificate, and none on the wire
+    TEST_ASSERT_EQUAL_INT(0, p->has_bound);
+    TEST_ASSERT_EQUAL_INT(0, p->lower_bound);
+    TEST_ASSERT_EQUAL_INT(0, p->optimal);
 }
 
-static void test_golden_replay(void** state)
+void test_golden_replay(void)
 {
-    (void)state;
     const char* log = getenv("SVA_LCM_GOLDEN_LOG");
     const char* json = getenv("SVA_LCM_GOLDEN_MISSION");
-    assert_non_null(log);
-    assert_non_null(json);
+    TEST_ASSERT_NOT_NULL(log);
+    TEST_ASSERT_NOT_NULL(json);
     char url[1024];
-    assert_true(snprintf(url, sizeof url, "file://%s?speed=0", log) < (int)sizeof url);
+    TEST_ASSERT_TRUE(snprintf(url, sizeof url, "file://%s?speed=0", log) < (int)sizeof url);
     lcm_t* lcm = lcm_create(url);
-    assert_non_null(lcm);
-    assert_int_equal(sva_lcm_node_init(&node, lcm, "GOLD_", SVA_ALGO_SVA), SVA_OK);
-    assert_int_equal(sva_lcm_node_subscribe(&node), SVA_OK);
+    TEST_ASSERT_NOT_NULL(lcm);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_lcm_node_init(&node, lcm, "GOLD_", SVA_ALGO_SVA));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_lcm_node_subscribe(&node));
     node.publish = capture;  // the file provider is read-only
     int events = 0;
     while ((events < 100) && (lcm_handle_timeout(lcm, 1000) > 0)) {
@@ -124,38 +123,30 @@ static void test_golden_replay(void** state)
     sva_lcm_node_unsubscribe(&node);
     lcm_destroy(lcm);
 
-    assert_int_equal(events, 9);
-    assert_int_equal(node.counters.fleet_rx, 4);
-    assert_int_equal(node.counters.mission_rx, 5);
-    assert_int_equal(node.counters.unchanged, 1);
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_TRUNCATED], 1);
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_TRAILING], 0);
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_FINGERPRINT], 1);
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_COUNT], 1);
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_VALUE], 1);
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_INVALID], 0);
-    assert_int_equal(node.counters.rejected[SVA_LCM_REJECT_VERSION], 1);
-    assert_int_equal(plan_count, 2);
+    TEST_ASSERT_EQUAL_INT(9, events);
+    TEST_ASSERT_EQUAL_INT(4, node.counters.fleet_rx);
+    TEST_ASSERT_EQUAL_INT(5, node.counters.mission_rx);
+    TEST_ASSERT_EQUAL_INT(1, node.counters.unchanged);
+    TEST_ASSERT_EQUAL_INT(1, node.counters.rejected[SVA_LCM_REJECT_TRUNCATED]);
+    TEST_ASSERT_EQUAL_INT(0, node.counters.rejected[SVA_LCM_REJECT_TRAILING]);
+    TEST_ASSERT_EQUAL_INT(1, node.counters.rejected[SVA_LCM_REJECT_FINGERPRINT]);
+    TEST_ASSERT_EQUAL_INT(1, node.counters.rejected[SVA_LCM_REJECT_COUNT]);
+    TEST_ASSERT_EQUAL_INT(1, node.counters.rejected[SVA_LCM_REJECT_VALUE]);
+    TEST_ASSERT_EQUAL_INT(0, node.counters.rejected[SVA_LCM_REJECT_INVALID]);
+    TEST_ASSERT_EQUAL_INT(1, node.counters.rejected[SVA_LCM_REJECT_VERSION]);
+    TEST_ASSERT_EQUAL_INT(2, plan_count);
 
     load_mission(json);
-    assert_int_equal(got[0].version, SVA_LCM_PLAN_T_VERSION);
-    assert_int_equal(got[0].plan_id, 1);
-    assert_int_equal(got[0].fleet_revision, 1);
-    assert_int_equal(got[0].mission_revision, 1);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_PLAN_T_VERSION, got[0].version);
+    TEST_ASSERT_EQUAL_INT(1, got[0].plan_id);
+    TEST_ASSERT_EQUAL_INT(1, got[0].fleet_revision);
+    TEST_ASSERT_EQUAL_INT(1, got[0].mission_revision);
     assert_same_plan(&got[0]);
     // rev 2: UAV index 2 unavailable, which the node maps to ready_at = SVA_MAX_TICK
     mission.uavs[2].ready_at_ticks = (int32_t)SVA_MAX_TICK;
-    assert_int_equal(got[1].plan_id, 2);
-    assert_int_equal(got[1].fleet_revision, 2);
-    assert_int_equal(got[1].mission_revision, 1);
-    assert_int_equal(got[1].routes[2].target_count, 0);
+    TEST_ASSERT_EQUAL_INT(2, got[1].plan_id);
+    TEST_ASSERT_EQUAL_INT(2, got[1].fleet_revision);
+    TEST_ASSERT_EQUAL_INT(1, got[1].mission_revision);
+    TEST_ASSERT_EQUAL_INT(0, got[1].routes[2].target_count);
     assert_same_plan(&got[1]);
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_golden_replay),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -11,8 +11,6 @@
 // journal. For the last records, the resumed node is also fed the rest of the inputs: it
 // must publish the same answers (times aside) and regrow the same journal, byte for byte.
 // Records are parsed here with the test's own reader (zlib's crc32), not the journal's.
-#include <setjmp.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -23,7 +21,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <cmocka.h>
+#include "sva_unity.h"
 #include <zlib.h>
 
 #include "sva/sva_lcm.h"
@@ -142,20 +140,20 @@ static int capture(void* user, const char* channel, const void* data, unsigned i
     int n = 0;
     if (ends_with(channel, "REPLAN")) {
         memset(&replan_norm, 0, sizeof replan_norm);
-        assert_int_equal(sva_lcm_replan_t_decode(data, 0, (int)size, &replan_norm), (int)size);
+        TEST_ASSERT_EQUAL_INT((int)size, sva_lcm_replan_t_decode(data, 0, (int)size, &replan_norm));
         replan_norm.plan.utime = 0;
         replan_norm.plan.solve_us = 0;
         n = sva_lcm_replan_t_encode(norm_buf, 0, (int)sizeof norm_buf, &replan_norm);
     } else if (ends_with(channel, "PLAN")) {
         memset(&plan_norm, 0, sizeof plan_norm);
-        assert_int_equal(sva_lcm_plan_t_decode(data, 0, (int)size, &plan_norm), (int)size);
+        TEST_ASSERT_EQUAL_INT((int)size, sva_lcm_plan_t_decode(data, 0, (int)size, &plan_norm));
         plan_norm.utime = 0;
         plan_norm.solve_us = 0;
         n = sva_lcm_plan_t_encode(norm_buf, 0, (int)sizeof norm_buf, &plan_norm);
     } else {
         return 0;  // statuses carry counters: not compared
     }
-    assert_int_equal(n, (int)size);
+    TEST_ASSERT_EQUAL_INT((int)size, n);
     a->count++;
     a->crc = (uint32_t)crc32(a->crc, (const Bytef*)channel, (uInt)strlen(channel));
     a->crc = (uint32_t)crc32(a->crc, norm_buf, (uInt)n);
@@ -174,7 +172,7 @@ static int n_inputs;
 
 static void add_input(sva_lcm_input_t kind, const void* bytes, uint32_t size)
 {
-    assert_true(n_inputs < MAX_INPUTS);
+    TEST_ASSERT_TRUE(n_inputs < MAX_INPUTS);
     inputs[n_inputs].kind = kind;
     inputs[n_inputs].size = size;
     memcpy(inputs[n_inputs].bytes, bytes, size);
@@ -221,16 +219,16 @@ static void make_fleet_and_mission(int64_t revision)
 static void add_fleet(void)
 {
     static uint8_t buf[SVA_LCM_FLEET_BYTES];
-    assert_int_equal(sva_lcm_fleet_state_t_encode(buf, 0, (int)sizeof buf, &fleet),
-                     SVA_LCM_FLEET_BYTES);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_FLEET_BYTES,
+                          sva_lcm_fleet_state_t_encode(buf, 0, (int)sizeof buf, &fleet));
     add_input(SVA_LCM_INPUT_FLEET, buf, SVA_LCM_FLEET_BYTES);
 }
 
 static void add_mission(void)
 {
     static uint8_t buf[SVA_LCM_MISSION_BYTES];
-    assert_int_equal(sva_lcm_mission_t_encode(buf, 0, (int)sizeof buf, &mission),
-                     SVA_LCM_MISSION_BYTES);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_MISSION_BYTES,
+                          sva_lcm_mission_t_encode(buf, 0, (int)sizeof buf, &mission));
     add_input(SVA_LCM_INPUT_MISSION, buf, SVA_LCM_MISSION_BYTES);
 }
 
@@ -256,7 +254,7 @@ static void add_event_target(int8_t type, int32_t at, int32_t uav, int32_t x, in
         e.target.end_ticks = target[4];
         e.target.need = target[5];
     }
-    assert_int_equal(sva_lcm_event_t_encode(buf, 0, (int)sizeof buf, &e), SVA_LCM_EVENT_BYTES);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_EVENT_BYTES, sva_lcm_event_t_encode(buf, 0, (int)sizeof buf, &e));
     add_input(SVA_LCM_INPUT_EVENT, buf, SVA_LCM_EVENT_BYTES);
 }
 
@@ -279,7 +277,8 @@ static void add_report(int32_t uav, int32_t at, int8_t health, int32_t x, int32_
     r.fuel = fuel;
     r.mission_seq = -1;
     r.reached_seq = -1;
-    assert_int_equal(sva_lcm_report_t_encode(buf, 0, (int)sizeof buf, &r), SVA_LCM_REPORT_BYTES);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REPORT_BYTES,
+                          sva_lcm_report_t_encode(buf, 0, (int)sizeof buf, &r));
     add_input(SVA_LCM_INPUT_REPORT, buf, SVA_LCM_REPORT_BYTES);
 }
 
@@ -363,24 +362,24 @@ static void assert_state(const sva_lcm_node_t* n, const snap_t* want)
 {
     static snap_t got;
     take_snap(n, &got);
-    assert_int_equal(got.live_active, want->live_active);
-    assert_int_equal(got.have_fleet, want->have_fleet);
-    assert_int_equal(got.have_mission, want->have_mission);
-    assert_int_equal(got.plan_id, want->plan_id);
-    assert_int_equal(got.fleet_revision, want->fleet_revision);
-    assert_int_equal(got.mission_revision, want->mission_revision);
-    assert_memory_equal(got.fleet_raw, want->fleet_raw, sizeof got.fleet_raw);
-    assert_memory_equal(got.mission_raw, want->mission_raw, sizeof got.mission_raw);
-    assert_memory_equal(&got.frame, &want->frame, sizeof got.frame);
-    assert_memory_equal(&got.mission, &want->mission, sizeof got.mission);
+    TEST_ASSERT_EQUAL_INT(want->live_active, got.live_active);
+    TEST_ASSERT_EQUAL_INT(want->have_fleet, got.have_fleet);
+    TEST_ASSERT_EQUAL_INT(want->have_mission, got.have_mission);
+    TEST_ASSERT_EQUAL_INT(want->plan_id, got.plan_id);
+    TEST_ASSERT_EQUAL_INT(want->fleet_revision, got.fleet_revision);
+    TEST_ASSERT_EQUAL_INT(want->mission_revision, got.mission_revision);
+    TEST_ASSERT_EQUAL_MEMORY(want->fleet_raw, got.fleet_raw, sizeof got.fleet_raw);
+    TEST_ASSERT_EQUAL_MEMORY(want->mission_raw, got.mission_raw, sizeof got.mission_raw);
+    TEST_ASSERT_EQUAL_MEMORY(&want->frame, &got.frame, sizeof got.frame);
+    TEST_ASSERT_EQUAL_MEMORY(&want->mission, &got.mission, sizeof got.mission);
     // The live mission, byte for byte: clock, revision, target states, routes in force,
     // the last replan's residual mission and plans.
-    assert_memory_equal(&got.live, &want->live, sizeof got.live);
+    TEST_ASSERT_EQUAL_MEMORY(&want->live, &got.live, sizeof got.live);
 }
 
 static void node_setup(sva_lcm_node_t* n, answers_t* a)
 {
-    assert_int_equal(sva_lcm_node_init(n, NULL, "J_", opts.algorithm), SVA_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_lcm_node_init(n, NULL, "J_", opts.algorithm));
     n->publish = capture;
     n->publish_user = a;
     n->change_penalty = opts.change_penalty;
@@ -398,10 +397,10 @@ static void run_reference(void)
     mem_storage(&ref_mem, &s);
     node_setup(&ref_node, &answers);
     take_snap(&ref_node, &snap_initial);
-    assert_int_equal(sva_lcm_journal_init(&ref_journal, &s, &ref_node), SVA_LCM_JOURNAL_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, sva_lcm_journal_init(&ref_journal, &s, &ref_node));
     sva_lcm_journal_resume_t r;
-    assert_int_equal(sva_lcm_journal_resume(&ref_journal, false, &r), SVA_LCM_JOURNAL_OK);
-    assert_true(r.fresh);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, sva_lcm_journal_resume(&ref_journal, false, &r));
+    TEST_ASSERT_TRUE(r.fresh);
     for (int i = 0; i < n_inputs; ++i) {
         memset(&answers, 0, sizeof answers);
         ref_verdicts[i] = feed(&ref_node, &inputs[i], inputs[i].size);
@@ -409,7 +408,7 @@ static void run_reference(void)
         records_after[i] = ref_journal.records;
         take_snap(&ref_node, &snaps[i]);
     }
-    assert_int_equal(ref_journal.size, ref_mem.size);
+    TEST_ASSERT_EQUAL_INT(ref_mem.size, ref_journal.size);
 }
 
 // --- the test's own record reader ----------------------------------------------------------
@@ -427,17 +426,17 @@ static void parse_records(const uint8_t* j, uint32_t size)
     n_records = 0;
     uint32_t off = 0;
     while (off < size) {
-        assert_true(size - off >= 9U);
+        TEST_ASSERT_TRUE(size - off >= 9U);
         const uint32_t len = le32(j + off);
-        assert_true(len + 9U <= size - off);
+        TEST_ASSERT_TRUE(len + 9U <= size - off);
         const uint32_t crc = (uint32_t)crc32(0UL, j + off, (uInt)(len + 5U));
-        assert_int_equal(crc, le32(j + off + 5U + len));
-        assert_true(n_records < MAX_RECORDS);
+        TEST_ASSERT_EQUAL_INT(le32(j + off + 5U + len), crc);
+        TEST_ASSERT_TRUE(n_records < MAX_RECORDS);
         record_type[n_records] = j[off + 4U];
         off += len + 9U;
         record_end[n_records++] = off;
     }
-    assert_int_equal(off, size);
+    TEST_ASSERT_EQUAL_INT(size, off);
 }
 
 // The reference state with c complete records in the journal: the first input after
@@ -465,7 +464,7 @@ static sva_lcm_journal_status_t resume_from(const uint8_t* bytes, uint32_t size,
     mem_storage(&mem, &s);
     node_setup(&node, &answers);
     memset(&answers, 0, sizeof answers);
-    assert_int_equal(sva_lcm_journal_init(&journal, &s, &node), SVA_LCM_JOURNAL_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, sva_lcm_journal_init(&journal, &s, &node));
     return sva_lcm_journal_resume(&journal, false, r);
 }
 
@@ -473,21 +472,21 @@ static sva_lcm_journal_status_t resume_from(const uint8_t* bytes, uint32_t size,
 // remaining inputs give the same answers and regrow the same journal.
 static void check_resumed(int q, bool rest)
 {
-    assert_int_equal(answers.count, 0);  // the replay published nothing
-    assert_int_equal(node.counters.plans_published + node.counters.replans_published, 0U);
+    TEST_ASSERT_EQUAL_INT(0, answers.count);  // the replay published nothing
+    TEST_ASSERT_EQUAL_INT(0U, node.counters.plans_published + node.counters.replans_published);
     assert_state(&node, (q < 0) ? &snap_initial : &snaps[q]);
     if (!rest) {
         return;
     }
     for (int i = q + 1; i < n_inputs; ++i) {
         memset(&answers, 0, sizeof answers);
-        assert_int_equal(feed(&node, &inputs[i], inputs[i].size), ref_verdicts[i]);
-        assert_int_equal(answers.count, ref_answers[i].count);
-        assert_int_equal(answers.crc, ref_answers[i].crc);
+        TEST_ASSERT_EQUAL_INT(ref_verdicts[i], feed(&node, &inputs[i], inputs[i].size));
+        TEST_ASSERT_EQUAL_INT(ref_answers[i].count, answers.count);
+        TEST_ASSERT_EQUAL_INT(ref_answers[i].crc, answers.crc);
     }
     assert_state(&node, &snaps[n_inputs - 1]);
-    assert_int_equal(mem.size, ref_mem.size);
-    assert_memory_equal(mem.data, ref_mem.data, mem.size);
+    TEST_ASSERT_EQUAL_INT(ref_mem.size, mem.size);
+    SVA_TEST_ASSERT_EQUAL_BYTES(ref_mem.data, mem.data, mem.size);
 }
 
 static uint8_t saved[MEM_CAP];
@@ -503,35 +502,35 @@ static void sweep_cuts(uint32_t from, uint32_t rest_from)
         sva_lcm_journal_resume_t r;
         const sva_lcm_journal_status_t st = resume_from(saved, o, &r);
         if (o == 0U) {
-            assert_int_equal(st, SVA_LCM_JOURNAL_OK);  // no journal at all: a new one
-            assert_true(r.fresh && !r.discarded);
+            TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, st);  // no journal at all: a new one
+            TEST_ASSERT_TRUE(r.fresh && !r.discarded);
             check_resumed(-1, false);
             continue;
         }
         if (o < record_end[0]) {
-            assert_int_equal(st, SVA_LCM_JOURNAL_ERR_FORMAT);  // the header is torn
-            assert_non_null(strstr(journal.message, "the header does not parse"));
-            assert_int_equal(mem.size, o);  // and left as it was
+            TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_FORMAT, st);  // the header is torn
+            TEST_ASSERT_NOT_NULL(strstr(journal.message, "the header does not parse"));
+            TEST_ASSERT_EQUAL_INT(o, mem.size);  // and left as it was
             continue;
         }
-        assert_int_equal(st, SVA_LCM_JOURNAL_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, st);
         uint32_t c = 0;
         while ((c < (uint32_t)n_records) && (record_end[c] <= o)) {
             c++;
         }
         const uint32_t kept = record_end[c - 1];
-        assert_int_equal(r.cut, o != kept);
-        assert_int_equal(mem.size, kept);
-        assert_int_equal(r.bytes, kept);
+        TEST_ASSERT_EQUAL_INT(o != kept, r.cut);
+        TEST_ASSERT_EQUAL_INT(kept, mem.size);
+        TEST_ASSERT_EQUAL_INT(kept, r.bytes);
         if (r.cut) {
-            assert_int_equal(r.cut_offset, kept);
-            assert_int_equal(r.cut_bytes, o - kept);
+            TEST_ASSERT_EQUAL_INT(kept, r.cut_offset);
+            TEST_ASSERT_EQUAL_INT(o - kept, r.cut_bytes);
             char want[64];
             (void)snprintf(want, sizeof want, "record at byte %lu (", (unsigned long)kept);
-            assert_non_null(strstr(journal.message, want));
+            TEST_ASSERT_NOT_NULL(strstr(journal.message, want));
         }
         const int q = (c <= 2U) ? -1 : input_with_records(c);
-        assert_true(q >= -1);
+        TEST_ASSERT_TRUE(q >= -1);
         check_resumed(q, o >= rest_from);
     }
 }
@@ -554,20 +553,20 @@ static void sweep_flips(uint32_t from, bool every_bit)
             sva_lcm_journal_resume_t r;
             const sva_lcm_journal_status_t st = resume_from(flipped, size, &r);
             if (p < record_end[0]) {
-                assert_int_equal(st, SVA_LCM_JOURNAL_ERR_FORMAT);
-                assert_memory_equal(mem.data, flipped, size);  // refused: left as it was
+                TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_FORMAT, st);
+                SVA_TEST_ASSERT_EQUAL_BYTES(flipped, mem.data, size);  // refused: left as it was
                 continue;
             }
-            assert_int_equal(st, SVA_LCM_JOURNAL_OK);
+            TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, st);
             uint32_t k = 0;
             while (record_end[k] <= p) {
                 k++;
             }
-            assert_true(r.cut);
-            assert_int_equal(r.cut_offset, record_end[k - 1]);
-            assert_int_equal(mem.size, record_end[k - 1]);
+            TEST_ASSERT_TRUE(r.cut);
+            TEST_ASSERT_EQUAL_INT(record_end[k - 1], r.cut_offset);
+            TEST_ASSERT_EQUAL_INT(record_end[k - 1], mem.size);
             const int q = (k <= 2U) ? -1 : input_with_records(k);
-            assert_true(q >= -1);
+            TEST_ASSERT_TRUE(q >= -1);
             check_resumed(q, false);
         }
     }
@@ -620,36 +619,36 @@ static void check_reference_one_mission(void)
             listed = listed || (not_journaled_one[k] == i);
         }
         if (journaled == listed) {
-            fail_msg("input %d: journaled %d, verdict %d", i, (int)journaled, (int)ref_verdicts[i]);
+            SVA_TEST_FAIL("input %d: journaled %d, verdict %d", i, (int)journaled,
+                          (int)ref_verdicts[i]);
         }
         skipped += listed ? 1 : 0;
     }
-    assert_int_equal(skipped, 4);
-    assert_int_equal(ref_verdicts[4], SVA_LCM_REJECTED);
-    assert_int_equal(ref_verdicts[8], SVA_LCM_UNCHANGED);
-    assert_int_equal(ref_verdicts[17], SVA_LCM_REJECTED);
-    assert_int_equal(ref_answers[14].count, 0);  // the clock moved: journaled, not answered
-    assert_int_equal(snaps[14].live.now_ticks, 17);
-    assert_int_equal(ref_answers[4].count, 1);  // a refused event is answered, not journaled
-    assert_true(ref_node.priv.live_active);
+    TEST_ASSERT_EQUAL_INT(4, skipped);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, ref_verdicts[4]);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_UNCHANGED, ref_verdicts[8]);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, ref_verdicts[17]);
+    TEST_ASSERT_EQUAL_INT(0, ref_answers[14].count);  // the clock moved: journaled, not answered
+    TEST_ASSERT_EQUAL_INT(17, snaps[14].live.now_ticks);
+    TEST_ASSERT_EQUAL_INT(1, ref_answers[4].count);  // a refused event is answered, not journaled
+    TEST_ASSERT_TRUE(ref_node.priv.live_active);
     // header, base, fleet, mission, then one record per journaled input
     parse_records(ref_mem.data, ref_mem.size);
-    assert_int_equal(n_records, 4 + (n_inputs - 2 - 4));
-    assert_int_equal(record_type[0], SVA_LCM_RECORD_HEADER);
-    assert_int_equal(record_type[1], SVA_LCM_RECORD_BASE);
-    assert_int_equal(record_type[2], SVA_LCM_RECORD_FLEET);
-    assert_int_equal(record_type[3], SVA_LCM_RECORD_MISSION);
-    assert_int_equal(record_type[4], SVA_LCM_RECORD_EVENT);
-    assert_int_equal(record_type[6], SVA_LCM_RECORD_REPORT);
-    assert_int_equal(ref_journal.records, (uint32_t)n_records);
+    TEST_ASSERT_EQUAL_INT(4 + (n_inputs - 2 - 4), n_records);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_RECORD_HEADER, record_type[0]);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_RECORD_BASE, record_type[1]);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_RECORD_FLEET, record_type[2]);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_RECORD_MISSION, record_type[3]);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_RECORD_EVENT, record_type[4]);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_RECORD_REPORT, record_type[6]);
+    TEST_ASSERT_EQUAL_INT((uint32_t)n_records, ref_journal.records);
 }
 
 // Power loss: the journal of one live mission cut at every byte offset. The whole file
 // is swept (a cut inside the header refuses it); the continuation is checked for cuts
 // within the last four records.
-static void test_power_loss_every_offset(void** state)
+void test_power_loss_every_offset(void)
 {
-    (void)state;
     const sva_algorithm_t algos[2] = {SVA_ALGO_SVA, SVA_ALGO_FLOW};
     for (int a = 0; a < 2; ++a) {
         opts = (options_t){algos[a], 2, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT};
@@ -661,9 +660,8 @@ static void test_power_loss_every_offset(void** state)
 
 // Corruption: one bit flipped at every byte (the bit varies with the byte), and every
 // bit of the last four records.
-static void test_bit_flips(void** state)
+void test_bit_flips(void)
 {
-    (void)state;
     opts = (options_t){SVA_ALGO_SVA, 0, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT};
     sequence_one_mission();
     check_reference_one_mission();
@@ -675,9 +673,8 @@ static void test_bit_flips(void** state)
 // fleet, mission. With fleet reports, a fleet message during the live mission is a
 // report appended, not a restart. The compacted journal resumes the same state, the
 // plan ids go on, and appends after it are cut safely at every offset.
-static void test_compaction(void** state)
+void test_compaction(void)
 {
-    (void)state;
     opts = (options_t){SVA_ALGO_SVA, 3, true, 1};
     n_inputs = 0;
     make_fleet_and_mission(1);
@@ -700,28 +697,28 @@ static void test_compaction(void** state)
     run_reference();
     search_from = mission2;
     for (int i = 0; i < n_inputs; ++i) {
-        assert_int_equal(ref_verdicts[i], SVA_LCM_ACCEPTED);
+        TEST_ASSERT_EQUAL_INT(SVA_LCM_ACCEPTED, ref_verdicts[i]);
     }
-    assert_int_equal(ref_answers[3].count, 1);         // the fleet report: one replan
-    assert_int_equal(ref_answers[mission2].count, 1);  // the new mission: its plan
-    assert_int_equal(ref_journal.compactions, 3U);     // the fleet, the mission, the new mission
+    TEST_ASSERT_EQUAL_INT(1, ref_answers[3].count);         // the fleet report: one replan
+    TEST_ASSERT_EQUAL_INT(1, ref_answers[mission2].count);  // the new mission: its plan
+    TEST_ASSERT_EQUAL_INT(3U, ref_journal.compactions);  // the fleet, the mission, the new mission
     parse_records(ref_mem.data, ref_mem.size);
     const uint8_t want[9] = {SVA_LCM_RECORD_HEADER,  SVA_LCM_RECORD_BASE,  SVA_LCM_RECORD_FLEET,
                              SVA_LCM_RECORD_MISSION, SVA_LCM_RECORD_EVENT, SVA_LCM_RECORD_FLEET,
                              SVA_LCM_RECORD_REPORT,  SVA_LCM_RECORD_EVENT, 0};
-    assert_int_equal(n_records, 8);
-    assert_memory_equal(record_type, want, 8);
+    TEST_ASSERT_EQUAL_INT(8, n_records);
+    TEST_ASSERT_EQUAL_MEMORY(want, record_type, 8);
     // the base record holds the plan id sequence before the new mission's plan
-    assert_int_equal(le32(ref_mem.data + record_end[0] + 5U),
-                     (uint32_t)snaps[mission2 - 1].plan_id);
+    TEST_ASSERT_EQUAL_INT((uint32_t)snaps[mission2 - 1].plan_id,
+                          le32(ref_mem.data + record_end[0] + 5U));
     // resumed whole: the same state; every cut after the compacted head: the state of
     // its last record and the same answers after it
     sva_lcm_journal_resume_t r;
-    assert_int_equal(resume_from(ref_mem.data, ref_mem.size, &r), SVA_LCM_JOURNAL_OK);
-    assert_int_equal(r.records, 6U);
-    assert_false(r.cut);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, resume_from(ref_mem.data, ref_mem.size, &r));
+    TEST_ASSERT_EQUAL_INT(6U, r.records);
+    TEST_ASSERT_FALSE(r.cut);
     assert_state(&node, &snaps[n_inputs - 1]);
-    assert_true(snaps[n_inputs - 1].plan_id > snaps[mission2].plan_id);
+    TEST_ASSERT_TRUE(snaps[n_inputs - 1].plan_id > snaps[mission2].plan_id);
     sweep_cuts(record_end[3], record_end[3]);
     // a flipped bit in the compacted head: cut there, nothing of the damaged record
     // applied (base: no plan id; fleet: no fleet; mission: a fleet and no mission)
@@ -729,13 +726,13 @@ static void test_compaction(void** state)
         static uint8_t flipped[MEM_CAP];
         memcpy(flipped, ref_mem.data, ref_mem.size);
         flipped[record_end[k - 1] + 6U] ^= 0x10U;
-        assert_int_equal(resume_from(flipped, ref_mem.size, &r), SVA_LCM_JOURNAL_OK);
-        assert_true(r.cut);
-        assert_int_equal(r.cut_offset, record_end[k - 1]);
-        assert_int_equal(node.priv.plan_id, (k == 1) ? 0 : snaps[mission2 - 1].plan_id);
-        assert_int_equal(node.priv.have_fleet, k == 3);
-        assert_false(node.priv.have_mission);
-        assert_false(node.priv.live_active);
+        TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, resume_from(flipped, ref_mem.size, &r));
+        TEST_ASSERT_TRUE(r.cut);
+        TEST_ASSERT_EQUAL_INT(record_end[k - 1], r.cut_offset);
+        TEST_ASSERT_EQUAL_INT((k == 1) ? 0 : snaps[mission2 - 1].plan_id, node.priv.plan_id);
+        TEST_ASSERT_EQUAL_INT(k == 3, node.priv.have_fleet);
+        TEST_ASSERT_FALSE(node.priv.have_mission);
+        TEST_ASSERT_FALSE(node.priv.live_active);
     }
 
     // Without fleet reports a new fleet is a new live mission too: one of fewer UAVs
@@ -753,10 +750,10 @@ static void test_compaction(void** state)
     add_event(SVA_LCM_EVENT_T_TYPE_CLOCK, 6, 0, 0, 0, 0);
     run_reference();
     search_from = fleet2;
-    assert_int_equal(ref_journal.compactions, 3U);
+    TEST_ASSERT_EQUAL_INT(3U, ref_journal.compactions);
     parse_records(ref_mem.data, ref_mem.size);
-    assert_int_equal(n_records, 5);
-    assert_int_equal(resume_from(ref_mem.data, ref_mem.size, &r), SVA_LCM_JOURNAL_OK);
+    TEST_ASSERT_EQUAL_INT(5, n_records);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, resume_from(ref_mem.data, ref_mem.size, &r));
     check_resumed(n_inputs - 1, false);
     sweep_cuts(record_end[3], record_end[3]);
 }
@@ -785,11 +782,11 @@ static uint8_t crafted[MEM_CAP];
 static void own_header(void)
 {
     sva_lcm_journal_resume_t r;
-    assert_int_equal(resume_from(NULL, 0U, &r), SVA_LCM_JOURNAL_OK);
-    assert_true(r.fresh);
-    assert_int_equal(mem.size, SVA_LCM_JOURNAL_HEADER_BYTES + 9U);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, resume_from(NULL, 0U, &r));
+    TEST_ASSERT_TRUE(r.fresh);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_HEADER_BYTES + 9U, mem.size);
     memcpy(header, mem.data + 5, SVA_LCM_JOURNAL_HEADER_BYTES);
-    assert_memory_equal(header, "SVAJ", 4);
+    TEST_ASSERT_EQUAL_MEMORY("SVAJ", header, 4);
 }
 
 static sva_lcm_journal_status_t resume_crafted(uint32_t header_len)
@@ -797,8 +794,8 @@ static sva_lcm_journal_status_t resume_crafted(uint32_t header_len)
     const uint32_t n = put_record(crafted, SVA_LCM_RECORD_HEADER, header, header_len);
     sva_lcm_journal_resume_t r;
     const sva_lcm_journal_status_t st = resume_from(crafted, n, &r);
-    assert_int_equal(mem.size, n);  // a refused journal is left as it was
-    assert_memory_equal(mem.data, crafted, n);
+    TEST_ASSERT_EQUAL_INT(n, mem.size);  // a refused journal is left as it was
+    SVA_TEST_ASSERT_EQUAL_BYTES(crafted, mem.data, n);
     return st;
 }
 
@@ -808,62 +805,68 @@ static void set_u16(uint8_t* p, unsigned v)
     p[1] = (uint8_t)(v >> 8);
 }
 
-static void test_other_versions_and_options_refused(void** state)
+void test_other_versions_and_options_refused(void)
 {
-    (void)state;
     opts = (options_t){SVA_ALGO_SVA, 0, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT};
     own_header();
     char ours[96];
     (void)snprintf(ours, sizeof ours, "this node is sva %d.%d.%d (journal format %d)",
                    SVA_VERSION_MAJOR, SVA_VERSION_MINOR, SVA_VERSION_PATCH, SVA_LCM_JOURNAL_FORMAT);
-    assert_int_equal(resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES), SVA_LCM_JOURNAL_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES));
 
     // another sva version: refused, naming both
     set_u16(header + 8, SVA_VERSION_MINOR + 1U);
-    assert_int_equal(resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES), SVA_LCM_JOURNAL_ERR_VERSION);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_VERSION,
+                          resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES));
     char theirs[96];
     (void)snprintf(
         theirs, sizeof theirs, "the journal was written by sva %d.%d.%d (journal format %d); ",
         SVA_VERSION_MAJOR, SVA_VERSION_MINOR + 1, SVA_VERSION_PATCH, SVA_LCM_JOURNAL_FORMAT);
-    assert_non_null(strstr(journal.message, theirs));
-    assert_non_null(strstr(journal.message, ours));
+    TEST_ASSERT_NOT_NULL(strstr(journal.message, theirs));
+    TEST_ASSERT_NOT_NULL(strstr(journal.message, ours));
     set_u16(header + 8, SVA_VERSION_MINOR);
     // another journal format, with a longer header: named too
     set_u16(header + 4, 2U);
-    assert_int_equal(resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES + 10U),
-                     SVA_LCM_JOURNAL_ERR_VERSION);
-    assert_non_null(strstr(journal.message, "(journal format 2)"));
-    assert_non_null(strstr(journal.message, ours));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_VERSION,
+                          resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES + 10U));
+    TEST_ASSERT_NOT_NULL(strstr(journal.message, "(journal format 2)"));
+    TEST_ASSERT_NOT_NULL(strstr(journal.message, ours));
     set_u16(header + 4, SVA_LCM_JOURNAL_FORMAT);
     // the same version with other wire types (event_t's fingerprint)
     header[12 + 16] ^= 1U;
-    assert_int_equal(resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES), SVA_LCM_JOURNAL_ERR_VERSION);
-    assert_non_null(strstr(journal.message, "other wire types (event_t fingerprint"));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_VERSION,
+                          resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES));
+    TEST_ASSERT_NOT_NULL(strstr(journal.message, "other wire types (event_t fingerprint"));
     header[12 + 16] ^= 1U;
     // other node options: refused, both named as options
     opts.change_penalty = 5;
-    assert_int_equal(resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES), SVA_LCM_JOURNAL_ERR_OPTIONS);
-    assert_string_equal(journal.message,
-                        "the journal was written by a node run with --algo sva --change-penalty 0 "
-                        "--track-tolerance 2; this node runs with --algo sva --change-penalty 5 "
-                        "--track-tolerance 2");
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_OPTIONS,
+                          resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES));
+    TEST_ASSERT_EQUAL_STRING(
+        "the journal was written by a node run with --algo sva --change-penalty 0 "
+        "--track-tolerance 2; this node runs with --algo sva --change-penalty 5 "
+        "--track-tolerance 2",
+        journal.message);
     opts.change_penalty = 0;
     opts.algorithm = SVA_ALGO_FLOW;
     opts.fleet_reports = true;
-    assert_int_equal(resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES), SVA_LCM_JOURNAL_ERR_OPTIONS);
-    assert_non_null(strstr(journal.message, "this node runs with --algo flow --change-penalty 0 "
-                                            "--track-tolerance 2 --fleet-reports"));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_OPTIONS,
+                          resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES));
+    TEST_ASSERT_NOT_NULL(strstr(journal.message,
+                                "this node runs with --algo flow --change-penalty 0 "
+                                "--track-tolerance 2 --fleet-reports"));
     opts = (options_t){SVA_ALGO_SVA, 0, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT};
     // not a journal; a header of the wrong size; a first record that is no header
     memcpy(header, "SVAX", 4);
-    assert_int_equal(resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES), SVA_LCM_JOURNAL_ERR_FORMAT);
-    assert_non_null(strstr(journal.message, "not an sva_node journal"));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_FORMAT, resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES));
+    TEST_ASSERT_NOT_NULL(strstr(journal.message, "not an sva_node journal"));
     memcpy(header, "SVAJ", 4);
-    assert_int_equal(resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES - 1U), SVA_LCM_JOURNAL_ERR_FORMAT);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_FORMAT,
+                          resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES - 1U));
     sva_lcm_journal_resume_t r;
     uint32_t n = put_record(crafted, SVA_LCM_RECORD_BASE, header, 8U);
-    assert_int_equal(resume_from(crafted, n, &r), SVA_LCM_JOURNAL_ERR_FORMAT);
-    assert_non_null(strstr(journal.message, "the first record is of type 2"));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_FORMAT, resume_from(crafted, n, &r));
+    TEST_ASSERT_NOT_NULL(strstr(journal.message, "the first record is of type 2"));
     // with reset, any of them is discarded and a new journal started
     n = put_record(crafted, SVA_LCM_RECORD_HEADER, header, 20U);
     memset(&mem, 0, sizeof mem);
@@ -873,39 +876,38 @@ static void test_other_versions_and_options_refused(void** state)
     sva_lcm_storage_t s;
     mem_storage(&mem, &s);
     node_setup(&node, &answers);
-    assert_int_equal(sva_lcm_journal_init(&journal, &s, &node), SVA_LCM_JOURNAL_OK);
-    assert_int_equal(sva_lcm_journal_resume(&journal, true, &r), SVA_LCM_JOURNAL_OK);
-    assert_true(r.fresh && r.discarded);
-    assert_int_equal(mem.size, SVA_LCM_JOURNAL_HEADER_BYTES + 9U);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, sva_lcm_journal_init(&journal, &s, &node));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, sva_lcm_journal_resume(&journal, true, &r));
+    TEST_ASSERT_TRUE(r.fresh && r.discarded);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_HEADER_BYTES + 9U, mem.size);
 
     // records with a good CRC that this node does not take: an unknown type, an input of
     // the wrong size, an event the live mission refuses (in the past)
     n = put_record(crafted, SVA_LCM_RECORD_HEADER, header, SVA_LCM_JOURNAL_HEADER_BYTES);
     uint32_t m = n + put_record(crafted + n, 9, header, 4U);
-    assert_int_equal(resume_from(crafted, m, &r), SVA_LCM_JOURNAL_ERR_FORMAT);
-    assert_non_null(strstr(journal.message, "record at byte 63: type 9 (unknown) of 4 bytes"));
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_FORMAT, resume_from(crafted, m, &r));
+    TEST_ASSERT_NOT_NULL(strstr(journal.message, "record at byte 63: type 9 (unknown) of 4 bytes"));
     m = n + put_record(crafted + n, SVA_LCM_RECORD_EVENT, header, 20U);
-    assert_int_equal(resume_from(crafted, m, &r), SVA_LCM_JOURNAL_ERR_FORMAT);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_FORMAT, resume_from(crafted, m, &r));
     opts = (options_t){SVA_ALGO_SVA, 2, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT};
     sequence_one_mission();
     check_reference_one_mission();
     memcpy(crafted, ref_mem.data, ref_mem.size);
     m = ref_mem.size + put_record(crafted + ref_mem.size, SVA_LCM_RECORD_EVENT, inputs[4].bytes,
                                   SVA_LCM_EVENT_BYTES);
-    assert_int_equal(resume_from(crafted, m, &r), SVA_LCM_JOURNAL_ERR_REPLAY);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_REPLAY, resume_from(crafted, m, &r));
     char want[96];
     (void)snprintf(want, sizeof want, "record at byte %lu (event): the node did not take it again",
                    (unsigned long)ref_mem.size);
-    assert_non_null(strstr(journal.message, want));
-    assert_int_equal(mem.size, m);
+    TEST_ASSERT_NOT_NULL(strstr(journal.message, want));
+    TEST_ASSERT_EQUAL_INT(m, mem.size);
 }
 
 // A storage that fails halts the node: the input it could not keep is not answered,
 // nothing after it is taken, a half-written record is cut back; the journal resumes
 // the state before that input, and the input sent again gets the reference's answer.
-static void test_failing_storage_halts(void** state)
+void test_failing_storage_halts(void)
 {
-    (void)state;
     opts = (options_t){SVA_ALGO_SVA, 2, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT};
     sequence_one_mission();
     check_reference_one_mission();
@@ -915,40 +917,41 @@ static void test_failing_storage_halts(void** state)
     sva_lcm_storage_t s;
     mem_storage(&mem, &s);
     node_setup(&node, &answers);
-    assert_int_equal(sva_lcm_journal_init(&journal, &s, &node), SVA_LCM_JOURNAL_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, sva_lcm_journal_init(&journal, &s, &node));
     sva_lcm_journal_resume_t r;
-    assert_int_equal(sva_lcm_journal_resume(&journal, false, &r), SVA_LCM_JOURNAL_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, sva_lcm_journal_resume(&journal, false, &r));
     for (int i = 0; i < k; ++i) {
-        assert_int_equal(feed(&node, &inputs[i], inputs[i].size), ref_verdicts[i]);
+        TEST_ASSERT_EQUAL_INT(ref_verdicts[i], feed(&node, &inputs[i], inputs[i].size));
     }
     const uint32_t before = mem.size;
     mem.fail_append_after = 17;
     memset(&answers, 0, sizeof answers);
-    assert_int_equal(feed(&node, &inputs[k], inputs[k].size), SVA_LCM_HALTED);
-    assert_int_equal(answers.count, 0);
-    assert_true(node.halted);
-    assert_non_null(strstr(journal.message, "storage append failed"));
-    assert_int_equal(mem.size, before);
-    assert_int_equal(feed(&node, &inputs[k + 1], inputs[k + 1].size), SVA_LCM_HALTED);
-    assert_int_equal(answers.count, 0);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_HALTED, feed(&node, &inputs[k], inputs[k].size));
+    TEST_ASSERT_EQUAL_INT(0, answers.count);
+    TEST_ASSERT_TRUE(node.halted);
+    TEST_ASSERT_NOT_NULL(strstr(journal.message, "storage append failed"));
+    TEST_ASSERT_EQUAL_INT(before, mem.size);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_HALTED, feed(&node, &inputs[k + 1], inputs[k + 1].size));
+    TEST_ASSERT_EQUAL_INT(0, answers.count);
     // restart
     static uint8_t kept[MEM_CAP];
     memcpy(kept, mem.data, mem.size);
-    assert_int_equal(resume_from(kept, before, &r), SVA_LCM_JOURNAL_OK);
-    assert_false(r.cut);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, resume_from(kept, before, &r));
+    TEST_ASSERT_FALSE(r.cut);
     check_resumed(k - 1, true);
 
     // a compaction (a new mission) that fails halts too, and leaves the old journal
-    assert_int_equal(resume_from(kept, before, &r), SVA_LCM_JOURNAL_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, resume_from(kept, before, &r));
     mem.fail_replace = true;
     memset(&answers, 0, sizeof answers);
     make_fleet_and_mission(8);
     add_mission();
-    assert_int_equal(feed(&node, &inputs[n_inputs - 1], SVA_LCM_MISSION_BYTES), SVA_LCM_HALTED);
-    assert_int_equal(answers.count, 0);
-    assert_non_null(strstr(journal.message, "storage replace failed"));
-    assert_int_equal(mem.size, before);
-    assert_memory_equal(mem.data, kept, before);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_HALTED,
+                          feed(&node, &inputs[n_inputs - 1], SVA_LCM_MISSION_BYTES));
+    TEST_ASSERT_EQUAL_INT(0, answers.count);
+    TEST_ASSERT_NOT_NULL(strstr(journal.message, "storage replace failed"));
+    TEST_ASSERT_EQUAL_INT(before, mem.size);
+    SVA_TEST_ASSERT_EQUAL_BYTES(kept, mem.data, before);
 }
 
 // Random damage (seeded, printed; SVA_JOURNAL_SEED=N replays one): a cut anywhere, then
@@ -970,9 +973,8 @@ static uint32_t good_records(const uint8_t* j, uint32_t size)
     return c;
 }
 
-static void test_random_damage(void** state)
+void test_random_damage(void)
 {
-    (void)state;
     opts = (options_t){SVA_ALGO_SVA, 2, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT};
     sequence_one_mission();
     check_reference_one_mission();
@@ -1004,25 +1006,25 @@ static void test_random_damage(void** state)
         const sva_lcm_journal_status_t st = resume_from(damaged, n, &r);
         if ((n == 0U) || (c == 0U)) {
             if ((n != 0U) && (st != SVA_LCM_JOURNAL_ERR_FORMAT)) {
-                fail_msg("seed %lu: a damaged header gave status %d", seed, (int)st);
+                SVA_TEST_FAIL("seed %lu: a damaged header gave status %d", seed, (int)st);
             }
             continue;
         }
         if (st != SVA_LCM_JOURNAL_OK) {
-            fail_msg("seed %lu (SVA_JOURNAL_SEED=%lu replays it): status %d: %s", seed, seed,
-                     (int)st, journal.message);
+            SVA_TEST_FAIL("seed %lu (SVA_JOURNAL_SEED=%lu replays it): status %d: %s", seed, seed,
+                          (int)st, journal.message);
         }
         uint32_t kept = 0;
         for (uint32_t k = 0; k < c; ++k) {
             kept += le32(damaged + kept) + 9U;
         }
-        assert_int_equal(mem.size, kept);
-        assert_memory_equal(mem.data, saved, kept);
+        TEST_ASSERT_EQUAL_INT(kept, mem.size);
+        SVA_TEST_ASSERT_EQUAL_BYTES(saved, mem.data, kept);
         const int q = (c <= 2U) ? -1 : input_with_records(c);
-        assert_true(q >= -1);
+        TEST_ASSERT_TRUE(q >= -1);
         check_resumed(q, false);
     }
-    print_message("random damage: seeds %lu..%lu\n", first, first + count - 1UL);
+    printf("random damage: seeds %lu..%lu\n", first, first + count - 1UL);
 }
 
 // --- the POSIX file storage -------------------------------------------------------------
@@ -1032,9 +1034,9 @@ static char dir[64];
 static void write_file(const char* path, const uint8_t* data, uint32_t size)
 {
     FILE* f = fopen(path, "wb");
-    assert_non_null(f);
-    assert_int_equal(fwrite(data, 1, size, f), size);
-    assert_int_equal(fclose(f), 0);
+    TEST_ASSERT_NOT_NULL(f);
+    TEST_ASSERT_EQUAL_INT(size, fwrite(data, 1, size, f));
+    TEST_ASSERT_EQUAL_INT(0, fclose(f));
 }
 
 static long file_size(const char* path)
@@ -1048,9 +1050,9 @@ static sva_lcm_journal_file_t file_ctx;
 static sva_lcm_journal_status_t resume_file(sva_lcm_journal_resume_t* r)
 {
     sva_lcm_storage_t s;
-    assert_int_equal(sva_lcm_journal_file_init(&file_ctx, dir, &s), SVA_LCM_JOURNAL_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, sva_lcm_journal_file_init(&file_ctx, dir, &s));
     node_setup(&node, &answers);
-    assert_int_equal(sva_lcm_journal_init(&journal, &s, &node), SVA_LCM_JOURNAL_OK);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, sva_lcm_journal_init(&journal, &s, &node));
     return sva_lcm_journal_resume(&journal, false, r);
 }
 
@@ -1058,33 +1060,32 @@ static sva_lcm_journal_status_t resume_file(sva_lcm_journal_resume_t* r)
 // offset of its last records (truncated on disk, the state of the last complete record);
 // a leftover temporary file removed; a second process refused the folder while one
 // holds it.
-static void test_file_storage(void** state)
+void test_file_storage(void)
 {
-    (void)state;
     opts = (options_t){SVA_ALGO_SVA, 2, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT};
     sequence_one_mission();
     check_reference_one_mission();
     (void)snprintf(dir, sizeof dir, "/tmp/sva-journal-XXXXXX");
-    assert_non_null(mkdtemp(dir));
+    TEST_ASSERT_NOT_NULL(mkdtemp(dir));
     char path[128];
     char temp[128];
     (void)snprintf(path, sizeof path, "%s/%s", dir, SVA_LCM_JOURNAL_FILE_NAME);
     (void)snprintf(temp, sizeof temp, "%s/%s", dir, SVA_LCM_JOURNAL_TEMP_NAME);
 
     sva_lcm_journal_resume_t r;
-    assert_int_equal(resume_file(&r), SVA_LCM_JOURNAL_OK);
-    assert_true(r.fresh);
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, resume_file(&r));
+    TEST_ASSERT_TRUE(r.fresh);
     for (int i = 0; i < n_inputs; ++i) {
         memset(&answers, 0, sizeof answers);
-        assert_int_equal(feed(&node, &inputs[i], inputs[i].size), ref_verdicts[i]);
-        assert_int_equal(answers.crc, ref_answers[i].crc);
+        TEST_ASSERT_EQUAL_INT(ref_verdicts[i], feed(&node, &inputs[i], inputs[i].size));
+        TEST_ASSERT_EQUAL_INT(ref_answers[i].crc, answers.crc);
     }
-    assert_int_equal(file_size(path), (long)ref_mem.size);
-    assert_int_equal(file_size(temp), -1L);  // the compaction's temporary file was renamed
+    TEST_ASSERT_EQUAL_INT((long)ref_mem.size, file_size(path));
+    TEST_ASSERT_EQUAL_INT(-1L, file_size(temp));  // the compaction's temporary file was renamed
 
     // a second process may not open the folder while this one holds it
     const pid_t pid = fork();
-    assert_true(pid >= 0);
+    TEST_ASSERT_TRUE(pid >= 0);
     if (pid == 0) {
         sva_lcm_journal_file_t other;
         sva_lcm_storage_t s;
@@ -1096,29 +1097,29 @@ static void test_file_storage(void** state)
         _exit((strstr(s.error(s.ctx), "is in use") != NULL) ? 0 : 2);
     }
     int status = -1;
-    assert_int_equal(waitpid(pid, &status, 0), pid);
-    assert_true(WIFEXITED(status) && (WEXITSTATUS(status) == 0));
+    TEST_ASSERT_EQUAL_INT(pid, waitpid(pid, &status, 0));
+    TEST_ASSERT_TRUE(WIFEXITED(status) && (WEXITSTATUS(status) == 0));
     sva_lcm_journal_close(&journal);
 
     FILE* f = fopen(path, "rb");
-    assert_non_null(f);
+    TEST_ASSERT_NOT_NULL(f);
     static uint8_t whole[MEM_CAP];
-    assert_int_equal(fread(whole, 1, sizeof whole, f), ref_mem.size);
-    assert_int_equal(fclose(f), 0);
-    assert_memory_equal(whole, ref_mem.data, ref_mem.size);
+    TEST_ASSERT_EQUAL_INT(ref_mem.size, fread(whole, 1, sizeof whole, f));
+    TEST_ASSERT_EQUAL_INT(0, fclose(f));
+    SVA_TEST_ASSERT_EQUAL_BYTES(ref_mem.data, whole, ref_mem.size);
     parse_records(whole, ref_mem.size);
     const uint32_t from = record_end[n_records - 4];
     for (uint32_t o = from; o <= ref_mem.size; ++o) {
         write_file(path, whole, o);
         write_file(temp, whole, 7U);  // a compaction a crash interrupted
-        assert_int_equal(resume_file(&r), SVA_LCM_JOURNAL_OK);
+        TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_OK, resume_file(&r));
         uint32_t c = 0;
         while ((c < (uint32_t)n_records) && (record_end[c] <= o)) {
             c++;
         }
-        assert_int_equal(file_size(path), (long)record_end[c - 1]);
-        assert_int_equal(file_size(temp), -1L);
-        assert_int_equal(r.cut, o != record_end[c - 1]);
+        TEST_ASSERT_EQUAL_INT((long)record_end[c - 1], file_size(path));
+        TEST_ASSERT_EQUAL_INT(-1L, file_size(temp));
+        TEST_ASSERT_EQUAL_INT(o != record_end[c - 1], r.cut);
         assert_state(&node, &snaps[input_with_records(c)]);
         sva_lcm_journal_close(&journal);
     }
@@ -1126,19 +1127,5 @@ static void test_file_storage(void** state)
     char lock[128];
     (void)snprintf(lock, sizeof lock, "%s/%s", dir, SVA_LCM_JOURNAL_LOCK_NAME);
     (void)unlink(lock);
-    assert_int_equal(rmdir(dir), 0);
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_power_loss_every_offset),
-        cmocka_unit_test(test_bit_flips),
-        cmocka_unit_test(test_random_damage),
-        cmocka_unit_test(test_compaction),
-        cmocka_unit_test(test_other_versions_and_options_refused),
-        cmocka_unit_test(test_failing_storage_halts),
-        cmocka_unit_test(test_file_storage),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    TEST_ASSERT_EQUAL_INT(0, rmdir(dir));
 }
