@@ -6,8 +6,9 @@ It streams HEARTBEAT, GLOBAL_POSITION_INT, SYSTEM_TIME, SYS_STATUS (and optional
 BATTERY_STATUS, MISSION_CURRENT, MISSION_ITEM_REACHED) from a clock of its own: time since
 boot runs `rate` times as fast as the host's, and the GPS clock is `gps_at_boot_ms` plus
 the time since boot (as SITL's runs at its speedup), so host time and vehicle time differ.
-It answers the mission upload protocol (MISSION_REQUEST_INT per item, then MISSION_ACK)
-and SET_MESSAGE_INTERVAL (COMMAND_ACK), recording what it got; with `strays`, every reply
+It answers the mission upload protocol (MISSION_REQUEST_INT per item, then MISSION_ACK;
+with `refuse`, a MISSION_ACK of that result to every MISSION_COUNT) and
+SET_MESSAGE_INTERVAL (COMMAND_ACK), recording what it got; with `strays`, every reply
 is preceded by stray bytes (a cycle of malformed, truncated and corrupted frames).
 """
 from __future__ import annotations
@@ -57,7 +58,7 @@ class StandIn(threading.Thread):
                  battery_status: Optional[int] = None, mission_current: Optional[int] = None,
                  reached: Optional[int] = None, position_hz: float = 5.0,
                  system_time_every_s: float = 1.0, strays: bool = False,
-                 drop_after_items: Optional[int] = None):
+                 drop_after_items: Optional[int] = None, refuse: Optional[int] = None):
         super().__init__(daemon=True)
         self.transport, self.port, self.sysid = transport, port, sysid
         self.lat_e7, self.lon_e7 = lat_e7, lon_e7
@@ -68,6 +69,7 @@ class StandIn(threading.Thread):
         self.system_time_every = system_time_every_s
         self.strays = stray_patterns() if strays else []
         self.drop_after_items = drop_after_items
+        self.refuse = refuse                 # answer MISSION_COUNT with this MISSION_ACK result
         self.heartbeats = True
         self.counts: List[int] = []          # MISSION_COUNT values received
         self.item_seqs: List[int] = []       # MISSION_ITEM_INT seqs received (resends too)
@@ -175,6 +177,10 @@ class StandIn(threading.Thread):
             state["peer"] = (msg.get_srcSystem(), msg.get_srcComponent())
             state["want"], state["got"] = msg.count, {}
             self.counts.append(msg.count)
+            if self.refuse is not None:
+                state["want"] = 0
+                self._send(self._tx.mission_ack_encode(*state["peer"], self.refuse, 0), reply=True)
+                return
             self._send(self._tx.mission_request_int_encode(*state["peer"], 0, 0), reply=True)
         elif t == "MISSION_ITEM_INT" and to_us and state.get("want"):
             self.item_seqs.append(msg.seq)

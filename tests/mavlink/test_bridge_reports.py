@@ -170,3 +170,85 @@ def test_reports_follow_the_vehicle_and_its_link(tmp_path):
         a.close()
         if b is not None:
             b.close()
+
+
+MAV_MISSION_UNSUPPORTED = 3
+
+
+def test_a_refused_upload_or_a_restart_withholds_the_vehicle_until_it_is_back(tmp_path):
+    """The withheld rule (docs/mavlink.md): a vehicle that refuses the mission itself
+    (MAV_MISSION_UNSUPPORTED: not tried again) is reported LOST while its heartbeats go
+    on, and gets no upload, until its link drops and it is heard again; a vehicle whose
+    link drops (a restart: a new boot) is reported LOST at least once and is back when
+    heard again, and the next plan uploads to it afresh even when its route is the same."""
+    plan = C.plan_mission(TWO, tmp_path)
+    route1 = next(r for r in plan["routes"] if r["uav"] == 1)
+    n = 3 + 2 * len(route1["targets"])
+    pa, pb = free_tcp_port(), free_tcp_port()
+    lat, lon = C.position_e7(FRAME, 3.3, -2.2)
+
+    def vehicle(boot_s, **kw):
+        return StandIn("tcp", pa, 1, lat_e7=lat, lon_e7=lon,
+                       gps_at_boot_ms=FI["t0_ms"] + boot_s * 1000, rate=10.0, **kw)
+
+    a = vehicle(1000, refuse=MAV_MISSION_UNSUPPORTED)
+    b = c = None
+    reports = Reports()
+    lc = lcm.LCM(URL)
+    bridge = Bridge({1: f"tcp:127.0.0.1:{pa}:1", 2: f"tcp:127.0.0.1:{pb}:2"}, "--report-ms", "300",
+                    "--heartbeat-timeout-ms", "1500", upload_retries=None)
+    link1 = f"uav 1 (tcp:127.0.0.1:{pa})"
+    try:
+        bridge.wait_for(lambda ls: f"{link1}: connected" in ls)
+        lc.publish("SVA_FLEET", fleet_msg(TWO).encode())
+        lc.publish("SVA_MISSION", mission_msg(TWO).encode())
+        time.sleep(0.2)
+        lc.publish("SVA_PLAN", plan_msg(plan, 1).encode())
+        refused = (f"plan 1: {link1}: error: MISSION_ACK: the vehicle refused the mission: "
+                   f"MAV_MISSION_UNSUPPORTED ({MAV_MISSION_UNSUPPORTED})")
+        bridge.wait_for(lambda ls: refused in ls, 10)
+        bridge.wait_for(lambda ls: any(x.startswith(f"{link1}: LOST: an upload failed for good")
+                                       for x in ls), 5)
+        assert not [x for x in bridge.lines if x.startswith(f"plan 1: {link1}: retry")]
+        time.sleep(1.5)
+        now = time.monotonic()
+        held = reports.between(now - 1.0, now, uav=1)
+        assert len(held) >= 2 and all((r.health, r.x, r.y) == (r.HEALTH_LOST, 3, -2) for _, r in held)
+        # withheld: no upload, whatever the plan
+        lc.publish("SVA_PLAN", plan_msg(plan, 2).encode())
+        bridge.wait_for(lambda ls: f"plan 2: {link1}: withheld (reported LOST), not uploaded" in ls, 10)
+        assert a.counts == [n]
+
+        # its link drops (a restart): LOST until a new boot is heard, then OK
+        a.close()
+        b = vehicle(2000)
+        bridge.wait_for(lambda ls: ls.count(f"{link1}: connected") == 2, 10)
+        bridge.wait_for(lambda ls: f"{link1}: OK: heard again" in ls, 10)
+        time.sleep(1.0)
+        now = time.monotonic()
+        ok = reports.between(now - 0.9, now, uav=1)
+        assert ok and all(r.health == r.HEALTH_OK for _, r in ok)
+        assert min(r.at_ticks for _, r in ok) >= 2_000_000 // FI["tick_ms"]
+        # what it held is forgotten: the same route is uploaded again
+        lc.publish("SVA_PLAN", plan_msg(plan, 3).encode())
+        bridge.wait_for(lambda ls: f"plan 3: {link1}: uploaded {n} items" in ls, 10)
+        assert len(b.missions) == 1
+
+        # a restart of a vehicle in good standing: LOST at least once, then back, and the
+        # same plan again is uploaded to the new boot (it holds no mission of ours)
+        b.close()
+        dropped = time.monotonic()
+        c = vehicle(3000)
+        bridge.wait_for(lambda ls: ls.count(f"{link1}: connected") == 3, 10)
+        bridge.wait_for(lambda ls: ls.count(f"{link1}: OK: heard again") == 2, 10)
+        lost = [r for _, r in reports.between(dropped, time.monotonic(), uav=1) if r.health == r.HEALTH_LOST]
+        assert lost and all((r.x, r.y) == (3, -2) for r in lost)
+        lc.publish("SVA_PLAN", plan_msg(plan, 4).encode())
+        bridge.wait_for(lambda ls: f"plan 4: {link1}: uploaded {n} items" in ls, 10)
+        assert len(c.missions) == 1
+    finally:
+        bridge.stop()
+        reports.close()
+        for v in (a, b, c):
+            if v is not None:
+                v.close()

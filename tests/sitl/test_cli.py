@@ -90,3 +90,34 @@ def test_listed_among_the_commands():
     r = subprocess.run([sys.executable, "-m", "sva_tools", "sitl", "--help"], capture_output=True,
                        text=True, env=env, timeout=60)
     assert r.returncode == 0 and "--speedup" in r.stdout and "47.3977,8.5456,30,25,6" in r.stdout
+
+
+@pytest.mark.parametrize("value, text", [
+    ("x:1", '--fault: KIND must be one of silent-upload, reject-item, reboot, got "x"'),
+    ("reboot:9", "--fault: UAV_ID must be the id of a UAV of the mission (1, 2, 3), got \"9\""),
+    ("reboot:one", "--fault: UAV_ID must be the id of a UAV of the mission (1, 2, 3), got \"one\""),
+    ("reboot:1:-1", '--fault: T_S must be a number of seconds after t0 in [0, 86400], got "-1"'),
+    ("reboot:1:86401", '--fault: T_S must be a number of seconds after t0 in [0, 86400], got "86401"'),
+    ("reboot:1:nan", '--fault: T_S must be a number of seconds after t0 in [0, 86400], got "nan"'),
+    ("reboot", '--fault: must be KIND:UAV_ID[:T_S], got "reboot"'),
+    ("reboot:1:2:3", '--fault: must be KIND:UAV_ID[:T_S], got "reboot:1:2:3"'),
+])
+def test_a_bad_fault_is_refused_naming_the_rule_and_the_limit(tmp_path, value, text):
+    r = sitl(SCENARIO, "--fault", value, "--sitl", tmp_path / "none")
+    refused(r, text)
+
+
+def test_one_fault_per_uav(tmp_path):
+    r = sitl(SCENARIO, "--fault", "reboot:1", "--fault", "reject-item:1", "--sitl", tmp_path / "none")
+    refused(r, "--fault: uav 1 has a fault already: at most one per UAV")
+    # both ends of T_S pass the option (then: no SITL here)
+    r = sitl(SCENARIO, "--fault", "reboot:1:0", "--fault", "silent-upload:2:86400", "--sitl", tmp_path / "none")
+    refused(r, "the ArduCopter SITL binary is missing")
+
+
+def test_help_names_the_faults():
+    r = sitl("--help")
+    assert r.returncode == 0 and "--fault KIND:UAV_ID[:T_S]" in r.stdout
+    text = "".join(r.stdout.split())  # argparse wraps lines, at hyphens too
+    for kind in ("silent-upload", "reject-item", "reboot"):
+        assert kind in text

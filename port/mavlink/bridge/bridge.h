@@ -59,6 +59,16 @@ typedef enum bridge_parse {
 /// unknown option or a missing --vehicle).
 bridge_parse_t bridge_options_parse(int argc, char** argv, bridge_options_t* o);
 
+/// Why a vehicle is reported LOST whatever its heartbeats say (docs/mavlink.md, "A
+/// vehicle that fails an upload or reboots"). A withheld vehicle gets no upload.
+typedef enum bridge_withheld {
+    BRIDGE_HELD_NO = 0,       ///< reported as its telemetry says
+    BRIDGE_HELD_REFUSED = 1,  ///< an upload failed for good: until it is silent past the
+                              ///< heartbeat timeout, its link drops or it reboots (then GONE)
+    BRIDGE_HELD_GONE = 2      ///< its link dropped, it rebooted, or it was REFUSED and went
+                              ///< silent: until a LOST report went out and it is heard again
+} bridge_withheld_t;
+
 /// One vehicle and what the bridge knows of its missions and of what it said.
 typedef struct vehicle_slot {
     sva_mavlink_vehicle_t link;
@@ -74,12 +84,20 @@ typedef struct vehicle_slot {
     int32_t retries_done;  ///< tries again of the mission in link.items so far
     bool retry_pending;    ///< a failed upload is tried again at retry_due_ms
     int64_t retry_due_ms;
+    bridge_withheld_t withheld;
+    int64_t gone_host_ms;  ///< when it became GONE
+    bool lost_said;        ///< a LOST report of it went out since it was withheld
+    uint32_t seen_drops;   ///< link.drops and telemetry.reboots already taken
+    uint32_t seen_reboots;
+    sva_mavlink_report_t last;  ///< the last report published (has_last)
+    bool has_last;
     bool reported;           ///< its result was printed
     uint32_t said_connects;  ///< link events printed so far
     uint32_t said_drops;
     bool said_connect_failure;
     sva_mavlink_report_status_t said_status;  ///< the last report status printed
     sva_mavlink_health_t said_health;
+    bridge_withheld_t said_withheld;
 } vehicle_slot_t;
 
 extern vehicle_slot_t bridge_slots[BRIDGE_MAX_VEHICLES];
@@ -97,7 +115,11 @@ void bridge_vehicles_upload(vehicle_slot_t* s, int64_t plan_id);
 /// Services every link at now_ms and prints what happened: an upload's result ("plan
 /// N: uav ID (...): uploaded 8 items"; a failure "...: retry 1 of 5 in 2000 ms: ..."
 /// while tries again are left, then "...: error: ..."), a retry started when due, a TCP
-/// connection made, lost, or its first failed attempt.
+/// connection made, lost, or its first failed attempt. An upload that fails for good
+/// (its tries again used up, or refused by the vehicle for good:
+/// sva_mavlink_upload_refused_for_good) makes the vehicle REFUSED; a dropped link or a
+/// reboot makes it GONE (a retry pending is dropped); either way what it holds is
+/// forgotten.
 void bridge_vehicles_service(int64_t now_ms);
 void bridge_vehicles_close(void);
 
@@ -116,8 +138,10 @@ void bridge_reports_release(void);
 /// held plan's, a new mission is coming and reports stop until its plan.
 void bridge_reports_on_fleet(int64_t revision);
 void bridge_reports_on_mission(int64_t revision);
-/// Publishes the reports due at now_ms. Returns the ms until the next one is due (-1:
-/// none is).
+/// Publishes the reports due at now_ms: a withheld vehicle is reported LOST (with its
+/// last report's position and tick while it has none of its own) and released once the
+/// rule of bridge_withheld_t allows. Returns the ms until the next one is due (-1: none
+/// is).
 int64_t bridge_reports_service(lcm_t* lcm, int64_t now_ms);
 
 #endif  // SVA_MAVLINK_BRIDGE_H

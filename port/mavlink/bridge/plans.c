@@ -211,6 +211,12 @@ static void dispatch(const sva_lcm_plan_t* p, const sva_lcm_fleet_state_t* f,
         } else {
             changed = !sva_mavlink_same_items(s->flown, s->flown_count, built, count);
         }
+        if (s->withheld != BRIDGE_HELD_NO) {
+            // reported LOST: the node replans its work when it takes the report; its next
+            // mission comes from the plan after it is back
+            say_vehicle(s, p->plan_id, "withheld (reported LOST), not uploaded");
+            continue;
+        }
         if (!changed) {
             say_vehicle(s, p->plan_id, "route unchanged, not uploaded");
             continue;

@@ -98,11 +98,11 @@ static void publish(lcm_t* lcm, const sva_mavlink_report_t* r)
 }
 
 // Prints what changed since the last report of the vehicle: why it has none, or its
-// health.
+// health (and why it is withheld).
 static void say_changes(vehicle_slot_t* s, sva_mavlink_report_status_t status,
                         const sva_mavlink_report_t* r)
 {
-    char text[160];
+    char text[200];
     if (status != s->said_status) {
         if (status == SVA_MAVLINK_REPORT_OK) {
             snprintf(text, sizeof text, "reporting on %s", channel);
@@ -112,8 +112,18 @@ static void say_changes(vehicle_slot_t* s, sva_mavlink_report_status_t status,
         bridge_say(s, "", text);
         s->said_status = status;
     }
-    if (status == SVA_MAVLINK_REPORT_OK && r->health != s->said_health) {
-        if (r->health == SVA_MAVLINK_HEALTH_LOST) {
+    if (status == SVA_MAVLINK_REPORT_OK &&
+        (r->health != s->said_health || s->withheld != s->said_withheld)) {
+        if (s->withheld == BRIDGE_HELD_REFUSED) {
+            snprintf(text, sizeof text,
+                     "LOST: an upload failed for good; withheld until it is silent for more than "
+                     "%d ms, its link drops or it reboots, and is heard again",
+                     (int)config.heartbeat_timeout_ms);
+        } else if (s->withheld == BRIDGE_HELD_GONE) {
+            snprintf(text, sizeof text,
+                     "LOST: its link dropped, it rebooted or went silent after a failed upload: "
+                     "no mission of ours is assumed; withheld until heard again");
+        } else if (r->health == SVA_MAVLINK_HEALTH_LOST) {
             snprintf(text, sizeof text, "LOST: no HEARTBEAT for more than %d ms",
                      (int)config.heartbeat_timeout_ms);
         } else {
@@ -121,6 +131,31 @@ static void say_changes(vehicle_slot_t* s, sva_mavlink_report_status_t status,
         }
         bridge_say(s, "", text);
         s->said_health = r->health;
+        s->said_withheld = s->withheld;
+    }
+}
+
+// The withheld rule (bridge_withheld_t) at now_ms, before the vehicle's report: REFUSED
+// turns GONE once the vehicle is silent past the heartbeat timeout (its drops and
+// reboots are taken by vehicles.c); GONE is released once a LOST report of it went out
+// (or none of it ever did: nothing to take back) and it is heard again: a report of its
+// own, a fresh HEARTBEAT, and a SYSTEM_TIME heard since it went GONE (a position of the
+// link or boot before could still be held until then).
+static void apply_withheld_rule(vehicle_slot_t* s, sva_mavlink_report_status_t status,
+                                const sva_mavlink_report_t* r, int64_t now_ms)
+{
+    const sva_mavlink_telemetry_t* t = &s->link.telemetry;
+    if (s->withheld == BRIDGE_HELD_REFUSED && t->heard &&
+        now_ms - t->heartbeat_host_ms > config.heartbeat_timeout_ms) {
+        s->withheld = BRIDGE_HELD_GONE;
+        s->gone_host_ms = now_ms;
+        s->lost_said = false;
+    }
+    if (s->withheld == BRIDGE_HELD_GONE && (s->lost_said || !s->has_last) &&
+        status == SVA_MAVLINK_REPORT_OK && r->health == SVA_MAVLINK_HEALTH_OK &&
+        s->link.link == SVA_MAVLINK_LINK_UP && t->has_time_boot &&
+        t->time_host_ms >= s->gone_host_ms) {
+        s->withheld = BRIDGE_HELD_NO;
     }
 }
 
@@ -137,9 +172,20 @@ int64_t bridge_reports_service(lcm_t* lcm, int64_t now_ms)
         sva_mavlink_report_t r;
         sva_mavlink_report_status_t status = sva_mavlink_report_make(
             &s->link.telemetry, s->link.spec.uav_id, &frame, geodesy, &config, now_ms, &r);
+        apply_withheld_rule(s, status, &r, now_ms);
+        if (s->withheld != BRIDGE_HELD_NO && status != SVA_MAVLINK_REPORT_OK && s->has_last) {
+            r = s->last;  // nothing of its own yet (a new boot): where it was last reported
+            status = SVA_MAVLINK_REPORT_OK;
+        }
+        if (s->withheld != BRIDGE_HELD_NO && status == SVA_MAVLINK_REPORT_OK) {
+            r.health = SVA_MAVLINK_HEALTH_LOST;
+        }
         say_changes(s, status, &r);
         if (status == SVA_MAVLINK_REPORT_OK) {
             publish(lcm, &r);
+            s->last = r;
+            s->has_last = true;
+            s->lost_said = s->lost_said || r.health == SVA_MAVLINK_HEALTH_LOST;
         }
     }
     // The period is kept even when a round is late (the loop wakes at least every 50 ms).

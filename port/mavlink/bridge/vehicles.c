@@ -35,6 +35,8 @@ bool bridge_vehicles_open(const bridge_options_t* o)
         s->reported = true;
         s->said_status = SVA_MAVLINK_REPORT_NEVER_HEARD;
         s->said_health = SVA_MAVLINK_HEALTH_OK;
+        s->withheld = BRIDGE_HELD_NO;
+        s->said_withheld = BRIDGE_HELD_NO;
         bridge_slot_count++;
     }
     return true;
@@ -70,8 +72,17 @@ static int64_t backoff_ms(int32_t retry)
     return wait_ms < BRIDGE_RETRY_MAX_MS ? wait_ms : BRIDGE_RETRY_MAX_MS;
 }
 
+// Forgets what the vehicle holds: the next plan that routes it uploads again.
+static void forget(vehicle_slot_t* s)
+{
+    s->flown_count = 0;
+    s->flown_target_count = 0;
+}
+
 // The end of an upload: one line with its result. A failure with tries again left is
-// tried again after the backoff; the last failure forgets what the vehicle holds.
+// tried again after the backoff; a failure for good (no tries left, a refusal the same
+// mission would get again, or the link gone under it) forgets what the vehicle holds and
+// withholds it (REFUSED, unless it is GONE already).
 static void say_upload_result(vehicle_slot_t* s, int64_t now_ms)
 {
     if (s->reported || sva_mavlink_vehicle_busy(&s->link)) {
@@ -83,7 +94,8 @@ static void say_upload_result(vehicle_slot_t* s, int64_t now_ms)
     char text[SVA_MAVLINK_ERROR_SIZE + 64];
     if (s->link.upload.state == SVA_MAVLINK_UPLOAD_DONE) {
         snprintf(text, sizeof text, "uploaded %u items", (unsigned)s->link.upload.count);
-    } else if (s->retries_done < upload_retries) {
+    } else if (s->retries_done < upload_retries && s->withheld != BRIDGE_HELD_GONE &&
+               !sva_mavlink_upload_refused_for_good(&s->link.upload)) {
         s->retries_done++;
         const int64_t wait_ms = backoff_ms(s->retries_done);
         s->retry_pending = true;
@@ -92,10 +104,31 @@ static void say_upload_result(vehicle_slot_t* s, int64_t now_ms)
                  (int)upload_retries, wait_ms, s->link.upload.error);
     } else {
         snprintf(text, sizeof text, "error: %s", s->link.upload.error);
-        s->flown_count = 0;  // unknown what it holds: the next plan uploads again
-        s->flown_target_count = 0;
+        forget(s);
+        if (s->withheld == BRIDGE_HELD_NO) {
+            s->withheld = BRIDGE_HELD_REFUSED;
+            s->lost_said = false;
+        }
     }
     bridge_say(s, prefix, text);
+}
+
+// A dropped link or a reboot (time since boot gone back): the vehicle holds no mission
+// the bridge can vouch for. It is GONE until heard again (reports.c), a retry pending is
+// dropped, and the next plan that routes it uploads again.
+static void note_link_changes(vehicle_slot_t* s, int64_t now_ms)
+{
+    const sva_mavlink_vehicle_t* v = &s->link;
+    if (v->drops == s->seen_drops && v->telemetry.reboots == s->seen_reboots) {
+        return;
+    }
+    s->seen_drops = v->drops;
+    s->seen_reboots = v->telemetry.reboots;
+    s->withheld = BRIDGE_HELD_GONE;
+    s->gone_host_ms = now_ms;
+    s->lost_said = false;
+    s->retry_pending = false;
+    forget(s);
 }
 
 // A retry due: the same mission again (a newer one would have dropped the retry).
@@ -138,6 +171,7 @@ void bridge_vehicles_service(int64_t now_ms)
         vehicle_slot_t* s = &bridge_slots[k];
         sva_mavlink_vehicle_service(&s->link, now_ms);
         say_link_events(s);
+        note_link_changes(s, now_ms);
         say_upload_result(s, now_ms);
         start_due_retry(s, now_ms);
     }

@@ -87,6 +87,7 @@ bool sva_mavlink_upload_start(sva_mavlink_upload_t* up, const sva_mavlink_item_t
                               size_t count, int64_t now_ms, sva_mavlink_frame_t* out)
 {
     up->error[0] = '\0';
+    up->refusal = MAV_MISSION_ACCEPTED;
     up->tries = 0;
     up->sent_items = 0;
     up->distinct_sent = 0;
@@ -163,6 +164,7 @@ bool sva_mavlink_upload_on_message(sva_mavlink_upload_t* up, const mavlink_messa
             snprintf(text, sizeof text, "MISSION_ACK: the vehicle refused the mission: %s (%u)",
                      result_name(a.type), (unsigned)a.type);
             fail(up, text);
+            up->refusal = a.type;
         }
         return false;
     }
@@ -212,6 +214,29 @@ bool sva_mavlink_upload_on_time(sva_mavlink_upload_t* up, int64_t now_ms, sva_ma
         send_item(up, up->last_seq, out);
     }
     return true;
+}
+
+bool sva_mavlink_upload_refused_for_good(const sva_mavlink_upload_t* up)
+{
+    if (up->state != SVA_MAVLINK_UPLOAD_FAILED) {
+        return false;
+    }
+    switch (up->refusal) {
+    case MAV_MISSION_UNSUPPORTED_FRAME:
+    case MAV_MISSION_UNSUPPORTED:
+    case MAV_MISSION_INVALID:
+    case MAV_MISSION_INVALID_PARAM1:
+    case MAV_MISSION_INVALID_PARAM2:
+    case MAV_MISSION_INVALID_PARAM3:
+    case MAV_MISSION_INVALID_PARAM4:
+    case MAV_MISSION_INVALID_PARAM5_X:
+    case MAV_MISSION_INVALID_PARAM6_Y:
+    case MAV_MISSION_INVALID_PARAM7:
+    case MAV_MISSION_INVALID_SEQUENCE:
+        return true;
+    default:
+        return false;  // accepted (no refusal), or a refusal that can pass
+    }
 }
 
 void sva_mavlink_heartbeat(uint8_t own_system, uint8_t own_component, sva_mavlink_frame_t* out)

@@ -16,6 +16,9 @@ the copter needs for a one-cell leg from a hold, is refused; the vehicles are co
 10 m/s. Coverage is judged from
 each vehicle's telemetry: present within max(cell_m / 2, 5 m) of the target for its
 whole window. The last line: `covered C of K coverable (plan promised P); arrival slack
-p50 X s, p1 Y s; late arrivals N`. docs/sitl.md has the details and measurements.
+p50 X s, p1 Y s; late arrivals N`. --fault KIND:UAV_ID[:T_S] (repeatable) makes a vehicle
+fail: silent-upload (its link to the bridge goes silent at an upload), reject-item (the
+vehicle refuses an upload), reboot (a fresh SITL where it is). docs/sitl.md has the
+details and measurements.
 """
 from .cli import add_parser  # noqa: F401

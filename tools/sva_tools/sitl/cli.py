@@ -29,6 +29,8 @@ MAX_SPEED_SHARE = 0.6
 ONE_CELL_BASE_S = 3.8
 ONE_CELL_ROOT_S = 0.4
 FRAME_KEYS = ("lat", "lon", "alt_m", "cell_m", "tick_s")
+FAULT_KINDS = ("silent-upload", "reject-item", "reboot")
+MAX_FAULT_S = 86400
 
 
 class Refused(Exception):
@@ -49,6 +51,44 @@ def parse_frame(text: str) -> dict:
     if errs:
         raise Refused(f"--frame: {errs[0]}")
     return doc
+
+
+def parse_fault(text: str, uav_ids: List[int]) -> dict:
+    """One --fault KIND:UAV_ID[:T_S] value: {kind, uav, t_s (None: from the start)}."""
+    parts = text.split(":")
+    if len(parts) not in (2, 3):
+        raise Refused(f"--fault: must be KIND:UAV_ID[:T_S], got \"{shown(text)[:60]}\"")
+    kind = parts[0]
+    if kind not in FAULT_KINDS:
+        raise Refused(f"--fault: KIND must be one of {', '.join(FAULT_KINDS)}, got "
+                      f"\"{shown(kind)[:40]}\"")
+    try:
+        uav = int(parts[1])
+    except ValueError:
+        uav = None
+    if uav is None or uav not in uav_ids:
+        raise Refused(f"--fault: UAV_ID must be the id of a UAV of the mission "
+                      f"({', '.join(map(str, uav_ids))}), got \"{shown(parts[1])[:20]}\"")
+    t_s = None
+    if len(parts) == 3:
+        try:
+            t_s = float(parts[2])
+        except ValueError:
+            t_s = math.nan
+        if not (0 <= t_s <= MAX_FAULT_S):
+            raise Refused(f"--fault: T_S must be a number of seconds after t0 in [0, {MAX_FAULT_S}], "
+                          f"got \"{shown(parts[2])[:20]}\"")
+    return {"kind": kind, "uav": uav, "t_s": t_s}
+
+
+def parse_faults(texts: List[str], uav_ids: List[int]) -> List[dict]:
+    faults: List[dict] = []
+    for text in texts:
+        f = parse_fault(text, uav_ids)
+        if any(g["uav"] == f["uav"] for g in faults):
+            raise Refused(f"--fault: uav {f['uav']} has a fault already: at most one per UAV")
+        faults.append(f)
+    return faults
 
 
 def check_speed(frame: dict, ticks_per_cell: int) -> float:
@@ -92,6 +132,13 @@ def add_parser(sub) -> None:
     ap.add_argument("--sitl", default=None, metavar="PATH",
                     help="the arducopter binary (default $SVA_SITL, else ../shared/sitl/arducopter "
                          "beside the repository); its copter.parm is read from the same folder")
+    ap.add_argument("--fault", action="append", default=[], metavar="KIND:UAV_ID[:T_S]",
+                    help="inject a fault (repeatable, one per UAV): silent-upload (the vehicle's "
+                         "link to the bridge goes silent at the next upload's MISSION_COUNT), "
+                         "reject-item (one item of the next upload rewritten so the vehicle refuses "
+                         "it), reboot (its SITL killed and a fresh one started where it is); T_S: "
+                         f"armed at t0 + T_S vehicle seconds, in [0, {MAX_FAULT_S}] (default: "
+                         "upload faults from the first upload, reboot at t0)")
     ap.add_argument("-o", "--out", default=None, metavar="LOG.json", help="write the flight log")
     ap.add_argument("--plot", default=None, metavar="PNG", help="draw flown tracks over planned routes")
     ap.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -106,6 +153,8 @@ def _argv(args) -> List[str]:
         v = getattr(args, opt)
         if v is not None:
             argv += [f"--{opt}", os.path.abspath(v) if opt in ("sitl", "out", "plot", "keep") else v]
+    for fault in args.fault:
+        argv += ["--fault", fault]
     if args.quiet:
         argv.append("--quiet")
     return argv
@@ -177,6 +226,7 @@ def _settings(args):
     else:
         frame = parse_frame(args.frame or DEFAULT_FRAME) | {"t0": None}
     check_speed(frame, mission.ticks_per_cell)
+    faults = parse_faults(args.fault, [u.id for u in mission.uavs])
     for i, e in enumerate(events):
         if e["type"] == "position":
             raise Refused(f"events[{i}].type: position is not flown in SITL (a vehicle cannot be "
@@ -190,7 +240,7 @@ def _settings(args):
         raise Refused(f"--sitl: {defaults} is missing (copter.parm beside the binary)")
     return Settings(args.scenario, mission, events, penalty, frame, args.algo, args.speedup,
                     binary, defaults, os.environ.get("SVA_LCM_URL", "udpm://239.255.76.67:7667?ttl=0"),
-                    "SVA_", not args.quiet)
+                    "SVA_", not args.quiet, faults)
 
 
 def run(args) -> int:

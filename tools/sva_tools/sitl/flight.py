@@ -18,6 +18,10 @@ Order of work:
    holds a mission), every other event is an event_t from the ground.
 5. The flight ends when no event is left, every window has ended and every vehicle is
    on its way home (RTL), landed or out of service.
+
+Faults (--fault): a vehicle with an upload fault is reached by the bridge through a
+relay (sitl.relay) that silences or rewrites its next upload once armed; a reboot kills
+the vehicle's process at its time and starts a fresh one where it is, on the ground.
 """
 from __future__ import annotations
 
@@ -27,7 +31,7 @@ import shutil
 import sys
 import tempfile
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Dict, List, Optional
 
@@ -36,6 +40,7 @@ from .. import model as M
 from . import judge, record
 from .craft import Craft
 from .ground import Ground, GroundError
+from .relay import UPLOAD_FAULTS, Relay
 from .vehicle import Process, SitlError, write_extra_parameters
 
 BOOT_ALLOWANCE_S = 90        # vehicle seconds from launch to a ready vehicle (measured: ~41)
@@ -71,6 +76,7 @@ class Settings:
     url: str
     prefix: str
     progress: bool = True
+    faults: List[dict] = field(default_factory=list)   # {kind, uav, t_s} (cli.parse_fault)
 
 
 class Flight:
@@ -111,6 +117,11 @@ class Flight:
         self.mission_doc: dict = {}
         self.closed = False
         self._last_fleet: Optional[tuple] = None
+        # --fault: a relay per vehicle with an upload fault; reboots due at their time
+        self.relays: Dict[int, Relay] = {}
+        self.reboots = [dict(f) for f in s.faults if f["kind"] == "reboot"]
+        self.fault_log: List[dict] = []
+        self.faulty = {f["uav"] for f in s.faults}
 
     # --- clocks ----------------------------------------------------------------------
 
@@ -134,8 +145,9 @@ class Flight:
 
     # --- start -----------------------------------------------------------------------
 
-    def _launch(self, c: Craft, cell, start_time_s: int, launched_utc_ms: float) -> None:
-        home = self.geo.cell_to_geodetic(*cell)
+    def _launch(self, c: Craft, cell, start_time_s: int, launched_utc_ms: float,
+                home: Optional[tuple] = None) -> None:
+        home = home or self.geo.cell_to_geodetic(*cell)
         folder = self.tmp / f"uav{c.id}-{len(c.spells)}"
         p = Process(self.s.sitl, self.defaults, folder, c.instance, c.sysid, home,
                     self.s.speedup, start_time_s)
@@ -144,12 +156,15 @@ class Flight:
 
     def _pump(self, timeout: float) -> None:
         fds = [c.fileno() for c in self.crafts if c.fileno() >= 0]
+        fds += [fd for r in self.relays.values() for fd in r.fds()]
         if self.ground is not None:
             fds += self.ground.fds()
         if fds:
             select.select(fds, [], [], timeout)
         else:
             time.sleep(timeout)
+        for r in self.relays.values():
+            r.pump()
         for c in self.crafts:
             c.pump()
         if self.ground is not None:
@@ -170,9 +185,15 @@ class Flight:
             self._launch(c, (u.x, u.y), base + offset, (base + offset) * 1000.0)
         report_ms = max(10, round(REPORT_VEHICLE_MS / s.speedup))
         lost_ms = max(500, round(LOST_VEHICLE_MS / s.speedup))
+        for f in s.faults:
+            if f["kind"] in UPLOAD_FAULTS:
+                c = self.by_id[f["uav"]]
+                self.relays[c.id] = Relay(f["kind"], c.id, c.instance, c.sysid, self.fleet_utc_ms,
+                                          lambda f=f: self._fault_at(f))
+                self.relays[c.id].record["t_s"] = f["t_s"]
         self.bridge_cmd = self.ground.start_bridge(
-            [(c.id, 5760 + 10 * c.instance, c.sysid) for c in self.crafts], report_ms, lost_ms,
-            CRUISE_M_S)
+            [(c.id, self.relays[c.id].port if c.id in self.relays else 5760 + 10 * c.instance,
+              c.sysid) for c in self.crafts], report_ms, lost_ms, CRUISE_M_S)
         self._say(f"booting {len(self.crafts)} vehicles")
         end = time.monotonic() + READY_TIMEOUT_WALL_S
         while not all(c.ready for c in self.crafts):
@@ -262,6 +283,7 @@ class Flight:
                 continue
             ch = doc["changes"]
             cause = doc["event"] if mine is not None else f"report:{doc['event']}"
+            self._note_out(doc, cause)
             # a UAV serving a visit under way stands in the residual mission ready at the
             # window's end (docs/live.md)
             self.residual_ready[str(doc["plan"]["stats"]["plan_id"])] = (
@@ -300,6 +322,51 @@ class Flight:
                     busy = float(self.t0_ms + ready * self.tick_ms)
             c.on_upload(parsed, now, busy)
         self.held_lines = keep
+
+    # --- faults (--fault) -------------------------------------------------------------
+
+    def _fault_at(self, f: dict) -> Optional[float]:
+        """The fleet-clock instant (UTC ms) a fault arms at: None (from the start) for an
+        upload fault without T_S; infinity while t0 is not known."""
+        if f["t_s"] is None and f["kind"] in UPLOAD_FAULTS:
+            return None
+        if self.t0_ms is None:
+            return math.inf
+        return self.t0_ms + (f["t_s"] or 0.0) * 1000.0
+
+    def _reboot(self, f: dict) -> None:
+        """SIGKILL the vehicle's process and start a fresh one at once (fresh working
+        folder, same instance, system id and ports), home where it is, on the ground."""
+        c = self.by_id[f["uav"]]
+        now = self.fleet_utc_ms()
+        rec = {"kind": "reboot", "uav": c.id, "t_s": f["t_s"], "fired_utc_ms": now}
+        self.fault_log.append(rec)
+        if not c.in_service or c.spell is None:
+            rec["skipped"] = "not in service"
+            return
+        own = c.utc_ms()
+        if own is not None:
+            rec["fired_utc_ms"] = own
+        at = c.telemetry[-1] if c.telemetry else None
+        home = (at[1], at[2]) if at is not None else self.geo.cell_to_geodetic(0, 0)
+        cell = self.geo.geodetic_to_cell(*home)
+        rec.update(position=[round(home[0], 7), round(home[1], 7)], cell=list(cell),
+                   alt_m=None if at is None else round(at[3], 2))
+        c.kill()
+        start = int(round((own or now or time.time() * 1000.0) / 1000.0))
+        self._launch(c, cell, start, own or now or start * 1000.0, home=home)
+
+    def _note_out(self, doc: dict, cause: str) -> None:
+        """A faulty UAV's time out of service as the node sees it: from the replan that
+        drops it from the residual fleet to the one that takes it back."""
+        ids = {u["id"] for u in doc["residual"]["uavs"]}
+        for uid in self.faulty:
+            c = self.by_id[uid]
+            is_out = bool(c.out) and c.out[-1][1] is None
+            if uid not in ids and not is_out and cause == "report:uav_lost":
+                c.out.append([doc["now"], None])
+            elif uid in ids and is_out and cause == "report:uav_back":
+                c.out[-1][1] = doc["now"]
 
     # --- the flight ------------------------------------------------------------------
 
@@ -382,6 +449,12 @@ class Flight:
                     c.step(now_host, own is not None and own >= self.t0_ms - self.allowance_s * 1000)
                 while self.pending and self._due(self.pending[0]):
                     self._do(self.pending.pop(0))
+                for f in list(self.reboots):
+                    at = self._fault_at(f)
+                    fleet = self.fleet_utc_ms()
+                    if at is not None and fleet is not None and fleet >= at:
+                        self.reboots.remove(f)
+                        self._reboot(f)
                 for seq, rec in list(self.awaiting.items()):
                     if now_host - rec["host"] > EVENT_ANSWER_TIMEOUT_S:
                         rec["error"] = "no answer from sva_node"
@@ -394,6 +467,7 @@ class Flight:
                         self.bar.n = shown
                         self.bar.refresh()
                     if linger is None and not self.pending and not self.awaiting and not self.held_lines and \
+                            not self.reboots and \
                             tick >= last_end and all(c.finished() for c in self.crafts):
                         linger = now + LINGER_MS
                     if linger is not None and now >= linger:
@@ -415,6 +489,9 @@ class Flight:
         self.closed = True
         for c in self.crafts:
             c.kill()
+        for r in self.relays.values():
+            self.fault_log.append(r.log())
+            r.close()
         if self.ground is not None:
             self.ground.close()
         if keep:

@@ -32,6 +32,13 @@ def _hold(h: dict, t0: int) -> dict:
     return out
 
 
+def _fault(f: dict, t0: int) -> dict:
+    out = _times(f, t0)
+    if "acks" in f:
+        out["acks"] = [_times(a, t0) for a in f["acks"]]
+    return out
+
+
 def record(fl) -> dict:
     """The flight's record (flight.Flight after fly())."""
     s, t0 = fl.s, fl.t0_ms
@@ -63,6 +70,7 @@ def record(fl) -> dict:
                  "reports": fl.ground.reports if fl.ground is not None else 0,
                  "events": [_times({k: v for k, v in e.items() if k not in ("host", "event")}, t0)
                             for e in fl.flown_events],
+                 "faults": [_fault(f, t0) for f in fl.fault_log],
                  "bridge": {"command": fl.bridge_cmd,
                             "lines": [[_ms(a, t0), x] for a, x in fl.bridge_log]}},
     }

@@ -143,6 +143,9 @@ typedef struct sva_mavlink_upload {
     uint16_t sent_items;     ///< MISSION_ITEM_INT messages sent (resends included)
     uint16_t distinct_sent;  ///< items sent at least once: an ACK before all is an error
     uint8_t sent[(SVA_MAVLINK_MAX_ITEMS + 7) / 8];  ///< a bit per item: sent at least once
+    /// The MAV_MISSION_RESULT of the MISSION_ACK that refused the upload;
+    /// MAV_MISSION_ACCEPTED (0) when it was not refused (accepted, in progress, timed out).
+    uint8_t refusal;
     char error[SVA_MAVLINK_ERROR_SIZE];
 } sva_mavlink_upload_t;
 
@@ -165,6 +168,16 @@ bool sva_mavlink_upload_on_message(sva_mavlink_upload_t* up, const mavlink_messa
 /// Checks the timeout at now_ms. True when *out holds a resend; after `retries`
 /// resends the upload FAILS ("no answer to MISSION_COUNT after 6 tries of 1500 ms").
 bool sva_mavlink_upload_on_time(sva_mavlink_upload_t* up, int64_t now_ms, sva_mavlink_frame_t* out);
+
+/// True when the upload FAILED because the vehicle refused the mission itself: a
+/// MISSION_ACK whose result names the mission or one of its items (MAV_MISSION_UNSUPPORTED,
+/// MAV_MISSION_UNSUPPORTED_FRAME, MAV_MISSION_INVALID and its INVALID_PARAM*,
+/// MAV_MISSION_INVALID_SEQUENCE), which the same mission sent again would get again. False
+/// for every other state and for the refusals that can pass (MAV_MISSION_NO_SPACE: a
+/// freshly booted ArduPilot for a second or two; MAV_MISSION_DENIED: a transfer of
+/// another link in progress; MAV_MISSION_ERROR, MAV_MISSION_OPERATION_CANCELLED) and for
+/// timeouts. Allocates nothing; O(1).
+bool sva_mavlink_upload_refused_for_good(const sva_mavlink_upload_t* up);
 
 /// A GCS heartbeat of this side (sent every SVA_MAVLINK_HEARTBEAT_MS on every link that
 /// is up: a UDP vehicle learns where to send its telemetry from it).
