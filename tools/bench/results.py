@@ -37,6 +37,7 @@ ROOT = os.environ.get("SVA_RESULTS_ROOT") or os.path.dirname(os.path.dirname(os.
 
 # Sections of docs/results.md in order: fragment name, heading.
 SECTIONS = [
+    ("setup", "First plan on a fresh Debian 12"),
     ("core", "Core speed and memory"),
     ("instructions", "Instructions per plan"),
     ("footprint", "Cortex-M footprint and stack"),
