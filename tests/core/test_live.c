@@ -268,6 +268,73 @@ void test_uav_back_and_fuel(void)
     TEST_ASSERT_EQUAL_INT(12, r.residual->uavs[0].fuel);
 }
 
+// start_hand() with takeoff_ticks; both UAVs are home by 50 (UAV 1 from T2 at 40,
+// UAV 2 from T3 at 40), then T9 at (2, 0) in [64, 70] is added at 60: two cells away, so a
+// UAV that leaves at once arrives at 62 and one that takes off for k ticks at 62 + k.
+static sva_live_result_t home_and_retasked(int32_t takeoff)
+{
+    start_hand(0);
+    mission.takeoff_ticks = takeoff;
+    sva_diag_t diag;
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_live_init(&live, &mission, &plan, &diag));
+    sva_event_t added = test_event_at(SVA_EVENT_TARGET_ADDED, 60);
+    added.target = (sva_target_t){9, 2, 0, 64, 70, 1};
+    apply_ok(added);
+    sva_live_result_t r;
+    replan_ok(SVA_ALGO_FLOW, &r);
+    return r;
+}
+
+// A UAV on the ground takes off before it leaves: home with its route done (landed), or
+// back in service (uav_back). In flight, on its way home, it does not.
+void test_takeoff_on_the_ground_only(void)
+{
+    sva_live_result_t r = home_and_retasked(0);
+    TEST_ASSERT_EQUAL_INT(60, r.residual->uavs[0].ready_at_ticks);
+    TEST_ASSERT_EQUAL_INT(1, r.plan->covered);
+    r = home_and_retasked(2);  // arrives at 64: just in time
+    TEST_ASSERT_EQUAL_INT(62, r.residual->uavs[0].ready_at_ticks);
+    TEST_ASSERT_EQUAL_INT(62, r.residual->uavs[1].ready_at_ticks);
+    TEST_ASSERT_EQUAL_INT(1, r.plan->covered);
+    r = home_and_retasked(3);  // arrives at 65: too late for the window's start
+    TEST_ASSERT_EQUAL_INT(63, r.residual->uavs[0].ready_at_ticks);
+    TEST_ASSERT_EQUAL_INT(0, r.plan->covered);
+
+    // On its way home at 45 (T2 left at 40; 5 of 10 cells flown): no take-off.
+    start_hand(0);
+    mission.takeoff_ticks = 7;
+    sva_diag_t diag;
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_live_init(&live, &mission, &plan, &diag));
+    int32_t x = 0;
+    int32_t y = 0;
+    int32_t f = 0;
+    int32_t ready = 0;
+    TEST_ASSERT_TRUE(sva_live_uav_at(&live, 0U, 45, &x, &y, &f, &ready));
+    TEST_ASSERT_EQUAL_INT(45, ready);
+    TEST_ASSERT_TRUE(sva_live_uav_at(&live, 0U, 50, &x, &y, &f, &ready));  // home now
+    TEST_ASSERT_EQUAL_INT(0, x);
+    TEST_ASSERT_EQUAL_INT(50, ready);
+    TEST_ASSERT_TRUE(sva_live_uav_at(&live, 0U, 51, &x, &y, &f, &ready));  // landed
+    TEST_ASSERT_EQUAL_INT(58, ready);
+
+    // Back in service at (4, 0) at 3: free at 3 + 7 = 10, T1 at (5, 0) reached at 11 is
+    // past its start at 10; with no take-off it would be in time.
+    sva_event_t lost = test_event_at(SVA_EVENT_UAV_LOST, 2);
+    lost.uav_id = 2;
+    apply_ok(lost);
+    sva_event_t back = test_event_at(SVA_EVENT_UAV_BACK, 3);
+    back.uav_id = 2;
+    back.x = 4;
+    back.y = 0;
+    back.fuel = 50;
+    apply_ok(back);
+    TEST_ASSERT_TRUE(sva_live_uav_at(&live, 1U, 3, &x, &y, &f, &ready));
+    TEST_ASSERT_EQUAL_INT(10, ready);
+    replan_ok(SVA_ALGO_FLOW, &r);
+    TEST_ASSERT_EQUAL_INT(10, r.residual->uavs[1].ready_at_ticks);
+    TEST_ASSERT_EQUAL_INT(2, r.covered);  // T2 and T3; T1 needs both UAVs at 10
+}
+
 static void position_ok(int32_t at, int32_t uav, int32_t x, int32_t y, int32_t fuel)
 {
     sva_event_t e = test_event_at(SVA_EVENT_POSITION, at);
@@ -426,6 +493,15 @@ void test_rejected_starts(void)
     TEST_ASSERT_EQUAL_STRING(
         "change_penalty: must be <= SVA_MAX_CHANGE_PENALTY (1000000), got 2000000", msg);
     mission.change_penalty = 0;
+    mission.takeoff_ticks = -1;
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_live_init(&live, &mission, &plan, &diag));
+    (void)sva_diag_format(&diag, msg, sizeof msg);
+    TEST_ASSERT_EQUAL_STRING("takeoff_ticks: must be >= 0, got -1", msg);
+    mission.takeoff_ticks = SVA_MAX_TICK + 1;
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_live_init(&live, &mission, &plan, &diag));
+    (void)sva_diag_format(&diag, msg, sizeof msg);
+    TEST_ASSERT_TRUE(strstr(msg, "takeoff_ticks: must be <= SVA_MAX_TICK") == msg);
+    mission.takeoff_ticks = 0;
     plan.routes[1].targets[1] = 0U;
     TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_live_init(&live, &mission, &plan, &diag));
     (void)sva_diag_format(&diag, msg, sizeof msg);

@@ -303,6 +303,7 @@ typedef struct {
     int32_t change_penalty;
     bool fleet_reports;
     int32_t track_tolerance;
+    int32_t takeoff_ticks;
 } options_t;
 
 static options_t opts;
@@ -385,6 +386,7 @@ static void node_setup(sva_lcm_node_t* n, answers_t* a)
     n->change_penalty = opts.change_penalty;
     n->fleet_reports = opts.fleet_reports;
     n->track_tolerance_cells = opts.track_tolerance;
+    n->takeoff_ticks = opts.takeoff_ticks;
 }
 
 // The uninterrupted run: every input through a node with a journal in ref_mem.
@@ -651,7 +653,7 @@ void test_power_loss_every_offset(void)
 {
     const sva_algorithm_t algos[2] = {SVA_ALGO_SVA, SVA_ALGO_FLOW};
     for (int a = 0; a < 2; ++a) {
-        opts = (options_t){algos[a], 2, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT};
+        opts = (options_t){algos[a], 2, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT, 0};
         sequence_one_mission();
         check_reference_one_mission();
         sweep_cuts(0U, record_end[n_records - 5]);
@@ -662,7 +664,7 @@ void test_power_loss_every_offset(void)
 // bit of the last four records.
 void test_bit_flips(void)
 {
-    opts = (options_t){SVA_ALGO_SVA, 0, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT};
+    opts = (options_t){SVA_ALGO_SVA, 0, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT, 0};
     sequence_one_mission();
     check_reference_one_mission();
     sweep_flips(0U, false);
@@ -675,7 +677,7 @@ void test_bit_flips(void)
 // plan ids go on, and appends after it are cut safely at every offset.
 void test_compaction(void)
 {
-    opts = (options_t){SVA_ALGO_SVA, 3, true, 1};
+    opts = (options_t){SVA_ALGO_SVA, 3, true, 1, 0};
     n_inputs = 0;
     make_fleet_and_mission(1);
     add_fleet();
@@ -737,7 +739,7 @@ void test_compaction(void)
 
     // Without fleet reports a new fleet is a new live mission too: one of fewer UAVs
     // compacts the journal and resumes to the same bytes (no slot of the old fleet left).
-    opts = (options_t){SVA_ALGO_SVA, 0, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT};
+    opts = (options_t){SVA_ALGO_SVA, 0, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT, 0};
     n_inputs = 0;
     make_fleet_and_mission(3);
     add_fleet();
@@ -807,7 +809,7 @@ static void set_u16(uint8_t* p, unsigned v)
 
 void test_other_versions_and_options_refused(void)
 {
-    opts = (options_t){SVA_ALGO_SVA, 0, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT};
+    opts = (options_t){SVA_ALGO_SVA, 0, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT, 0};
     own_header();
     char ours[96];
     (void)snprintf(ours, sizeof ours, "this node is sva %d.%d.%d (journal format %d)",
@@ -826,10 +828,12 @@ void test_other_versions_and_options_refused(void)
     TEST_ASSERT_NOT_NULL(strstr(journal.message, ours));
     set_u16(header + 8, SVA_VERSION_MINOR);
     // another journal format, with a longer header: named too
-    set_u16(header + 4, 2U);
+    set_u16(header + 4, SVA_LCM_JOURNAL_FORMAT + 1U);
     TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_VERSION,
                           resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES + 10U));
-    TEST_ASSERT_NOT_NULL(strstr(journal.message, "(journal format 2)"));
+    char other[32];
+    (void)snprintf(other, sizeof other, "(journal format %d)", SVA_LCM_JOURNAL_FORMAT + 1);
+    TEST_ASSERT_NOT_NULL(strstr(journal.message, other));
     TEST_ASSERT_NOT_NULL(strstr(journal.message, ours));
     set_u16(header + 4, SVA_LCM_JOURNAL_FORMAT);
     // the same version with other wire types (event_t's fingerprint)
@@ -855,7 +859,16 @@ void test_other_versions_and_options_refused(void)
     TEST_ASSERT_NOT_NULL(strstr(journal.message,
                                 "this node runs with --algo flow --change-penalty 0 "
                                 "--track-tolerance 2 --fleet-reports"));
-    opts = (options_t){SVA_ALGO_SVA, 0, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT};
+    opts = (options_t){SVA_ALGO_SVA, 0, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT, 0};
+    opts.takeoff_ticks = 4;
+    TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_OPTIONS,
+                          resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES));
+    TEST_ASSERT_EQUAL_STRING(
+        "the journal was written by a node run with --algo sva --change-penalty 0 "
+        "--track-tolerance 2; this node runs with --algo sva --change-penalty 0 "
+        "--track-tolerance 2 --takeoff-ticks 4",
+        journal.message);
+    opts.takeoff_ticks = 0;
     // not a journal; a header of the wrong size; a first record that is no header
     memcpy(header, "SVAX", 4);
     TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_FORMAT, resume_crafted(SVA_LCM_JOURNAL_HEADER_BYTES));
@@ -886,10 +899,10 @@ void test_other_versions_and_options_refused(void)
     n = put_record(crafted, SVA_LCM_RECORD_HEADER, header, SVA_LCM_JOURNAL_HEADER_BYTES);
     uint32_t m = n + put_record(crafted + n, 9, header, 4U);
     TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_FORMAT, resume_from(crafted, m, &r));
-    TEST_ASSERT_NOT_NULL(strstr(journal.message, "record at byte 63: type 9 (unknown) of 4 bytes"));
+    TEST_ASSERT_NOT_NULL(strstr(journal.message, "record at byte 67: type 9 (unknown) of 4 bytes"));
     m = n + put_record(crafted + n, SVA_LCM_RECORD_EVENT, header, 20U);
     TEST_ASSERT_EQUAL_INT(SVA_LCM_JOURNAL_ERR_FORMAT, resume_from(crafted, m, &r));
-    opts = (options_t){SVA_ALGO_SVA, 2, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT};
+    opts = (options_t){SVA_ALGO_SVA, 2, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT, 0};
     sequence_one_mission();
     check_reference_one_mission();
     memcpy(crafted, ref_mem.data, ref_mem.size);
@@ -908,7 +921,7 @@ void test_other_versions_and_options_refused(void)
 // the state before that input, and the input sent again gets the reference's answer.
 void test_failing_storage_halts(void)
 {
-    opts = (options_t){SVA_ALGO_SVA, 2, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT};
+    opts = (options_t){SVA_ALGO_SVA, 2, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT, 0};
     sequence_one_mission();
     check_reference_one_mission();
     const int k = 6;  // the fuel event
@@ -975,7 +988,7 @@ static uint32_t good_records(const uint8_t* j, uint32_t size)
 
 void test_random_damage(void)
 {
-    opts = (options_t){SVA_ALGO_SVA, 2, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT};
+    opts = (options_t){SVA_ALGO_SVA, 2, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT, 0};
     sequence_one_mission();
     check_reference_one_mission();
     const uint32_t size = ref_mem.size;
@@ -1062,7 +1075,7 @@ static sva_lcm_journal_status_t resume_file(sva_lcm_journal_resume_t* r)
 // holds it.
 void test_file_storage(void)
 {
-    opts = (options_t){SVA_ALGO_SVA, 2, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT};
+    opts = (options_t){SVA_ALGO_SVA, 2, false, SVA_LCM_TRACK_TOLERANCE_DEFAULT, 0};
     sequence_one_mission();
     check_reference_one_mission();
     (void)snprintf(dir, sizeof dir, "/tmp/sva-journal-XXXXXX");

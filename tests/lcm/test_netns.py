@@ -270,7 +270,7 @@ def test_node_prints_user_text_escaped(tmp_path):
     start = [line for line in lines(r) if line.startswith("sva_node: in ")]
     assert start == [f"sva_node: in {HOSTILE_SHOWN}FLEET {HOSTILE_SHOWN}MISSION {HOSTILE_SHOWN}EVENT, "
                      f"out {HOSTILE_SHOWN}PLAN {HOSTILE_SHOWN}STATUS {HOSTILE_SHOWN}REPLAN; algorithm sva; "
-                     f"change penalty 0; file://{log}?mode=r"]
+                     f"change penalty 0; take-off 0 ticks; file://{log}?mode=r"]
 
 
 def test_realtime_options(tmp_path):

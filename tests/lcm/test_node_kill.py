@@ -182,8 +182,8 @@ def test_other_version_garbage_and_other_options_refused(tmp_path):
     node.stop()
     assert "a new journal" in status_line
     own = journal.read_bytes()
-    assert own[5:9] == b"SVAJ" and len(own) == 63
-    header = bytearray(own[5:59])
+    assert own[5:9] == b"SVAJ" and len(own) == 67
+    header = bytearray(own[5:63])
     major, minor, patch = (int(v) for v in version().split("."))
 
     def refused(data, *extra):
@@ -198,7 +198,7 @@ def test_other_version_garbage_and_other_options_refused(tmp_path):
     header[8:10] = struct.pack("<H", minor + 1)
     err = refused(record(1, bytes(header)))
     assert (f"refused: the journal was written by sva {major}.{minor + 1}.{patch} (journal format "
-            f"1); this node is sva {major}.{minor}.{patch} (journal format 1)") in err
+            f"2); this node is sva {major}.{minor}.{patch} (journal format 2)") in err
     header[8:10] = struct.pack("<H", minor)
     err = refused(b"\x00" * 100)
     assert "the header does not parse" in err

@@ -41,7 +41,8 @@ def test_a_frame_too_fast_for_the_copter(tmp_path):
     refused(r, "frame: the plan's speed cell_m / (ticks_per_cell * tick_s) = 50 / (1 * 1) = 50 m/s "
                "must be <= 6 m/s (60% of the copter's 10 m/s WPNAV_SPEED)")
     # ticks_per_cell counts: the same frame at 10 ticks a cell flies 5 m/s (then: no SITL here)
-    r = sitl(scenario(tmp_path, mission={"ticks_per_cell": 10}), "--frame", "47.3977,8.5456,30,50,1",
+    r = sitl(scenario(tmp_path, mission={"ticks_per_cell": 10, "takeoff_ticks": 0}),
+             "--frame", "47.3977,8.5456,30,50,1",
              "--sitl", tmp_path / "none")
     refused(r, "the ArduCopter SITL binary is missing")
 
@@ -121,3 +122,13 @@ def test_help_names_the_faults():
     text = "".join(r.stdout.split())  # argparse wraps lines, at hyphens too
     for kind in ("silent-upload", "reject-item", "reboot"):
         assert kind in text
+
+
+def test_a_take_off_shorter_than_the_copters_is_refused(tmp_path):
+    r = sitl(scenario(tmp_path, mission={"takeoff_ticks": 2}))
+    refused(r, "mission.takeoff_ticks: must be >= 4 (the copter's take-off to 30 m, 24 s, in 6 s "
+               "ticks), got 2")
+    # at 1 s ticks the same 24 s is 24 ticks
+    r = sitl(scenario(tmp_path, mission={"takeoff_ticks": 23, "ticks_per_cell": 10}),
+             "--frame=47.3977,8.5456,30,4,1")
+    refused(r, "mission.takeoff_ticks: must be >= 24 (")

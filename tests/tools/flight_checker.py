@@ -11,6 +11,9 @@ scenario stored in the log (the mission and the events) and the SPEC text, and j
   event may move it anywhere, and its next step may start then), and two
   moves within one stretch in service are at least ticks_per_cell ticks apart (the first
   at least ticks_per_cell after the stretch starts, or after the mission's ready_at).
+- take-off (SPEC 12.2, the mission's takeoff_ticks k): a UAV back in service at tick b
+  starts no step before b + k; a UAV resting at the depot (there since tick a, or free to
+  leave from a) that a replan at r > a routes again starts no step before r + k.
 - visits: a visit's UAV stands on the target's cell from `arrived` to `left`, arrived by
   the start, and leaves at the end, or earlier only when the target was cancelled or
   lost or the UAV itself was lost then.
@@ -134,6 +137,9 @@ def check_flight(log: dict) -> List[str]:
     events = sc["events"]
     tpc = mission.get("ticks_per_cell", 1)
     hover = mission.get("hover_fuel", 0)
+    takeoff = mission.get("takeoff_ticks", 0)
+    routed_at = [(r["at"], {x["uav"] for x in r["plan"].get("routes", []) if x["targets"]})
+                 for r in log.get("replans", [])]
     depot = (mission["depot"]["x"], mission["depot"]["y"])
     end = log["end_tick"]
 
@@ -214,6 +220,7 @@ def check_flight(log: dict) -> List[str]:
         # Movement and fuel, tick by tick.
         last_move: Optional[int] = None
         prev_fuel: Optional[int] = None
+        rest_from: Optional[int] = None  # resting at the depot since (or free from) then
         for t in sorted(ticks):
             x, y, f = track[t][1], track[t][2], track[t][3]
             if f < 0:
@@ -222,14 +229,18 @@ def check_flight(log: dict) -> List[str]:
                 sx, sy, sf = starts[t]
                 if (x, y) != (sx, sy):
                     v.append(f"{w}: at {(x, y)} at tick {t}, must start at {(sx, sy)}")
-                # The first step may start at t (at tick 0: at the UAV's ready_at).
-                last_move = (uav0_ready(u0) if t == 0 else t) - tpc
+                # The first step may start at t (at tick 0: at the UAV's ready_at; back in
+                # service: after its take-off).
+                free = uav0_ready(u0) if t == 0 else t + takeoff
+                last_move = free - tpc
+                rest_from = free if (sx, sy) == depot else None
                 prev_fuel = sf
             elif (uid, t) in seen_at:
                 if (x, y) != seen_at[(uid, t)]:
                     v.append(f"{w}: at {(x, y)} at tick {t}, a position event puts it at "
                              f"{seen_at[(uid, t)]}")
                 last_move = t - tpc  # its next step may start now
+                rest_from = t if (x, y) == depot else None
             else:
                 d = _dist(p[t - 1], (x, y))
                 if d > 1:
@@ -238,6 +249,14 @@ def check_flight(log: dict) -> List[str]:
                     if last_move is not None and t - last_move < tpc:
                         v.append(f"{w}: moves at {last_move} and {t}, less than "
                                  f"ticks_per_cell ({tpc}) apart")
+                    if p[t - 1] == depot and rest_from is not None and takeoff > 0:
+                        step = t - tpc  # the step that shows now started then
+                        r0 = next((r for r, uids in routed_at
+                                   if rest_from < r <= step and uid in uids), None)
+                        if r0 is not None and step < r0 + takeoff:
+                            v.append(f"{w}: leaves the depot at {step}, routed at {r0} after "
+                                     f"landing by {rest_from}: take-off ({takeoff}) not flown")
+                    rest_from = t if (x, y) == depot else None
                     last_move = t
             if (uid, t) in fuel_at:
                 prev_fuel = fuel_at[(uid, t)]

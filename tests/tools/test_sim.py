@@ -225,6 +225,51 @@ def test_uav_back_brings_a_target_back_within_reach(sva_bin):
     assert target(log, 1)["covered"] and target(log, 1)["served_by"] == [1, 2]
 
 
+def takeoff_scenario(takeoff):
+    """UAV 1 serves T1 at (3, 0) in [5, 8] and is home by 11; T2 at (2, 0) in [18, 30] pops
+    up at 15: leaving at once it arrives at 17, after a take-off of k ticks at 17 + k."""
+    doc = scenario([(1, 0, 0, 100)], [(1, 3, 0, 5, 8, 1)],
+                   [{"at": 15, "type": "target_added", "target": tjson(2, 2, 0, 18, 30, 1)}])
+    doc["mission"]["takeoff_ticks"] = takeoff
+    return doc
+
+
+@pytest.mark.parametrize("algo", ALGOS)
+def test_a_landed_uav_takes_off_before_it_leaves(sva_bin, algo):
+    for takeoff, covered in ((0, True), (1, True), (2, False)):
+        log = ok(fly(takeoff_scenario(takeoff), algo))
+        track = {e[0]: (e[1], e[2]) for e in uav(log, 1)["track"]}
+        moved = [t for t in track if t > 15 and track[t] != (0, 0)]
+        if covered:
+            assert min(moved) - 1 == 15 + takeoff, (takeoff, moved)  # its step's start
+        else:
+            assert moved == [], moved  # nothing it can reach: it stays on the ground
+        assert target(log, 2)["covered"] is covered, takeoff
+        assert log["replans"][-1]["plan"]["covered"] == (1 if covered else 0)
+
+
+def test_a_uav_back_takes_off_before_it_leaves(sva_bin):
+    doc = scenario([(1, 0, 0, 100), (2, 0, 0, 100)], [(1, 6, 6, 30, 50, 2)],
+                   [{"at": 3, "type": "uav_lost", "uav": 2},
+                    {"at": 10, "type": "uav_back", "uav": 2, "x": 2, "y": 2, "fuel": 60}])
+    doc["mission"]["takeoff_ticks"] = 4
+    log = ok(fly(doc))
+    track = {e[0]: (e[1], e[2]) for e in uav(log, 2)["track"]}
+    assert all(track[t] == (2, 2) for t in range(10, 15)), track  # on the ground until 14
+    assert target(log, 1)["covered"]
+
+
+def test_checker_catches_a_take_off_not_flown(sva_bin):
+    log = ok(fly(takeoff_scenario(1)))
+    log["scenario"]["mission"]["takeoff_ticks"] = 2  # what the flight did not fly
+    assert any("take-off (2) not flown" in x for x in check_flight(log))
+    log = ok(fly(takeoff_scenario(0)))
+    log["scenario"]["events"].append({"at": 12, "type": "uav_lost", "uav": 1})
+    log["scenario"]["events"].append({"at": 13, "type": "uav_back", "uav": 1, "x": 0, "y": 0,
+                                      "fuel": 80})
+    assert check_flight(log) != []  # a loss the flight never had
+
+
 def test_position_event_flies_on_from_the_reported_cell(sva_bin):
     doc = scenario([(1, 0, 0, 100)], [(1, 6, 0, 20, 30, 1)],
                    [{"at": 2, "type": "position", "uav": 1, "x": 0, "y": 4, "fuel": 50}])

@@ -41,7 +41,13 @@ sys.path.insert(0, os.path.join(ROOT, "tools"))
 from sva_tools import frame as F  # noqa: E402
 from sva_tools.lcm.simnode import percentile  # noqa: E402
 from sva_tools.sitl import judge  # noqa: E402
+from sva_tools.sitl.cli import DEFAULT_FRAME, parse_frame  # noqa: E402
+from sva_tools.sitl.flight import takeoff_allowance_s  # noqa: E402
 
+_FRAME = parse_frame(DEFAULT_FRAME)
+# The copter's take-off in the default frame, in ticks (what `sitl` gives a mission
+# without takeoff_ticks): written into every generated scenario, for sim and SITL alike.
+TAKEOFF_TICKS = math.ceil(takeoff_allowance_s(_FRAME["alt_m"]) / _FRAME["tick_s"])
 WPNAV_RADIUS_M = 2.0
 WINDOW_TICKS = 4
 # Legs (dx, dy) in cells, per UAV: axis-aligned 1..5, diagonal, knight's moves.
@@ -231,7 +237,12 @@ def run_results(args):
             print(r.stderr, file=sys.stderr)
             return 1
         with open(path, encoding="utf-8") as f:
-            mission = json.load(f)["mission"]
+            scenario = json.load(f)
+        # sim and SITL fly the same mission: the copter's take-off in the default frame
+        mission = scenario["mission"]
+        mission["takeoff_ticks"] = TAKEOFF_TICKS
+        with open(path, "w", encoding="utf-8") as f:
+            json.dump(scenario, f)
         mpath = os.path.join(args.work, name + ".mission.json")
         with open(mpath, "w", encoding="utf-8") as f:
             json.dump(mission, f)

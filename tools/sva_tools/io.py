@@ -155,7 +155,7 @@ def mission_from_json(doc: Any) -> M.Mission:
                      doc.get("ticks_per_cell", M.DEFAULT_TICKS_PER_CELL),
                      doc.get("hover_fuel", M.DEFAULT_HOVER_FUEL),
                      doc.get("overlap_percent", M.DEFAULT_OVERLAP_PERCENT),
-                     doc.get("change_penalty", 0))
+                     doc.get("change_penalty", 0), doc.get("takeoff_ticks", 0))
 
 
 def plan_from_json(doc: Any) -> M.Plan:

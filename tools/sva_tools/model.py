@@ -56,7 +56,8 @@ class Mission:
     ticks_per_cell: int = DEFAULT_TICKS_PER_CELL
     hover_fuel: int = DEFAULT_HOVER_FUEL
     overlap_percent: int = DEFAULT_OVERLAP_PERCENT
-    change_penalty: int = 0   # live missions only (SPEC 5.4); written when not 0
+    change_penalty: int = 0   # live missions only (SPEC 12.4); written when not 0
+    takeoff_ticks: int = 0    # live missions only (SPEC 12.2); written when not 0
 
     def target_by_id(self) -> Dict[int, Target]:
         return {t.id: t for t in self.targets}
@@ -75,6 +76,8 @@ class Mission:
         }
         if self.change_penalty:
             out["change_penalty"] = self.change_penalty
+        if self.takeoff_ticks:
+            out["takeoff_ticks"] = self.takeoff_ticks
         return out
 
 

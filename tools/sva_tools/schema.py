@@ -39,6 +39,7 @@ ROOT_NAMES = {"mission": "mission", "plan": "plan", "trace": "record", "bound": 
 _KEY_ORDER = ("name", "mission", "frame", "lat", "lon", "alt_m", "cell_m", "tick_s", "t0",
               "algorithm", "status", "covered", "uncovered", "cost",
               "depot", "ticks_per_cell", "hover_fuel", "overlap_percent", "change_penalty",
+              "takeoff_ticks",
               "uavs", "id", "uav",
               "x", "y", "fuel", "ready_at", "targets", "start", "end", "need", "distance",
               "fuel_used", "routes", "stranded", "stats")

@@ -244,7 +244,9 @@ class Flight:
             c = self.by_id[e["uav"]]
             c.in_service = True
             c.x, c.y, c.fuel = e["x"], e["y"], e["fuel"]
-            c.orders, c.step_to, c.hover, c.arrived, c.free_at = [], None, None, t, t
+            # on the ground where it is: it takes off before it leaves (SPEC 12.2)
+            c.orders, c.step_to, c.hover, c.arrived = [], None, None, t
+            c.free_at = t + self.m.takeoff_ticks
             c.out[-1][1] = t
         elif kind == "fuel":
             self.by_id[e["uav"]].fuel = e["fuel"]
@@ -316,7 +318,12 @@ class Flight:
         routes = {r["uav"]: list(r["targets"]) for r in out.get("routes", [])}
         for c in self.crafts:
             if c.in_service:
-                c.orders = routes.get(c.id, [])
+                new = routes.get(c.id, [])
+                if new and self._idle(c) and (c.x, c.y) == self.m.depot and \
+                        t > max(c.arrived, c.free_at):
+                    # landed at the depot: it takes off before it leaves (SPEC 12.2)
+                    c.free_at = t + self.m.takeoff_ticks
+                c.orders = new
 
     def _changes(self, residual: dict, plan: dict, now_events: List[dict],
                  cli_changes: Optional[dict]) -> dict:
@@ -554,7 +561,7 @@ def simulate_via_lcm(mission: M.Mission, events: List[dict], penalty: Optional[i
     from .lcm import simnode
 
     kills = simnode.kill_plan(events, kill_node, seed) if kill_node > 0 else None
-    node = simnode.NodePlanner(algo, penalty, kills=kills, **link)
+    node = simnode.NodePlanner(algo, penalty, kills=kills, takeoff=mission.takeoff_ticks, **link)
     try:
         log = simulate(mission, events, penalty, algo, planner=node)
     finally:

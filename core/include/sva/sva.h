@@ -25,10 +25,9 @@
 ///   sva_planner_t  all working memory (tableau, per-UAV state, search stacks); the
 ///                  layout of its `priv` member is in sva_private.h, private and
 ///                  read-only to users.
-/// Their sizes follow from sva_config.h (formulas there and in DESIGN.md); the default
-/// profile's sizes are reported by sva_limits(). The core uses no heap, no stdio, no
-/// floating point, no recursion and no variable-length arrays; its stack use is
-/// bounded and measured with -fstack-usage (DESIGN.md section 6).
+/// Their sizes follow from sva_config.h (formulas there and in DESIGN.md); sva_limits() reports
+/// the default profile's. The core uses no heap, no stdio, no floating point, no recursion and
+/// no variable-length arrays; its stack use is bounded, measured with -fstack-usage (DESIGN.md 6).
 ///
 /// ## Complexity (U = UAVs, T = targets, S/K = sources/sinks of one problem)
 ///   validation O(U^2 + T^2); sorting and clustering O(T^2);
@@ -41,9 +40,9 @@
 /// used by one thread at a time; distinct planners may run concurrently.
 ///
 /// ## Trust
-/// sva_mission_t contents are untrusted: sva_plan() validates them first and reports
-/// any violation through sva_diag_t, never through an assert. SVA_ASSERT guards API
-/// misuse only (NULL pointers, enum values out of range). See docs/security.md.
+/// sva_mission_t contents are untrusted: sva_plan() validates them first and reports any
+/// violation through sva_diag_t, never an assert. SVA_ASSERT guards API misuse only (NULL
+/// pointers, enum values out of range). See docs/security.md.
 
 #ifndef SVA_H
 #define SVA_H
@@ -53,8 +52,7 @@
 #include <stdint.h>
 
 #include "sva_config.h"
-// The layout of the planner's working memory, for static allocation only: private,
-// read-only to users, and free to change in any release. The API is this header.
+// The planner's memory layout, for static allocation only: private, may change in any release.
 #include "sva_private.h"
 
 #ifdef __cplusplus
@@ -66,7 +64,7 @@ extern "C" {
 #define SVA_VERSION_MINOR 4
 #define SVA_VERSION_PATCH 0
 /// Version of the mission and plan JSON schema (SPEC.md section 3).
-#define SVA_SCHEMA_VERSION 3
+#define SVA_SCHEMA_VERSION 4
 
 #if defined(__GNUC__) || defined(__clang__)
 #    define SVA_NODISCARD __attribute__((warn_unused_result))
@@ -127,6 +125,7 @@ typedef enum {
     SVA_FIELD_EVENT_X,
     SVA_FIELD_EVENT_Y,
     SVA_FIELD_EVENT_FUEL,
+    SVA_FIELD_TAKEOFF_TICKS,  ///< a live mission's takeoff_ticks
     SVA_FIELD_COUNT_  ///< number of fields (not a field)
 } sva_field_t;
 
@@ -207,9 +206,10 @@ typedef struct {
     int32_t ticks_per_cell;   ///< travel ticks per cell, [1, SVA_MAX_TICKS_PER_CELL]
     int32_t hover_fuel;       ///< fuel per served window, [0, SVA_MAX_HOVER_FUEL]
     int32_t overlap_percent;  ///< clustering threshold, [0, 100]
-    /// Live missions only (SPEC section 12.4): cells a replan pays per changed visit,
-    /// [0, SVA_MAX_CHANGE_PENALTY]; sva_plan() ignores it.
+    /// Live missions only, ignored by sva_plan() (SPEC section 12): cells a replan pays per
+    /// changed visit, [0, SVA_MAX_CHANGE_PENALTY]; ticks a UAV on the ground takes to leave.
     int32_t change_penalty;
+    int32_t takeoff_ticks;  ///< [0, SVA_MAX_TICK]
     uint16_t uav_count;     ///< [0, SVA_MAX_UAVS]
     uint16_t target_count;  ///< [0, SVA_MAX_TARGETS]
     sva_uav_t uavs[SVA_MAX_UAVS];

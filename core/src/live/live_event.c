@@ -266,7 +266,7 @@ sva_status_t sva_live_apply(sva_live_t* self, const sva_event_t* event, sva_diag
         v->x = event->x;
         v->y = event->y;
         v->fuel = event->fuel;
-        v->from_ticks = at;
+        v->from_ticks = at + self->mission.takeoff_ticks;  // on the ground: takes off first
         v->busy_with = -1;
         v->route_count = 0U;
         break;

@@ -19,6 +19,7 @@ static void build_residual(sva_live_t* self)
     r->hover_fuel = m->hover_fuel;
     r->overlap_percent = m->overlap_percent;
     r->change_penalty = m->change_penalty;
+    r->takeoff_ticks = m->takeoff_ticks;
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         if (self->priv.uavs[u].lost) {
             continue;

@@ -138,7 +138,9 @@ void sva_live_walk(const sva_live_t* self, uint16_t u, int64_t at_ticks, sva_liv
     out->from_x = m->depot_x;
     out->from_y = m->depot_y;
     out->fuel = fuel - cells;
-    out->ready = at;
+    // At home with nothing left: on the ground after the tick it got there (or was free
+    // to leave), so it leaves again only after its take-off (SPEC section 12.2).
+    out->ready = (at > arrive) ? (at + m->takeoff_ticks) : at;
 }
 
 void sva_live_route_remove(sva_live_uav_t* uav, uint16_t target)

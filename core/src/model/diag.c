@@ -55,6 +55,7 @@ const char* sva_field_name(sva_field_t field)
         "event.x",
         "event.y",
         "event.fuel",
+        "takeoff_ticks",
     };
     if ((unsigned)field >= (unsigned)SVA_FIELD_COUNT_) {
         return "";

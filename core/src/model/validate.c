@@ -31,7 +31,9 @@ static bool instance_ok(const sva_mission_t* m, sva_diag_t* diag)
                         "SVA_MAX_HOVER_FUEL") &&
            sva_in_range(diag, SVA_FIELD_OVERLAP_PERCENT, -1, m->overlap_percent, 0, 100, NULL) &&
            sva_in_range(diag, SVA_FIELD_CHANGE_PENALTY, -1, m->change_penalty, 0,
-                        SVA_MAX_CHANGE_PENALTY, "SVA_MAX_CHANGE_PENALTY");
+                        SVA_MAX_CHANGE_PENALTY, "SVA_MAX_CHANGE_PENALTY") &&
+           sva_in_range(diag, SVA_FIELD_TAKEOFF_TICKS, -1, m->takeoff_ticks, 0, SVA_MAX_TICK,
+                        "SVA_MAX_TICK");
 }
 
 static bool uav_ok(const sva_mission_t* m, int32_t i, sva_diag_t* diag)

@@ -21,9 +21,16 @@ typedef struct {
 
 // SPEC section 3, in SPEC order (missing keys are reported in this order).
 static const key_spec_t MISSION_KEYS[] = {
-    {"name", false, 0},      {"depot", false, 0},           {"ticks_per_cell", true, 1},
-    {"hover_fuel", true, 0}, {"overlap_percent", true, 70}, {"change_penalty", true, 0},
-    {"uavs", false, 0},      {"targets", false, 0},         {"frame", true, 0},
+    {"name", false, 0},
+    {"depot", false, 0},
+    {"ticks_per_cell", true, 1},
+    {"hover_fuel", true, 0},
+    {"overlap_percent", true, 70},
+    {"change_penalty", true, 0},
+    {"takeoff_ticks", true, 0},
+    {"uavs", false, 0},
+    {"targets", false, 0},
+    {"frame", true, 0},
     {NULL, false, 0},
 };
 static const key_spec_t DEPOT_KEYS[] = {{"x", false, 0}, {"y", false, 0}, {NULL, false, 0}};
@@ -353,6 +360,7 @@ static bool parse_root(const json_t* root, sva_mission_t* mission, char name[SVA
            get_int(root, "", MISSION_KEYS, "hover_fuel", &mission->hover_fuel, err) &&
            get_int(root, "", MISSION_KEYS, "overlap_percent", &mission->overlap_percent, err) &&
            get_int(root, "", MISSION_KEYS, "change_penalty", &mission->change_penalty, err) &&
+           get_int(root, "", MISSION_KEYS, "takeoff_ticks", &mission->takeoff_ticks, err) &&
            parse_uavs(root, mission, err) && parse_targets(root, mission, err) &&
            parse_frame(root, frame, present, err);
 }
@@ -552,9 +560,12 @@ json_t* sva_json_mission_framed(const sva_mission_t* m, const char* name, const 
     json_t* uavs = json_array();
     json_t* targets = json_array();
     bool ok = doc != NULL && uavs != NULL && targets != NULL;
-    // change_penalty only where it is set, so plain missions read as before.
+    // change_penalty and takeoff_ticks only where set, so plain missions read as before.
     if (ok && m->change_penalty != 0) {
         ok = json_object_set_new(doc, "change_penalty", json_integer(m->change_penalty)) == 0;
+    }
+    if (ok && m->takeoff_ticks != 0) {
+        ok = json_object_set_new(doc, "takeoff_ticks", json_integer(m->takeoff_ticks)) == 0;
     }
     for (uint16_t u = 0; ok && u < m->uav_count; ++u) {
         const sva_uav_t* v = &m->uavs[u];

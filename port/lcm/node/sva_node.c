@@ -77,6 +77,9 @@ static void usage(FILE* out)
             "                         is the same option\n"
             "  -c, --change-penalty N cells a replan pays per changed visit (default 0,\n"
             "                         at most %ld; SPEC section 12.4)\n"
+            "  -k, --takeoff-ticks N  ticks a UAV on the ground (back in service, or home\n"
+            "                         with its route done) takes to leave (default 0, at\n"
+            "                         most %ld; SPEC section 12.2)\n"
             "  -f, --fleet-reports    while a live mission runs, a fleet message is a report\n"
             "                         checked against the plan in force (a UAV unavailable:\n"
             "                         uav_lost; off its track: a position event; fuel below\n"
@@ -95,8 +98,8 @@ static void usage(FILE* out)
             "      --state-reset      with --state-dir: discard the journal and start afresh\n"
             "  -h, --help             this text\n"
             "      --version          print \"sva_node VERSION\" (the sva library's)\n",
-            RECV_BUF_BYTES, (long)SVA_MAX_CHANGE_PENALTY, SVA_LCM_TRACK_TOLERANCE_DEFAULT,
-            SVA_LCM_TRACK_TOLERANCE_MAX);
+            RECV_BUF_BYTES, (long)SVA_MAX_CHANGE_PENALTY, (long)SVA_MAX_TICK,
+            SVA_LCM_TRACK_TOLERANCE_DEFAULT, SVA_LCM_TRACK_TOLERANCE_MAX);
 }
 
 // Appends recv_buf_size to a udpm URL that has none (LCM's default is 2 MiB).
@@ -230,6 +233,7 @@ int main(int argc, char** argv)
     const char* algo_option = "--algo";  // as the user spelled it, for its error line
     long status_ms = 1000;
     long change_penalty = 0;
+    long takeoff_ticks = 0;
     int fleet_reports = 0;
     long track_tolerance = SVA_LCM_TRACK_TOLERANCE_DEFAULT;
     long rt_priority = 0;
@@ -262,6 +266,11 @@ int main(int argc, char** argv)
         } else if (((strcmp(a, "-c") == 0) || (strcmp(a, "--change-penalty") == 0)) && has_value) {
             if (!integer_option("--change-penalty", argv[++i], 0, (long)SVA_MAX_CHANGE_PENALTY,
                                 &change_penalty)) {
+                return 2;
+            }
+        } else if (((strcmp(a, "-k") == 0) || (strcmp(a, "--takeoff-ticks") == 0)) && has_value) {
+            if (!integer_option("--takeoff-ticks", argv[++i], 0, (long)SVA_MAX_TICK,
+                                &takeoff_ticks)) {
                 return 2;
             }
         } else if (((strcmp(a, "-r") == 0) || (strcmp(a, "--rt-priority") == 0)) && has_value) {
@@ -340,6 +349,7 @@ int main(int argc, char** argv)
     }
     node.log = log_stderr;
     node.change_penalty = (int32_t)change_penalty;
+    node.takeoff_ticks = (int32_t)takeoff_ticks;
     node.fleet_reports = (fleet_reports != 0);
     node.track_tolerance_cells = (int32_t)track_tolerance;
     // The journal is replayed before the node hears anything: its options set above are
@@ -378,10 +388,11 @@ int main(int argc, char** argv)
 
     char started[SHOWN_SIZE];
     (void)snprintf(started, sizeof started,
-                   "in %s %s %s, out %s %s %s; algorithm %s; change penalty %ld; %s%s%s",
+                   "in %s %s %s, out %s %s %s; algorithm %s; change penalty %ld; take-off %ld "
+                   "ticks; %s%s%s",
                    node.channel_fleet, node.channel_mission, node.channel_event, node.channel_plan,
                    node.channel_status, node.channel_replan, sva_algorithm_name(algorithm),
-                   change_penalty, url, (rt_priority > 0) ? "; SCHED_FIFO" : "",
+                   change_penalty, takeoff_ticks, url, (rt_priority > 0) ? "; SCHED_FIFO" : "",
                    lock_memory ? "; memory locked" : "");
     log_stderr(NULL, started);  // escapes channel names and URL
     send_status();

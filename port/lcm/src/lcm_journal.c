@@ -155,6 +155,7 @@ static void header_payload(const sva_lcm_node_t* node, uint8_t* p)
     p[45] = node->fleet_reports ? 1U : 0U;
     put_u32(p + 46, (uint32_t)node->change_penalty);
     put_u32(p + 50, (uint32_t)node->track_tolerance_cells);
+    put_u32(p + 54, (uint32_t)node->takeoff_ticks);
 }
 
 static uint32_t put_header(const sva_lcm_node_t* node, uint8_t* out)
@@ -169,12 +170,17 @@ static const char* algo_name(uint32_t a)
     return (a < (uint32_t)SVA_ALGO_COUNT_) ? sva_algorithm_name((sva_algorithm_t)a) : "?";
 }
 
-// The node options a header names, as the node's command line spells them.
+// The node options a header names, as the node's command line spells them
+// (--takeoff-ticks only when not 0).
 static void options_text(char* out, size_t size, uint32_t algo, uint32_t reports, int32_t penalty,
-                         int32_t tolerance)
+                         int32_t tolerance, int32_t takeoff)
 {
-    (void)snprintf(out, size, "--algo %s --change-penalty %ld --track-tolerance %ld%s",
-                   algo_name(algo), (long)penalty, (long)tolerance,
+    char extra[48] = "";
+    if (takeoff != 0) {
+        (void)snprintf(extra, sizeof extra, " --takeoff-ticks %ld", (long)takeoff);
+    }
+    (void)snprintf(out, size, "--algo %s --change-penalty %ld --track-tolerance %ld%s%s",
+                   algo_name(algo), (long)penalty, (long)tolerance, extra,
                    (reports != 0U) ? " --fleet-reports" : "");
 }
 
@@ -226,9 +232,10 @@ static sva_lcm_journal_status_t check_header(sva_lcm_journal_t* self, const uint
     if (memcmp(p + 44, want + 44, SVA_LCM_JOURNAL_HEADER_BYTES - 44) != 0) {
         char a[128];
         char b[128];
-        options_text(a, sizeof a, p[44], p[45], (int32_t)get_u32(p + 46), (int32_t)get_u32(p + 50));
+        options_text(a, sizeof a, p[44], p[45], (int32_t)get_u32(p + 46), (int32_t)get_u32(p + 50),
+                     (int32_t)get_u32(p + 54));
         options_text(b, sizeof b, want[44], want[45], self->node->change_penalty,
-                     self->node->track_tolerance_cells);
+                     self->node->track_tolerance_cells, self->node->takeoff_ticks);
         (void)snprintf(self->message, sizeof self->message,
                        "the journal was written by a node run with %s; this node runs with %s", a,
                        b);

@@ -434,11 +434,12 @@ static void replan(sva_lcm_node_t* self)
     p->solve_us = (dt > (int64_t)INT32_MAX) ? INT32_MAX : (int32_t)dt;
 
     // The plan published starts the live mission (sva_live_init validates again; a
-    // change_penalty out of range fails here and leaves no live mission).
+    // change_penalty or takeoff_ticks out of range fails here and leaves no live mission).
     self->priv.live_active = false;
     if (st == SVA_OK) {
         sva_diag_t live_diag;
         self->priv.mission.change_penalty = self->change_penalty;
+        self->priv.mission.takeoff_ticks = self->takeoff_ticks;
         self->priv.live_active = (sva_live_init(&self->priv.live, &self->priv.mission,
                                                 &self->priv.plan, &live_diag) == SVA_OK);
         if (!fill_plan(p, &self->priv.plan, &self->priv.mission)) {

@@ -99,10 +99,11 @@ class NodePlanner:
 
     def __init__(self, algo: str, penalty: Optional[int], url: str = DEFAULT_URL,
                  prefix: str = DEFAULT_PREFIX, attach: bool = False, timeout: float = 10.0,
-                 kills: Optional[List[Tuple[int, float]]] = None):
+                 kills: Optional[List[Tuple[int, float]]] = None, takeoff: int = 0):
         import lcm  # the venv's lcm==1.5.3
 
         self.algo, self.penalty = algo, penalty or 0
+        self.takeoff = takeoff  # the mission's takeoff_ticks: a node option (not on the wire)
         self.url, self.prefix, self.attach, self.timeout = url, prefix, attach, timeout
         self.proc: Optional[subprocess.Popen] = None
         self.kill_at = list(kills or [])
@@ -177,7 +178,8 @@ class NodePlanner:
 
     def _spawn(self) -> None:
         argv = [str(node_bin()), "--url", self.url, "--prefix", self.prefix, "--algorithm",
-                self.algo, "--change-penalty", str(self.penalty), "--status-ms", "200"]
+                self.algo, "--change-penalty", str(self.penalty),
+                "--takeoff-ticks", str(self.takeoff), "--status-ms", "200"]
         if self.state_dir is not None:
             argv += ["--state-dir", self.state_dir]
         self.proc = subprocess.Popen(
@@ -250,7 +252,7 @@ class NodePlanner:
         self.subs = []
 
     def _start(self, mission_doc: dict) -> dict:
-        doc = {k: v for k, v in mission_doc.items() if k != "change_penalty"}
+        doc = {k: v for k, v in mission_doc.items() if k not in ("change_penalty", "takeoff_ticks")}
         try:
             self.name, fleet, mission = wire.mission_messages(doc, self.rev, self.rev)
         except wire.InputError as e:

@@ -110,6 +110,23 @@ def check_speed(frame: dict, ticks_per_cell: int) -> float:
     return v
 
 
+def check_takeoff(frame: dict, mission) -> int:
+    """The ticks a copter on the ground needs before it leaves (arming and the climb to the
+    frame's altitude: flight.takeoff_allowance_s): a mission without takeoff_ticks (or 0)
+    gets them; Refused when the mission's own are fewer."""
+    from .flight import takeoff_allowance_s
+
+    allowance_s = takeoff_allowance_s(frame["alt_m"])
+    need = int(math.ceil(allowance_s / frame["tick_s"] - 1e-9))
+    if mission.takeoff_ticks == 0:
+        mission.takeoff_ticks = need
+    elif mission.takeoff_ticks < need:
+        raise Refused(f"mission.takeoff_ticks: must be >= {need} (the copter's take-off to "
+                      f"{frame['alt_m']:g} m, {allowance_s} s, in {frame['tick_s']:g} s ticks), "
+                      f"got {mission.takeoff_ticks}")
+    return mission.takeoff_ticks
+
+
 def one_cell_time_s(cell_m: float) -> float:
     """The least plan time for one cell (see ONE_CELL_BASE_S)."""
     return ONE_CELL_BASE_S + ONE_CELL_ROOT_S * math.sqrt(cell_m)
@@ -226,6 +243,7 @@ def _settings(args):
     else:
         frame = parse_frame(args.frame or DEFAULT_FRAME) | {"t0": None}
     check_speed(frame, mission.ticks_per_cell)
+    check_takeoff(frame, mission)
     faults = parse_faults(args.fault, [u.id for u in mission.uavs])
     for i, e in enumerate(events):
         if e["type"] == "position":

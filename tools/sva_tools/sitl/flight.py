@@ -173,7 +173,8 @@ class Flight:
 
     def start(self) -> None:
         s = self.s
-        self.ground = Ground(self.tmp, s.algo, s.penalty or 0, s.url, s.prefix)
+        self.ground = Ground(self.tmp, s.algo, s.penalty or 0, s.url, s.prefix,
+                             s.mission.takeoff_ticks)
         self.ground.start_node()
         if self.t0_ms is not None:
             base = self.t0_ms // 1000 - BOOT_ALLOWANCE_S - self.allowance_s

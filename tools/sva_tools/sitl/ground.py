@@ -48,10 +48,10 @@ def program(env: str, name: str) -> Path:
 
 class Ground:
     def __init__(self, folder: Path, algo: str, penalty: int, url: str = DEFAULT_URL,
-                 prefix: str = DEFAULT_PREFIX):
+                 prefix: str = DEFAULT_PREFIX, takeoff: int = 0):
         import lcm
 
-        self.folder, self.algo, self.penalty = folder, algo, penalty
+        self.folder, self.algo, self.penalty, self.takeoff = folder, algo, penalty, takeoff
         self.url, self.prefix = url, prefix
         self.node: Optional[subprocess.Popen] = None
         self.bridge: Optional[subprocess.Popen] = None
@@ -105,7 +105,8 @@ class Ground:
         log = open(self.folder / "sva_node.log", "wb")
         self.node = subprocess.Popen(
             [str(exe), "--url", self.url, "--prefix", self.prefix, "--algo", self.algo,
-             "--change-penalty", str(self.penalty), "--status-ms", "200"],
+             "--change-penalty", str(self.penalty), "--takeoff-ticks", str(self.takeoff),
+             "--status-ms", "200"],
             stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
             preexec_fn=die_with_parent, start_new_session=True)
 
@@ -199,9 +200,11 @@ class Ground:
         return True
 
     def publish_mission(self, mission_doc: dict) -> str:
-        """Publishes the fleet and the mission (one revision); returns its name."""
+        """Publishes the fleet and the mission (one revision); returns its name. The
+        mission's takeoff_ticks is the node's --takeoff-ticks (mission_t has none)."""
+        doc = {k: v for k, v in mission_doc.items() if k != "takeoff_ticks"}
         try:
-            name, fleet, mission = wire.mission_messages(mission_doc, self.rev, self.rev)
+            name, fleet, mission = wire.mission_messages(doc, self.rev, self.rev)
         except wire.InputError as e:
             raise GroundError(f"mission: {e}", 2) from None
         self.lc.publish(self.prefix + "FLEET", fleet.encode())

@@ -261,6 +261,9 @@ typedef struct {
     /// Cells a replan pays per changed visit (SPEC 12.4), [0, SVA_MAX_CHANGE_PENALTY]:
     /// set it before the first plan (the live mission takes it when it starts).
     int32_t change_penalty;
+    /// Ticks a UAV on the ground takes to leave (SPEC 12.2), [0, SVA_MAX_TICK]: set it
+    /// before the first plan, as change_penalty.
+    int32_t takeoff_ticks;
     /// false (default): every accepted fleet change replans from scratch and starts a
     /// new live mission. true: while a live mission runs, a fleet message is a report
     /// checked against the plan in force (see "The live mission"): no replan from

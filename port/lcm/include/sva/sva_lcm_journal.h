@@ -18,7 +18,7 @@
 ///   HEADER  = "SVAJ" | format (u16) | sva version major, minor, patch (u16 each)
 ///             | fingerprints of fleet_state_t, mission_t, event_t, report_t (i64 each)
 ///             | algorithm (u8) | fleet_reports (u8) | change_penalty (i32)
-///             | track_tolerance_cells (i32)                             (54 bytes)
+///             | track_tolerance_cells (i32) | takeoff_ticks (i32)       (58 bytes)
 ///   BASE    = plan id (i64): the plan id sequence before the records that follow
 ///   FLEET, MISSION, EVENT, REPORT = the LCM message's bytes as received
 /// The first 12 payload bytes of a HEADER (magic, format, sva version) keep their
@@ -66,11 +66,11 @@ extern "C" {
 #endif
 
 /// The journal format this build writes and reads.
-#define SVA_LCM_JOURNAL_FORMAT 1
+#define SVA_LCM_JOURNAL_FORMAT 2
 /// length (4) + type (1) + crc (4).
 #define SVA_LCM_JOURNAL_RECORD_OVERHEAD 9
-/// The HEADER payload of format 1.
-#define SVA_LCM_JOURNAL_HEADER_BYTES 54
+/// The HEADER payload of format 2.
+#define SVA_LCM_JOURNAL_HEADER_BYTES 58
 /// The largest payload (a mission_t).
 #define SVA_LCM_JOURNAL_MAX_PAYLOAD SVA_LCM_MISSION_BYTES
 /// A compacted journal: HEADER, BASE, FLEET, MISSION.
@@ -150,7 +150,7 @@ typedef struct {
 } sva_lcm_journal_t;
 
 /// Prepares a journal of `node` on `storage` (copied; its ctx stays the caller's).
-/// Opens nothing. The node's algorithm, change_penalty, fleet_reports and
+/// Opens nothing. The node's algorithm, change_penalty, takeoff_ticks, fleet_reports and
 /// track_tolerance_cells must be set before sva_lcm_journal_resume(): they are part of
 /// the header. Returns SVA_LCM_JOURNAL_OK, or _ERR_ARGUMENT iff an argument is NULL or
 /// a storage function other than close and error is missing. Allocates nothing.
