@@ -13,7 +13,7 @@ scripts/build.sh >/dev/null
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
 echo "build: $(grep -m1 CMAKE_BUILD_TYPE build/CMakeCache.txt)"
 out=build/bench_core.txt
-build/bin/bench_core "$@" | tee "$out"
+build/bench/bench_core "$@" | tee "$out"
 [ -n "$results" ] || exit 0
 
 # Section: bench_core's output as a table (UAVs per size as in bench_core.c).
