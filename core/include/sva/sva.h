@@ -126,7 +126,7 @@ typedef enum {
     SVA_FIELD_EVENT_Y,
     SVA_FIELD_EVENT_FUEL,
     SVA_FIELD_TAKEOFF_TICKS,  ///< a live mission's takeoff_ticks
-    SVA_FIELD_COUNT_  ///< number of fields (not a field)
+    SVA_FIELD_COUNT_          ///< number of fields (not a field)
 } sva_field_t;
 
 /// Which rule was broken.
