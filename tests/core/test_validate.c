@@ -251,8 +251,8 @@ void test_limits_report_compiled_bounds(void)
     TEST_ASSERT_EQUAL_INT(SVA_MAX_TARGETS, l.max_targets);
     TEST_ASSERT_EQUAL_INT(sizeof(sva_planner_t), l.planner_bytes);
     TEST_ASSERT_EQUAL_INT(sizeof(sva_plan_t), l.plan_bytes);
-    printf("# sizes: planner %u B, plan %u B, mission %u B\n", l.planner_bytes, l.plan_bytes,
-           l.mission_bytes);
+    printf("# sizes: planner %lu B, plan %lu B, mission %lu B\n", (unsigned long)l.planner_bytes,
+           (unsigned long)l.plan_bytes, (unsigned long)l.mission_bytes);
 }
 
 // Every test starts from a freshly initialised planner.
