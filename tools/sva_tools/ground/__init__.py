@@ -10,7 +10,10 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
+
+from .limits import Limits
 
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0"
 
@@ -22,6 +25,30 @@ def add_parser(sub) -> None:
     ap.add_argument("--prefix", default="SVA_", help="channel prefix (default SVA_)")
     ap.add_argument("--host", default="127.0.0.1", help="address to serve on (default 127.0.0.1)")
     ap.add_argument("--port", type=int, default=8765, help="port to serve on (default 8765)")
+    lim = Limits()
+    ap.add_argument("--token", default=os.environ.get("SVA_GROUND_TOKEN"),
+                    help="secret every page, /state.json and /ws request must carry "
+                         "(?token= or Authorization: Bearer); required when --host is beyond "
+                         "loopback; default $SVA_GROUND_TOKEN")
+    ap.add_argument("--allow-host", action="append", default=[], metavar="NAME[:PORT]",
+                    help="a further name the browser uses for this server (Host and Origin "
+                         "checks; the loopback names and --host are always accepted)")
+    ap.add_argument("--max-connections", type=int, default=lim.max_connections,
+                    help=f"TCP connections at once (default {lim.max_connections}); one "
+                         "more gets 503")
+    ap.add_argument("--client-queue", type=int, default=lim.client_queue,
+                    help=f"updates queued per websocket client, the oldest dropped when full "
+                         f"(default {lim.client_queue})")
+    ap.add_argument("--send-timeout", type=float, default=lim.send_timeout_s, metavar="S",
+                    help="a websocket client that takes no update for S seconds is "
+                         f"disconnected (default {lim.send_timeout_s:g})")
+    ap.add_argument("--handshake-timeout", type=float, default=lim.handshake_timeout_s,
+                    metavar="S", help="a connection must send a complete request within S "
+                    f"seconds; idle keep-alive connections close after S (default "
+                    f"{lim.handshake_timeout_s:g})")
+    ap.add_argument("--heartbeat", type=float, default=lim.heartbeat_s, metavar="S",
+                    help="websocket ping every S seconds of silence; no pong within S/2: "
+                         f"closed (default {lim.heartbeat_s:g})")
     src = ap.add_mutually_exclusive_group()
     src.add_argument("--lcm-log", metavar="FILE", help="play an lcm-logger file instead of "
                      "listening")
@@ -56,6 +83,7 @@ def run(args) -> int:
         import aiohttp  # noqa: F401
     except ImportError as e:
         return _fail(f"needs aiohttp ({e}); scripts/setup.sh installs it")
+    from .guard import MIN_TOKEN_CHARS, WILDCARDS, Access, is_loopback
     from .state import FrameError, Ground
     from . import server
 
@@ -63,6 +91,26 @@ def run(args) -> int:
         return _fail(f"--speed: must be > 0, got {args.speed}")
     if not 0 <= args.port <= 65535:
         return _fail(f"--port: must be in [0, 65535], got {args.port}")
+    for name, value, low in (("--max-connections", args.max_connections, 1),
+                             ("--client-queue", args.client_queue, 1),
+                             ("--send-timeout", args.send_timeout, 0.1),
+                             ("--handshake-timeout", args.handshake_timeout, 0.1),
+                             ("--heartbeat", args.heartbeat, 0.1)):
+        if not value >= low:
+            return _fail(f"{name}: must be >= {low}, got {value}")
+    if args.token is not None and len(args.token) < MIN_TOKEN_CHARS:
+        return _fail(f"--token: must be at least {MIN_TOKEN_CHARS} characters, got "
+                     f"{len(args.token)}")
+    if args.token is None and not is_loopback(args.host):
+        return _fail(f"--host {args.host}: serving beyond loopback needs --token (or "
+                     "$SVA_GROUND_TOKEN)")
+    try:
+        access = Access(args.host, args.allow_host, args.token)
+    except ValueError as e:
+        return _fail(str(e))
+    limits = Limits(max_connections=args.max_connections, client_queue=args.client_queue,
+                    send_timeout_s=args.send_timeout,
+                    handshake_timeout_s=args.handshake_timeout, heartbeat_s=args.heartbeat)
     frame = None
     log = None
     try:
@@ -99,11 +147,15 @@ def run(args) -> int:
         except (OSError, RuntimeError, ValueError) as e:
             return _fail(f"--url {args.url}: {e}")
 
-    def ready(app):
-        print(f"sva-tools ground: serving http://{args.host}:{args.port}/ ({ground.source})",
+    def ready(port: int) -> None:
+        host = f"[{args.host}]" if ":" in args.host else args.host
+        hint = " (open it with ?token=TOKEN)" if args.token else ""
+        if args.host in WILDCARDS and not args.allow_host:
+            hint += " (from elsewhere, name this machine with --allow-host)"
+        print(f"sva-tools ground: serving http://{host}:{port}/{hint} ({ground.source})",
               file=sys.stderr, flush=True)
     try:
-        server.serve(ground, args.host, args.port, source, ready)
+        server.serve(ground, args.host, args.port, source, ready, limits, access)
     except OSError as e:
         return _fail(f"--host {args.host} --port {args.port}: {e}")
     return 0

@@ -10,54 +10,156 @@ Sources of traffic, one per run:
 Routes: GET / (the page), GET /static/NAME (its script and style, from the package),
 GET /state.json (the current picture), GET /ws (websocket: a {"type": "state", ...}
 message on connect and after every change, at most every 100 ms).
+
+Limits (docs/ground.md "Limits"): every request passes the Host/Origin/token guard
+(guard.Access) and the connection cap (guard.ConnectionGate); each websocket client has
+its own bounded queue and sender (Client), a send deadline and aiohttp's ping/pong
+heartbeat; aiohttp's keep-alive timer is the handshake deadline.
 """
 from __future__ import annotations
 
 import asyncio
+import collections
 import json
 import re
+import signal
 import time
 from pathlib import Path
-from typing import Optional
+from typing import Callable, Deque, Optional, Set
 
 from aiohttp import WSMsgType, web
 
+from .guard import Access, ConnectionGate, RefusalLog, peer
+from .limits import Limits
 from .state import Ground, flight_at
 
 STATIC = Path(__file__).resolve().parent / "static"
 PUSH_PERIOD_S = 0.1
+LOG_YIELD_EVERY = 64     # a log played faster than it is read still lets the server answer
+
+
+class Client:
+    """One websocket client: its own bounded queue of updates and its own sender, so a
+    client that does not read holds up nobody else. Each update is the whole picture,
+    so dropping the oldest loses nothing the next one does not say."""
+
+    def __init__(self, ws: web.WebSocketResponse, request: web.BaseRequest, queue: int):
+        self.ws = ws
+        self.request = request
+        self.peer = peer(request.transport)
+        self.frames: Deque[str] = collections.deque(maxlen=queue)
+        self.ready = asyncio.Event()
+        self.sent = 0
+        self.dropped = 0
+
+    def offer(self, text: str) -> None:
+        if len(self.frames) == self.frames.maxlen:
+            self.dropped += 1
+        self.frames.append(text)
+        self.ready.set()
+
+    def abort(self) -> None:
+        """Drops the connection now: a graceful close would wait for the client to read
+        what is buffered, which a stalled client never does."""
+        transport = self.request.transport
+        if transport is not None:
+            transport.abort()
 
 
 class Server:
-    def __init__(self, ground: Ground):
+    def __init__(self, ground: Ground, limits: Limits = Limits(),
+                 access: Optional[Access] = None):
         self.ground = ground
-        self.clients: set = set()
+        self.limits = limits
+        self.access = access if access is not None else Access("127.0.0.1", (), None)
+        self.refusals = RefusalLog()
+        self.gate = ConnectionGate(limits.max_connections, limits.handshake_timeout_s,
+                                   self.refusals)
+        self.clients: Set[Client] = set()
         self.sent_version = -1
-        self.done = False
+        self._frame_version = -1
+        self._frame_text = ""
 
     # --- http ---------------------------------------------------------------------------
+
+    @web.middleware
+    async def guard(self, request: web.Request, handler: Callable) -> web.StreamResponse:
+        self.gate.requested.add(request.protocol)
+        why = self.access.refusal(request.headers, request.query_string, request.path)
+        if why is not None:
+            self.refusals.refused("forbidden", f"{peer(request.transport)} {request.method} "
+                                               f"{request.path}: {why}")
+            raise web.HTTPForbidden(text=f"sva-tools ground: {why}\n")
+        return await handler(request)
 
     async def index(self, request):
         return web.FileResponse(STATIC / "index.html")
 
     async def state(self, request):
-        return web.json_response(self.ground.snapshot())
+        """The picture once; a reader that takes none of it for --send-timeout is cut
+        (aiohttp would wait on it for ever)."""
+        resp = web.Response(body=json.dumps(self.ground.snapshot()).encode(),
+                            content_type="application/json")
+        await resp.prepare(request)
+        try:
+            await asyncio.wait_for(resp.write_eof(), self.limits.send_timeout_s)
+        except asyncio.TimeoutError:
+            self.refusals.refused("stalled client", f"{peer(request.transport)} GET "
+                                  f"/state.json: took nothing for {self.limits.send_timeout_s:g}"
+                                  " s (--send-timeout), disconnected")
+            if request.transport is not None:
+                request.transport.abort()
+        return resp
+
+    def _frame(self) -> str:
+        if self._frame_version != self.ground.version:
+            self._frame_version = self.ground.version
+            self._frame_text = json.dumps({"type": "state", **self.ground.snapshot()})
+        return self._frame_text
 
     async def ws(self, request):
-        ws = web.WebSocketResponse(heartbeat=20)
+        lim = self.limits
+        ws = web.WebSocketResponse(heartbeat=lim.heartbeat_s,
+                                   max_msg_size=lim.max_message_bytes)
         await ws.prepare(request)
-        self.clients.add(ws)
+        client = Client(ws, request, lim.client_queue)
+        self.clients.add(client)
+        client.offer(self._frame())
+        sender = asyncio.get_running_loop().create_task(self._send_loop(client))
         try:
-            await ws.send_str(json.dumps({"type": "state", **self.ground.snapshot()}))
             async for msg in ws:
                 if msg.type in (WSMsgType.ERROR, WSMsgType.CLOSE):
                     break
         finally:
-            self.clients.discard(ws)
+            self.clients.discard(client)
+            sender.cancel()
+            if ws.close_code not in (None, 1000, 1001) or (
+                    request.transport is not None
+                    and request.transport.get_write_buffer_size() > 0):
+                client.abort()
         return ws
 
+    async def _send_loop(self, client: Client) -> None:
+        while True:
+            await client.ready.wait()
+            client.ready.clear()
+            while client.frames:
+                text = client.frames.popleft()
+                try:
+                    await asyncio.wait_for(client.ws.send_str(text), self.limits.send_timeout_s)
+                except asyncio.TimeoutError:
+                    self.refusals.refused(
+                        "stalled client",
+                        f"{client.peer}: took no update for {self.limits.send_timeout_s:g} s "
+                        f"(--send-timeout; {client.dropped} updates dropped), disconnected")
+                    client.abort()
+                    return
+                except (ConnectionError, RuntimeError):
+                    return
+                client.sent += 1
+
     def app(self) -> web.Application:
-        app = web.Application()
+        app = web.Application(middlewares=[self.guard])
         app.router.add_get("/", self.index)
         app.router.add_get("/state.json", self.state)
         app.router.add_get("/ws", self.ws)
@@ -70,8 +172,13 @@ class Server:
         app["pusher"] = asyncio.get_running_loop().create_task(self._push_loop())
 
     async def _close_clients(self, app):
-        for ws in list(self.clients):
-            await ws.close()
+        app["pusher"].cancel()
+        for client in list(self.clients):
+            if client.frames or (client.request.transport is not None and
+                                 client.request.transport.get_write_buffer_size() > 0):
+                client.abort()
+            else:
+                await client.ws.close(code=1001, message=b"server shutdown")
 
     async def _push_loop(self):
         while True:
@@ -79,12 +186,9 @@ class Server:
             if self.ground.version == self.sent_version or not self.clients:
                 continue
             self.sent_version = self.ground.version
-            text = json.dumps({"type": "state", **self.ground.snapshot()})
-            for ws in list(self.clients):
-                try:
-                    await ws.send_str(text)
-                except (ConnectionError, RuntimeError):
-                    self.clients.discard(ws)
+            text = self._frame()
+            for client in list(self.clients):
+                client.offer(text)
 
 
 # --- sources ----------------------------------------------------------------------------
@@ -115,13 +219,15 @@ def lcm_log_source(ground: Ground, path: str, speed: float):
     async def play():
         first_log: Optional[int] = None
         first_wall = time.monotonic()
-        for ev in log:
+        for n, ev in enumerate(log):
             if first_log is None:
                 first_log = ev.timestamp
             due = first_wall + (ev.timestamp - first_log) / 1e6 / speed
             wait = due - time.monotonic()
             if wait > 0:
                 await asyncio.sleep(wait)
+            elif n % LOG_YIELD_EVERY == 0:
+                await asyncio.sleep(0)
             ground.on_message(ev.channel, ev.data)
         ground._log("end", f"end of the LCM log {Path(path).name}")
         ground._changed()
@@ -150,15 +256,36 @@ def _task(play):
     return start, stop
 
 
-def serve(ground: Ground, host: str, port: int, source, ready=None) -> None:
-    srv = Server(ground)
+def serve(ground: Ground, host: str, port: int, source, ready=None,
+          limits: Limits = Limits(), access: Optional[Access] = None) -> None:
+    """Serves until SIGINT or SIGTERM. `ready(port)` once listening (port: the bound one).
+    OSError if the address cannot be bound."""
+    asyncio.run(_serve(Server(ground, limits, access or Access(host, (), None)), host, port,
+                       source, ready))
+
+
+async def _serve(srv: Server, host: str, port: int, source, ready) -> None:
     app = srv.app()
     start, stop = source
     app.on_startup.append(start)
     app.on_cleanup.append(stop)
-
-    async def say_ready(app):
+    # keepalive_timeout runs from the accept: a connection that sends no complete request
+    # within it (half-open, or slow on purpose) is closed, as is an idle keep-alive one.
+    runner = web.AppRunner(app, keepalive_timeout=srv.limits.handshake_timeout_s,
+                           shutdown_timeout=2.0, access_log=None)
+    await runner.setup()
+    try:
+        assert runner.server is not None
+        srv.gate.install(runner.server)
+        site = web.TCPSite(runner, host, port, backlog=128)
+        await site.start()
+        srv.access.port = runner.addresses[0][1]
         if ready is not None:
-            ready(app)
-    app.on_startup.append(say_ready)
-    web.run_app(app, host=host, port=port, print=None, handle_signals=True)
+            ready(srv.access.port)
+        done = asyncio.Event()
+        loop = asyncio.get_running_loop()
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            loop.add_signal_handler(sig, done.set)
+        await done.wait()
+    finally:
+        await runner.cleanup()

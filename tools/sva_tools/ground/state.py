@@ -22,8 +22,17 @@ from typing import Any, Dict, List, Optional
 from ..lcm import wire
 from ..sim import event_text
 
+# History is bounded (docs/ground.md "Limits"), so memory stays flat however long the
+# mission: the last MAX_REPLANS replans in full, the older ones counted in
+# `replans_summary`; MAX_TRACK points per UAV (the oldest dropped, counted per UAV);
+# MAX_TARGETS_KEPT targets and MAX_UAVS_KEPT UAVs (finished or lost ones forgotten
+# first, counted in `forgotten`). The lists a message brings are bounded by its type.
 MAX_LOG = 500
 MAX_WARNINGS = 50
+MAX_REPLANS = 200
+MAX_TRACK = 300
+MAX_TARGETS_KEPT = 1024
+MAX_UAVS_KEPT = 256
 FRAME_KEYS = ("lat", "lon", "alt_m", "cell_m", "tick_s", "t0")
 
 
@@ -59,6 +68,8 @@ class Ground:
         self.targets: Dict[int, dict] = {}
         self.plan: Optional[dict] = None
         self.replans: List[dict] = []
+        self.replans_summary = _no_replans()
+        self.forgotten = {"targets": 0, "uavs": 0}
         self.log: List[dict] = []
         self.node: Dict[str, Any] = {"status": None, "replans_answered": 0, "refused": 0,
                                      "last_solve_us": None, "plans": 0}
@@ -71,6 +82,55 @@ class Ground:
 
     def _changed(self) -> None:
         self.version += 1
+
+    def add_replan(self, entry: dict) -> None:
+        """Keeps the last MAX_REPLANS replans; an older one goes into the summary."""
+        self.replans.append(entry)
+        if len(self.replans) > MAX_REPLANS:
+            old = self.replans.pop(0)
+            acc = self.replans_summary
+            acc["count"] += 1
+            acc["accepted" if old["accepted"] else "refused"] += 1
+            acc["kept"] += 1 if old.get("kept") else 0
+            if acc["first_now"] is None:
+                acc["first_now"] = old["now"]
+            acc["last_now"] = old["now"]
+
+    def clear_replans(self) -> None:
+        self.replans = []
+        self.replans_summary = _no_replans()
+
+    @staticmethod
+    def add_track(uav: dict, point: list) -> None:
+        uav["track"].append(point)
+        if len(uav["track"]) > MAX_TRACK:
+            del uav["track"][0]
+            uav["track_dropped"] = uav.get("track_dropped", 0) + 1
+
+    def _bound_targets(self) -> None:
+        """Forgets targets past MAX_TARGETS_KEPT: finished ones first, oldest first."""
+        excess = len(self.targets) - MAX_TARGETS_KEPT
+        if excess <= 0:
+            return
+        done = [tid for tid, tg in self.targets.items()
+                if tg["state"] not in ("waiting", "under_way")][:excess]
+        chosen = set(done)
+        rest = [tid for tid in self.targets if tid not in chosen][:excess - len(done)]
+        for tid in done + rest:
+            del self.targets[tid]
+        self.forgotten["targets"] += excess
+
+    def _bound_uavs(self) -> None:
+        """Forgets UAVs past MAX_UAVS_KEPT: lost ones first, oldest first."""
+        excess = len(self.uavs) - MAX_UAVS_KEPT
+        if excess <= 0:
+            return
+        lost = [uid for uid, u in self.uavs.items() if u["lost"]][:excess]
+        chosen = set(lost)
+        rest = [uid for uid in self.uavs if uid not in chosen][:excess - len(lost)]
+        for uid in lost + rest:
+            del self.uavs[uid]
+        self.forgotten["uavs"] += excess
 
     def _log(self, kind: str, text: str, **extra) -> None:
         self.log.append({"t": self.now, "kind": kind, "text": text,
@@ -132,7 +192,8 @@ class Ground:
         self.targets = {}
         for g in m.targets[:m.target_count]:
             self._put_target(g)
-        self.replans, self.plan, self.now, self.end = [], None, 0, None
+        self.clear_replans()
+        self.plan, self.now, self.end = None, 0, None
         self._log("mission", f"mission revision {m.revision}: {m.target_count} targets")
         # The frame the node plans with and the vehicles fly: the mission's when it has
         # one (checked as every frame is), else the one the view was given.
@@ -209,7 +270,7 @@ class Ground:
         if not doc["accepted"]:
             self.node["refused"] += 1
             entry["error"] = doc["error"]
-            self.replans.append(entry)
+            self.add_replan(entry)
             self._log("refused", f"event {r.event_seq} ({doc['event']}) refused: {doc['error']}")
             return
         self.now = max(self.now, r.now_ticks)
@@ -219,7 +280,7 @@ class Ground:
                      objective=doc["objective"], cost=plan["cost"], solve_us=r.plan.solve_us,
                      plan_id=r.plan.plan_id, dropped=doc["changes"]["dropped"],
                      added=doc["changes"]["added"])
-        self.replans.append(entry)
+        self.add_replan(entry)
         if ev is not None:
             self._apply_event(ev)
         residual = doc["residual"]
@@ -230,7 +291,7 @@ class Ground:
                                            "track": []})
             c.update(x=u["x"], y=u["y"], fuel=u["fuel"], lost=False)
             if not c["track"] or c["track"][-1][1:] != [u["x"], u["y"]]:
-                c["track"].append([r.now_ticks, u["x"], u["y"]])
+                self.add_track(c, [r.now_ticks, u["x"], u["y"]])
         for uid, c in self.uavs.items():
             if uid not in here and doc["event"] == "uav_lost" and ev and ev["uav"] == uid:
                 c["lost"] = True
@@ -257,6 +318,8 @@ class Ground:
             if tg["state"] == "waiting":
                 tg["planned"] = []
         self._set_plan(plan)
+        self._bound_targets()
+        self._bound_uavs()
         self._log("replan", f"replan of event {r.event_seq} ({doc['event']}) at tick "
                             f"{r.now_ticks}: covers {doc['covered']}, cost {plan['cost']}, "
                             f"{'kept' if doc['kept'] else 'new plan'}, "
@@ -285,6 +348,7 @@ class Ground:
             old = self.targets.get(g["id"], {})
             self.targets[g["id"]] = {**g, "state": "waiting", "visits": old.get("visits", []),
                                      "planned": []}
+            self._bound_targets()
 
     def _on_status(self, s) -> None:
         self.node["status"] = {
@@ -303,9 +367,16 @@ class Ground:
                 "frame": self.frame, "mission": self.mission, "now": self.now, "end": self.end,
                 "uavs": sorted(self.uavs.values(), key=lambda u: u["id"]),
                 "targets": sorted(self.targets.values(), key=lambda t: t["id"]),
-                "plan": self.plan, "replans": self.replans[-200:],
-                "replan_count": len(self.replans), "log": self.log[-200:],
+                "plan": self.plan, "replans": self.replans,
+                "replan_count": self.replans_summary["count"] + len(self.replans),
+                "replans_summary": self.replans_summary, "forgotten": self.forgotten,
+                "log": self.log[-200:],
                 "node": self.node, "warnings": self.warnings, "counts": self.counts}
+
+
+def _no_replans() -> dict:
+    return {"count": 0, "accepted": 0, "refused": 0, "kept": 0, "first_now": None,
+            "last_now": None}
 
 
 # --- a simulator flight log, tick by tick -----------------------------------------------
@@ -330,7 +401,9 @@ def flight_at(g: Ground, log: dict, t: int) -> None:
             last = [0, u0["x"], u0["y"], u0["fuel"]]
         g.uavs[u["id"]] = {"id": u["id"], "x": last[1], "y": last[2], "fuel": last[3],
                            "health": "ok", "lost": lost,
-                           "track": [[e[0], e[1], e[2]] for e in track]}
+                           "track": [[e[0], e[1], e[2]] for e in track[-MAX_TRACK:]]}
+        if len(track) > MAX_TRACK:
+            g.uavs[u["id"]]["track_dropped"] = len(track) - MAX_TRACK
     defs = {tg["id"]: dict(tg) for tg in mission["targets"]}
     cancelled = set()
     for e in events:
@@ -369,10 +442,10 @@ def flight_at(g: Ground, log: dict, t: int) -> None:
                           "visits": [[uid, v["arrived"], v["left"]] for uid, v in visits
                                      if v["arrived"] <= t]}
     replans = [r for r in log["replans"] if r["at"] <= t]
-    g.replans = []
-    for r in replans:
+    g.clear_replans()
+    for n, r in enumerate(replans):
         live = r.get("live") or {}
-        g.replans.append({"seq": len(g.replans), "event": r["cause"], "accepted": True,
+        g.add_replan({"seq": n, "event": r["cause"], "accepted": True,
                           "now": r["at"], "revision": live.get("revision"),
                           "kept": live.get("kept"), "covered": live.get("covered"),
                           "cost": r["plan"]["cost"], "solve_us": r.get("solve_us"),

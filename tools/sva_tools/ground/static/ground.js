@@ -243,7 +243,10 @@ function draw(s) {
 }
 
 function connect() {
-  const ws = new WebSocket((location.protocol === "https:" ? "wss://" : "ws://") + location.host + "/ws");
+  // The page's own ?token= (docs/ground.md "Trust"), passed on to the websocket.
+  const token = new URLSearchParams(location.search).get("token");
+  const ws = new WebSocket((location.protocol === "https:" ? "wss://" : "ws://") + location.host + "/ws" +
+                           (token ? "?token=" + encodeURIComponent(token) : ""));
   ws.onopen = () => { $("conn").textContent = "up"; $("conn").className = "up"; };
   ws.onclose = () => {
     $("conn").textContent = "down, reconnecting"; $("conn").className = "down";
