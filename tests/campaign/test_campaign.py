@@ -412,7 +412,7 @@ def test_worker_killed_mid_campaign_loses_no_result(tmp_path, cluster, direct):
 
 @pytest.mark.parametrize("text, message", [
     (TINY.replace("targets: 5,", "targets: 5000,"),
-     "sets[0].targets: must be <= 1000 (targets per mission), got 5000"),
+     "sets[0].targets: must be <= 256 (SVA_MAX_TARGETS), got 5000"),
     (TINY.replace("uavs: 2,", "uavs: 65,"), "sets[0].uavs: must be <= 64 (SVA_MAX_UAVS), got 65"),
     (TINY.replace("[flow, sva]", "[flow, magic]"),
      'algorithms[1]: must be one of "sva", "ga", "hga", "bfa", "flow", got "magic"'),
@@ -422,9 +422,9 @@ def test_worker_killed_mid_campaign_loses_no_result(tmp_path, cluster, direct):
     (TINY.replace("count: COUNT", "count: 2\ncolour: red"), 'spec: unknown key "colour"'),
     (TINY.replace("algorithms: [flow, sva]\n", ""), 'spec: missing key "algorithms"'),
     (TINY.replace("count: COUNT", "count: 2000000"),
-     "count: must be <= 1000000 (missions or scenarios per set and seed), got 2000000"),
+     "count: must be <= 100000 (missions or scenarios per set and seed), got 2000000"),
     (TINY.replace("det_limit: 5", "det_limit: 0"), "ref.det_limit: must be > 0, got 0"),
-    (TINY.replace("count: COUNT", "count: [2"), "not YAML at line"),
+    (TINY.replace("count: COUNT", "count: [2"), "spec: must be YAML, got expected ',' or ']', but got ':' at line 8, column 11"),
 ])
 def test_bad_spec_is_refused_naming_the_field(tmp_path, text, message):
     p = write_spec(tmp_path, 2, text=text)

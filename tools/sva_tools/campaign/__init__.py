@@ -9,8 +9,12 @@ keyed by the mission's content hash, the tool, its settings and its version: a t
 already stored is not submitted again, so an interrupted or extended campaign resumes
 where it stopped. Then OUT/metrics.parquet (coverage, cost, gap to ref, solve time per
 planner result) and OUT/report.html (tables and plots, self-contained).
-Exit status: 0 when every task has a stored result, 1 when some failed, 2 on a bad spec
-or option, or a scheduler that cannot be reached.
+A damaged part file (empty, truncated, not Parquet, another schema) is named in a
+warning and skipped; while one is there nothing is computed (its tasks are not known
+apart from new ones) and the summary and report show what is readable; --repair moves
+it to OUT/damaged/ and computes every task without a readable result.
+Exit status: 0 when every task has a stored result, 1 when some failed or damaged parts
+left tasks without one, 2 on a bad spec or option, or a scheduler that cannot be reached.
 """
 from __future__ import annotations
 
@@ -21,7 +25,8 @@ import os
 import sys
 import time
 import uuid
-from typing import Dict, List, Optional
+from pathlib import Path
+from typing import Callable, Dict, List, Optional
 
 from ..text import shown
 
@@ -78,7 +83,7 @@ class _Cluster:
 
 
 def _execute(cl: _Cluster, tasks: List[dict], store, stored: set, stats: dict, progress: bool,
-             label: str) -> None:
+             label: str, compute: bool = True) -> None:
     from distributed import as_completed
     from .tasks import run_task
     new = [t for t in tasks if t["key"] not in stored]
@@ -86,6 +91,9 @@ def _execute(cl: _Cluster, tasks: List[dict], store, stored: set, stats: dict, p
     stats["tasks"] += len(tasks)
     stats["stored"] += len(tasks) - len(new)
     if not todo:
+        return
+    if not compute:
+        stats["held"] += len(todo)
         return
     client = cl.get()
     stats["workers"] = max(stats["workers"], cl.n_workers())
@@ -117,30 +125,41 @@ def _execute(cl: _Cluster, tasks: List[dict], store, stored: set, stats: dict, p
 
 def run(spec: dict, out: str, scheduler: Optional[str] = None, workers: Optional[int] = None,
         progress: bool = True, client=None, flush_rows: int = 64,
-        columns: Optional[List[str]] = None) -> dict:
+        columns: Optional[List[str]] = None, repair: bool = False,
+        on_damaged: Optional[Callable[[Path, str], None]] = None) -> dict:
     """Runs the campaign; returns {"run", "tasks", "stored", "computed", "failed", "wall_s",
     "compute_s" (first submission to last result, cluster start excluded), "workers",
-    "rows" (key -> stored row, the given columns or all, of every task of the spec; absent
-    for columns=[]), "task_list" (this run's tasks), "store" (the Store)}."""
+    "held" (tasks not computed because of damaged parts), "set_aside" ((from, to) of the
+    damaged parts repair moved), "rows" (key -> stored row, the given columns or all, of
+    every task of the spec; absent for columns=[]), "task_list" (this run's tasks),
+    "store" (the Store)}.
+    A damaged part file is reported through on_damaged(path, reason) and skipped; while
+    one is in the folder no task is computed (a task of that part is not told apart from
+    a new one), unless repair: then the damaged parts are set aside (Store.set_aside) and
+    every task without a readable result is computed. Raises spec.SpecError, before
+    anything is written, when gen cannot make the spec's missions."""
     from . import spec as S
     from .store import Store
     run_id = new_run_id()
-    store = Store(out, run_id, flush_rows=flush_rows)
+    t0 = time.perf_counter()
+    first = S.first_tasks(spec, run_id)
+    store = Store(out, run_id, flush_rows=flush_rows, on_damaged=on_damaged)
     stored = store.keys()
     stats: Dict = {"run": run_id, "tasks": 0, "stored": 0, "computed": 0, "failed": [], "workers": 0,
-                   "compute_s": 0.0}
+                   "compute_s": 0.0, "held": 0, "set_aside": []}
+    if repair and store.damaged:
+        stats["set_aside"] = store.set_aside()
+    compute = not store.damaged
     cl = _Cluster(scheduler, workers, client)
     try:
-        t0 = time.perf_counter()
-        first = S.first_tasks(spec, run_id)
-        _execute(cl, first, store, stored, stats, progress, spec["name"])
+        _execute(cl, first, store, stored, stats, progress, spec["name"], compute)
         all_tasks = list(first)
         if spec["kind"] == "live":
             flights = [t for t in first if t["task"] == "fly"]
             rows = store.rows(t["key"] for t in flights)
             logs = {k: json.loads(r["result"]) for k, r in rows.items() if r["result"]}
             refs = S.ref_tasks(spec, run_id, flights, logs)
-            _execute(cl, refs, store, stored, stats, progress, spec["name"] + " ref")
+            _execute(cl, refs, store, stored, stats, progress, spec["name"] + " ref", compute)
             all_tasks += refs
         stats["wall_s"] = time.perf_counter() - t0
     finally:
@@ -166,7 +185,17 @@ def add_parser(sub) -> None:
                          "this many finished results are lost when the client dies")
     ap.add_argument("--no-progress", action="store_true", help="no progress bar")
     ap.add_argument("--no-report", action="store_true", help="skip OUT/report.html")
+    ap.add_argument("--repair", action="store_true",
+                    help="move damaged part files (named in warnings) to OUT/damaged/ and compute their tasks again")
     ap.set_defaults(func=main)
+
+
+def _warn(message: str) -> None:
+    print(f"sva-tools: warning: campaign: {shown(message)}", file=sys.stderr)
+
+
+def _damaged(path: Path, reason: str) -> None:
+    _warn(f"{path}: damaged part ({reason}), skipped; --repair moves it to damaged/ and computes its tasks again")
 
 
 def main(args) -> int:
@@ -187,16 +216,27 @@ def main(args) -> int:
     except S.SpecError as e:
         print(f"sva-tools: error: campaign: {shown(args.spec)}: {shown(e)}", file=sys.stderr)
         return 2
-    out = args.out or os.path.join(REPO, "build", "campaigns", spec["name"])
+    campaigns = os.path.join(REPO, "build", "campaigns")
+    out = args.out or os.path.join(campaigns, spec["name"])
+    if not args.out and os.path.dirname(os.path.normpath(out)) != campaigns:  # the schema's name rule, kept
+        print(f"sva-tools: error: campaign: {shown(args.spec)}: name: must name a folder in {shown(campaigns)}, "
+              f"got {shown(S.shown_value(spec['name']))}", file=sys.stderr)
+        return 2
     try:
         stats = run(spec, out, args.scheduler, args.workers, progress=not args.no_progress,
-                    flush_rows=args.flush_rows, columns=[])
+                    flush_rows=args.flush_rows, columns=[], repair=args.repair, on_damaged=_damaged)
+    except S.SpecError as e:
+        print(f"sva-tools: error: campaign: {shown(args.spec)}: {shown(e)}", file=sys.stderr)
+        return 2
     except CampaignError as e:
         print(f"sva-tools: error: campaign: {shown(e)}", file=sys.stderr)
         return 2
+    store = stats["store"]
+    for old, new in stats["set_aside"]:
+        _warn(f"{old}: moved to {new}; its tasks were computed again")
     # The figures need neither the missions nor (kind plan) the plans: the report reads
     # only the columns it needs, as one Arrow table, and groups this run's tasks.
-    records, gs, stored = report.build(spec, stats["store"], stats["task_list"])
+    records, gs, stored = report.build(spec, store, stats["task_list"])
     report.write_metrics(records, out)
     print(report.summary(spec, stats, gs))
     if not args.no_report:
@@ -204,4 +244,11 @@ def main(args) -> int:
         print(f"report: {path}")
     for f in stats["failed"][:10]:
         print(f"failed: {shown(f)}", file=sys.stderr)
-    return 1 if stats["failed"] else 0
+    damaged = bool(store.damaged)
+    if damaged and args.repair:  # found only when the report read more columns than the keys
+        for old, new in store.set_aside():
+            _warn(f"{old}: moved to {new}; run again to compute its tasks")
+    elif damaged:
+        _warn(f"{len(store.damaged)} damaged part file(s) in {store.dir} skipped, {stats['held']} task(s) "
+              "not computed; run again with --repair")
+    return 1 if stats["failed"] or stats["held"] or damaged else 0

@@ -269,7 +269,9 @@ def summary(spec: dict, stats: dict, gs: List[dict]) -> str:
     n = S.missions(spec)
     wall = stats.get("wall_s") or 0.0
     head = (f"campaign {spec['name']}: {stats['tasks']} tasks for {n} {units}; {stats['stored']} already stored, "
-            f"{stats['computed']} computed, {len(stats['failed'])} failed; {wall:.1f} s, of which "
+            f"{stats['computed']} computed, {len(stats['failed'])} failed; "
+            + (f"{stats['held']} not computed (damaged part files: --repair); " if stats.get("held") else "")
+            + f"{wall:.1f} s, of which "
             f"{stats.get('compute_s', 0.0):.1f} s computing on {stats.get('workers', 0)} workers")
     return head + "\n" + markdown(table(spec, gs))
 

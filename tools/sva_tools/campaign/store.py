@@ -1,9 +1,16 @@
 """The campaign's result store: Parquet files under OUT/results/ (docs/campaigns.md).
 
 Each flush writes one file results/part-<run>-<seq>.parquet (a temporary file renamed
-into place, so a file is whole or absent); rows are never rewritten. A row's key is its
-task's key (tasks.task_key: mission content hash, tool, settings, tool version); when
-the same key is stored twice (two clients on one folder), reading keeps the first.
+into place, so a file is whole or absent) with a CRC per page; rows are never rewritten.
+A row's key is its task's key (tasks.task_key: mission content hash, tool, settings, tool
+version); when the same key is stored twice (two clients on one folder), reading keeps
+the first.
+
+A part file is bytes on disk that a full disk, a copy or a hand can damage. A part that
+cannot be read whole (empty, truncated, not Parquet, a page whose CRC fails) or that has
+another schema is damaged: it is recorded in `damaged` with the reason, reported once
+through `on_damaged`, and skipped by every read; `set_aside()` moves the damaged parts
+to OUT/damaged/ so that their tasks, no longer stored, run again.
 """
 from __future__ import annotations
 
@@ -11,7 +18,7 @@ import os
 import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
-from typing import Dict, Iterable, List, Optional
+from typing import Callable, Dict, Iterable, List, Optional, Tuple
 
 import numpy as np
 import pyarrow as pa
@@ -34,8 +41,44 @@ SCHEMA = pa.schema([
 assert tuple(SCHEMA.names) == ROW_FIELDS
 
 
+class Damaged(Exception):
+    """Why a part file cannot be used (str: the reason, one line)."""
+
+
+def _schema_error(found: pa.Schema) -> Optional[str]:
+    """Why a part's schema is not the store's, else None."""
+    for field in SCHEMA:
+        i = found.get_field_index(field.name)
+        if i < 0:
+            return f'foreign schema: no column "{field.name}"'
+        if found.field(i).type != field.type:
+            return f'foreign schema: column "{field.name}" is {found.field(i).type}, not {field.type}'
+    return None
+
+
+def read_part(path: Path, schema: pa.Schema, check_schema: bool = True) -> pa.Table:
+    """The given columns of one part file; Damaged when it cannot be read whole or (when
+    check_schema) its schema is not the store's."""
+    try:
+        if path.stat().st_size == 0:
+            raise Damaged("empty file")
+        # ParquetFile: a third of read_table's cost on a small part file
+        f = pq.ParquetFile(path, page_checksum_verification=True)
+        why = _schema_error(f.schema_arrow) if check_schema else None
+        if why:
+            raise Damaged(why)
+        t = f.read(columns=schema.names, use_threads=False)
+        if t.num_rows != f.metadata.num_rows:
+            raise Damaged(f"{t.num_rows} rows read of {f.metadata.num_rows}")
+        return t.cast(schema)
+    except (OSError, ValueError, pa.ArrowException) as e:
+        text = " ".join(str(e).split()) or type(e).__name__
+        raise Damaged(f"unreadable: {text[:120]}") from None
+
+
 class Store:
-    def __init__(self, out: str, run: str, flush_rows: int = 64, flush_s: float = 2.0):
+    def __init__(self, out: str, run: str, flush_rows: int = 64, flush_s: float = 2.0,
+                 on_damaged: Optional[Callable[[Path, str], None]] = None):
         self.dir = Path(out) / "results"
         self.dir.mkdir(parents=True, exist_ok=True)
         self.run = run
@@ -44,19 +87,38 @@ class Store:
         self.seq = 0
         self.last = time.monotonic()
         self.written = 0
+        self.damaged: Dict[Path, str] = {}  # part file -> reason, in the order found
+        self.on_damaged = on_damaged
+        self.schema_ok: set = set()  # part files whose schema was checked (a fifth of a read's cost)
 
     def files(self) -> List[Path]:
+        """The part files, damaged ones included, in name order."""
         return sorted(self.dir.glob("part-*.parquet"))
 
     def table(self, columns: Optional[List[str]] = None) -> pa.Table:
-        """Every stored row (the first of each key), files in name order."""
+        """Every stored row (the first of each key), files in name order; a damaged
+        file is recorded, reported once and skipped."""
         schema = SCHEMA if columns is None else pa.schema([SCHEMA.field(c) for c in columns])
 
-        def read(path):  # ParquetFile: a third of read_table's cost on a small part file
-            return pq.ParquetFile(path).read(columns=schema.names, use_threads=False).cast(schema)
+        def read(path) -> Tuple[Optional[pa.Table], str]:
+            try:
+                t = read_part(path, schema, path not in self.schema_ok)
+                self.schema_ok.add(path)
+                return t, ""
+            except Damaged as e:
+                return None, str(e)
 
+        files = [p for p in self.files() if p not in self.damaged]
         with ThreadPoolExecutor(max_workers=min(4, os.cpu_count() or 1)) as pool:
-            parts = list(pool.map(read, self.files()))  # in file order
+            read_parts = list(pool.map(read, files))  # in file order
+        parts = []
+        for path, (t, why) in zip(files, read_parts):
+            if t is None:
+                self.damaged[path] = why
+                if self.on_damaged is not None:
+                    self.on_damaged(path, why)
+            else:
+                parts.append(t)
         if not parts:
             return schema.empty_table()
         t = pa.concat_tables(parts)
@@ -66,6 +128,22 @@ class Store:
         first = pa.table({"key": t["key"], "i": pa.array(np.arange(len(t), dtype=np.int64))}).group_by(
             "key", use_threads=False).aggregate([("i", "min")])["i_min"]
         return t.take(first.take(pc.sort_indices(first)))
+
+    def set_aside(self) -> List[Tuple[Path, Path]]:
+        """Moves the damaged part files to OUT/damaged/ (kept for a look, out of every
+        read); returns (from, to) of each. Their tasks are no longer stored: the next
+        submission computes them again."""
+        dest = self.dir.parent / "damaged"
+        dest.mkdir(exist_ok=True)
+        moved = []
+        for path in list(self.damaged):
+            target, n = dest / path.name, 1
+            while target.exists():
+                target, n = dest / f"{path.name}.{n}", n + 1
+            os.replace(path, target)
+            moved.append((path, target))
+            del self.damaged[path]
+        return moved
 
     def keys(self) -> set:
         return set(self.table(["key"]).column("key").to_pylist())
@@ -88,7 +166,7 @@ class Store:
         table = pa.Table.from_pylist(self.pending, schema=SCHEMA)
         name = f"part-{self.run}-{self.seq:06d}.parquet"
         tmp = self.dir / f".tmp-{name}"
-        pq.write_table(table, tmp, compression="zstd")
+        pq.write_table(table, tmp, compression="zstd", write_page_checksum=True)
         os.replace(tmp, self.dir / name)
         self.seq += 1
         self.written += len(self.pending)
