@@ -10,10 +10,14 @@ lcm/      fleet + mission messages in fuzz_lcm.c's record format (one mission wi
           frame, one of another version);
 can/      frame records (fuzz_can.c's format) of whole plan transfers, built with the
           DBC (cantools) and left to the harness's counter and CRC fix-up bits.
+mavlink/  records of fuzz_mavlink.c's format: an upload answered to its end, telemetry,
+          good frames behind stray bytes, cut and flipped frames, datagram ends.
+`make_seeds.py mavlink` writes one corpus only (any of missions, lcm, can, mavlink).
 """
 import json
 import shutil
 import struct
+import sys
 from pathlib import Path
 
 import cantools
@@ -109,10 +113,56 @@ def can():
     (d / "timeout.bin").write_bytes(transfer(8, items[:1]).replace(b"\x72\x08\x01", b"\x72\x08\xff", 1))
 
 
+def mavlink():
+    """fuzz_mavlink.c's records: 0 raw, 1 good frame, 2 datagram end, 3 clock."""
+    d = OUT / "mavlink"
+    d.mkdir(parents=True, exist_ok=True)
+    # the harness's message list (fuzz_mavlink.c `ids`), by name
+    pick = {"HEARTBEAT": 0, "MISSION_REQUEST_INT": 1, "MISSION_REQUEST": 2, "MISSION_ACK": 3,
+            "GLOBAL_POSITION_INT": 4, "SYS_STATUS": 5, "BATTERY_STATUS": 6,
+            "MISSION_CURRENT": 7, "MISSION_ITEM_REACHED": 8, "SYSTEM_TIME": 9,
+            "COMMAND_ACK": 10, "STATUSTEXT": 11}
+
+    def frame(name, payload, how=0, sender=3):
+        return bytes([1 | (how << 2), pick[name], sender, len(payload)]) + payload
+
+    def raw(b):
+        return bytes([0, len(b)]) + b
+
+    own = (255, 190)  # the harness's system and component (MAV_COMP_ID_MISSIONPLANNER)
+    upload = b"".join(frame("MISSION_REQUEST_INT", struct.pack("<HBBB", seq, *own, 0))
+                      for seq in range(4))
+    upload += frame("MISSION_ACK", struct.pack("<BBBB", *own, 0, 0))
+    (d / "upload.bin").write_bytes(upload)
+    # the legacy MISSION_REQUEST, a resend after a timeout, then a refusal
+    (d / "legacy_refused.bin").write_bytes(
+        frame("MISSION_REQUEST", struct.pack("<HBBB", 0, *own, 0)) + bytes([3, 40])
+        + frame("MISSION_REQUEST", struct.pack("<HBBB", 1, *own, 0))
+        + frame("MISSION_ACK", struct.pack("<BBBB", *own, 9, 0)))
+    heartbeat = struct.pack("<IBBBBB", 3, 2, 3, 0x81, 4, 3)
+    position = struct.pack("<IiiiihhhH", 5000, 473977000, 85456000, 520000, 30000, 100, 0, 0, 9000)
+    system_time = struct.pack("<QI", 1_700_000_000_000_000, 5000)
+    telemetry = (frame("HEARTBEAT", heartbeat) + frame("GLOBAL_POSITION_INT", position)
+                 + frame("SYSTEM_TIME", system_time)
+                 + frame("MISSION_CURRENT", struct.pack("<H", 2))
+                 + frame("MISSION_ITEM_REACHED", struct.pack("<H", 1)))
+    (d / "telemetry.bin").write_bytes(telemetry)
+    # stray bytes (a MAVLink 2 start, a length, a flag) before good frames, per datagram
+    (d / "stray_prefix.bin").write_bytes(
+        raw(b"\xfd\xff\x00") + frame("HEARTBEAT", heartbeat) + bytes([2])
+        + raw(b"\xfd\x09\x01\x00") + telemetry + bytes([2]))
+    # cut, flipped and MAVLink 1 frames, other senders
+    (d / "damaged.bin").write_bytes(
+        frame("HEARTBEAT", heartbeat, how=1) + frame("SYSTEM_TIME", system_time, how=2)
+        + bytes([2]) + frame("HEARTBEAT", heartbeat, how=3)
+        + frame("GLOBAL_POSITION_INT", position, sender=0) + bytes([2]))
+
+
+CORPORA = {"missions": missions, "lcm": lcm, "can": can, "mavlink": mavlink}
+
 if __name__ == "__main__":
-    missions()
-    lcm()
-    can()
+    for name in (sys.argv[1:] or list(CORPORA)):
+        CORPORA[name]()
     for p in sorted(OUT.rglob("*")):
         if p.is_file():
             print(p.relative_to(ROOT), p.stat().st_size)

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The libFuzzer part of the fuzz tests (label fuzz; docs/fuzzing.md).
-#   run_fuzz.sh build SOURCE_ROOT ENGINE_DIR [LCM_CMAKE_DIR LCM_GENERATED_DIR]
+#   run_fuzz.sh build SOURCE_ROOT ENGINE_DIR [LCM_CMAKE_DIR LCM_GENERATED_DIR [MAVLINK_GENERATED_DIR]]
 #       configures and builds tests/fuzz/engine with clang into ENGINE_DIR.
 #   run_fuzz.sh run SOURCE_ROOT ENGINE_DIR TARGET SECONDS RUNS
 #       runs one fuzzer for at most SECONDS and RUNS inputs, from the checked-in seeds
@@ -17,6 +17,9 @@ build)
     extra=()
     if [ $# -ge 5 ] && [ -n "$4" ] && [ -n "$5" ]; then
         extra=(-DSVA_LCM_CMAKE_DIR="$4" -DSVA_LCM_GENERATED_DIR="$5")
+    fi
+    if [ $# -ge 6 ] && [ -n "$6" ]; then
+        extra+=(-DSVA_MAVLINK_GENERATED_DIR="$6")
     fi
     cmake -S "$root/tests/fuzz/engine" -B "$engine" -G Ninja -DCMAKE_C_COMPILER=clang \
         -DCMAKE_BUILD_TYPE= -DSVA_ROOT="$root" "${extra[@]}" >/dev/null
@@ -36,6 +39,7 @@ run)
     mission) opts+=(-max_len=8192 -dict="$root/tests/fuzz/mission.dict") ;;
     lcm) opts+=(-max_len=16384) ;;
     can) opts+=(-max_len=4096) ;;
+    mavlink) opts+=(-max_len=4096) ;;
     esac
     dirs=("$work" "$root/tests/fuzz/corpus/$target")
     if [ -d "$root/tests/fuzz/regressions/$target" ]; then
