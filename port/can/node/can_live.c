@@ -125,7 +125,43 @@ int sva_can_live_start(sva_can_live_t* self, const sva_mission_t* mission,
     return 0;
 }
 
+// Hands one input to the hook; a failure halts the live mission.
+static int keep(sva_can_live_t* self, sva_can_live_input_kind_t kind, const sva_can_msg_t* msg,
+                uint32_t now_ms, int outcome)
+{
+    sva_can_live_input_t in;
+    if (self->input_hook == NULL) {
+        return outcome;
+    }
+    in.kind = kind;
+    in.msg = msg;
+    in.now_ms = now_ms;
+    in.outcome = outcome;
+    if (self->input_hook(self->input_hook_user, &in) != 0) {
+        self->halted = true;
+        return SVA_CAN_LIVE_HALTED;
+    }
+    return outcome;
+}
+
+static int on_msg(sva_can_live_t* self, const sva_can_msg_t* msg, uint32_t now_ms);
+
 int sva_can_live_on_msg(sva_can_live_t* self, const sva_can_msg_t* msg, uint32_t now_ms)
+{
+    int32_t heard[SVA_MAX_UAVS];
+    int r;
+    if (self->halted) {
+        return SVA_CAN_LIVE_HALTED;
+    }
+    memcpy(heard, self->fuel_heard, sizeof heard);
+    r = on_msg(self, msg, now_ms);
+    if ((r == 1) || (memcmp(heard, self->fuel_heard, sizeof heard) != 0)) {
+        return keep(self, SVA_CAN_LIVE_INPUT_MSG, msg, now_ms, r);
+    }
+    return r;
+}
+
+static int on_msg(sva_can_live_t* self, const sva_can_msg_t* msg, uint32_t now_ms)
 {
     sva_event_t e;
     int32_t u;
@@ -246,14 +282,25 @@ static bool same_plan(const sva_can_plan_t* a, const sva_can_plan_t* b)
     return true;
 }
 
+static int poll_settled(sva_can_live_t* self);
+
 int sva_can_live_poll(sva_can_live_t* self, uint32_t now_ms, uint32_t settle_ms)
+{
+    if (self->halted) {
+        return SVA_CAN_LIVE_HALTED;
+    }
+    if ((self->pending == 0u) || ((uint32_t)(now_ms - self->last_event_ms) < settle_ms)) {
+        return 0;
+    }
+    return keep(self, SVA_CAN_LIVE_INPUT_REPLAN, NULL, now_ms, poll_settled(self));
+}
+
+// Replans the pending events (sva_can_live_poll past the settle time).
+static int poll_settled(sva_can_live_t* self)
 {
     sva_diag_t diag;
     sva_status_t st;
     uint16_t next_id;
-    if ((self->pending == 0u) || ((uint32_t)(now_ms - self->last_event_ms) < settle_ms)) {
-        return 0;
-    }
     self->pending = 0u;
     st = sva_live_replan(&self->live, &self->planner, self->algorithm, &self->result, &diag);
     if (st != SVA_OK) {

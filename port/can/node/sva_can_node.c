@@ -5,10 +5,12 @@
 // and SVA_VEHICLE_FUEL (fuel), each change a core event; once the bus has been quiet
 // for --settle-ms after an event it replans and sends the new plan when it changed.
 // Heartbeat every second. SIGINT/SIGTERM: aborts an in-flight transfer, exits 0.
+// With --state-dir DIR the live mission's inputs are journaled (can_journal.h) and a
+// restart resumes it (docs/can.md, "Crash safety").
 //
 // Usage: sva_can_node --mission FILE [--iface vcan0] [--algo sva]
 //                     [--settle-ms 200] [--track-tolerance 2] [--exit-after-acks N]
-//                     [--max-runtime-ms N] [--print-plans]
+//                     [--max-runtime-ms N] [--print-plans] [--state-dir DIR [--state-reset]]
 //        sva_can_node --help | --version
 #define _POSIX_C_SOURCE 200809L
 
@@ -21,6 +23,7 @@
 #include <time.h>
 
 #include "can_live.h"
+#include "can_state.h"
 #include "mission_file.h"
 #include "plan_print.h"
 #include "sva/sva.h"
@@ -51,6 +54,7 @@ static uint32_t now_ms(void)
 // Everything the node owns: static, no heap (the live mission and planner are large).
 static sva_mission_t g_mission;  // the mission file: the live mission's start
 static sva_can_live_t g_live;
+static sva_can_state_t g_state;  // --state-dir: the journal
 static sva_can_sender_t g_sender;
 // The mission's frame, sent (SVA_MISSION_FRAME_A..D) before each plan when it has one.
 static sva_can_mission_frame_t g_frame;
@@ -90,9 +94,13 @@ static void usage(FILE* out)
 {
     fprintf(out, "usage: sva_can_node --mission FILE [--iface NAME] [--algo sva|ga|hga|bfa|flow]\n"
                  "                    [--settle-ms N] [--track-tolerance N] [--exit-after-acks N]\n"
-                 "                    [--max-runtime-ms N] [--print-plans]\n"
+                 "                    [--max-runtime-ms N] [--print-plans] [--state-dir DIR "
+                 "[--state-reset]]\n"
                  "       sva_can_node --help | --version\n"
                  "  --algo NAME  the planner (default sva); --algorithm is the same option\n"
+                 "  --state-dir DIR  journal the live mission in DIR (created if missing) and, on\n"
+                 "               start, resume it from there\n"
+                 "  --state-reset    with --state-dir: discard the journal and start afresh\n"
                  "  --version    print \"sva_can_node VERSION\" (the sva library's)\n");
 }
 
@@ -104,36 +112,53 @@ static int parse_u32(const char* s, const char* opt, uint32_t* out)
     v = strtoul(s, &end, 10);
     if ((errno != 0) || (end == s) || (*end != '\0') || (v > 0x7FFFFFFFul) || (s[0] == '-')) {
         char shown[SHOWN_SIZE];
-        fprintf(stderr, "sva_can_node: %s: must be an integer in [0, 2147483647], got \"%s\"\n",
-                opt, sva_text_escape(shown, sizeof shown, s));
+        fprintf(stderr,
+                "sva_can_node: error: %s: must be an integer in [0, 2147483647], got \"%s\"\n", opt,
+                sva_text_escape(shown, sizeof shown, s));
         return -1;
     }
     *out = (uint32_t)v;
     return 0;
 }
 
-// Hands the live mission's wire plan to the sender. Returns the fault bits.
+// Hands the last wire plan the live mission made (g_live.sent: after a resume, the plan in
+// force under its id) to the sender. Returns the fault bits.
 static uint8_t send_plan(uint32_t t, int print)
 {
     sva_can_status_t cst;
+    const sva_can_plan_t* plan = &g_live.sent;
     fprintf(stderr, "sva_can_node: plan %u: %s %s, covered %u of %u, %u items, %u frames\n",
-            g_live.wire.plan_id, sva_algorithm_name((sva_algorithm_t)g_live.wire.algorithm),
-            (g_live.wire.plan_status == SVA_CAN_PLAN_COMPLETE) ? "complete" : "partial",
-            g_live.covered, g_live.live.mission.target_count, g_live.wire.item_count,
-            2u * g_live.wire.item_count + 2u);
+            plan->plan_id, sva_algorithm_name((sva_algorithm_t)plan->algorithm),
+            (plan->plan_status == SVA_CAN_PLAN_COMPLETE) ? "complete" : "partial", g_live.covered,
+            g_live.live.mission.target_count, plan->item_count, 2u * plan->item_count + 2u);
     if (print) {
-        sva_can_plan_print(&g_live.wire);
+        sva_can_plan_print(plan);
     }
     if (send_frame() != 0u) {
         return SVA_CAN_FAULT_TX_ERRORS;
     }
-    cst = sva_can_sender_start(&g_sender, &g_live.wire, t);
+    cst = sva_can_sender_start(&g_sender, plan, t);
     if ((cst != SVA_CAN_OK) && (cst != SVA_CAN_AGAIN)) {
-        fprintf(stderr, "sva_can_node: sending plan %u: %s\n", g_live.wire.plan_id,
+        fprintf(stderr, "sva_can_node: sending plan %u: %s\n", plan->plan_id,
                 sva_can_status_name(cst));
         return SVA_CAN_FAULT_TX_ERRORS;
     }
     return 0u;
+}
+
+// The options that take a value (every option but --help, --version and --state-reset).
+static bool takes_value(const char* a)
+{
+    static const char* const names[] = {
+        "--iface",           "--mission",         "--algo",
+        "--algorithm",       "--state-dir",       "--settle-ms",
+        "--track-tolerance", "--exit-after-acks", "--max-runtime-ms"};
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; ++k) {
+        if (strcmp(a, names[k]) == 0) {
+            return true;
+        }
+    }
+    return false;
 }
 
 int main(int argc, char** argv)
@@ -147,6 +172,9 @@ int main(int argc, char** argv)
     uint32_t exit_after_acks = 0u;
     uint32_t max_runtime_ms = 0u;
     int print = 0;
+    const char* state_dir = NULL;
+    bool state_reset = false;
+    bool halted = false;
     int i;
     char err[256];
     char name[128];
@@ -178,6 +206,10 @@ int main(int argc, char** argv)
             print = 1;
             continue;
         }
+        if (strcmp(a, "--state-reset") == 0) {
+            state_reset = true;
+            continue;
+        }
         if ((strcmp(a, "--help") == 0) || (strcmp(a, "-h") == 0)) {
             usage(stdout);
             return 0;
@@ -187,8 +219,14 @@ int main(int argc, char** argv)
                    SVA_VERSION_PATCH);
             return 0;
         }
+        if (!takes_value(a)) {
+            fprintf(stderr, "sva_can_node: error: unknown option %s\n",
+                    sva_text_escape(shown, sizeof shown, a));
+            usage(stderr);
+            return 2;
+        }
         if (v == NULL) {
-            fprintf(stderr, "sva_can_node: %s: missing value\n",
+            fprintf(stderr, "sva_can_node: error: %s: missing value\n",
                     sva_text_escape(shown, sizeof shown, a));
             usage(stderr);
             return 2;
@@ -201,6 +239,8 @@ int main(int argc, char** argv)
         } else if ((strcmp(a, "--algo") == 0) || (strcmp(a, "--algorithm") == 0)) {
             algo_option = a;
             algo_name = v;
+        } else if (strcmp(a, "--state-dir") == 0) {
+            state_dir = v;
         } else if (strcmp(a, "--settle-ms") == 0) {
             if (parse_u32(v, a, &settle_ms) != 0)
                 return 2;
@@ -214,56 +254,72 @@ int main(int argc, char** argv)
             if (parse_u32(v, a, &max_runtime_ms) != 0)
                 return 2;
         } else {
-            fprintf(stderr, "sva_can_node: unknown option %s\n",
+            fprintf(stderr, "sva_can_node: error: unknown option %s\n",
                     sva_text_escape(shown, sizeof shown, a));
             usage(stderr);
             return 2;
         }
     }
     if (mission_path == NULL) {
-        fprintf(stderr, "sva_can_node: --mission: missing required option\n");
+        fprintf(stderr, "sva_can_node: error: --mission: missing required option\n");
         usage(stderr);
         return 2;
     }
+    if (state_reset && (state_dir == NULL)) {
+        fprintf(stderr, "sva_can_node: error: --state-reset needs --state-dir\n");
+        return 2;
+    }
     if (sva_algorithm_from_name(algo_name, &algo) != SVA_OK) {
-        fprintf(stderr, "sva_can_node: %s: unknown algorithm \"%s\" (sva, ga, hga, bfa, flow)\n",
+        fprintf(stderr,
+                "sva_can_node: error: %s: unknown algorithm \"%s\" (sva, ga, hga, bfa, flow)\n",
                 algo_option, sva_text_escape(shown_arg, sizeof shown_arg, algo_name));
         return 2;
     }
     if (sva_can_mission_load_frame(mission_path, &g_mission, name, sizeof name, &g_frame,
                                    &g_has_frame, err, sizeof err) != 0) {
-        fprintf(stderr, "sva_can_node: %s: %s\n",
+        fprintf(stderr, "sva_can_node: error: %s: %s\n",
                 sva_text_escape(shown_arg, sizeof shown_arg, mission_path), err);
         return 1;
     }
     g_live.log = stderr;
     g_live.track_tolerance_cells = (int32_t)track_tolerance;
     if (sva_can_live_start(&g_live, &g_mission, algo, err, sizeof err) != 0) {
-        fprintf(stderr, "sva_can_node: %s\n", err);
+        fprintf(stderr, "sva_can_node: error: %s\n", err);
         return 1;
+    }
+    // The journal is replayed before the node hears the bus.
+    if (state_dir != NULL) {
+        const int src = sva_can_state_open(&g_state, state_dir, state_reset, &g_live, &g_mission);
+        if (src != 0) {
+            sva_can_state_close(&g_state);
+            return src;
+        }
     }
     cst = sva_can_socketcan_open(&sock, iface);
     if (cst != SVA_CAN_OK) {
-        fprintf(stderr, "sva_can_node: --iface %s: %s%s%s\n",
+        fprintf(stderr, "sva_can_node: error: --iface %s: %s%s%s\n",
                 sva_text_escape(shown_arg, sizeof shown_arg, iface),
                 (cst == SVA_CAN_ERR_NAME) ? "interface name empty or longer than IFNAMSIZ - 1 (15)"
                                           : "cannot open",
                 (sock.last_errno != 0) ? ": " : "",
                 (sock.last_errno != 0) ? strerror(sock.last_errno) : "");
+        sva_can_state_close(&g_state);
         return 1;
     }
     if ((sva_can_socketcan_transport(&sock, &tp) != SVA_CAN_OK) ||
         (sva_can_sender_init(&g_sender, &tp, NULL) != SVA_CAN_OK)) {
-        fprintf(stderr, "sva_can_node: transport setup failed\n");
+        fprintf(stderr, "sva_can_node: error: transport setup failed\n");
         sva_can_socketcan_close(&sock);
+        sva_can_state_close(&g_state);
         return 1;
     }
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
     if ((sigemptyset(&sa.sa_mask) != 0) || (sigaction(SIGINT, &sa, NULL) != 0) ||
         (sigaction(SIGTERM, &sa, NULL) != 0)) {
-        fprintf(stderr, "sva_can_node: sigaction: %s\n", strerror(errno));
+        fprintf(stderr, "sva_can_node: error: sigaction: %s\n", strerror(errno));
         sva_can_socketcan_close(&sock);
+        sva_can_state_close(&g_state);
         return 1;
     }
     fprintf(stderr, "sva_can_node: mission \"%s\" (%u UAVs, %u targets) on %s, algorithm %s\n",
@@ -284,7 +340,7 @@ int main(int argc, char** argv)
         pfd.events = POLLIN;
         pfd.revents = 0;
         if ((poll(&pfd, 1, 10) < 0) && (errno != EINTR)) {
-            fprintf(stderr, "sva_can_node: poll: %s\n", strerror(errno));
+            fprintf(stderr, "sva_can_node: error: poll: %s\n", strerror(errno));
             rc = 1;
             break;
         }
@@ -296,7 +352,7 @@ int main(int argc, char** argv)
                 break;
             }
             if (st != SVA_CAN_OK) {
-                fprintf(stderr, "sva_can_node: read: %s\n", strerror(sock.last_errno));
+                fprintf(stderr, "sva_can_node: error: read: %s\n", strerror(sock.last_errno));
                 faults |= SVA_CAN_FAULT_TX_ERRORS;
                 break;
             }
@@ -336,10 +392,23 @@ int main(int argc, char** argv)
                 has_last_counter[k] = 1;
                 last_counter[k] = m.counter;
             }
-            (void)sva_can_live_on_msg(&g_live, &m, t);
+            if (sva_can_live_on_msg(&g_live, &m, t) == SVA_CAN_LIVE_HALTED) {
+                break;
+            }
         }
         {
-            const int changed = sva_can_live_poll(&g_live, t, settle_ms);
+            const int changed =
+                g_live.halted ? SVA_CAN_LIVE_HALTED : sva_can_live_poll(&g_live, t, settle_ms);
+            if (changed == SVA_CAN_LIVE_HALTED) {
+                // The journal could not keep an input: nothing is answered for it. Exit as
+                // a crash would; a restart resumes from the last record kept.
+                char said[SHOWN_SIZE];
+                fprintf(stderr, "sva_can_node: error: journal: %s: stopping without an answer\n",
+                        sva_text_escape(said, sizeof said, g_state.journal.message));
+                halted = true;
+                rc = 1;
+                break;
+            }
             if (changed < 0) {
                 faults |= SVA_CAN_FAULT_PLAN_FAILED;
             } else if (changed > 0) {
@@ -405,7 +474,8 @@ int main(int argc, char** argv)
             break;
         }
     }
-    if (sva_can_sender_abort(&g_sender, SVA_CAN_ABORT_SHUTDOWN, now_ms()) != SVA_CAN_OK) {
+    if (!halted &&
+        (sva_can_sender_abort(&g_sender, SVA_CAN_ABORT_SHUTDOWN, now_ms()) != SVA_CAN_OK)) {
         fprintf(stderr, "sva_can_node: could not send ABORT on shutdown\n");
     }
     fprintf(stderr,
@@ -416,5 +486,6 @@ int main(int argc, char** argv)
             (unsigned long)g_live.stats.events_applied, (unsigned long)g_live.stats.events_refused,
             (unsigned long)g_live.stats.replans, (unsigned long)g_live.stats.unchanged);
     sva_can_socketcan_close(&sock);
+    sva_can_state_close(&g_state);
     return rc;
 }

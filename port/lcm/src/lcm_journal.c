@@ -1,17 +1,15 @@
 // lcm_journal.c -- the node's journal of inputs: records, the header, replay, cut and
 // compaction (contract in sva_lcm_journal.h). Storage belongs to the caller
-// (lcm_journal_file.c is the POSIX one); the CRC is zlib's crc32.
+// (lcm_journal_file.c is the POSIX one); records, CRC-32 and the storage interface are
+// the shared record layer's (sva_journal.h).
 #include "sva/sva_lcm_journal.h"
 
 #include <stdio.h>
 #include <string.h>
 
-#include <zlib.h>
-
 #define MAGIC_BYTES  4
 #define NAMED_BYTES  12  // magic, format, sva version: where every format keeps them
 #define BASE_BYTES   8
-#define LENGTH_BYTES 4
 #define PREFIX_BYTES 5  // length and type
 
 static const uint8_t magic[MAGIC_BYTES] = {'S', 'V', 'A', 'J'};
@@ -28,66 +26,18 @@ const char* sva_lcm_journal_status_name(sva_lcm_journal_status_t status)
     return status_names[i];
 }
 
-// --- little-endian fields and records ---------------------------------------------
+// --- little-endian fields and records: the shared record layer (sva_journal.h) ---------
 
-static void put_u16(uint8_t* p, uint32_t v)
-{
-    p[0] = (uint8_t)(v & 0xFFU);
-    p[1] = (uint8_t)((v >> 8U) & 0xFFU);
-}
-
-static void put_u32(uint8_t* p, uint32_t v)
-{
-    for (unsigned i = 0U; i < 4U; ++i) {
-        p[i] = (uint8_t)((v >> (8U * i)) & 0xFFU);
-    }
-}
-
-static void put_u64(uint8_t* p, uint64_t v)
-{
-    for (unsigned i = 0U; i < 8U; ++i) {
-        p[i] = (uint8_t)((v >> (8U * i)) & 0xFFU);
-    }
-}
-
-static uint32_t get_u16(const uint8_t* p)
-{
-    return (uint32_t)p[0] | ((uint32_t)p[1] << 8U);
-}
-
-static uint32_t get_u32(const uint8_t* p)
-{
-    uint32_t v = 0U;
-    for (unsigned i = 0U; i < 4U; ++i) {
-        v |= (uint32_t)p[i] << (8U * i);
-    }
-    return v;
-}
-
-static uint64_t get_u64(const uint8_t* p)
-{
-    uint64_t v = 0U;
-    for (unsigned i = 0U; i < 8U; ++i) {
-        v |= (uint64_t)p[i] << (8U * i);
-    }
-    return v;
-}
-
-static uint32_t crc_of(const uint8_t* p, uint32_t n)
-{
-    return (uint32_t)crc32(0UL, p, (uInt)n);
-}
+typedef char overhead_check[(SVA_LCM_JOURNAL_RECORD_OVERHEAD == SVA_JOURNAL_RECORD_OVERHEAD) &&
+                                    (PREFIX_BYTES == SVA_JOURNAL_PREFIX_BYTES) &&
+                                    (SVA_LCM_JOURNAL_DIR_MAX == SVA_JOURNAL_DIR_MAX)
+                                ? 1
+                                : -1];
 
 // Writes one record (length, type, payload, CRC) at out; returns its size.
 static uint32_t put_record(uint8_t* out, sva_lcm_record_t type, const void* payload, uint32_t len)
 {
-    put_u32(out, len);
-    out[LENGTH_BYTES] = (uint8_t)type;
-    if (len > 0U) {
-        memcpy(out + PREFIX_BYTES, payload, len);
-    }
-    put_u32(out + PREFIX_BYTES + len, crc_of(out, PREFIX_BYTES + len));
-    return len + SVA_LCM_JOURNAL_RECORD_OVERHEAD;
+    return sva_journal_put_record(out, (uint8_t)type, payload, len);
 }
 
 // The payload size each input record must have (0: not an input record).
@@ -144,18 +94,18 @@ static const char* const fingerprint_names[4] = {"fleet_state_t", "mission_t", "
 static void header_payload(const sva_lcm_node_t* node, uint8_t* p)
 {
     memcpy(p, magic, MAGIC_BYTES);
-    put_u16(p + 4, SVA_LCM_JOURNAL_FORMAT);
-    put_u16(p + 6, SVA_VERSION_MAJOR);
-    put_u16(p + 8, SVA_VERSION_MINOR);
-    put_u16(p + 10, SVA_VERSION_PATCH);
+    sva_journal_put_u16(p + 4, SVA_LCM_JOURNAL_FORMAT);
+    sva_journal_put_u16(p + 6, SVA_VERSION_MAJOR);
+    sva_journal_put_u16(p + 8, SVA_VERSION_MINOR);
+    sva_journal_put_u16(p + 10, SVA_VERSION_PATCH);
     for (int i = 0; i < 4; ++i) {
-        put_u64(p + NAMED_BYTES + (8 * i), fingerprint(i));
+        sva_journal_put_u64(p + NAMED_BYTES + (8 * i), fingerprint(i));
     }
     p[44] = (uint8_t)node->algorithm;
     p[45] = node->fleet_reports ? 1U : 0U;
-    put_u32(p + 46, (uint32_t)node->change_penalty);
-    put_u32(p + 50, (uint32_t)node->track_tolerance_cells);
-    put_u32(p + 54, (uint32_t)node->takeoff_ticks);
+    sva_journal_put_u32(p + 46, (uint32_t)node->change_penalty);
+    sva_journal_put_u32(p + 50, (uint32_t)node->track_tolerance_cells);
+    sva_journal_put_u32(p + 54, (uint32_t)node->takeoff_ticks);
 }
 
 static uint32_t put_header(const sva_lcm_node_t* node, uint8_t* out)
@@ -193,10 +143,10 @@ static sva_lcm_journal_status_t check_header(sva_lcm_journal_t* self, const uint
                        "the header does not parse: not an sva_node journal (no \"SVAJ\")");
         return SVA_LCM_JOURNAL_ERR_FORMAT;
     }
-    const uint32_t format = get_u16(p + 4);
-    const uint32_t major = get_u16(p + 6);
-    const uint32_t minor = get_u16(p + 8);
-    const uint32_t patch = get_u16(p + 10);
+    const uint32_t format = sva_journal_get_u16(p + 4);
+    const uint32_t major = sva_journal_get_u16(p + 6);
+    const uint32_t minor = sva_journal_get_u16(p + 8);
+    const uint32_t patch = sva_journal_get_u16(p + 10);
     char theirs[96];
     char ours[96];
     (void)snprintf(theirs, sizeof theirs, "sva %lu.%lu.%lu (journal format %lu)",
@@ -217,7 +167,7 @@ static sva_lcm_journal_status_t check_header(sva_lcm_journal_t* self, const uint
         return SVA_LCM_JOURNAL_ERR_FORMAT;
     }
     for (int i = 0; i < 4; ++i) {
-        const uint64_t got = get_u64(p + NAMED_BYTES + (8 * i));
+        const uint64_t got = sva_journal_get_u64(p + NAMED_BYTES + (8 * i));
         if (got != fingerprint(i)) {
             (void)snprintf(self->message, sizeof self->message,
                            "the journal was written by %s with other wire types (%s "
@@ -232,8 +182,8 @@ static sva_lcm_journal_status_t check_header(sva_lcm_journal_t* self, const uint
     if (memcmp(p + 44, want + 44, SVA_LCM_JOURNAL_HEADER_BYTES - 44) != 0) {
         char a[128];
         char b[128];
-        options_text(a, sizeof a, p[44], p[45], (int32_t)get_u32(p + 46), (int32_t)get_u32(p + 50),
-                     (int32_t)get_u32(p + 54));
+        options_text(a, sizeof a, p[44], p[45], (int32_t)sva_journal_get_u32(p + 46),
+                     (int32_t)sva_journal_get_u32(p + 50), (int32_t)sva_journal_get_u32(p + 54));
         options_text(b, sizeof b, want[44], want[45], self->node->change_penalty,
                      self->node->track_tolerance_cells, self->node->takeoff_ticks);
         (void)snprintf(self->message, sizeof self->message,
@@ -272,40 +222,9 @@ static sva_lcm_journal_status_t start_fresh(sva_lcm_journal_t* self)
 static int read_record(sva_lcm_journal_t* self, uint32_t off, uint32_t* type, uint32_t* len,
                        char* why, size_t why_size)
 {
-    const uint32_t left = self->size - off;
-    if (left < (uint32_t)SVA_LCM_JOURNAL_RECORD_OVERHEAD) {
-        (void)snprintf(why, why_size, "short record: %lu bytes, a record has at least %d",
-                       (unsigned long)left, SVA_LCM_JOURNAL_RECORD_OVERHEAD);
-        return 0;
-    }
-    if (self->storage.read(self->storage.ctx, off, self->buf, PREFIX_BYTES) != 0) {
-        return -1;
-    }
-    *len = get_u32(self->buf);
-    *type = self->buf[LENGTH_BYTES];
-    if (*len > (uint32_t)SVA_LCM_JOURNAL_MAX_PAYLOAD) {
-        (void)snprintf(why, why_size, "bad length %lu (at most %d)", (unsigned long)*len,
-                       SVA_LCM_JOURNAL_MAX_PAYLOAD);
-        return 0;
-    }
-    const uint32_t total = *len + (uint32_t)SVA_LCM_JOURNAL_RECORD_OVERHEAD;
-    if (left < total) {
-        (void)snprintf(why, why_size, "short record: %lu of its %lu bytes", (unsigned long)left,
-                       (unsigned long)total);
-        return 0;
-    }
-    if (self->storage.read(self->storage.ctx, off + PREFIX_BYTES, self->buf + PREFIX_BYTES,
-                           *len + LENGTH_BYTES) != 0) {
-        return -1;
-    }
-    const uint32_t want = get_u32(self->buf + PREFIX_BYTES + *len);
-    const uint32_t got = crc_of(self->buf, PREFIX_BYTES + *len);
-    if (got != want) {
-        (void)snprintf(why, why_size, "bad CRC 0x%08lx, the record says 0x%08lx",
-                       (unsigned long)got, (unsigned long)want);
-        return 0;
-    }
-    return 1;
+    return (int)sva_journal_read_record(&self->storage, self->size, off, self->buf,
+                                        (uint32_t)SVA_LCM_JOURNAL_MAX_PAYLOAD, type, len, why,
+                                        why_size);
 }
 
 // --- replay ---------------------------------------------------------------------------
@@ -344,7 +263,7 @@ static sva_lcm_journal_status_t replay_record(sva_lcm_journal_t* self, uint32_t 
     sva_lcm_node_t* node = self->node;
     const uint8_t* payload = self->buf + PREFIX_BYTES;
     if ((type == (uint32_t)SVA_LCM_RECORD_BASE) && (len == (uint32_t)BASE_BYTES)) {
-        if (sva_lcm_node_set_plan_id(node, (int64_t)get_u64(payload)) != SVA_OK) {
+        if (sva_lcm_node_set_plan_id(node, (int64_t)sva_journal_get_u64(payload)) != SVA_OK) {
             (void)snprintf(self->message, sizeof self->message,
                            "record at byte %lu (base): a negative plan id", (unsigned long)off);
             return SVA_LCM_JOURNAL_ERR_REPLAY;
@@ -452,9 +371,7 @@ sva_lcm_journal_status_t sva_lcm_journal_init(sva_lcm_journal_t* self,
                                               const sva_lcm_storage_t* storage,
                                               sva_lcm_node_t* node)
 {
-    if ((self == NULL) || (storage == NULL) || (node == NULL) || (storage->open == NULL) ||
-        (storage->read == NULL) || (storage->append == NULL) || (storage->sync == NULL) ||
-        (storage->truncate == NULL) || (storage->replace == NULL)) {
+    if ((self == NULL) || (node == NULL) || !sva_journal_storage_complete(storage)) {
         return SVA_LCM_JOURNAL_ERR_ARGUMENT;
     }
     memset(self, 0, sizeof(*self));
@@ -526,7 +443,7 @@ static int compact(sva_lcm_journal_t* self)
 {
     const sva_lcm_node_t* node = self->node;
     uint8_t base[BASE_BYTES];
-    put_u64(base, (uint64_t)node->priv.plan_id);
+    sva_journal_put_u64(base, (uint64_t)node->priv.plan_id);
     uint32_t n = put_header(node, self->buf);
     n += put_record(self->buf + n, SVA_LCM_RECORD_BASE, base, BASE_BYTES);
     uint32_t records = 2U;

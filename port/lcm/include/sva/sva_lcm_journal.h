@@ -44,9 +44,9 @@
 /// one live mission's events and reports, never across missions.
 ///
 /// ## Storage
-/// sva_lcm_storage_t: function pointers over a caller-owned context, so that a board
-/// can keep the journal in flash. sva_lcm_journal_file_init() is the POSIX one (a file
-/// in a folder, fsync'd). Every function returns 0 on success.
+/// sva_lcm_storage_t (sva_journal.h's, shared with sva_can_node): function pointers over a
+/// caller-owned context, so that a board can keep the journal in flash. sva_lcm_journal_file_init()
+/// is the POSIX one (a file in a folder, fsync'd). Every function returns 0 on success.
 ///
 /// ## Memory, threads
 /// sva_lcm_journal_t holds one compaction buffer (SVA_LCM_JOURNAL_COMPACT_BYTES, ~7.7
@@ -59,6 +59,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "sva/sva_journal.h"
 #include "sva/sva_lcm.h"
 
 #ifdef __cplusplus
@@ -101,29 +102,10 @@ typedef enum {
     SVA_LCM_JOURNAL_ERR_REPLAY = -6,    ///< a record the node did not take again
 } sva_lcm_journal_status_t;
 
-/// Where the journal lives. Every function returns 0 on success, non-zero on failure
-/// (then `error`, when set, says why, e.g. strerror). `ctx` is the caller's.
-typedef struct {
-    void* ctx;
-    /// Opens the journal; *size = its length in bytes (0: there is none yet).
-    int (*open)(void* ctx, uint32_t* size);
-    /// Reads len bytes at offset (offset + len <= the length).
-    int (*read)(void* ctx, uint32_t offset, void* buf, uint32_t len);
-    /// Appends len bytes at the end (not yet durable).
-    int (*append)(void* ctx, const void* data, uint32_t len);
-    /// Makes everything appended durable.
-    int (*sync)(void* ctx);
-    /// Cuts the journal to size bytes, durably.
-    int (*truncate)(void* ctx, uint32_t size);
-    /// Replaces the whole journal by data, atomically and durably: after a crash the
-    /// journal is the old one or the new one (POSIX: a temporary file, fsync, rename,
-    /// fsync of the folder).
-    int (*replace)(void* ctx, const void* data, uint32_t len);
-    /// Closes it (NULL: nothing to do).
-    void (*close)(void* ctx);
-    /// Why the last call failed (NULL: no detail).
-    const char* (*error)(void* ctx);
-} sva_lcm_storage_t;
+/// Where the journal lives: the storage interface of the shared record layer
+/// (sva_journal.h): open, read, append, sync, truncate, replace, close, error, over a
+/// caller-owned ctx. Every function returns 0 on success.
+typedef sva_journal_storage_t sva_lcm_storage_t;
 
 /// What sva_lcm_journal_resume() found.
 typedef struct {
@@ -195,17 +177,9 @@ const char* sva_lcm_journal_status_name(sva_lcm_journal_status_t status);
 /// Longest folder path.
 #define SVA_LCM_JOURNAL_DIR_MAX 200
 
-/// The POSIX storage's context. Declare it beside the journal; read-only to users.
-typedef struct {
-    char path[SVA_LCM_JOURNAL_DIR_MAX + 32];
-    char temp[SVA_LCM_JOURNAL_DIR_MAX + 32];
-    char lock[SVA_LCM_JOURNAL_DIR_MAX + 32];
-    char dir[SVA_LCM_JOURNAL_DIR_MAX + 1];
-    int fd;
-    int lock_fd;
-    int err;  ///< errno of the last failure
-    char what[SVA_LCM_JOURNAL_DIR_MAX + 192];
-} sva_lcm_journal_file_t;
+/// The POSIX storage's context (sva_journal.h's, with the names above). Declare it
+/// beside the journal; read-only to users.
+typedef sva_journal_file_t sva_lcm_journal_file_t;
 
 /// Fills *storage with the POSIX file storage of folder `dir` (which must exist). open
 /// takes an exclusive lock (fcntl) on the lock file, so that two nodes never share a
