@@ -210,7 +210,7 @@ def test_node_rejects_bad_options():
     r = subprocess.run([NODE, "--algorithm", "simplex"], capture_output=True, text=True)
     assert r.returncode == 2 and "--algorithm" in r.stderr
     r = subprocess.run([NODE, "--algo", "simplex"], capture_output=True, text=True)
-    assert r.returncode == 2 and "sva_node: --algo: unknown name 'simplex'" in r.stderr
+    assert r.returncode == 2 and "sva_node: error: --algo: unknown name 'simplex'" in r.stderr
     r = subprocess.run([NODE, "--prefix", "P" * 60], capture_output=True, text=True)
     assert r.returncode == 2 and "--prefix" in r.stderr
     r = subprocess.run([NODE, "--track-tolerance", "-1"], capture_output=True, text=True)
@@ -252,13 +252,13 @@ def test_node_prints_user_text_escaped(tmp_path):
         return r.stderr.splitlines()
     r = subprocess.run([NODE, "--algorithm", HOSTILE], capture_output=True, text=True)
     assert r.returncode == 2
-    assert lines(r) == [f"sva_node: --algorithm: unknown name '{HOSTILE_SHOWN}' (sva, ga, hga, bfa, flow)"]
+    assert lines(r) == [f"sva_node: error: --algorithm: unknown name '{HOSTILE_SHOWN}' (sva, ga, hga, bfa, flow)"]
     r = subprocess.run([NODE, "--status-ms", HOSTILE], capture_output=True, text=True)
     assert r.returncode == 2
-    assert lines(r) == [f"sva_node: --status-ms: must be an integer in [10, 3600000], got '{HOSTILE_SHOWN}'"]
+    assert lines(r) == [f"sva_node: error: --status-ms: must be an integer in [10, 3600000], got '{HOSTILE_SHOWN}'"]
     r = subprocess.run([NODE, "--" + HOSTILE], capture_output=True, text=True)
     assert r.returncode == 2
-    assert lines(r)[0] == f"sva_node: unknown or incomplete option '--{HOSTILE_SHOWN}'"
+    assert lines(r)[0] == f"sva_node: error: unknown or incomplete option '--{HOSTILE_SHOWN}'"
     # a one-event log as provider: the start line names the channels of the prefix
     log = tmp_path / "one.lcmlog"
     out = lcm.EventLog(str(log), "w", overwrite=True)

@@ -91,6 +91,20 @@ def test_help_is_the_usage_on_stdout(name):
     assert "--version" in r.stdout
 
 
+@pytest.mark.parametrize("name", ALL)
+def test_an_unknown_option_is_one_error_line_and_status_2(name):
+    """Every program refuses an option it does not know the same way: one line on stderr
+    `<program>: error: ...` (after argparse's usage line for sva-tools), naming the option
+    in the nodes and the bridge, and exit status 2."""
+    r = run(command(name), "--no-such-option", "x")
+    assert r.returncode == 2, (r.returncode, r.stderr)
+    first = r.stderr.splitlines()[0] if not r.stderr.startswith("usage:") else \
+        [ln for ln in r.stderr.splitlines() if not ln.startswith(("usage:", " "))][0]
+    assert first.startswith(f"{name}: error: "), r.stderr
+    if name not in ("sva", "sva-tools"):  # these two name the command they did not find
+        assert "--no-such-option" in first, r.stderr
+
+
 def one_event_log(tmp_path):
     """An LCM log of one event on an unrelated channel: a file:// provider that lets
     sva_node start, print its start line and end (--exit-on-eof) with no network."""
@@ -112,7 +126,7 @@ def test_sva_node_takes_algo(option, tmp_path):
     r = run(node, option, "simplex")
     named = "--algorithm" if option == "--algorithm" else "--algo"
     assert r.returncode == 2
-    assert r.stderr == f"sva_node: {named}: unknown name 'simplex' (sva, ga, hga, bfa, flow)\n"
+    assert r.stderr == f"sva_node: error: {named}: unknown name 'simplex' (sva, ga, hga, bfa, flow)\n"
 
 
 def test_sva_node_help_names_algo():
@@ -130,7 +144,7 @@ def test_sva_can_node_takes_algo(option):
     assert "SVA_BFA_MAX_TARGETS" in r.stderr, r.stderr
     r = run(node, "--mission", BIG, option, "simplex")
     assert r.returncode == 2
-    assert r.stderr == f'sva_can_node: {option}: unknown algorithm "simplex" (sva, ga, hga, bfa, flow)\n'
+    assert r.stderr == f'sva_can_node: error: {option}: unknown algorithm "simplex" (sva, ga, hga, bfa, flow)\n'
 
 
 def test_sva_can_node_help_names_algo():

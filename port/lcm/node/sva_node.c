@@ -128,13 +128,14 @@ static int realtime_setup(long rt_priority, int lock_memory)
         memset(&sp, 0, sizeof sp);
         sp.sched_priority = (int)rt_priority;
         if (sched_setscheduler(0, SCHED_FIFO, &sp) != 0) {
-            fprintf(stderr, "sva_node: --rt-priority: sched_setscheduler(SCHED_FIFO, %ld): %s\n",
+            fprintf(stderr,
+                    "sva_node: error: --rt-priority: sched_setscheduler(SCHED_FIFO, %ld): %s\n",
                     rt_priority, strerror(errno));
             return 1;
         }
     }
     if (lock_memory && (mlockall(MCL_CURRENT | MCL_FUTURE) != 0)) {
-        fprintf(stderr, "sva_node: --mlock: mlockall: %s\n", strerror(errno));
+        fprintf(stderr, "sva_node: error: --mlock: mlockall: %s\n", strerror(errno));
         return 1;
     }
     return 0;
@@ -148,8 +149,8 @@ static bool integer_option(const char* name, const char* text, long lo, long hi,
     const long v = strtol(text, &end, 10);
     if ((errno != 0) || (end == text) || (*end != '\0') || (v < lo) || (v > hi)) {
         char shown[SHOWN_SIZE];
-        fprintf(stderr, "sva_node: %s: must be an integer in [%ld, %ld], got '%s'\n", name, lo, hi,
-                sva_text_escape(shown, sizeof shown, text));
+        fprintf(stderr, "sva_node: error: %s: must be an integer in [%ld, %ld], got '%s'\n", name,
+                lo, hi, sva_text_escape(shown, sizeof shown, text));
         return false;
     }
     *out = v;
@@ -162,8 +163,8 @@ static int state_dir_ready(const char* dir)
     char shown[SHOWN_SIZE];
     struct stat st;
     if ((stat(dir, &st) != 0) && ((errno != ENOENT) || (mkdir(dir, 0700) != 0))) {
-        fprintf(stderr, "sva_node: --state-dir %s: %s\n", sva_text_escape(shown, sizeof shown, dir),
-                strerror(errno));
+        fprintf(stderr, "sva_node: error: --state-dir %s: %s\n",
+                sva_text_escape(shown, sizeof shown, dir), strerror(errno));
         return 1;
     }
     return 0;
@@ -181,12 +182,12 @@ static int resume_state(bool reset)
     // The journal's lines name paths from --state-dir.
     (void)sva_text_escape(said, sizeof said, journal.message);
     if (st == SVA_LCM_JOURNAL_ERR_IO) {
-        fprintf(stderr, "sva_node: --state-dir: %s\n", said);
+        fprintf(stderr, "sva_node: error: --state-dir: %s\n", said);
         return 1;
     }
     if (st != SVA_LCM_JOURNAL_OK) {
         fprintf(stderr,
-                "sva_node: --state-dir: journal %s refused: %s; start with --state-reset to "
+                "sva_node: error: --state-dir: journal %s refused: %s; start with --state-reset to "
                 "discard it\n",
                 shown, said);
         return EXIT_STATE_REFUSED;
@@ -196,7 +197,7 @@ static int resume_state(bool reset)
                shown);
     } else {
         if (r.cut) {
-            fprintf(stderr, "sva_node: journal %s: %s\n", shown, said);
+            fprintf(stderr, "sva_node: journal %s: %s\n", shown, said);  // a warning
         }
         char live[96];
         if (node.priv.live_active) {
@@ -294,7 +295,7 @@ int main(int argc, char** argv)
             state_reset = true;
         } else {
             char shown[SHOWN_SIZE];
-            fprintf(stderr, "sva_node: unknown or incomplete option '%s'\n",
+            fprintf(stderr, "sva_node: error: unknown or incomplete option '%s'\n",
                     sva_text_escape(shown, sizeof shown, a));
             usage(stderr);
             return 2;
@@ -304,29 +305,31 @@ int main(int argc, char** argv)
     sva_algorithm_t algorithm = SVA_ALGO_SVA;
     if (sva_algorithm_from_name(algo_name, &algorithm) != SVA_OK) {
         char shown[SHOWN_SIZE];
-        fprintf(stderr, "sva_node: %s: unknown name '%s' (sva, ga, hga, bfa, flow)\n", algo_option,
-                sva_text_escape(shown, sizeof shown, algo_name));
+        fprintf(stderr, "sva_node: error: %s: unknown name '%s' (sva, ga, hga, bfa, flow)\n",
+                algo_option, sva_text_escape(shown, sizeof shown, algo_name));
         return 2;
     }
     if (strlen(prefix) > SVA_LCM_PREFIX_MAX) {
-        fprintf(stderr,
-                "sva_node: --prefix: %zu characters exceed %d (LCM channel names are <= 63)\n",
-                strlen(prefix), SVA_LCM_PREFIX_MAX);
+        fprintf(
+            stderr,
+            "sva_node: error: --prefix: %zu characters exceed %d (LCM channel names are <= 63)\n",
+            strlen(prefix), SVA_LCM_PREFIX_MAX);
         return 2;
     }
     char url[URL_SIZE];
     if (build_url(url_arg, url, sizeof url) != 0) {
-        fprintf(stderr, "sva_node: --url: longer than %d characters\n", URL_SIZE - 1);
+        fprintf(stderr, "sva_node: error: --url: longer than %d characters\n", URL_SIZE - 1);
         return 2;
     }
     if (state_reset && (state_dir == NULL)) {
-        fprintf(stderr, "sva_node: --state-reset needs --state-dir\n");
+        fprintf(stderr, "sva_node: error: --state-reset needs --state-dir\n");
         return 2;
     }
     sva_lcm_storage_t storage;
     if ((state_dir != NULL) &&
         (sva_lcm_journal_file_init(&journal_file, state_dir, &storage) != SVA_LCM_JOURNAL_OK)) {
-        fprintf(stderr, "sva_node: --state-dir: must be a folder path of 1 to %d characters\n",
+        fprintf(stderr,
+                "sva_node: error: --state-dir: must be a folder path of 1 to %d characters\n",
                 SVA_LCM_JOURNAL_DIR_MAX);
         return 2;
     }
@@ -337,13 +340,14 @@ int main(int argc, char** argv)
     lcm_t* lcm = lcm_create(url);
     if (lcm == NULL) {
         char shown[SHOWN_SIZE];
-        fprintf(stderr,
-                "sva_node: lcm_create(\"%s\") failed (for udpm: is there a multicast route?)\n",
-                sva_text_escape(shown, sizeof shown, url));
+        fprintf(
+            stderr,
+            "sva_node: error: lcm_create(\"%s\") failed (for udpm: is there a multicast route?)\n",
+            sva_text_escape(shown, sizeof shown, url));
         return 1;
     }
     if (sva_lcm_node_init(&node, lcm, prefix, algorithm) != SVA_OK) {
-        fprintf(stderr, "sva_node: cannot set up the node\n");
+        fprintf(stderr, "sva_node: error: cannot set up the node\n");
         lcm_destroy(lcm);
         return 1;
     }
@@ -371,7 +375,7 @@ int main(int argc, char** argv)
     if (sva_lcm_node_subscribe(&node) != SVA_OK) {
         char shown_fleet[SHOWN_SIZE];
         char shown_mission[SHOWN_SIZE];
-        fprintf(stderr, "sva_node: cannot subscribe to %s and %s\n",
+        fprintf(stderr, "sva_node: error: cannot subscribe to %s and %s\n",
                 sva_text_escape(shown_fleet, sizeof shown_fleet, node.channel_fleet),
                 sva_text_escape(shown_mission, sizeof shown_mission, node.channel_mission));
         sva_lcm_journal_close(&journal);
@@ -406,7 +410,7 @@ int main(int argc, char** argv)
             // The journal could not keep an input: nothing was answered for it. Exit as a
             // crash would; a restart resumes from the last record that was kept.
             char said[SHOWN_SIZE];
-            fprintf(stderr, "sva_node: journal: %s: stopping without an answer\n",
+            fprintf(stderr, "sva_node: error: journal: %s: stopping without an answer\n",
                     sva_text_escape(said, sizeof said, journal.message));
             rc = 1;
             break;
@@ -416,7 +420,7 @@ int main(int argc, char** argv)
             if (stop_requested || exit_on_eof) {
                 break;
             }
-            fprintf(stderr, "sva_node: lcm_handle_timeout failed\n");
+            fprintf(stderr, "sva_node: error: lcm_handle_timeout failed\n");
             rc = 1;
             break;
         }
