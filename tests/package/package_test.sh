@@ -39,12 +39,12 @@ readme_pkgconfig_command() {
     printf '%s\n' "$cmd"
 }
 
-# The README's embedding example: the first ```c block after "## Embedding the core".
+# The README's embedding example: the first ```c block (```c file=main.c) after "## Embedding the core".
 readme_example() {
     local out="$1"
     awk '/^## Embedding the core/ {s=1; next}
          s && /^## / {exit}
-         s && /^```c$/ {c=1; next}
+         s && /^```c( |$)/ {c=1; next}
          c && /^```$/ {exit}
          c {print}' "$src/README.md" > "$out"
     grep -q 'int main(void)' "$out" || fail "README.md: no complete C program (int main) in '## Embedding the core'"
