@@ -116,3 +116,33 @@ sva_journal_record_status_t sva_journal_read_record(const sva_journal_storage_t*
     }
     return SVA_JOURNAL_RECORD_GOOD;
 }
+
+void sva_journal_say_failed(const sva_journal_storage_t* storage, const char* call, char* message,
+                            size_t size)
+{
+    const char* why = (storage->error != NULL) ? storage->error(storage->ctx) : NULL;
+    (void)snprintf(message, size, "storage %s failed: %s", call, (why != NULL) ? why : "no detail");
+}
+
+int sva_journal_append(const sva_journal_storage_t* storage, const uint8_t* bytes, uint32_t n,
+                       uint32_t* size, uint32_t* records, char* message, size_t message_size)
+{
+    if (n > (UINT32_MAX - *size)) {
+        (void)snprintf(message, message_size, "append: the journal is full (%lu bytes)",
+                       (unsigned long)*size);
+        return -1;
+    }
+    if (storage->append(storage->ctx, bytes, n) != 0) {
+        sva_journal_say_failed(storage, "append", message, message_size);
+        // A record that went half-way is cut back now (a restart would cut it anyway).
+        (void)storage->truncate(storage->ctx, *size);
+        return -1;
+    }
+    if (storage->sync(storage->ctx) != 0) {
+        sva_journal_say_failed(storage, "sync", message, message_size);
+        return -1;
+    }
+    *size += n;
+    *records += 1U;
+    return 0;
+}

@@ -198,9 +198,7 @@ static sva_lcm_journal_status_t check_header(sva_lcm_journal_t* self, const uint
 
 static sva_lcm_journal_status_t io_failed(sva_lcm_journal_t* self, const char* call)
 {
-    const char* why = (self->storage.error != NULL) ? self->storage.error(self->storage.ctx) : NULL;
-    (void)snprintf(self->message, sizeof self->message, "storage %s failed: %s", call,
-                   (why != NULL) ? why : "no detail");
+    sva_journal_say_failed(&self->storage, call, self->message, sizeof self->message);
     return SVA_LCM_JOURNAL_ERR_IO;
 }
 
@@ -485,24 +483,8 @@ int sva_lcm_journal_input(void* user, sva_lcm_input_t kind, bool restarts, const
         return -1;
     }
     const uint32_t n = put_record(self->buf, type, data, (uint32_t)size);
-    if (n > (UINT32_MAX - self->size)) {
-        (void)snprintf(self->message, sizeof self->message,
-                       "append: the journal is full (%lu bytes)", (unsigned long)self->size);
-        return -1;
-    }
-    if (self->storage.append(self->storage.ctx, self->buf, n) != 0) {
-        (void)io_failed(self, "append");
-        // A record that went half-way is cut back now (a restart would cut it anyway).
-        (void)self->storage.truncate(self->storage.ctx, self->size);
-        return -1;
-    }
-    if (self->storage.sync(self->storage.ctx) != 0) {
-        (void)io_failed(self, "sync");
-        return -1;
-    }
-    self->size += n;
-    self->records += 1U;
-    return 0;
+    return sva_journal_append(&self->storage, self->buf, n, &self->size, &self->records,
+                              self->message, sizeof self->message);
 }
 
 void sva_lcm_journal_close(sva_lcm_journal_t* self)

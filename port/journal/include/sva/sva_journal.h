@@ -91,6 +91,18 @@ uint32_t sva_journal_crc(const uint8_t* p, uint32_t n);
 /// the record's size. O(len), allocates nothing.
 uint32_t sva_journal_put_record(uint8_t* out, uint8_t type, const void* payload, uint32_t len);
 
+/// Writes "storage CALL failed: WHY" (WHY from storage->error, or "no detail") into
+/// message[0..size). Allocates nothing.
+void sva_journal_say_failed(const sva_journal_storage_t* storage, const char* call, char* message,
+                            size_t size);
+
+/// Appends the n bytes at `bytes` (whole records) to a journal of *size bytes and syncs
+/// them: 0 with *size advanced by n and *records by one; -1 with message set when the
+/// journal would pass 4 GiB or the storage's append or sync failed (an append that went
+/// half-way is cut back to *size). O(n), allocates nothing.
+int sva_journal_append(const sva_journal_storage_t* storage, const uint8_t* bytes, uint32_t n,
+                       uint32_t* size, uint32_t* records, char* message, size_t message_size);
+
 /// Reads the record at `offset` of a journal of `size` bytes into buf, which must hold
 /// max_payload + SVA_JOURNAL_RECORD_OVERHEAD bytes (the payload is at
 /// buf + SVA_JOURNAL_PREFIX_BYTES). Returns _GOOD (*type, *len set), _BAD for a short
