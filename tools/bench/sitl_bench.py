@@ -302,8 +302,8 @@ def run_results(args):
     print(f"arrival slack p50 {p(slack, 50)} s, p1 {p(slack, 1)} s over {len(slack)} visits; late "
           f"arrivals {late}")
     print(f"loss to replan p50 {p(lat_replan, 50)} s, p99 {p(lat_replan, 99)} s; loss to re-upload "
-          f"p50 {p(lat_upload, 50)} s, p99 {p(lat_upload, 99)} s (vehicle time, {len(lat_upload)} losses "
-          f"with an upload)")
+          f"p50 {p(lat_upload, 50)} s, p99 {p(lat_upload, 99)} s (vehicle time, {len(lat_upload)} "
+          f"loss{'' if len(lat_upload) == 1 else 'es'} with an upload)")
     return 0
 
 
