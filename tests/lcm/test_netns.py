@@ -381,15 +381,18 @@ def test_malformed_traffic_and_flood(node):
     assert node.wait(lambda: len(node.plans) == plans0 + valid)
     assert [p.fleet_revision for p in node.plans[plans0:]] == [1000 + i for i in range(99, 1000, 100)]
     rss1 = rss_kib(node.proc.pid)
-    for k in range(3):  # one flood of 1000 at a time, as above
+    after = []
+    for k in range(4):  # one flood of 1000 at a time, as above
         flood(5000 + 1000 * k)
         s = node.fresh_status()
         assert sum(s.rejected) == sum(want) + 2000 + 1000 * k
-    rss2 = rss_kib(node.proc.pid)
-    # LCM's receive pool follows the deepest burst (its high-water mark, kept for reuse);
-    # a leak of even 1 KiB per message would add ~3 MiB over these 3000 messages.
-    assert rss2 - rss1 <= 1536, (rss0, rss1, rss2)
-    print(f"node RSS KiB: before floods {rss0}, after 1 {rss1}, after 4 {rss2}")
+        after.append(rss_kib(node.proc.pid))
+    # LCM's receive pool follows the deepest burst (its high-water mark, kept for reuse):
+    # it may grow in any of the first floods, more on a loaded machine, where the node
+    # falls further behind. A leak grows every flood: even 1 KiB per message adds 2 MiB
+    # over the last two floods, which the pool's one-off growth does not explain.
+    assert after[-1] - after[-3] <= 1024, (rss0, rss1, after)
+    print(f"node RSS KiB: before floods {rss0}, after 1 {rss1}, after 2 to 5 {after}")
 
     # and the node still plans a valid mission end to end
     r = send(node.prefix, SMALL)
