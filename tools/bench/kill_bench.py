@@ -90,6 +90,8 @@ def main(argv=None) -> int:
                          f"(default {BUNDLED})")
     ap.add_argument("--algos", default="sva,flow", help="algorithms (default sva,flow)")
     ap.add_argument("--out", help="also write the figures and every failure as JSON")
+    ap.add_argument("--results", action="store_true",
+                    help="also write docs/results/live.kill.md (tools/bench/results.py)")
     args = ap.parse_args(argv)
     if not os.environ.get("SVA_LCM_NETNS"):
         if os.geteuid() != 0:
@@ -171,6 +173,20 @@ def main(argv=None) -> int:
                        "round_trip_us": round_trips,
                        "failures": failures, "elapsed_s": round(elapsed, 1)}, f, indent=1)
     ok = not failures and total["survived"] == total["kills"] == (total["identical"] * args.kills)
+    if args.results and ok:
+        cmd = ".venv/bin/python tools/bench/kill_bench.py --results"
+        if argv:
+            cmd += " " + " ".join(a for a in argv if a != "--results")
+        intro = ("sva_node killed (SIGKILL) at seeded moments of `sva-tools sim --via lcm` "
+                 "flights and started again on its journal (`--state-dir`); a flight is "
+                 "identical when its plans, replans, tracks and outcomes equal the "
+                 "uninterrupted flight's, times and revisions aside (docs/lcm.md, \"Crash "
+                 f"safety\"). {elapsed:.0f} s.")
+        body = intro + "\n\n" + "\n".join(ln for ln in lines[1:]  # results.py writes the machine
+                                           if not ln.startswith("failures:"))
+        subprocess.run([sys.executable, os.path.join(ROOT, "tools", "bench", "results.py"), "write",
+                        "live.kill", "--title", "Crash safety of the LCM node", "--command", cmd],
+                       input=body + "\n", text=True, check=True)
     return 0 if ok else 1
 
 
