@@ -146,3 +146,18 @@ int sva_journal_append(const sva_journal_storage_t* storage, const uint8_t* byte
     *records += 1U;
     return 0;
 }
+
+int sva_journal_cut_torn(const sva_journal_storage_t* storage, uint32_t offset, const char* why,
+                         uint32_t* size, uint32_t* dropped, char* message, size_t message_size)
+{
+    *dropped = *size - offset;
+    if (storage->truncate(storage->ctx, offset) != 0) {
+        sva_journal_say_failed(storage, "truncate", message, message_size);
+        return -1;
+    }
+    (void)snprintf(message, message_size,
+                   "torn or corrupt record at byte %lu (%s): cut there, %lu bytes dropped",
+                   (unsigned long)offset, why, (unsigned long)*dropped);
+    *size = offset;
+    return 0;
+}

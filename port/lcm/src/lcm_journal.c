@@ -319,15 +319,10 @@ static sva_lcm_journal_status_t replay(sva_lcm_journal_t* self, uint32_t off,
         if (got == 0) {
             out->cut = true;
             out->cut_offset = off;
-            out->cut_bytes = self->size - off;
-            (void)snprintf(self->message, sizeof self->message,
-                           "torn or corrupt record at byte %lu (%s): cut there, %lu bytes "
-                           "dropped",
-                           (unsigned long)off, why, (unsigned long)out->cut_bytes);
-            if (self->storage.truncate(self->storage.ctx, off) != 0) {
-                return io_failed(self, "truncate");
+            if (sva_journal_cut_torn(&self->storage, off, why, &self->size, &out->cut_bytes,
+                                     self->message, sizeof self->message) != 0) {
+                return SVA_LCM_JOURNAL_ERR_IO;
             }
-            self->size = off;
             break;
         }
         const sva_lcm_journal_status_t st = replay_record(self, off, type, len);

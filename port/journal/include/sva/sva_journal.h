@@ -103,6 +103,14 @@ void sva_journal_say_failed(const sva_journal_storage_t* storage, const char* ca
 int sva_journal_append(const sva_journal_storage_t* storage, const uint8_t* bytes, uint32_t n,
                        uint32_t* size, uint32_t* records, char* message, size_t message_size);
 
+/// The journal rule for a torn or corrupt record (sva_journal_read_record's _BAD, `why`)
+/// at `offset` of a journal of *size bytes: it and everything after it are cut. 0 with
+/// *size set to offset, *dropped to the bytes cut and message "torn or corrupt record at
+/// byte OFFSET (WHY): cut there, N bytes dropped"; -1 with message naming the storage's
+/// failed truncate. Allocates nothing.
+int sva_journal_cut_torn(const sva_journal_storage_t* storage, uint32_t offset, const char* why,
+                         uint32_t* size, uint32_t* dropped, char* message, size_t message_size);
+
 /// Reads the record at `offset` of a journal of `size` bytes into buf, which must hold
 /// max_payload + SVA_JOURNAL_RECORD_OVERHEAD bytes (the payload is at
 /// buf + SVA_JOURNAL_PREFIX_BYTES). Returns _GOOD (*type, *len set), _BAD for a short
