@@ -210,7 +210,7 @@ size_t sva_mavlink_telemetry_requests(sva_mavlink_telemetry_t* self, int64_t now
         self->requests_sent++;
         more = more || self->stream_tries[k] < SVA_MAVLINK_STREAM_TRIES;
     }
-    self->streams_pending = more || n == capacity;  // out full: the rest next round
+    self->streams_pending = more || n == capacity;  // out is full: the others are asked for later
     self->streams_due_host_ms = now_host_ms + SVA_MAVLINK_STREAM_RETRY_MS;
     return n;
 }

@@ -151,7 +151,7 @@ def run(args) -> int:
         host = f"[{args.host}]" if ":" in args.host else args.host
         hint = " (open it with ?token=TOKEN)" if args.token else ""
         if args.host in WILDCARDS and not args.allow_host:
-            hint += " (from elsewhere, name this machine with --allow-host)"
+            hint += " (from elsewhere, give the name browsers use for the server with --allow-host)"
         print(f"sva-tools ground: serving http://{host}:{port}/{hint} ({ground.source})",
               file=sys.stderr, flush=True)
     try:

@@ -32,7 +32,7 @@ BURST_WINDOW_S = 10.0
 
 
 def is_loopback(host: str) -> bool:
-    """True for the names and addresses that only this machine can reach."""
+    """True for the names and addresses that reach only the host they are used on."""
     name = host.strip("[]").lower()
     if name == "localhost":
         return True
