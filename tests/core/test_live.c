@@ -23,10 +23,11 @@ static sva_plan_t plan;
 
 // Two UAVs at the depot; T1 needs both at (5, 0) in [10, 20]; T2 at (5, 5) and T3 at
 // (1, 6) in [30, 40] need one each. Plan in force: UAV 1 T1 then T2, UAV 2 T1 then T3.
-static void start_hand(int32_t change_penalty)
+static void start_hand_taking_off(int32_t change_penalty, int32_t takeoff_ticks)
 {
     sva_mission_init(&mission);
     mission.change_penalty = change_penalty;
+    mission.takeoff_ticks = takeoff_ticks;
     mission.uav_count = 2U;
     for (uint16_t u = 0U; u < 2U; u++) {
         mission.uavs[u] = (sva_uav_t){.id = (int32_t)u + 1, .x = 0, .y = 0, .fuel = 100};
@@ -42,6 +43,11 @@ static void start_hand(int32_t change_penalty)
     sva_diag_t diag;
     TEST_ASSERT_EQUAL_INT(SVA_OK, sva_live_init(&live, &mission, &plan, &diag));
     TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
+}
+
+static void start_hand(int32_t change_penalty)
+{
+    start_hand_taking_off(change_penalty, 0);
 }
 
 static void apply_ok(sva_event_t e)
@@ -273,10 +279,7 @@ void test_uav_back_and_fuel(void)
 // UAV that leaves at once arrives at 62 and one that takes off for k ticks at 62 + k.
 static sva_live_result_t home_and_retasked(int32_t takeoff)
 {
-    start_hand(0);
-    mission.takeoff_ticks = takeoff;
-    sva_diag_t diag;
-    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_live_init(&live, &mission, &plan, &diag));
+    start_hand_taking_off(0, takeoff);
     sva_event_t added = test_event_at(SVA_EVENT_TARGET_ADDED, 60);
     added.target = (sva_target_t){9, 2, 0, 64, 70, 1};
     apply_ok(added);
@@ -301,10 +304,7 @@ void test_takeoff_on_the_ground_only(void)
     TEST_ASSERT_EQUAL_INT(0, r.plan->covered);
 
     // On its way home at 45 (T2 left at 40; 5 of 10 cells flown): no take-off.
-    start_hand(0);
-    mission.takeoff_ticks = 7;
-    sva_diag_t diag;
-    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_live_init(&live, &mission, &plan, &diag));
+    start_hand_taking_off(0, 7);
     int32_t x = 0;
     int32_t y = 0;
     int32_t f = 0;
