@@ -69,7 +69,6 @@ class Craft:
         self.missions: List[dict] = []         # every read-back: {utc_ms, items}
         self.holds: List[dict] = []
         self.starts: List[dict] = []           # {utc_ms, version, was_armed, mode, started_utc_ms}
-        self.restarts: List[Optional[float]] = []  # utc_ms of starts again after a disarm on the ground
         self.reenter_auto = False              # a start from the ground in AUTO: leave AUTO first
         self.texts: List[list] = []
         self.next_try = 0.0
@@ -168,11 +167,8 @@ class Craft:
             sp.clock.on_system_time(m.time_unix_usec, m.time_boot_ms)
         elif kind == "HEARTBEAT":
             if m.autopilot == 3:  # MAV_AUTOPILOT_ARDUPILOTMEGA: the vehicle, not a GCS
-                was_armed = self.armed
                 self.armed = bool(m.base_mode & MAV_MODE_FLAG_SAFETY_ARMED)
                 self.mode = m.custom_mode
-                if was_armed and not self.armed:
-                    self._disarmed()
         elif kind == "MISSION_CURRENT":
             self._current(m.seq)
         elif kind == "STATUSTEXT":
@@ -204,19 +200,6 @@ class Craft:
                     self.current_item = items[seq]
                     self.current_wp = items[seq - 1] if seq >= 1 else None
                     self.current_command = self.current_item.command
-
-    def _disarmed(self) -> None:
-        """A vehicle that disarms before its take-off item is done (ArduCopter disarms
-        a copter left on the ground, e.g. when its mission was replaced while it armed)
-        still holds a mission with work: the operator starts it again, as for a new one."""
-        last = self.uploads[-1] if self.uploads else None
-        has_work = last is not None and last.get("items") is not None and \
-            not last.get("returns_only", True)
-        if has_work and not self.start_wanted and self.current is not None and self.current <= 1:
-            self.start_wanted = True
-            self.start_asked_host = None
-            self.start_seen = False
-            self.restarts.append(self.utc_ms())
 
     def _current(self, seq: int) -> None:
         """The vehicle began item seq. The item it left is the one it began under the

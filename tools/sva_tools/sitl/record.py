@@ -54,7 +54,6 @@ def record(fl) -> dict:
                      "holds": [_hold(h, t0) for h in c.holds if h["ended_utc_ms"] is not None],
                      "uploads": [_times(u, t0) for u in c.uploads],
                      "starts": [_times(a, t0) for a in c.starts],
-                     "restarts": [_ms(a, t0) for a in c.restarts],
                      "pauses": [_times(x, t0) for x in c.pauses],
                      "missions": [_times(m, t0) for m in c.missions],
                      "spells": c.spells,
