@@ -252,9 +252,8 @@ class NodePlanner:
         self.subs = []
 
     def _start(self, mission_doc: dict) -> dict:
-        doc = {k: v for k, v in mission_doc.items() if k not in ("change_penalty", "takeoff_ticks")}
         try:
-            self.name, fleet, mission = wire.mission_messages(doc, self.rev, self.rev)
+            self.name, fleet, mission = wire.mission_messages(mission_doc, self.rev, self.rev)
         except wire.InputError as e:
             raise NodeError(f"mission: {e}", 2) from None
         t0 = time.perf_counter_ns()

@@ -138,14 +138,20 @@ def frame_document(w) -> dict | None:
             "cell_m": w.cell_cm / 100, "tick_s": w.tick_ms / 1000, "t0": t0}
 
 
+# Mission keys that sva_node takes as options, not in mission_t.
+NODE_OPTION_KEYS = ("change_penalty", "takeoff_ticks")
+
+
 def mission_messages(doc: Any, fleet_revision: int, mission_revision: int):
     """(name, fleet_state_t, mission_t) from a SPEC section 3 mission document.
 
     Checks the file's shape (keys, types, list lengths against the wire arrays);
-    value rules are the node's and the core's to report."""
+    value rules are the node's and the core's to report. A live mission's
+    change_penalty and takeoff_ticks are not on the wire: they are sva_node's options
+    (--change-penalty, --takeoff-ticks), so they are left out here."""
     t = types()
     _keys(doc, {"name", "depot", "ticks_per_cell", "hover_fuel", "overlap_percent", "uavs",
-                "targets", "frame"}, "")
+                "targets", "frame", *NODE_OPTION_KEYS}, "")
     name = doc.get("name")
     if not isinstance(name, str):
         raise InputError("name: missing key or not a string")

@@ -202,9 +202,8 @@ class Ground:
     def publish_mission(self, mission_doc: dict) -> str:
         """Publishes the fleet and the mission (one revision); returns its name. The
         mission's takeoff_ticks is the node's --takeoff-ticks (mission_t has none)."""
-        doc = {k: v for k, v in mission_doc.items() if k != "takeoff_ticks"}
         try:
-            name, fleet, mission = wire.mission_messages(doc, self.rev, self.rev)
+            name, fleet, mission = wire.mission_messages(mission_doc, self.rev, self.rev)
         except wire.InputError as e:
             raise GroundError(f"mission: {e}", 2) from None
         self.lc.publish(self.prefix + "FLEET", fleet.encode())
