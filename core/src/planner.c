@@ -1,4 +1,4 @@
-// planner.c -- the public entry points: planner set-up and sva_plan().
+// planner.c -- the public entry points: planner set-up, sva_plan() and sva_replan().
 #include "flow/flow.h"
 #include "paper/paper.h"
 
@@ -14,7 +14,6 @@ sva_status_t sva_planner_init(sva_planner_t* self)
     self->on_transport_user = NULL;
     self->flow_max_work = (uint32_t)SVA_FLOW_MAX_WORK;
     self->flow_replan_work = (uint32_t)SVA_FLOW_REPLAN_WORK;
-    self->standing = NULL;
     return SVA_OK;
 }
 
@@ -32,6 +31,13 @@ static void plan_clear(sva_plan_t* plan, sva_algorithm_t algorithm)
 
 sva_status_t sva_plan(sva_planner_t* self, const sva_mission_t* mission, sva_algorithm_t algorithm,
                       sva_plan_t* plan, sva_diag_t* diag)
+{
+    return sva_replan(self, mission, algorithm, NULL, plan, diag);
+}
+
+sva_status_t sva_replan(sva_planner_t* self, const sva_mission_t* mission,
+                        sva_algorithm_t algorithm, const sva_plan_t* standing, sva_plan_t* plan,
+                        sva_diag_t* diag)
 {
     SVA_ASSERT((self != NULL) && (mission != NULL) && (plan != NULL));
     SVA_ASSERT((unsigned)algorithm < (unsigned)SVA_ALGO_COUNT_);
@@ -59,7 +65,7 @@ sva_status_t sva_plan(sva_planner_t* self, const sva_mission_t* mission, sva_alg
         st = sva_run_bfa(priv, mission, plan, diag);
         break;
     case SVA_ALGO_FLOW:
-        st = sva_run_flow(self, mission, plan);
+        st = sva_run_flow(self, mission, standing, plan);
         break;
     case SVA_ALGO_COUNT_:
     default:

@@ -15,7 +15,7 @@
 #include <time.h>
 
 #include <jansson.h>
-#include <sva/sva.h>
+#include <sva/sva_live.h>
 #include <sva/sva_json.h>
 #include <sva/sva_text.h>
 

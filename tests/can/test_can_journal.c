@@ -22,7 +22,7 @@
 
 #include "can_journal.h"
 #include "can_live.h"
-#include "sva/sva.h"
+#include "sva/sva_live.h"
 #include "sva/sva_can.h"
 #include "sva/sva_journal.h"
 

@@ -1,6 +1,6 @@
 // Reachable edges of the core that the other unit tests do not reach (found by
-// scripts/coverage.sh): diagnostics of "no error" and out-of-range enums, algorithm
-// names out of range, a cluster larger than SVA_MAX_TP_SINKS (solved in chunks), and
+// scripts/coverage.sh): diagnostics of "no error", the range check, out-of-range enums,
+// algorithm names out of range, a cluster larger than SVA_MAX_TP_SINKS (solved in chunks), and
 // (max profile) needs whose least common multiple is too large for the tableau's
 // per-unit cost scaling, which then falls back to unscaled costs.
 #include <stddef.h>
@@ -28,6 +28,25 @@ void test_cleared_diag_formats_as_ok(void)
     const size_t n = sva_diag_format(&d, buf, sizeof buf);
     TEST_ASSERT_EQUAL_STRING("mission: ok", buf);
     TEST_ASSERT_EQUAL_INT(strlen("mission: ok"), n);
+}
+
+// sva_in_range, the range check ports share with the core: the bound broken is named.
+void test_in_range_names_the_bound(void)
+{
+    sva_diag_t d;
+    sva_diag_clear(&d);
+    TEST_ASSERT_TRUE(sva_in_range(&d, SVA_FIELD_UAV_FUEL, 2, 5, 0, 10, "LIMIT"));
+    TEST_ASSERT_EQUAL_INT(SVA_RULE_NONE, d.rule);
+    TEST_ASSERT_FALSE(sva_in_range(&d, SVA_FIELD_UAV_FUEL, 2, -1, 0, 10, "LIMIT"));
+    TEST_ASSERT_EQUAL_INT(SVA_RULE_MIN, d.rule);
+    TEST_ASSERT_EQUAL_INT(0, d.limit);
+    TEST_ASSERT_NULL(d.limit_name);
+    TEST_ASSERT_FALSE(sva_in_range(&d, SVA_FIELD_UAV_FUEL, 2, 11, 0, 10, "LIMIT"));
+    TEST_ASSERT_EQUAL_INT(SVA_RULE_MAX, d.rule);
+    TEST_ASSERT_EQUAL_INT(10, d.limit);
+    TEST_ASSERT_EQUAL_INT(2, d.index);
+    TEST_ASSERT_EQUAL_STRING("LIMIT", d.limit_name);
+    TEST_ASSERT_FALSE(sva_in_range(NULL, SVA_FIELD_UAV_FUEL, 2, 11, 0, 10, NULL));
 }
 
 void test_out_of_range_enums(void)

@@ -13,7 +13,7 @@
 #include "live_gen.h"
 #include "mission_gen.h"
 #include "spec_checker.h"
-#include "sva/sva.h"
+#include "sva/sva_live.h"
 
 static sva_live_t live;
 static sva_live_t before;
@@ -636,4 +636,45 @@ void test_random_live_missions(void)
     printf("random live missions (seed %llu): %d replans checked\n", (unsigned long long)seed,
            replans);
     TEST_ASSERT_TRUE(replans > 50);
+}
+
+// sva_plan_changes: route r held against route r; a route the other plan lacks is empty;
+// the count is exact when the list is cut at cap.
+void test_plan_changes_lists_visits_one_way(void)
+{
+    // Two plans of the live struct's, as scratch (the target's memory holds no more).
+    sva_plan_t* a = &live.plan;
+    sva_plan_t* b = &live.previous;
+    memset(a, 0, sizeof *a);
+    memset(b, 0, sizeof *b);
+    a->route_count = 3U;
+    a->routes[0].target_count = 3U;
+    a->routes[0].targets[0] = 1U;
+    a->routes[0].targets[1] = 2U;
+    a->routes[0].targets[2] = 3U;
+    a->routes[1].target_count = 1U;
+    a->routes[1].targets[0] = 4U;
+    a->routes[2].target_count = 1U;
+    a->routes[2].targets[0] = 5U;
+    b->route_count = 2U;
+    b->routes[0].target_count = 2U;
+    b->routes[0].targets[0] = 3U;
+    b->routes[0].targets[1] = 1U;
+    b->routes[1].target_count = 1U;
+    b->routes[1].targets[0] = 5U;
+    sva_visit_t v[3];
+    memset(v, 0xff, sizeof v);
+    TEST_ASSERT_EQUAL_UINT32(3U, sva_plan_changes(a, b, v, 2U));
+    TEST_ASSERT_EQUAL_UINT16(0U, v[0].route);
+    TEST_ASSERT_EQUAL_UINT16(2U, v[0].target);
+    TEST_ASSERT_EQUAL_UINT16(1U, v[1].route);
+    TEST_ASSERT_EQUAL_UINT16(4U, v[1].target);
+    TEST_ASSERT_EQUAL_UINT16(0xffffU, v[2].route);  // past cap: untouched
+    TEST_ASSERT_EQUAL_UINT32(3U, sva_plan_changes(a, b, v, 3U));
+    TEST_ASSERT_EQUAL_UINT16(2U, v[2].route);
+    TEST_ASSERT_EQUAL_UINT16(5U, v[2].target);
+    TEST_ASSERT_EQUAL_UINT32(1U, sva_plan_changes(b, a, v, 3U));
+    TEST_ASSERT_EQUAL_UINT16(1U, v[0].route);
+    TEST_ASSERT_EQUAL_UINT16(5U, v[0].target);
+    TEST_ASSERT_EQUAL_UINT32(0U, sva_plan_changes(a, a, NULL, 0U));
 }

@@ -1,5 +1,5 @@
 // test_live_flow.c -- flow honours a live mission's change_penalty (docs/SPEC.md section
-// 12.4): given the plan in force carried over (sva_planner_t.standing) and a penalty,
+// 12.4): given the plan in force carried over (sva_replan()'s standing plan) and a penalty,
 // flow keeps the standing visits that still fit and adds what it can; without either it
 // plans as sva_plan() always has. Under its replan budget (flow_replan_work) it covers
 // as many targets as with its full budget.
@@ -14,7 +14,7 @@
 #include "live_gen.h"
 #include "mission_gen.h"
 #include "spec_checker.h"
-#include "sva/sva.h"
+#include "sva/sva_live.h"
 
 static sva_live_t live;
 static sva_planner_t planner;
@@ -155,7 +155,6 @@ static void pop_up(int32_t change_penalty, sva_live_result_t* r)
     if (spec_check_plan(r->residual, r->plan, msg, sizeof msg) != 0) {
         SVA_TEST_FAIL("replan breaks SPEC: %s", msg);
     }
-    TEST_ASSERT_NULL(planner.standing);  // set for the replan's sva_plan() only
 }
 
 void test_pop_up_without_penalty_reshuffles(void)
@@ -195,9 +194,8 @@ void test_no_penalty_standing_only_seeds(void)
     pop_up(0, &r);
     (void)carry(r.residual, r.previous);
     TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&planner, r.residual, SVA_ALGO_FLOW, &fresh, NULL));
-    planner.standing = &carried;
-    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&planner, r.residual, SVA_ALGO_FLOW, &again, NULL));
-    planner.standing = NULL;
+    TEST_ASSERT_EQUAL_INT(SVA_OK,
+                          sva_replan(&planner, r.residual, SVA_ALGO_FLOW, &carried, &again, NULL));
     TEST_ASSERT_TRUE(fresh.stats.optimal);
     TEST_ASSERT_TRUE(again.stats.optimal);
     TEST_ASSERT_EQUAL_INT(fresh.covered, again.covered);
@@ -208,9 +206,8 @@ void test_no_penalty_standing_only_seeds(void)
     TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&planner, &mission, SVA_ALGO_FLOW, &again, NULL));
     TEST_ASSERT_EQUAL_MEMORY(&again, &fresh, sizeof(fresh));
     // With both, the standing visits stay (they all fit) and target 5 joins them.
-    planner.standing = &carried;
-    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&planner, &mission, SVA_ALGO_FLOW, &again, NULL));
-    planner.standing = NULL;
+    TEST_ASSERT_EQUAL_INT(SVA_OK,
+                          sva_replan(&planner, &mission, SVA_ALGO_FLOW, &carried, &again, NULL));
     TEST_ASSERT_EQUAL_INT(fresh.covered, again.covered);
     TEST_ASSERT_EQUAL_INT(1, changes(&carried, &again));
     TEST_ASSERT_TRUE(keeps_all(&carried, &again));
@@ -257,10 +254,8 @@ void test_random_large_penalty(void)
             const int carried_covered = carry(r.residual, r.previous);
             const int forced = changes(r.previous, &carried);
             // flow's own plan of the residual mission with the carried plan standing.
-            planner.standing = &carried;
-            TEST_ASSERT_EQUAL_INT(SVA_OK,
-                                  sva_plan(&planner, r.residual, SVA_ALGO_FLOW, &fresh, NULL));
-            planner.standing = NULL;
+            TEST_ASSERT_EQUAL_INT(
+                SVA_OK, sva_replan(&planner, r.residual, SVA_ALGO_FLOW, &carried, &fresh, NULL));
             char msg[200];
             if (spec_check_plan(r.residual, &fresh, msg, sizeof msg) != 0) {
                 SVA_TEST_FAIL("seed %llu mission %d event %d: %s", (unsigned long long)seed, n, k,
@@ -351,10 +346,8 @@ void test_random_replan_budget_keeps_coverage(void)
             TEST_ASSERT_EQUAL_INT(SVA_OK,
                                   sva_live_replan(&live, &planner, SVA_ALGO_FLOW, &r, NULL));
             (void)carry(r.residual, r.previous);
-            planner.standing = &carried;
-            TEST_ASSERT_EQUAL_INT(SVA_OK,
-                                  sva_plan(&planner, r.residual, SVA_ALGO_FLOW, &fresh, NULL));
-            planner.standing = NULL;
+            TEST_ASSERT_EQUAL_INT(
+                SVA_OK, sva_replan(&planner, r.residual, SVA_ALGO_FLOW, &carried, &fresh, NULL));
             TEST_ASSERT_EQUAL_INT(SVA_OK, sva_plan(&full, r.residual, SVA_ALGO_FLOW, &again, NULL));
             char msg[200];
             if (spec_check_plan(r.residual, &fresh, msg, sizeof msg) != 0) {

@@ -7,7 +7,7 @@
 
 #include "unity.h"
 
-#include "sva/sva.h"
+#include "sva/sva_live.h"
 
 static sva_live_t live;
 static sva_live_t before;

@@ -6,7 +6,7 @@
 #include <stdint.h>
 
 #include "mission_gen.h"
-#include "sva/sva.h"
+#include "sva/sva_live.h"
 
 /// Small random live missions (8 targets, 4 UAVs, need up to 2, fuel 30 to 80) whose
 /// windows start from tick 12, so events come before the visits.

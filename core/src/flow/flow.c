@@ -414,7 +414,8 @@ static int64_t pooled_first(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     return pooled;
 }
 
-sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* plan)
+sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva_plan_t* standing,
+                          sva_plan_t* plan)
 {
     sva_planner_priv_t* priv = &self->priv;
     sva_flow_work_t* w = &priv->flow;
@@ -422,12 +423,12 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, sva_plan_
     w->has_inc = false;
     // A replan starts from the standing plan, under its own budget.
 #if SVA_FLOW_STANDING
-    const bool replan = sva_flow_standing_begin(priv, m, plan, self->standing);
+    const bool replan = sva_flow_standing_begin(priv, m, plan, standing);
 #else
     const bool replan = false;  // the standing plan is ignored
-    (void)sva_flow_standing_begin(priv, m, plan, self->standing);
+    (void)sva_flow_standing_begin(priv, m, plan, standing);
 #endif
-    const sva_plan_t* seed_plan = replan ? self->standing : NULL;
+    const sva_plan_t* seed_plan = replan ? standing : NULL;
     uint64_t budget = self->flow_max_work;
     if (replan && (self->flow_replan_work < budget)) {
         budget = self->flow_replan_work;

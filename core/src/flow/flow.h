@@ -198,7 +198,7 @@ sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_missi
 uint64_t sva_flow_cover_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m,
                                   sva_plan_t* plan, uint64_t work, bool* proven);
 
-// flow_standing.c: the standing plan (sva_planner_t.standing; SVA_FLOW_STANDING).
+// flow_standing.c: the standing plan (sva_replan()'s; SVA_FLOW_STANDING).
 /// Whether `standing` is a plan of the mission (*plan fresh from sva_state_reset): a
 /// replan, which starts from it. Sets w->standing to it when it is and the mission has
 /// a change_penalty, else NULL; no plan kept yet.
@@ -214,6 +214,7 @@ void sva_flow_seed_standing(sva_planner_priv_t* priv, const sva_mission_t* m, sv
 void sva_flow_standing_finish(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
 
 // flow.c: the algorithm.
-sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* mission, sva_plan_t* plan);
+sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* mission,
+                          const sva_plan_t* standing, sva_plan_t* plan);
 
 #endif  // SVA_FLOW_H

@@ -82,19 +82,9 @@ bool sva_flow_offer_plan(sva_planner_priv_t* priv, const sva_mission_t* m, const
 }
 
 // ---------------------------------------------------------------------------------
-// The plan best against the standing plan (sva_planner_t.standing).
+// The plan best against the standing plan (sva_replan()'s).
 
 #if SVA_FLOW_STANDING
-static bool route_has(const sva_route_t* r, uint16_t t)
-{
-    for (uint16_t k = 0U; k < r->target_count; k++) {
-        if (r->targets[k] == t) {
-            return true;
-        }
-    }
-    return false;
-}
-
 void sva_flow_offer_standing(sva_planner_priv_t* priv, const sva_mission_t* m,
                              const sva_plan_t* plan)
 {
@@ -112,21 +102,15 @@ void sva_flow_offer_standing(sva_planner_priv_t* priv, const sva_mission_t* m,
         return;
     }
     int64_t cost = 0;
-    int64_t changes = 0;
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         const sva_route_t* r = &plan->routes[u];
-        const sva_route_t* s = &standing->routes[u];
         if (!r->stranded) {
             cost += sva_route_cells(m, u, r);
         }
-        for (uint16_t k = 0U; k < r->target_count; k++) {
-            changes += route_has(s, r->targets[k]) ? 0 : 1;
-        }
-        for (uint16_t k = 0U; k < s->target_count; k++) {
-            changes += route_has(r, s->targets[k]) ? 0 : 1;
-        }
-        w->work += 1U + ((uint64_t)r->target_count * s->target_count);
+        w->work += 1U + ((uint64_t)r->target_count * standing->routes[u].target_count);
     }
+    const int64_t changes = (int64_t)sva_plan_changes(plan, standing, NULL, 0U) +
+                            (int64_t)sva_plan_changes(standing, plan, NULL, 0U);
     const int64_t value = cost + ((int64_t)m->change_penalty * changes);
     if (w->has_pen && (covered == w->pen_covered) && (value >= w->pen_value)) {
         return;

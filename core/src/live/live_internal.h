@@ -5,6 +5,7 @@
 #define SVA_LIVE_INTERNAL_H
 
 #include "../model/model.h"
+#include "sva/sva_live.h"
 
 /// Where the flight model (SPEC section 12.2) puts a UAV at a tick.
 typedef struct {

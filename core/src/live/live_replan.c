@@ -1,6 +1,6 @@
 // live_replan.c -- a live mission's replan (SPEC section 12.4): the residual mission,
 // two candidates (the plan in force carried over, and the planner's plan of it with the
-// carried plan standing: sva_planner_t.standing), the better by coverage, then cost +
+// carried plan standing: sva_replan()), the better by coverage, then cost +
 // change_penalty * changed visits, made the plan in force.
 #include "live_internal.h"
 
@@ -70,31 +70,10 @@ static void build_previous(sva_live_t* self)
     }
 }
 
-static bool has_visit(const sva_route_t* route, uint16_t t)
-{
-    for (uint16_t k = 0U; k < route->target_count; k++) {
-        if (route->targets[k] == t) {
-            return true;
-        }
-    }
-    return false;
-}
-
-// Visits of `a` that `b` lacks.
-static uint32_t missing_in(const sva_plan_t* a, const sva_plan_t* b)
-{
-    uint32_t count = 0U;
-    for (uint16_t r = 0U; r < a->route_count; r++) {
-        for (uint16_t k = 0U; k < a->routes[r].target_count; k++) {
-            count += has_visit(&b->routes[r], a->routes[r].targets[k]) ? 0U : 1U;
-        }
-    }
-    return count;
-}
-
 static int64_t objective(const sva_live_t* self, const sva_plan_t* plan)
 {
-    const uint32_t changes = missing_in(&self->previous, plan) + missing_in(plan, &self->previous);
+    const uint32_t changes = sva_plan_changes(&self->previous, plan, NULL, 0U) +
+                             sva_plan_changes(plan, &self->previous, NULL, 0U);
     return plan->cost + ((int64_t)self->mission.change_penalty * (int64_t)changes);
 }
 
@@ -132,9 +111,8 @@ sva_status_t sva_live_replan(sva_live_t* self, sva_planner_t* planner, sva_algor
     self->candidate = self->previous;
     sva_live_carry(&self->residual, &self->candidate, algorithm, self->priv.served);
     // The carried plan stands while the planner plans: flow weighs its changes against it.
-    planner->standing = &self->candidate;
-    const sva_status_t status = sva_plan(planner, &self->residual, algorithm, &self->plan, diag);
-    planner->standing = NULL;
+    const sva_status_t status =
+        sva_replan(planner, &self->residual, algorithm, &self->candidate, &self->plan, diag);
     if (status != SVA_OK) {
         return status;
     }
@@ -160,8 +138,8 @@ sva_status_t sva_live_replan(sva_live_t* self, sva_planner_t* planner, sva_algor
         }
     }
     result->covered = (uint16_t)(result->under_way + self->plan.covered);
-    result->dropped = missing_in(&self->previous, &self->plan);
-    result->added = missing_in(&self->plan, &self->previous);
+    result->dropped = sva_plan_changes(&self->previous, &self->plan, NULL, 0U);
+    result->added = sva_plan_changes(&self->plan, &self->previous, NULL, 0U);
     result->objective = objective(self, &self->plan);
     result->kept = keep;
     return SVA_OK;

@@ -1,5 +1,6 @@
 // diag.c -- diagnostics: filling and formatting sva_diag_t without stdio.
 #include "model.h"
+#include "sva/sva_live.h"
 
 void sva_diag_clear(sva_diag_t* self)
 {

@@ -1,5 +1,6 @@
 // limits.c -- the compiled bounds, reported at run time.
 #include "model.h"
+#include "sva/sva_live.h"
 
 sva_limits_t sva_limits(void)
 {

@@ -1,6 +1,7 @@
 // live_names.c -- the SPEC names of a live mission's target states and event types
 // (SPEC section 12), used on every interface and in diagnostics.
 #include "model.h"
+#include "sva/sva_live.h"
 
 const char* sva_target_state_name(sva_target_state_t state)
 {

@@ -78,9 +78,4 @@ void sva_plan_finish(sva_planner_priv_t* priv, const sva_mission_t* mission, sva
 // algorithm.c: name lookups without the C library.
 bool sva_names_equal(const char* a, const char* b);
 
-// validate.c: lo <= value <= hi, or false with diag naming the field and the bound
-// (hi_name when not NULL).
-bool sva_in_range(sva_diag_t* diag, sva_field_t field, int32_t index, int64_t value, int64_t lo,
-                  int64_t hi, const char* hi_name);
-
 #endif  // SVA_MODEL_H

@@ -125,3 +125,42 @@ void sva_plan_finish(sva_planner_priv_t* priv, const sva_mission_t* mission, sva
     }
     plan->status = (plan->uncovered_count == 0U) ? SVA_PLAN_COMPLETE : SVA_PLAN_PARTIAL;
 }
+
+// Whether the route (NULL: none) visits the target.
+static bool route_has(const sva_route_t* route, uint16_t target)
+{
+    if (route == NULL) {
+        return false;
+    }
+    for (uint16_t k = 0U; k < route->target_count; k++) {
+        if (route->targets[k] == target) {
+            return true;
+        }
+    }
+    return false;
+}
+
+uint32_t sva_plan_changes(const sva_plan_t* from, const sva_plan_t* to, sva_visit_t* out,
+                          uint32_t cap)
+{
+    SVA_ASSERT((from != NULL) && (to != NULL) && ((out != NULL) || (cap == 0U)));
+    if ((from == NULL) || (to == NULL)) {
+        return 0U;
+    }
+    uint32_t count = 0U;
+    for (uint16_t r = 0U; r < from->route_count; r++) {
+        const sva_route_t* a = &from->routes[r];
+        const sva_route_t* b = (r < to->route_count) ? &to->routes[r] : NULL;
+        for (uint16_t k = 0U; k < a->target_count; k++) {
+            if (route_has(b, a->targets[k])) {
+                continue;
+            }
+            if ((out != NULL) && (count < cap)) {
+                out[count].route = r;
+                out[count].target = a->targets[k];
+            }
+            count++;
+        }
+    }
+    return count;
+}

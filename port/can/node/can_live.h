@@ -11,7 +11,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "sva/sva.h"
+#include "sva/sva_live.h"
 #include "sva/sva_can.h"
 
 /// Default cells (Manhattan) a reported position may be from the flight model's.

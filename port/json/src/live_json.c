@@ -307,25 +307,29 @@ void sva_json_live_free(sva_json_live_t* live)
     live->event_count = 0;
 }
 
-// Pairs of `a` that `b` lacks, as [uav id, target id] (residual mission ids).
+// Pairs of `a` that `b` lacks (sva_plan_changes), as [uav id, target id] (residual
+// mission ids).
 static json_t* pairs_missing(const sva_mission_t* m, const sva_plan_t* a, const sva_plan_t* b)
 {
+    const uint32_t count = sva_plan_changes(a, b, NULL, 0U);
+    sva_visit_t* visits = malloc(sizeof *visits * (count > 0U ? count : 1U));
     json_t* list = json_array();
-    for (uint16_t r = 0; list != NULL && r < a->route_count; ++r) {
-        for (uint16_t k = 0; k < a->routes[r].target_count; ++k) {
-            const uint16_t t = a->routes[r].targets[k];
-            bool kept = false;
-            for (uint16_t j = 0; j < b->routes[r].target_count; ++j) {
-                kept = kept || b->routes[r].targets[j] == t;
-            }
-            if (!kept &&
-                json_array_append_new(list, json_pack("[i, i]", (json_int_t)m->uavs[r].id,
-                                                      (json_int_t)m->targets[t].id)) != 0) {
-                json_decref(list);
-                return NULL;
-            }
+    if (visits == NULL || list == NULL) {
+        free(visits);
+        json_decref(list);
+        return NULL;
+    }
+    (void)sva_plan_changes(a, b, visits, count);
+    for (uint32_t i = 0; i < count; ++i) {
+        if (json_array_append_new(list, json_pack("[i, i]", (json_int_t)m->uavs[visits[i].route].id,
+                                                  (json_int_t)m->targets[visits[i].target].id)) !=
+            0) {
+            json_decref(list);
+            list = NULL;
+            break;
         }
     }
+    free(visits);
     return list;
 }
 

@@ -791,47 +791,19 @@ static void fill_residual(sva_lcm_replan_t* r, const sva_mission_t* m, int64_t r
     w->frame = *frame;
 }
 
-static const sva_route_t* route_of(const sva_plan_t* plan, int32_t uav_id)
-{
-    for (uint16_t r = 0; r < plan->route_count; ++r) {
-        if (plan->routes[r].uav_id == uav_id) {
-            return &plan->routes[r];
-        }
-    }
-    return NULL;
-}
-
-static bool route_has(const sva_route_t* route, uint16_t target)
-{
-    if (route == NULL) {
-        return false;
-    }
-    for (uint16_t k = 0; k < route->target_count; ++k) {
-        if (route->targets[k] == target) {
-            return true;
-        }
-    }
-    return false;
-}
-
-// Lists the (UAV id, target id) pairs of `from` that `to` lacks, the first
-// MAX_CHANGES of them, into uav[] and target[]; returns how many were listed.
+// Lists the (UAV id, target id) pairs of `from` that `to` lacks (sva_plan_changes), the
+// first MAX_CHANGES of them, into uav[] and target[]; returns how many were listed.
 static int16_t list_changes(const sva_plan_t* from, const sva_plan_t* to, const sva_mission_t* m,
                             int32_t* uav, int32_t* target)
 {
-    int16_t n = 0;
-    for (uint16_t r = 0; r < from->route_count; ++r) {
-        const sva_route_t* a = &from->routes[r];
-        const sva_route_t* b = route_of(to, a->uav_id);
-        for (uint16_t k = 0; k < a->target_count; ++k) {
-            if (!route_has(b, a->targets[k]) && (n < SVA_LCM_REPLAN_T_MAX_CHANGES)) {
-                uav[n] = a->uav_id;
-                target[n] = m->targets[a->targets[k]].id;
-                n += 1;
-            }
-        }
+    sva_visit_t visits[SVA_LCM_REPLAN_T_MAX_CHANGES];
+    const uint32_t n = sva_plan_changes(from, to, visits, SVA_LCM_REPLAN_T_MAX_CHANGES);
+    const uint32_t listed = (n < SVA_LCM_REPLAN_T_MAX_CHANGES) ? n : SVA_LCM_REPLAN_T_MAX_CHANGES;
+    for (uint32_t i = 0; i < listed; ++i) {
+        uav[i] = from->routes[visits[i].route].uav_id;
+        target[i] = m->targets[visits[i].target].id;
     }
-    return n;
+    return (int16_t)listed;
 }
 
 // Every message a replan carries names its version, also when it is empty.

@@ -27,7 +27,7 @@
 #include <stdio.h>
 
 #include <jansson.h>
-#include <sva/sva.h>
+#include <sva/sva_live.h>
 #include <sva/sva_frame.h>
 #include <sva/sva_text.h>
 

@@ -80,7 +80,7 @@
 
 #include <lcm/lcm.h>
 
-#include "sva/sva.h"
+#include "sva/sva_live.h"
 #include "sva_lcm_fleet_state_t.h"
 #include "sva_lcm_mission_t.h"
 #include "sva_lcm_node_status_t.h"
