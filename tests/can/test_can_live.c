@@ -4,8 +4,9 @@
 // sends the flight stack's frames (SVA_MISSION_CLOCK, SVA_VEHICLE_STATUS,
 // SVA_VEHICLE_FUEL). A loss frame makes the node send a plan without that UAV; a clock
 // frame past a window start makes the visit under way (and, the plan in force kept,
-// sends nothing); a position off the track is a position event; a BEGIN of another
-// protocol version is refused with NACK BAD_VERSION.
+// sends nothing); a position off the track is a position event; a fuel reading is an
+// event only when the route in force cannot be flown on it; a BEGIN of another protocol
+// version is refused with NACK BAD_VERSION.
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
@@ -13,7 +14,7 @@
 #include "sva_unity.h"
 
 #include "can_live.h"
-#include "sva/sva.h"
+#include "sva/sva_live.h"
 #include "sva/sva_can.h"
 
 static sva_can_loopback_t bus;
@@ -222,6 +223,34 @@ void test_live_mission_over_loopback(void)
     TEST_ASSERT_EQUAL_INT(2, node.stats.events_refused);
     TEST_ASSERT_EQUAL_INT(12, node.live.now_ticks);
     TEST_ASSERT_EQUAL_INT(0, sender.stats.nacks);
+}
+
+// A fuel frame goes through the core's report rule (SPEC 12.3, "Vehicle reports"), as
+// every other node's readings do: a reading below the model's but enough for the route in
+// force is no event; one below what the route still needs is a fuel event.
+void test_fuel_frames_follow_the_report_rule(void)
+{
+    pump();
+    send_clock(12u);
+    pump();
+    TEST_ASSERT_EQUAL_INT(1, node.stats.events_applied);  // the clock
+    int32_t x = 0;
+    int32_t y = 0;
+    int32_t fuel = 0;
+    int32_t ready = 0;
+    TEST_ASSERT_TRUE(sva_live_uav_at(&node.live, 0U, 12, &x, &y, &fuel, &ready));
+    TEST_ASSERT_EQUAL_INT(95, fuel);  // 5 cells flown to T1
+    send_fuel(1, 94u);
+    pump();
+    TEST_ASSERT_EQUAL_INT(1, node.stats.events_applied);
+    TEST_ASSERT_TRUE(sva_live_uav_at(&node.live, 0U, 12, &x, &y, &fuel, &ready));
+    TEST_ASSERT_EQUAL_INT(95, fuel);
+    // T1 at (5, 0): the way home alone needs 5.
+    send_fuel(1, 3u);
+    pump();
+    TEST_ASSERT_EQUAL_INT(2, node.stats.events_applied);
+    TEST_ASSERT_TRUE(sva_live_uav_at(&node.live, 0U, 12, &x, &y, &fuel, &ready));
+    TEST_ASSERT_EQUAL_INT(3, fuel);
 }
 
 // A receiver refuses a BEGIN of another protocol version: NACK BAD_VERSION back on

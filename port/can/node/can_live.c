@@ -194,21 +194,29 @@ static int on_msg(sva_can_live_t* self, const sva_can_msg_t* msg, uint32_t now_m
     }
     in_service =
         sva_live_uav_at(&self->live, (uint16_t)u, self->live.now_ticks, &x, &y, &fuel, &ready);
-    if (msg->kind == SVA_CAN_MSG_VEHICLE_FUEL) {
-        // Above the core's bound: clamped to it (SVA_MAX_FUEL).
-        e.fuel = (msg->u.fuel.fuel > (uint32_t)SVA_MAX_FUEL) ? (int32_t)SVA_MAX_FUEL
-                                                             : (int32_t)msg->u.fuel.fuel;
-        self->fuel_heard[u] = e.fuel;
-        if (!in_service || (e.fuel == fuel)) {
-            return 0;
-        }
-        e.type = SVA_EVENT_FUEL;
-        return apply(self, &e, now_ms);
-    }
-    // A status frame is a report: the core's rule decides (lost, back with the last
-    // fuel heard, off its track with the model's fuel, or nothing).
+    // Every frame is a report and the core's rule decides (sva_live_report).
     sva_report_t report;
     report.uav_id = e.uav_id;
+    if (msg->kind == SVA_CAN_MSG_VEHICLE_FUEL) {
+        // Above the core's bound: clamped to it (SVA_MAX_FUEL).
+        self->fuel_heard[u] = (msg->u.fuel.fuel > (uint32_t)SVA_MAX_FUEL)
+                                  ? (int32_t)SVA_MAX_FUEL
+                                  : (int32_t)msg->u.fuel.fuel;
+        if (!in_service) {
+            return 0;  // kept for its uav_back
+        }
+        // A fuel frame says nothing of the cell: the model's, so only the fuel rule can act.
+        report.in_service = true;
+        report.x = x;
+        report.y = y;
+        report.fuel = self->fuel_heard[u];
+        if (!sva_live_report(&self->live, &report, self->track_tolerance_cells, &e)) {
+            return 0;
+        }
+        return apply(self, &e, now_ms);
+    }
+    // A status frame: lost, back with the last fuel heard, off its track with the
+    // model's fuel, or nothing.
     report.x = msg->u.vehicle.x;
     report.y = msg->u.vehicle.y;
     report.fuel = in_service ? SVA_REPORT_FUEL_UNKNOWN : self->fuel_heard[u];
