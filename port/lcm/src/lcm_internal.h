@@ -1,7 +1,7 @@
 // lcm_internal.h -- what the adapter's files share (port/lcm/src/); not installed.
 //
 // The files call each other one way only, from the node down:
-//   sva_lcm.c (channels, subscriptions)
+//   lcm_node.c (channels, subscriptions)
 //     -> lcm_inputs.c (fleet, mission) -> lcm_reports.c (vehicle reports)
 //     -> lcm_live.c (events, replans) -> lcm_plan.c (plans, the clock)
 //     -> lcm_convert.c (core -> wire), lcm_hook.c (durable inputs)

@@ -1,4 +1,4 @@
-// sva_lcm.c -- the LCM adapter's node: channels and subscriptions (contract in sva_lcm.h).
+// lcm_node.c -- the LCM adapter's node: channels and subscriptions (contract in sva_lcm.h).
 // The messages are handled a layer down: lcm_inputs.c (fleet, mission), lcm_live.c
 // (events), lcm_reports.c (vehicle reports); lcm_status.c publishes the status.
 #include "sva/sva_lcm.h"
