@@ -20,6 +20,7 @@
 #include "sva/sva.h"
 #include "sva/sva_can.h"
 #include "sva/sva_can_frame.h"
+#include "sva/sva_can_transport.h"
 
 typedef struct {
     char key[32];

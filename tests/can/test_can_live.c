@@ -16,6 +16,7 @@
 #include "can_live.h"
 #include "sva/sva_live.h"
 #include "sva/sva_can.h"
+#include "sva/sva_can_transport.h"
 
 static sva_can_loopback_t bus;
 static sva_can_transport_t node_tp;

@@ -9,6 +9,7 @@
 
 #include "sva/sva.h"
 #include "sva/sva_can.h"
+#include "sva/sva_can_transport.h"
 
 // Large structs live in static storage, as on firmware.
 static sva_can_loopback_t bus;

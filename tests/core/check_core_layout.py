@@ -33,12 +33,15 @@ INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 
 
 def objects_of(nm: str, lib: str) -> Dict[str, Tuple[Set[str], Set[str]]]:
-    """Member object name -> (defined global symbols, undefined symbols)."""
+    """Object name -> (defined global symbols, undefined symbols), for a static library
+    (its members, by name) or one object file (by its path)."""
     out = subprocess.run([nm, "-A", "-P", lib], check=True, capture_output=True, text=True).stdout
     objs: Dict[str, Tuple[Set[str], Set[str]]] = {}
     for line in out.splitlines():
-        # POSIX format: "lib.a[member.o]: name type [value size]"
+        # POSIX format: "lib.a[member.o]: name type [value size]" or "file.o: name type ..."
         m = re.match(r"^.*\[([^\]]+)\]: (\S+) (\S)", line)
+        if not m and line.startswith(lib + ": "):
+            m = re.match(r"^(.*): (\S+) (\S)", line)
         if not m:
             continue
         member, name, kind = m.groups()
@@ -50,17 +53,26 @@ def objects_of(nm: str, lib: str) -> Dict[str, Tuple[Set[str], Set[str]]]:
     return objs
 
 
-def source_of(member: str, sources: Dict[str, str]) -> str:
-    """The core source an archive member was built from ("flow_lp.c.o" -> src/flow/flow_lp.c)."""
-    base = re.sub(r"\.(c\.)?o(bj)?$", ".c", member)
-    if base not in sources:
-        raise SystemExit(f"check_core_layout: object {member} matches no core source")
-    return sources[base]
+def source_of(member: str, sources: List[str]) -> str:
+    """The source an object was built from: an archive member by its file name
+    ("flow_lp.c.o" -> src/flow/flow_lp.c), an object file by the end of its path
+    (".../sva_node.dir/node/sva_node.c.o" -> node/sva_node.c)."""
+    stem = re.sub(r"\.(c\.)?o(bj)?$", ".c", member).replace(os.sep, "/")
+    if "/" in stem:
+        found = [s for s in sources if stem.endswith("/" + s)]
+        found = [s for s in found if len(s) == max(len(f) for f in found)]
+    else:
+        found = [s for s in sources if os.path.basename(s) == stem]
+    if len(found) != 1:
+        raise SystemExit(f"check_core_layout: object {member} matches "
+                         f"{'no source' if not found else 'more than one source'}")
+    return found[0]
 
 
-def core_files(core: str) -> List[str]:
+def core_files(core: str, tops: Tuple[str, ...] = ("src", "include")) -> List[str]:
+    """The .c and .h files under core/src and core/include (tops: () for every folder)."""
     found = []
-    for top in ("src", "include"):
+    for top in tops or ("",):
         for root, _, files in os.walk(os.path.join(core, top)):
             found += [os.path.relpath(os.path.join(root, f), core) for f in files if f.endswith((".c", ".h"))]
     return sorted(found)
@@ -131,14 +143,17 @@ def include_graph(core: str, files: List[str]) -> Dict[str, Set[str]]:
     return graph
 
 
-def check(core: str, nm: str, lib: str, limit: int) -> List[str]:
-    """Every problem found, each a line; prints what it checked."""
-    files = core_files(core)
-    sources = {os.path.basename(f): f for f in files if f.endswith(".c")}
-    if len(sources) != len([f for f in files if f.endswith(".c")]):
-        return ["two core sources share a file name: objects cannot be told apart"]
+def check(core: str, nm: str, lib: str, limit: int, more: Tuple[str, ...] = (),
+          tops: Tuple[str, ...] = ("src", "include"), what: str = "core") -> List[str]:
+    """Every problem found, each a line; prints what it checked. `core` is the part's
+    folder; `lib` and `more` are its static libraries and object files; `tops` the
+    folders whose .c and .h files are checked (() for all)."""
+    files = core_files(core, tops)
+    sources = [f for f in files if f.endswith(".c")]
     problems: List[str] = []
-    objs = objects_of(nm, lib)
+    objs: Dict[str, Tuple[Set[str], Set[str]]] = {}
+    for path in (lib,) + tuple(more):
+        objs.update(objects_of(nm, path))
     definer: Dict[str, str] = {}
     for member, (defined, _) in objs.items():
         for sym in defined:
@@ -170,9 +185,9 @@ def check(core: str, nm: str, lib: str, limit: int) -> List[str]:
         if n > limit:
             problems.append(f"{f}: {n} lines, over the limit of {limit}")
     dag = "; ".join(f"{k} -> {', '.join(sorted(v))}" for k, v in sorted(folders.items()))
-    print(f"checked {len(objs)} objects of {os.path.basename(lib)} ({edges} calls between files), "
-          f"{sum(len(v) for v in includes.values())} includes and the length of {len(files)} "
-          f"core files (limit {limit} lines)")
+    print(f"checked {len(objs)} objects of {', '.join(os.path.basename(p) for p in (lib,) + tuple(more))} "
+          f"({edges} calls between files), {sum(len(v) for v in includes.values())} includes and "
+          f"the length of {len(files)} {what} files (limit {limit} lines)")
     print(f"folder calls: {dag}")
     return problems
 

@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "sva/sva_can.h"
+#include "sva/sva_can_transport.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size);
 

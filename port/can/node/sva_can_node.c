@@ -28,6 +28,7 @@
 #include "plan_print.h"
 #include "sva/sva.h"
 #include "sva/sva_can.h"
+#include "sva/sva_can_transport.h"
 #include "sva/sva_text.h"
 
 // Room for a user-supplied string (option, file or mission name) as logs show it:
@@ -161,53 +162,60 @@ static bool takes_value(const char* a)
     return false;
 }
 
-int main(int argc, char** argv)
-{
-    const char* iface = "vcan0";
-    const char* mission_path = NULL;
-    const char* algo_name = "sva";
-    const char* algo_option = "--algo";  // as the user spelled it, for its error line
+// What the command line asks for.
+typedef struct {
+    const char* iface;
+    const char* mission_path;
+    const char* algo_name;
+    const char* algo_option;  // as the user spelled it, for its error line
     sva_algorithm_t algo;
-    uint32_t settle_ms = 200u;
-    uint32_t exit_after_acks = 0u;
-    uint32_t max_runtime_ms = 0u;
-    int print = 0;
-    const char* state_dir = NULL;
-    bool state_reset = false;
-    bool halted = false;
-    int i;
-    char err[256];
-    char name[128];
-    char shown_name[SVA_TEXT_ESCAPED_SIZE(sizeof name)];
-    char shown_arg[SHOWN_SIZE];
-    sva_can_socketcan_t sock;
-    sva_can_transport_t tp;
-    sva_can_status_t cst;
-    struct sigaction sa;
+    uint32_t settle_ms;
+    uint32_t exit_after_acks;
+    uint32_t max_runtime_ms;
+    uint32_t track_tolerance;
+    int print;
+    const char* state_dir;
+    bool state_reset;
+} node_options_t;
+
+// What the run loop keeps from one round to the next.
+typedef struct {
     uint32_t t0;
     uint32_t last_hb;
-    uint32_t track_tolerance = SVA_CAN_LIVE_TRACK_TOLERANCE;
-    uint16_t active_plan_id = 0u;
-    uint8_t hb_counter = 0u;
-    uint8_t faults = 0u;
-    uint8_t covered_active = 0u;
-    uint32_t acks = 0u;
-    uint32_t rx_rejected = 0u;
-    int has_last_counter[3] = {0, 0, 0};
-    uint8_t last_counter[3] = {0u, 0u, 0u};
-    sva_can_tx_state_t prev_state = SVA_CAN_TX_IDLE;
-    int rc = 0;
+    uint16_t active_plan_id;
+    uint8_t hb_counter;
+    uint8_t faults;
+    uint8_t covered_active;
+    uint32_t acks;
+    uint32_t rx_rejected;
+    int has_last_counter[3];
+    uint8_t last_counter[3];
+    sva_can_tx_state_t prev_state;
+    bool halted;
+} node_run_t;
 
+// Reads the command line into *o. Returns -1 to go on, else the exit status (0 after
+// --help or --version, 2 after a usage error, each with its message).
+static int parse_options(int argc, char** argv, node_options_t* o)
+{
+    char shown_arg[SHOWN_SIZE];
+    int i;
+    memset(o, 0, sizeof *o);
+    o->iface = "vcan0";
+    o->algo_name = "sva";
+    o->algo_option = "--algo";
+    o->settle_ms = 200u;
+    o->track_tolerance = SVA_CAN_LIVE_TRACK_TOLERANCE;
     for (i = 1; i < argc; ++i) {
         const char* a = argv[i];
         char shown[SHOWN_SIZE];
         const char* v = (i + 1 < argc) ? argv[i + 1] : NULL;
         if (strcmp(a, "--print-plans") == 0) {
-            print = 1;
+            o->print = 1;
             continue;
         }
         if (strcmp(a, "--state-reset") == 0) {
-            state_reset = true;
+            o->state_reset = true;
             continue;
         }
         if ((strcmp(a, "--help") == 0) || (strcmp(a, "-h") == 0)) {
@@ -233,25 +241,25 @@ int main(int argc, char** argv)
         }
         ++i;
         if (strcmp(a, "--iface") == 0) {
-            iface = v;
+            o->iface = v;
         } else if (strcmp(a, "--mission") == 0) {
-            mission_path = v;
+            o->mission_path = v;
         } else if ((strcmp(a, "--algo") == 0) || (strcmp(a, "--algorithm") == 0)) {
-            algo_option = a;
-            algo_name = v;
+            o->algo_option = a;
+            o->algo_name = v;
         } else if (strcmp(a, "--state-dir") == 0) {
-            state_dir = v;
+            o->state_dir = v;
         } else if (strcmp(a, "--settle-ms") == 0) {
-            if (parse_u32(v, a, &settle_ms) != 0)
+            if (parse_u32(v, a, &o->settle_ms) != 0)
                 return 2;
         } else if (strcmp(a, "--track-tolerance") == 0) {
-            if (parse_u32(v, a, &track_tolerance) != 0)
+            if (parse_u32(v, a, &o->track_tolerance) != 0)
                 return 2;
         } else if (strcmp(a, "--exit-after-acks") == 0) {
-            if (parse_u32(v, a, &exit_after_acks) != 0)
+            if (parse_u32(v, a, &o->exit_after_acks) != 0)
                 return 2;
         } else if (strcmp(a, "--max-runtime-ms") == 0) {
-            if (parse_u32(v, a, &max_runtime_ms) != 0)
+            if (parse_u32(v, a, &o->max_runtime_ms) != 0)
                 return 2;
         } else {
             fprintf(stderr, "sva_can_node: error: unknown option %s\n",
@@ -260,56 +268,77 @@ int main(int argc, char** argv)
             return 2;
         }
     }
-    if (mission_path == NULL) {
+    if (o->mission_path == NULL) {
         fprintf(stderr, "sva_can_node: error: --mission: missing required option\n");
         usage(stderr);
         return 2;
     }
-    if (state_reset && (state_dir == NULL)) {
+    if (o->state_reset && (o->state_dir == NULL)) {
         fprintf(stderr, "sva_can_node: error: --state-reset needs --state-dir\n");
         return 2;
     }
-    if (sva_algorithm_from_name(algo_name, &algo) != SVA_OK) {
+    if (sva_algorithm_from_name(o->algo_name, &o->algo) != SVA_OK) {
         fprintf(stderr,
                 "sva_can_node: error: %s: unknown algorithm \"%s\" (sva, ga, hga, bfa, flow)\n",
-                algo_option, sva_text_escape(shown_arg, sizeof shown_arg, algo_name));
+                o->algo_option, sva_text_escape(shown_arg, sizeof shown_arg, o->algo_name));
         return 2;
     }
-    if (sva_can_mission_load_frame(mission_path, &g_mission, name, sizeof name, &g_frame,
+    return -1;
+}
+
+// Loads the mission file (its name into name[]), starts the live mission and, with
+// --state-dir, replays the journal: all before the node hears the bus. Returns 0 or the
+// exit status (the message printed).
+static int open_state(const node_options_t* o, char* name, size_t name_size)
+{
+    char err[256];
+    char shown_arg[SHOWN_SIZE];
+    if (sva_can_mission_load_frame(o->mission_path, &g_mission, name, name_size, &g_frame,
                                    &g_has_frame, err, sizeof err) != 0) {
         fprintf(stderr, "sva_can_node: error: %s: %s\n",
-                sva_text_escape(shown_arg, sizeof shown_arg, mission_path), err);
+                sva_text_escape(shown_arg, sizeof shown_arg, o->mission_path), err);
         return 1;
     }
     g_live.log = stderr;
-    g_live.track_tolerance_cells = (int32_t)track_tolerance;
-    if (sva_can_live_start(&g_live, &g_mission, algo, err, sizeof err) != 0) {
+    g_live.track_tolerance_cells = (int32_t)o->track_tolerance;
+    if (sva_can_live_start(&g_live, &g_mission, o->algo, err, sizeof err) != 0) {
         fprintf(stderr, "sva_can_node: error: %s\n", err);
         return 1;
     }
     // The journal is replayed before the node hears the bus.
-    if (state_dir != NULL) {
-        const int src = sva_can_state_open(&g_state, state_dir, state_reset, &g_live, &g_mission);
+    if (o->state_dir != NULL) {
+        const int src =
+            sva_can_state_open(&g_state, o->state_dir, o->state_reset, &g_live, &g_mission);
         if (src != 0) {
             sva_can_state_close(&g_state);
             return src;
         }
     }
-    cst = sva_can_socketcan_open(&sock, iface);
+    return 0;
+}
+
+// Opens the SocketCAN interface, the sender over it and the signal handlers. Returns 0
+// or the exit status (the message printed, what was opened closed).
+static int open_transport(const node_options_t* o, sva_can_socketcan_t* sock,
+                          sva_can_transport_t* tp)
+{
+    char shown_arg[SHOWN_SIZE];
+    struct sigaction sa;
+    const sva_can_status_t cst = sva_can_socketcan_open(sock, o->iface);
     if (cst != SVA_CAN_OK) {
         fprintf(stderr, "sva_can_node: error: --iface %s: %s%s%s\n",
-                sva_text_escape(shown_arg, sizeof shown_arg, iface),
+                sva_text_escape(shown_arg, sizeof shown_arg, o->iface),
                 (cst == SVA_CAN_ERR_NAME) ? "interface name empty or longer than IFNAMSIZ - 1 (15)"
                                           : "cannot open",
-                (sock.last_errno != 0) ? ": " : "",
-                (sock.last_errno != 0) ? strerror(sock.last_errno) : "");
+                (sock->last_errno != 0) ? ": " : "",
+                (sock->last_errno != 0) ? strerror(sock->last_errno) : "");
         sva_can_state_close(&g_state);
         return 1;
     }
-    if ((sva_can_socketcan_transport(&sock, &tp) != SVA_CAN_OK) ||
-        (sva_can_sender_init(&g_sender, &tp, NULL) != SVA_CAN_OK)) {
+    if ((sva_can_socketcan_transport(sock, tp) != SVA_CAN_OK) ||
+        (sva_can_sender_init(&g_sender, tp, NULL) != SVA_CAN_OK)) {
         fprintf(stderr, "sva_can_node: error: transport setup failed\n");
-        sva_can_socketcan_close(&sock);
+        sva_can_socketcan_close(sock);
         sva_can_state_close(&g_state);
         return 1;
     }
@@ -318,174 +347,242 @@ int main(int argc, char** argv)
     if ((sigemptyset(&sa.sa_mask) != 0) || (sigaction(SIGINT, &sa, NULL) != 0) ||
         (sigaction(SIGTERM, &sa, NULL) != 0)) {
         fprintf(stderr, "sva_can_node: error: sigaction: %s\n", strerror(errno));
-        sva_can_socketcan_close(&sock);
+        sva_can_socketcan_close(sock);
         sva_can_state_close(&g_state);
         return 1;
     }
-    fprintf(stderr, "sva_can_node: mission \"%s\" (%u UAVs, %u targets) on %s, algorithm %s\n",
-            sva_text_escape(shown_name, sizeof shown_name, name), g_mission.uav_count,
-            g_mission.target_count, sva_text_escape(shown_arg, sizeof shown_arg, iface),
-            sva_algorithm_name(algo));
+    return 0;
+}
 
-    g_tp = &tp;
-    t0 = now_ms();
-    last_hb = t0 - SVA_CAN_HEARTBEAT_PERIOD_MS;  // first heartbeat at once
-    faults |= send_plan(t0, print);
+// Reads every frame waiting on the bus: ACKs to the sender, the flight stack's frames
+// into the live mission.
+static void drain_bus(node_run_t* r, const sva_can_transport_t* tp, const sva_can_socketcan_t* sock,
+                      uint32_t t)
+{
+    sva_can_frame_t f;
+    for (;;) {
+        sva_can_msg_t m;
+        sva_can_status_t st = tp->recv(tp->ctx, &f);
+        if (st == SVA_CAN_AGAIN) {
+            break;
+        }
+        if (st != SVA_CAN_OK) {
+            fprintf(stderr, "sva_can_node: error: read: %s\n", strerror(sock->last_errno));
+            r->faults |= SVA_CAN_FAULT_TX_ERRORS;
+            break;
+        }
+        st = sva_can_sender_on_frame(&g_sender, &f, t);
+        if (st != SVA_CAN_IGNORED) {
+            if (st < 0) {
+                r->faults |= SVA_CAN_FAULT_RX_ERRORS;
+            }
+            continue;
+        }
+        if ((f.id != SVA_CAN_ID_VEHICLE_STATUS) && (f.id != SVA_CAN_ID_VEHICLE_FUEL) &&
+            (f.id != SVA_CAN_ID_MISSION_CLOCK)) {
+            continue;
+        }
+        st = sva_can_decode(&f, &m);
+        if (st == SVA_CAN_IGNORED) {
+            continue;
+        }
+        if (st != SVA_CAN_OK) {
+            ++r->rx_rejected;
+            r->faults |= SVA_CAN_FAULT_RX_ERRORS;
+            fprintf(stderr, "sva_can_node: rejected flight-stack frame 0x%03lX: %s\n",
+                    (unsigned long)f.id, sva_can_status_name(st));
+            continue;
+        }
+        {
+            // A repeated counter is a stale or duplicated frame: rejected. A jump is
+            // lost frames: the state still applies (latest state wins).
+            const int k = (m.kind == SVA_CAN_MSG_VEHICLE_STATUS) ? 0
+                          : (m.kind == SVA_CAN_MSG_VEHICLE_FUEL) ? 1
+                                                                 : 2;
+            if (r->has_last_counter[k] && (m.counter == r->last_counter[k])) {
+                ++r->rx_rejected;
+                r->faults |= SVA_CAN_FAULT_RX_ERRORS;
+                continue;
+            }
+            r->has_last_counter[k] = 1;
+            r->last_counter[k] = m.counter;
+        }
+        if (sva_can_live_on_msg(&g_live, &m, t) == SVA_CAN_LIVE_HALTED) {
+            break;
+        }
+    }
+}
+
+// Replans once the bus has settled and sends a changed plan. False when the journal
+// could not keep an input: the node then stops without an answer.
+static bool replan_settled(node_run_t* r, const node_options_t* o, uint32_t t)
+{
+    const int changed =
+        g_live.halted ? SVA_CAN_LIVE_HALTED : sva_can_live_poll(&g_live, t, o->settle_ms);
+    if (changed == SVA_CAN_LIVE_HALTED) {
+        // The journal could not keep an input: nothing is answered for it. Exit as
+        // a crash would; a restart resumes from the last record kept.
+        char said[SHOWN_SIZE];
+        fprintf(stderr, "sva_can_node: error: journal: %s: stopping without an answer\n",
+                sva_text_escape(said, sizeof said, g_state.journal.message));
+        return false;
+    }
+    if (changed < 0) {
+        r->faults |= SVA_CAN_FAULT_PLAN_FAILED;
+    } else if (changed > 0) {
+        r->faults = (uint8_t)(r->faults & (uint8_t)~SVA_CAN_FAULT_PLAN_FAILED);
+        r->faults |= send_plan(t, o->print);
+    }
+    return true;
+}
+
+// Follows the plan transfer: an ACK makes the plan the active one, an abort a fault.
+static void watch_transfer(node_run_t* r)
+{
+    if (g_sender.state == r->prev_state) {
+        return;
+    }
+    if (g_sender.state == SVA_CAN_TX_DONE) {
+        r->active_plan_id = g_sender.priv.plan.plan_id;
+        r->covered_active = g_live.covered;
+        r->faults = (uint8_t)(r->faults & (uint8_t)~SVA_CAN_FAULT_TRANSFER_FAILED);
+        ++r->acks;
+        fprintf(stderr, "sva_can_node: plan %u acknowledged (%lu frames sent so far)\n",
+                r->active_plan_id, (unsigned long)g_sender.stats.frames_sent);
+    } else if (g_sender.state == SVA_CAN_TX_FAILED) {
+        r->faults |= SVA_CAN_FAULT_TRANSFER_FAILED;
+        fprintf(stderr, "sva_can_node: plan %u aborted (reason %u)%s\n", g_sender.priv.plan.plan_id,
+                g_sender.last_abort_reason,
+                (g_sender.last_nack == SVA_CAN_ACK_BAD_VERSION)
+                    ? ": the bridge refused the protocol version (NACK BAD_VERSION)"
+                    : "");
+    }
+    r->prev_state = g_sender.state;
+}
+
+// The heartbeat, once per period.
+static void heartbeat(node_run_t* r, const sva_can_transport_t* tp, uint32_t t)
+{
+    sva_can_msg_t hb;
+    sva_can_frame_t hf;
+    if (elapsed(t, r->last_hb) < SVA_CAN_HEARTBEAT_PERIOD_MS) {
+        return;
+    }
+    hb.kind = SVA_CAN_MSG_HEARTBEAT;
+    hb.counter = r->hb_counter;
+    hb.u.heartbeat.state =
+        (uint8_t)((g_sender.state == SVA_CAN_TX_SENDING || g_sender.state == SVA_CAN_TX_WAIT_ACK)
+                      ? SVA_CAN_NODE_SENDING
+                  : (r->active_plan_id != 0u) ? SVA_CAN_NODE_ACTIVE
+                  : (r->faults != 0u)         ? SVA_CAN_NODE_FAULT
+                                              : SVA_CAN_NODE_IDLE);
+    hb.u.heartbeat.active_plan_id = r->active_plan_id;
+    {
+        const uint16_t in_service = sva_can_live_in_service(&g_live);
+        hb.u.heartbeat.uav_count = (uint8_t)((in_service > 255u) ? 255u : in_service);
+        hb.u.heartbeat.target_count =
+            (uint8_t)((g_live.live.mission.target_count > 255u) ? 255u
+                                                                : g_live.live.mission.target_count);
+    }
+    hb.u.heartbeat.covered_count = r->covered_active;
+    hb.u.heartbeat.faults = (uint8_t)(r->faults & SVA_CAN_FAULT_MASK);
+    if ((sva_can_encode(&hb, &hf) == SVA_CAN_OK) && (tp->send(tp->ctx, &hf) == SVA_CAN_OK)) {
+        r->hb_counter = (uint8_t)((r->hb_counter + 1u) & 0x0Fu);
+    }
+    r->faults = (uint8_t)(r->faults & (uint8_t)~SVA_CAN_FAULT_RX_ERRORS);  // per heartbeat period
+    r->last_hb = t;
+}
+
+// Sends the first plan, then serves the bus until a signal, a halt, --exit-after-acks
+// or --max-runtime-ms. Returns the exit status.
+static int run_loop(const node_options_t* o, node_run_t* r, sva_can_transport_t* tp,
+                    const sva_can_socketcan_t* sock)
+{
+    memset(r, 0, sizeof *r);
+    r->prev_state = SVA_CAN_TX_IDLE;
+    g_tp = tp;
+    r->t0 = now_ms();
+    r->last_hb = r->t0 - SVA_CAN_HEARTBEAT_PERIOD_MS;  // first heartbeat at once
+    r->faults |= send_plan(r->t0, o->print);
 
     while (!g_stop) {
         struct pollfd pfd;
-        sva_can_frame_t f;
         uint32_t t;
-        pfd.fd = sock.fd;
+        pfd.fd = sock->fd;
         pfd.events = POLLIN;
         pfd.revents = 0;
         if ((poll(&pfd, 1, 10) < 0) && (errno != EINTR)) {
             fprintf(stderr, "sva_can_node: error: poll: %s\n", strerror(errno));
-            rc = 1;
-            break;
+            return 1;
         }
         t = now_ms();
-        for (;;) {
-            sva_can_msg_t m;
-            sva_can_status_t st = tp.recv(tp.ctx, &f);
-            if (st == SVA_CAN_AGAIN) {
-                break;
-            }
-            if (st != SVA_CAN_OK) {
-                fprintf(stderr, "sva_can_node: error: read: %s\n", strerror(sock.last_errno));
-                faults |= SVA_CAN_FAULT_TX_ERRORS;
-                break;
-            }
-            st = sva_can_sender_on_frame(&g_sender, &f, t);
-            if (st != SVA_CAN_IGNORED) {
-                if (st < 0) {
-                    faults |= SVA_CAN_FAULT_RX_ERRORS;
-                }
-                continue;
-            }
-            if ((f.id != SVA_CAN_ID_VEHICLE_STATUS) && (f.id != SVA_CAN_ID_VEHICLE_FUEL) &&
-                (f.id != SVA_CAN_ID_MISSION_CLOCK)) {
-                continue;
-            }
-            st = sva_can_decode(&f, &m);
-            if (st == SVA_CAN_IGNORED) {
-                continue;
-            }
-            if (st != SVA_CAN_OK) {
-                ++rx_rejected;
-                faults |= SVA_CAN_FAULT_RX_ERRORS;
-                fprintf(stderr, "sva_can_node: rejected flight-stack frame 0x%03lX: %s\n",
-                        (unsigned long)f.id, sva_can_status_name(st));
-                continue;
-            }
-            {
-                // A repeated counter is a stale or duplicated frame: rejected. A jump is
-                // lost frames: the state still applies (latest state wins).
-                const int k = (m.kind == SVA_CAN_MSG_VEHICLE_STATUS) ? 0
-                              : (m.kind == SVA_CAN_MSG_VEHICLE_FUEL) ? 1
-                                                                     : 2;
-                if (has_last_counter[k] && (m.counter == last_counter[k])) {
-                    ++rx_rejected;
-                    faults |= SVA_CAN_FAULT_RX_ERRORS;
-                    continue;
-                }
-                has_last_counter[k] = 1;
-                last_counter[k] = m.counter;
-            }
-            if (sva_can_live_on_msg(&g_live, &m, t) == SVA_CAN_LIVE_HALTED) {
-                break;
-            }
-        }
-        {
-            const int changed =
-                g_live.halted ? SVA_CAN_LIVE_HALTED : sva_can_live_poll(&g_live, t, settle_ms);
-            if (changed == SVA_CAN_LIVE_HALTED) {
-                // The journal could not keep an input: nothing is answered for it. Exit as
-                // a crash would; a restart resumes from the last record kept.
-                char said[SHOWN_SIZE];
-                fprintf(stderr, "sva_can_node: error: journal: %s: stopping without an answer\n",
-                        sva_text_escape(said, sizeof said, g_state.journal.message));
-                halted = true;
-                rc = 1;
-                break;
-            }
-            if (changed < 0) {
-                faults |= SVA_CAN_FAULT_PLAN_FAILED;
-            } else if (changed > 0) {
-                faults = (uint8_t)(faults & (uint8_t)~SVA_CAN_FAULT_PLAN_FAILED);
-                faults |= send_plan(t, print);
-            }
+        drain_bus(r, tp, sock, t);
+        if (!replan_settled(r, o, t)) {
+            r->halted = true;
+            return 1;
         }
         if (sva_can_sender_poll(&g_sender, t) != SVA_CAN_OK) {
-            faults |= SVA_CAN_FAULT_TX_ERRORS;
+            r->faults |= SVA_CAN_FAULT_TX_ERRORS;
         }
-        if (g_sender.state != prev_state) {
-            if (g_sender.state == SVA_CAN_TX_DONE) {
-                active_plan_id = g_sender.priv.plan.plan_id;
-                covered_active = g_live.covered;
-                faults = (uint8_t)(faults & (uint8_t)~SVA_CAN_FAULT_TRANSFER_FAILED);
-                ++acks;
-                fprintf(stderr, "sva_can_node: plan %u acknowledged (%lu frames sent so far)\n",
-                        active_plan_id, (unsigned long)g_sender.stats.frames_sent);
-            } else if (g_sender.state == SVA_CAN_TX_FAILED) {
-                faults |= SVA_CAN_FAULT_TRANSFER_FAILED;
-                fprintf(stderr, "sva_can_node: plan %u aborted (reason %u)%s\n",
-                        g_sender.priv.plan.plan_id, g_sender.last_abort_reason,
-                        (g_sender.last_nack == SVA_CAN_ACK_BAD_VERSION)
-                            ? ": the bridge refused the protocol version (NACK BAD_VERSION)"
-                            : "");
-            }
-            prev_state = g_sender.state;
-        }
-        if (elapsed(t, last_hb) >= SVA_CAN_HEARTBEAT_PERIOD_MS) {
-            sva_can_msg_t hb;
-            sva_can_frame_t hf;
-            hb.kind = SVA_CAN_MSG_HEARTBEAT;
-            hb.counter = hb_counter;
-            hb.u.heartbeat.state = (uint8_t)((g_sender.state == SVA_CAN_TX_SENDING ||
-                                              g_sender.state == SVA_CAN_TX_WAIT_ACK)
-                                                 ? SVA_CAN_NODE_SENDING
-                                             : (active_plan_id != 0u) ? SVA_CAN_NODE_ACTIVE
-                                             : (faults != 0u)         ? SVA_CAN_NODE_FAULT
-                                                                      : SVA_CAN_NODE_IDLE);
-            hb.u.heartbeat.active_plan_id = active_plan_id;
-            {
-                const uint16_t in_service = sva_can_live_in_service(&g_live);
-                hb.u.heartbeat.uav_count = (uint8_t)((in_service > 255u) ? 255u : in_service);
-                hb.u.heartbeat.target_count = (uint8_t)((g_live.live.mission.target_count > 255u)
-                                                            ? 255u
-                                                            : g_live.live.mission.target_count);
-            }
-            hb.u.heartbeat.covered_count = covered_active;
-            hb.u.heartbeat.faults = (uint8_t)(faults & SVA_CAN_FAULT_MASK);
-            if ((sva_can_encode(&hb, &hf) == SVA_CAN_OK) && (tp.send(tp.ctx, &hf) == SVA_CAN_OK)) {
-                hb_counter = (uint8_t)((hb_counter + 1u) & 0x0Fu);
-            }
-            faults = (uint8_t)(faults & (uint8_t)~SVA_CAN_FAULT_RX_ERRORS);  // per heartbeat period
-            last_hb = t;
-        }
-        if ((exit_after_acks != 0u) && (acks >= exit_after_acks)) {
+        watch_transfer(r);
+        heartbeat(r, tp, t);
+        if ((o->exit_after_acks != 0u) && (r->acks >= o->exit_after_acks)) {
             break;
         }
-        if ((max_runtime_ms != 0u) && (elapsed(t, t0) >= max_runtime_ms)) {
+        if ((o->max_runtime_ms != 0u) && (elapsed(t, r->t0) >= o->max_runtime_ms)) {
             fprintf(stderr, "sva_can_node: --max-runtime-ms %lu reached\n",
-                    (unsigned long)max_runtime_ms);
-            rc = (exit_after_acks != 0u) ? 1 : 0;  // asked for ACKs that never came
-            break;
+                    (unsigned long)o->max_runtime_ms);
+            return (o->exit_after_acks != 0u) ? 1 : 0;  // asked for ACKs that never came
         }
     }
-    if (!halted &&
+    return 0;
+}
+
+// Aborts a transfer in flight (unless halted), prints the exit line, closes the bus
+// and the journal.
+static void shut_down(const node_run_t* r, sva_can_socketcan_t* sock)
+{
+    if (!r->halted &&
         (sva_can_sender_abort(&g_sender, SVA_CAN_ABORT_SHUTDOWN, now_ms()) != SVA_CAN_OK)) {
         fprintf(stderr, "sva_can_node: could not send ABORT on shutdown\n");
     }
     fprintf(stderr,
             "sva_can_node: exit: %lu frames sent, %lu acks, %lu nacks, %lu rejected flight-stack "
             "frames, %lu events applied, %lu refused, %lu replans (%lu unchanged)\n",
-            (unsigned long)g_sender.stats.frames_sent, (unsigned long)acks,
-            (unsigned long)g_sender.stats.nacks, (unsigned long)rx_rejected,
+            (unsigned long)g_sender.stats.frames_sent, (unsigned long)r->acks,
+            (unsigned long)g_sender.stats.nacks, (unsigned long)r->rx_rejected,
             (unsigned long)g_live.stats.events_applied, (unsigned long)g_live.stats.events_refused,
             (unsigned long)g_live.stats.replans, (unsigned long)g_live.stats.unchanged);
-    sva_can_socketcan_close(&sock);
+    sva_can_socketcan_close(sock);
     sva_can_state_close(&g_state);
+}
+
+int main(int argc, char** argv)
+{
+    node_options_t opt;
+    node_run_t run;
+    sva_can_socketcan_t sock;
+    sva_can_transport_t tp;
+    char name[128];
+    char shown_name[SVA_TEXT_ESCAPED_SIZE(sizeof name)];
+    char shown_arg[SHOWN_SIZE];
+    int rc = parse_options(argc, argv, &opt);
+    if (rc >= 0) {
+        return rc;
+    }
+    rc = open_state(&opt, name, sizeof name);
+    if (rc != 0) {
+        return rc;
+    }
+    rc = open_transport(&opt, &sock, &tp);
+    if (rc != 0) {
+        return rc;
+    }
+    fprintf(stderr, "sva_can_node: mission \"%s\" (%u UAVs, %u targets) on %s, algorithm %s\n",
+            sva_text_escape(shown_name, sizeof shown_name, name), g_mission.uav_count,
+            g_mission.target_count, sva_text_escape(shown_arg, sizeof shown_arg, opt.iface),
+            sva_algorithm_name(opt.algo));
+    rc = run_loop(&opt, &run, &tp, &sock);
+    shut_down(&run, &sock);
     return rc;
 }

@@ -1,6 +1,7 @@
 // The in-memory loopback bus: two bounded FIFO queues, one per direction.
 
 #include "sva/sva_can.h"
+#include "sva/sva_can_transport.h"
 
 void sva_can_loopback_init(sva_can_loopback_t* self)
 {

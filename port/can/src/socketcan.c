@@ -10,6 +10,7 @@
 #endif
 
 #include "sva/sva_can.h"
+#include "sva/sva_can_transport.h"
 
 #include <errno.h>
 #include <linux/can.h>

@@ -1,6 +1,7 @@
 // SocketCAN stand-in for non-Linux builds: every call reports SVA_CAN_ERR_UNSUPPORTED.
 
 #include "sva/sva_can.h"
+#include "sva/sva_can_transport.h"
 
 sva_can_status_t sva_can_socketcan_open(sva_can_socketcan_t* self, const char* ifname)
 {

@@ -226,22 +226,37 @@ static void send_status(void)
     }
 }
 
-int main(int argc, char** argv)
+// What the command line asks for, and what it makes of it.
+typedef struct {
+    const char* url_arg;
+    const char* prefix;
+    const char* algo_name;
+    const char* algo_option;  // as the user spelled it, for its error line
+    long status_ms;
+    long change_penalty;
+    long takeoff_ticks;
+    int fleet_reports;
+    long track_tolerance;
+    long rt_priority;
+    int lock_memory;
+    int exit_on_eof;
+    const char* state_dir;
+    bool state_reset;
+    sva_algorithm_t algorithm;
+    char url[URL_SIZE];
+} node_options_t;
+
+// Reads the command line into *o. Returns -1 to go on, else the exit status (0 after
+// --help or --version, 2 after a usage error, each with its message).
+static int parse_options(int argc, char** argv, node_options_t* o)
 {
-    const char* url_arg = DEFAULT_URL;
-    const char* prefix = DEFAULT_PREFIX;
-    const char* algo_name = "sva";
-    const char* algo_option = "--algo";  // as the user spelled it, for its error line
-    long status_ms = 1000;
-    long change_penalty = 0;
-    long takeoff_ticks = 0;
-    int fleet_reports = 0;
-    long track_tolerance = SVA_LCM_TRACK_TOLERANCE_DEFAULT;
-    long rt_priority = 0;
-    int lock_memory = 0;
-    int exit_on_eof = 0;
-    const char* state_dir = NULL;
-    bool state_reset = false;
+    memset(o, 0, sizeof *o);
+    o->url_arg = DEFAULT_URL;
+    o->prefix = DEFAULT_PREFIX;
+    o->algo_name = "sva";
+    o->algo_option = "--algo";
+    o->status_ms = 1000;
+    o->track_tolerance = SVA_LCM_TRACK_TOLERANCE_DEFAULT;
     for (int i = 1; i < argc; ++i) {
         const char* a = argv[i];
         const int has_value = (i + 1) < argc;
@@ -252,47 +267,47 @@ int main(int argc, char** argv)
             printf("sva_node %d.%d.%d\n", SVA_VERSION_MAJOR, SVA_VERSION_MINOR, SVA_VERSION_PATCH);
             return 0;
         } else if (((strcmp(a, "-u") == 0) || (strcmp(a, "--url") == 0)) && has_value) {
-            url_arg = argv[++i];
+            o->url_arg = argv[++i];
         } else if (((strcmp(a, "-p") == 0) || (strcmp(a, "--prefix") == 0)) && has_value) {
-            prefix = argv[++i];
+            o->prefix = argv[++i];
         } else if (((strcmp(a, "-a") == 0) || (strcmp(a, "--algo") == 0) ||
                     (strcmp(a, "--algorithm") == 0)) &&
                    has_value) {
-            algo_option = (strcmp(a, "--algorithm") == 0) ? "--algorithm" : "--algo";
-            algo_name = argv[++i];
+            o->algo_option = (strcmp(a, "--algorithm") == 0) ? "--algorithm" : "--algo";
+            o->algo_name = argv[++i];
         } else if (((strcmp(a, "-s") == 0) || (strcmp(a, "--status-ms") == 0)) && has_value) {
-            if (!integer_option("--status-ms", argv[++i], 10, 3600000, &status_ms)) {
+            if (!integer_option("--status-ms", argv[++i], 10, 3600000, &o->status_ms)) {
                 return 2;
             }
         } else if (((strcmp(a, "-c") == 0) || (strcmp(a, "--change-penalty") == 0)) && has_value) {
             if (!integer_option("--change-penalty", argv[++i], 0, (long)SVA_MAX_CHANGE_PENALTY,
-                                &change_penalty)) {
+                                &o->change_penalty)) {
                 return 2;
             }
         } else if (((strcmp(a, "-k") == 0) || (strcmp(a, "--takeoff-ticks") == 0)) && has_value) {
             if (!integer_option("--takeoff-ticks", argv[++i], 0, (long)SVA_MAX_TICK,
-                                &takeoff_ticks)) {
+                                &o->takeoff_ticks)) {
                 return 2;
             }
         } else if (((strcmp(a, "-r") == 0) || (strcmp(a, "--rt-priority") == 0)) && has_value) {
-            if (!integer_option("--rt-priority", argv[++i], 1, 99, &rt_priority)) {
+            if (!integer_option("--rt-priority", argv[++i], 1, 99, &o->rt_priority)) {
                 return 2;
             }
         } else if (((strcmp(a, "-t") == 0) || (strcmp(a, "--track-tolerance") == 0)) && has_value) {
             if (!integer_option("--track-tolerance", argv[++i], 0, SVA_LCM_TRACK_TOLERANCE_MAX,
-                                &track_tolerance)) {
+                                &o->track_tolerance)) {
                 return 2;
             }
         } else if ((strcmp(a, "-f") == 0) || (strcmp(a, "--fleet-reports") == 0)) {
-            fleet_reports = 1;
+            o->fleet_reports = 1;
         } else if ((strcmp(a, "-m") == 0) || (strcmp(a, "--mlock") == 0)) {
-            lock_memory = 1;
+            o->lock_memory = 1;
         } else if ((strcmp(a, "-e") == 0) || (strcmp(a, "--exit-on-eof") == 0)) {
-            exit_on_eof = 1;
+            o->exit_on_eof = 1;
         } else if ((strcmp(a, "--state-dir") == 0) && has_value) {
-            state_dir = argv[++i];
+            o->state_dir = argv[++i];
         } else if (strcmp(a, "--state-reset") == 0) {
-            state_reset = true;
+            o->state_reset = true;
         } else {
             char shown[SHOWN_SIZE];
             fprintf(stderr, "sva_node: error: unknown or incomplete option '%s'\n",
@@ -301,70 +316,87 @@ int main(int argc, char** argv)
             return 2;
         }
     }
+    return -1;
+}
 
-    sva_algorithm_t algorithm = SVA_ALGO_SVA;
-    if (sva_algorithm_from_name(algo_name, &algorithm) != SVA_OK) {
+// Checks the options together: the algorithm's name, the prefix's and URL's lengths,
+// the state options (the journal's files named into *storage). Returns -1 to go on, else
+// the exit status 2 with its message.
+static int check_options(node_options_t* o, sva_lcm_storage_t* storage)
+{
+    o->algorithm = SVA_ALGO_SVA;
+    if (sva_algorithm_from_name(o->algo_name, &o->algorithm) != SVA_OK) {
         char shown[SHOWN_SIZE];
         fprintf(stderr, "sva_node: error: %s: unknown name '%s' (sva, ga, hga, bfa, flow)\n",
-                algo_option, sva_text_escape(shown, sizeof shown, algo_name));
+                o->algo_option, sva_text_escape(shown, sizeof shown, o->algo_name));
         return 2;
     }
-    if (strlen(prefix) > SVA_LCM_PREFIX_MAX) {
+    if (strlen(o->prefix) > SVA_LCM_PREFIX_MAX) {
         fprintf(
             stderr,
             "sva_node: error: --prefix: %zu characters exceed %d (LCM channel names are <= 63)\n",
-            strlen(prefix), SVA_LCM_PREFIX_MAX);
+            strlen(o->prefix), SVA_LCM_PREFIX_MAX);
         return 2;
     }
-    char url[URL_SIZE];
-    if (build_url(url_arg, url, sizeof url) != 0) {
+    if (build_url(o->url_arg, o->url, sizeof o->url) != 0) {
         fprintf(stderr, "sva_node: error: --url: longer than %d characters\n", URL_SIZE - 1);
         return 2;
     }
-    if (state_reset && (state_dir == NULL)) {
+    if (o->state_reset && (o->state_dir == NULL)) {
         fprintf(stderr, "sva_node: error: --state-reset needs --state-dir\n");
         return 2;
     }
-    sva_lcm_storage_t storage;
-    if ((state_dir != NULL) &&
-        (sva_lcm_journal_file_init(&journal_file, state_dir, &storage) != SVA_LCM_JOURNAL_OK)) {
+    if ((o->state_dir != NULL) &&
+        (sva_lcm_journal_file_init(&journal_file, o->state_dir, storage) != SVA_LCM_JOURNAL_OK)) {
         fprintf(stderr,
                 "sva_node: error: --state-dir: must be a folder path of 1 to %d characters\n",
                 SVA_LCM_JOURNAL_DIR_MAX);
         return 2;
     }
+    return -1;
+}
 
-    if (realtime_setup(rt_priority, lock_memory) != 0) {
+// Real-time set-up, the LCM instance (*lcm) and the node with its options. Returns 0,
+// or 1 after printing why (nothing left open).
+static int open_node(const node_options_t* o, lcm_t** lcm)
+{
+    if (realtime_setup(o->rt_priority, o->lock_memory) != 0) {
         return 1;
     }
-    lcm_t* lcm = lcm_create(url);
-    if (lcm == NULL) {
+    *lcm = lcm_create(o->url);
+    if (*lcm == NULL) {
         char shown[SHOWN_SIZE];
         fprintf(
             stderr,
             "sva_node: error: lcm_create(\"%s\") failed (for udpm: is there a multicast route?)\n",
-            sva_text_escape(shown, sizeof shown, url));
+            sva_text_escape(shown, sizeof shown, o->url));
         return 1;
     }
-    if (sva_lcm_node_init(&node, lcm, prefix, algorithm) != SVA_OK) {
+    if (sva_lcm_node_init(&node, *lcm, o->prefix, o->algorithm) != SVA_OK) {
         fprintf(stderr, "sva_node: error: cannot set up the node\n");
-        lcm_destroy(lcm);
+        lcm_destroy(*lcm);
         return 1;
     }
     node.log = log_stderr;
-    node.change_penalty = (int32_t)change_penalty;
-    node.takeoff_ticks = (int32_t)takeoff_ticks;
-    node.fleet_reports = (fleet_reports != 0);
-    node.track_tolerance_cells = (int32_t)track_tolerance;
-    // The journal is replayed before the node hears anything: its options set above are
-    // part of the journal's header.
-    if (state_dir != NULL) {
-        int src = state_dir_ready(state_dir);
-        if ((src == 0) && (sva_lcm_journal_init(&journal, &storage, &node) != SVA_LCM_JOURNAL_OK)) {
+    node.change_penalty = (int32_t)o->change_penalty;
+    node.takeoff_ticks = (int32_t)o->takeoff_ticks;
+    node.fleet_reports = (o->fleet_reports != 0);
+    node.track_tolerance_cells = (int32_t)o->track_tolerance;
+    return 0;
+}
+
+// With --state-dir: opens the journal and replays it into the node, before it hears
+// anything (its options set by open_node are part of the journal's header). Returns 0,
+// or the exit status after printing why (the journal closed, lcm destroyed).
+static int open_state(const node_options_t* o, sva_lcm_storage_t* storage, lcm_t* lcm)
+{
+    if (o->state_dir != NULL) {
+        int src = state_dir_ready(o->state_dir);
+        if ((src == 0) && (sva_lcm_journal_init(&journal, storage, &node) != SVA_LCM_JOURNAL_OK)) {
             src = 1;
         }
         if (src == 0) {
-            src = resume_state(state_reset);
+            src = resume_state(o->state_reset);
         }
         if (src != 0) {
             sva_lcm_journal_close(&journal);
@@ -372,6 +404,13 @@ int main(int argc, char** argv)
             return src;
         }
     }
+    return 0;
+}
+
+// Subscribes the node to its channels and catches SIGINT and SIGTERM. Returns 0, or 1
+// after printing why (the journal closed, lcm destroyed).
+static int start_listening(lcm_t* lcm)
+{
     if (sva_lcm_node_subscribe(&node) != SVA_OK) {
         char shown_fleet[SHOWN_SIZE];
         char shown_mission[SHOWN_SIZE];
@@ -389,18 +428,30 @@ int main(int argc, char** argv)
     sigemptyset(&sa.sa_mask);
     (void)sigaction(SIGINT, &sa, NULL);
     (void)sigaction(SIGTERM, &sa, NULL);
+    return 0;
+}
 
+// The start line: channels, algorithm, options.
+static void announce(const node_options_t* o)
+{
     char started[SHOWN_SIZE];
     (void)snprintf(started, sizeof started,
                    "in %s %s %s, out %s %s %s; algorithm %s; change penalty %ld; take-off %ld "
                    "ticks; %s%s%s",
                    node.channel_fleet, node.channel_mission, node.channel_event, node.channel_plan,
-                   node.channel_status, node.channel_replan, sva_algorithm_name(algorithm),
-                   change_penalty, takeoff_ticks, url, (rt_priority > 0) ? "; SCHED_FIFO" : "",
-                   lock_memory ? "; memory locked" : "");
+                   node.channel_status, node.channel_replan, sva_algorithm_name(o->algorithm),
+                   o->change_penalty, o->takeoff_ticks, o->url,
+                   (o->rt_priority > 0) ? "; SCHED_FIFO" : "",
+                   o->lock_memory ? "; memory locked" : "");
     log_stderr(NULL, started);  // escapes channel names and URL
+}
+
+// Handles messages and publishes the status every status_ms until a signal, the end of
+// input (--exit-on-eof), a failure or a halt. Returns the exit status.
+static int run_loop(const node_options_t* o, lcm_t* lcm)
+{
     send_status();
-    int64_t next_status = monotonic_ms() + status_ms;
+    int64_t next_status = monotonic_ms() + o->status_ms;
     int rc = 0;
     while (!stop_requested) {
         const int64_t wait = next_status - monotonic_ms();
@@ -417,7 +468,7 @@ int main(int argc, char** argv)
         }
         if (r < 0) {
             // A signal interrupts the wait: that is a request to stop, not a failure.
-            if (stop_requested || exit_on_eof) {
+            if (stop_requested || o->exit_on_eof) {
                 break;
             }
             fprintf(stderr, "sva_node: error: lcm_handle_timeout failed\n");
@@ -426,12 +477,18 @@ int main(int argc, char** argv)
         }
         if (monotonic_ms() >= next_status) {
             send_status();
-            next_status += status_ms;
+            next_status += o->status_ms;
             if (next_status < monotonic_ms()) {
-                next_status = monotonic_ms() + status_ms;
+                next_status = monotonic_ms() + o->status_ms;
             }
         }
     }
+    return rc;
+}
+
+// The last status, everything closed, and the exit line with the counters.
+static void shut_down(lcm_t* lcm)
+{
     send_status();
     sva_lcm_node_unsubscribe(&node);
     sva_lcm_journal_close(&journal);
@@ -449,5 +506,32 @@ int main(int argc, char** argv)
                 (unsigned long)c->rejected[r]);
     }
     fprintf(stderr, "\n");
+}
+
+int main(int argc, char** argv)
+{
+    static node_options_t opt;  // holds the URL: kept off the stack
+    sva_lcm_storage_t storage;
+    lcm_t* lcm = NULL;
+    int rc = parse_options(argc, argv, &opt);
+    if (rc < 0) {
+        rc = check_options(&opt, &storage);
+    }
+    if (rc >= 0) {
+        return rc;
+    }
+    rc = open_node(&opt, &lcm);
+    if (rc == 0) {
+        rc = open_state(&opt, &storage, lcm);
+    }
+    if (rc == 0) {
+        rc = start_listening(lcm);
+    }
+    if (rc != 0) {
+        return rc;
+    }
+    announce(&opt);
+    rc = run_loop(&opt, lcm);
+    shut_down(lcm);
     return rc;
 }

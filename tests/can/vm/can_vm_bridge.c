@@ -15,6 +15,7 @@
 
 #include "plan_print.h"
 #include "sva/sva_can.h"
+#include "sva/sva_can_transport.h"
 
 static uint32_t now_ms(void)
 {

@@ -1,5 +1,5 @@
-// mission_gen.h -- seeded random missions for model-based tests (xorshift64*, so a
-// seed replays the same missions on every platform).
+// mission_gen.h -- seeded random missions for model-based tests and the benchmark
+// (xorshift64*, so a seed replays the same missions on every platform).
 #ifndef SVA_MISSION_GEN_H
 #define SVA_MISSION_GEN_H
 
