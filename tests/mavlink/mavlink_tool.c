@@ -91,7 +91,7 @@ static int parse_mode(void)
             h += 2;
         }
         if (datagram) {
-            frames += parser.frames;
+            frames += parser.packets;
             dropped += parser.dropped;
             sva_mavlink_parser_reset(&parser);
         }
@@ -112,7 +112,7 @@ static int parse_mode(void)
             }
         }
     }
-    printf("parser %u %u\n", (unsigned)(frames + parser.frames),
+    printf("parser %u %u\n", (unsigned)(frames + parser.packets),
            (unsigned)(dropped + parser.dropped));
     return 0;
 }
@@ -154,7 +154,7 @@ static void print_telemetry(size_t i, const sva_frame_t* frame, sva_frame_geodes
            (int)t->battery_percent, (int)t->mission_seq, (int)t->reached_seq,
            (unsigned)t->requests_sent, (unsigned)t->requests_accepted,
            (unsigned)t->requests_refused, (unsigned)t->reboots, (unsigned)v->connects,
-           (unsigned)v->drops, (unsigned)v->parser.dropped, (unsigned)v->parser.frames);
+           (unsigned)v->drops, (unsigned)v->parser.dropped, (unsigned)v->parser.packets);
     if (geo == NULL) {
         return;
     }

@@ -7,7 +7,7 @@
 #include <stddef.h>
 
 #include "sva/sva.h"
-#include "sva/sva_can_frame.h"
+#include "sva/sva_can_mission_frame.h"
 
 /// Parses `path` strictly (unknown keys, wrong types, missing keys, values outside
 /// int32 or a list longer than its bound are errors), then runs sva_mission_validate()

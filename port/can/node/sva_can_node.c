@@ -70,7 +70,7 @@ static uint8_t send_frame(void)
     if (!g_has_frame) {
         return 0u;
     }
-    if (sva_can_frame_encode(&g_frame, g_frame_counter, out) != SVA_CAN_OK) {
+    if (sva_can_mission_frame_encode(&g_frame, g_frame_counter, out) != SVA_CAN_OK) {
         return SVA_CAN_FAULT_TX_ERRORS;
     }
     g_frame_counter = (uint8_t)((g_frame_counter + SVA_CAN_MISSION_FRAME_PARTS) & 15u);

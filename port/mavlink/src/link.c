@@ -42,7 +42,7 @@ static void flush_tx(sva_mavlink_vehicle_t* v)
     // n < 0: EAGAIN keeps the bytes for later; a broken connection shows up on reading.
 }
 
-static void send_frame(sva_mavlink_vehicle_t* v, const sva_mavlink_frame_t* f)
+static void send_packet(sva_mavlink_vehicle_t* v, const sva_mavlink_packet_t* f)
 {
     if (!is_tcp(v)) {
         if (send(v->fd, f->bytes, f->len, 0) != (ssize_t)f->len) {
@@ -62,9 +62,9 @@ static void send_frame(sva_mavlink_vehicle_t* v, const sva_mavlink_frame_t* f)
 
 static void send_heartbeat(sva_mavlink_vehicle_t* v, int64_t now_ms)
 {
-    sva_mavlink_frame_t f;
+    sva_mavlink_packet_t f;
     sva_mavlink_heartbeat(v->upload.own_system, v->upload.own_component, &f);
-    send_frame(v, &f);
+    send_packet(v, &f);
     v->next_heartbeat_ms = now_ms + SVA_MAVLINK_HEARTBEAT_MS;
 }
 
@@ -80,9 +80,9 @@ static void on_connected(sva_mavlink_vehicle_t* v, int64_t now_ms)
     send_heartbeat(v, now_ms);
     if (v->upload.state == SVA_MAVLINK_UPLOAD_COUNT) {
         // Its MISSION_COUNT went nowhere: send it now, with every retry still to come.
-        sva_mavlink_frame_t f;
+        sva_mavlink_packet_t f;
         if (sva_mavlink_upload_start(&v->upload, v->upload.items, v->upload.count, now_ms, &f)) {
-            send_frame(v, &f);
+            send_packet(v, &f);
         }
     }
 }
@@ -198,19 +198,19 @@ void sva_mavlink_vehicle_close(sva_mavlink_vehicle_t* v)
 bool sva_mavlink_vehicle_start(sva_mavlink_vehicle_t* v, int64_t now_ms)
 {
     send_heartbeat(v, now_ms);
-    sva_mavlink_frame_t f;
+    sva_mavlink_packet_t f;
     if (!sva_mavlink_upload_start(&v->upload, v->items, v->item_count, now_ms, &f)) {
         return false;
     }
-    send_frame(v, &f);
+    send_packet(v, &f);
     return true;
 }
 
 static void on_message(sva_mavlink_vehicle_t* v, const mavlink_message_t* msg, int64_t now_ms)
 {
-    sva_mavlink_frame_t f;
+    sva_mavlink_packet_t f;
     if (sva_mavlink_upload_on_message(&v->upload, msg, now_ms, &f)) {
-        send_frame(v, &f);
+        send_packet(v, &f);
     }
     (void)sva_mavlink_telemetry_on_message(&v->telemetry, msg, now_ms);
 }
@@ -271,10 +271,10 @@ void sva_mavlink_vehicle_service(sva_mavlink_vehicle_t* v, int64_t now_ms)
         flush_tx(v);
     }
     receive(v, now_ms);
-    sva_mavlink_frame_t f;
+    sva_mavlink_packet_t f;
     const bool was_busy = sva_mavlink_vehicle_busy(v);
     if (sva_mavlink_upload_on_time(&v->upload, now_ms, &f)) {
-        send_frame(v, &f);
+        send_packet(v, &f);
     }
     if (was_busy && v->upload.state == SVA_MAVLINK_UPLOAD_FAILED && is_tcp(v) &&
         v->link != SVA_MAVLINK_LINK_UP) {
@@ -290,12 +290,12 @@ void sva_mavlink_vehicle_service(sva_mavlink_vehicle_t* v, int64_t now_ms)
     if (now_ms >= v->next_heartbeat_ms) {
         send_heartbeat(v, now_ms);
     }
-    sva_mavlink_frame_t requests[SVA_MAVLINK_STREAM_COUNT];
+    sva_mavlink_packet_t requests[SVA_MAVLINK_STREAM_COUNT];
     size_t n =
         sva_mavlink_telemetry_requests(&v->telemetry, now_ms, v->upload.own_system,
                                        v->upload.own_component, requests, SVA_MAVLINK_STREAM_COUNT);
     for (size_t k = 0; k < n; k++) {
-        send_frame(v, &requests[k]);
+        send_packet(v, &requests[k]);
     }
 }
 

@@ -132,7 +132,7 @@ bool sva_mavlink_parser_next(sva_mavlink_parser_t* self, mavlink_message_t* msg)
         switch (judge(self, msg, &frame_len)) {
         case FRAME_GOOD:
             consume(self, frame_len);
-            self->frames++;
+            self->packets++;
             return true;
         case FRAME_BAD:
             drop_candidate(self);

@@ -40,7 +40,7 @@ int main(void)
         return 1;
     }
 
-    sva_mavlink_frame_t out;
+    sva_mavlink_packet_t out;
     sva_mavlink_heartbeat(250, MAV_COMP_ID_MISSIONPLANNER, &out);
     static sva_mavlink_parser_t parser;
     mavlink_message_t msg;

@@ -150,24 +150,25 @@ typedef struct sva_mavlink_upload {
 } sva_mavlink_upload_t;
 
 /// An outgoing message: the encoded MAVLink 2 frame.
-typedef struct sva_mavlink_frame {
+typedef struct sva_mavlink_packet {
     uint8_t bytes[280];
     uint16_t len;
-} sva_mavlink_frame_t;
+} sva_mavlink_packet_t;
 
 /// Starts an upload of items[0..count) at now_ms: *out is the MISSION_COUNT to send.
 /// False (state FAILED) when count is 0 or over SVA_MAVLINK_MAX_ITEMS.
 bool sva_mavlink_upload_start(sva_mavlink_upload_t* up, const sva_mavlink_item_t* items,
-                              size_t count, int64_t now_ms, sva_mavlink_frame_t* out);
+                              size_t count, int64_t now_ms, sva_mavlink_packet_t* out);
 
 /// Feeds one received message. True when *out holds an answer to send. Messages of
 /// other systems, components or mission types are ignored.
 bool sva_mavlink_upload_on_message(sva_mavlink_upload_t* up, const mavlink_message_t* msg,
-                                   int64_t now_ms, sva_mavlink_frame_t* out);
+                                   int64_t now_ms, sva_mavlink_packet_t* out);
 
 /// Checks the timeout at now_ms. True when *out holds a resend; after `retries`
 /// resends the upload FAILS ("no answer to MISSION_COUNT after 6 tries of 1500 ms").
-bool sva_mavlink_upload_on_time(sva_mavlink_upload_t* up, int64_t now_ms, sva_mavlink_frame_t* out);
+bool sva_mavlink_upload_on_time(sva_mavlink_upload_t* up, int64_t now_ms,
+                                sva_mavlink_packet_t* out);
 
 /// True when the upload FAILED because the vehicle refused the mission itself: a
 /// MISSION_ACK whose result names the mission or one of its items (MAV_MISSION_UNSUPPORTED,
@@ -181,7 +182,7 @@ bool sva_mavlink_upload_refused_for_good(const sva_mavlink_upload_t* up);
 
 /// A GCS heartbeat of this side (sent every SVA_MAVLINK_HEARTBEAT_MS on every link that
 /// is up: a UDP vehicle learns where to send its telemetry from it).
-void sva_mavlink_heartbeat(uint8_t own_system, uint8_t own_component, sva_mavlink_frame_t* out);
+void sva_mavlink_heartbeat(uint8_t own_system, uint8_t own_component, sva_mavlink_packet_t* out);
 
 /// Ends an upload in progress with `reason` as its error (state FAILED); used when the
 /// link under it is lost. Nothing happens when no upload is in progress.
@@ -206,7 +207,7 @@ typedef struct sva_mavlink_parser {
     uint16_t len;                            ///< bytes held
     bool flushing;                           ///< after _end: no byte is coming to finish a frame
     uint32_t dropped;                        ///< bytes discarded as not part of a good frame
-    uint32_t frames;                         ///< good frames returned
+    uint32_t packets;                        ///< good packets returned
 } sva_mavlink_parser_t;
 
 /// Empties the parser (the counters too). Every parser starts with it (or zeroed).
@@ -337,7 +338,7 @@ bool sva_mavlink_telemetry_on_message(sva_mavlink_telemetry_t* self, const mavli
 /// apart, only for the streams not heard since, each at most SVA_MAVLINK_STREAM_TRIES times.
 size_t sva_mavlink_telemetry_requests(sva_mavlink_telemetry_t* self, int64_t now_host_ms,
                                       uint8_t own_system, uint8_t own_component,
-                                      sva_mavlink_frame_t* out, size_t capacity);
+                                      sva_mavlink_packet_t* out, size_t capacity);
 
 /// The GPS time (UTC ms) at which the held position was taken: the latest SYSTEM_TIME's
 /// time_unix_usec plus the time since boot from that SYSTEM_TIME to the position's

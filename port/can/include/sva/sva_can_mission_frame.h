@@ -1,4 +1,4 @@
-/// sva_can_frame.h -- the mission frame on the CAN wire (docs/can.md, sva.dbc
+/// sva_can_mission_frame.h -- the mission frame on the CAN wire (docs/can.md, sva.dbc
 /// SVA_MISSION_FRAME_A..D): what a cell and a tick mean to the flight side. The
 /// integers of sva_frame_t (port/frame), in four frames since one classic frame carries
 /// 52 bits after its counter and CRC-8:
@@ -11,8 +11,8 @@
 /// all four of one group (A's counter + 1, + 2, + 3) with every value in range.
 /// The planner sends its mission's frame before each plan when the mission has one.
 /// Depends on nothing but sva_can.h: no PROJ, no floating point, nothing allocated.
-#ifndef SVA_CAN_FRAME_H
-#define SVA_CAN_FRAME_H
+#ifndef SVA_CAN_MISSION_FRAME_H
+#define SVA_CAN_MISSION_FRAME_H
 
 #include <stdint.h>
 
@@ -30,14 +30,14 @@ extern "C" {
 #define SVA_CAN_MISSION_FRAME_PARTS 4u
 
 /// Ranges of a frame on the wire: sva_frame.h's (static-asserted by the node).
-#define SVA_CAN_FRAME_MAX_LAT_E7  850000000L
-#define SVA_CAN_FRAME_MAX_LON_E7  1800000000L
-#define SVA_CAN_FRAME_MAX_ALT_CM  1000000L
-#define SVA_CAN_FRAME_MIN_CELL_CM 10L
-#define SVA_CAN_FRAME_MAX_CELL_CM 1000000L
-#define SVA_CAN_FRAME_MIN_TICK_MS 1L
-#define SVA_CAN_FRAME_MAX_TICK_MS 3600000L
-#define SVA_CAN_FRAME_MAX_T0_MS   253402300799999LL
+#define SVA_CAN_MISSION_FRAME_MAX_LAT_E7  850000000L
+#define SVA_CAN_MISSION_FRAME_MAX_LON_E7  1800000000L
+#define SVA_CAN_MISSION_FRAME_MAX_ALT_CM  1000000L
+#define SVA_CAN_MISSION_FRAME_MIN_CELL_CM 10L
+#define SVA_CAN_MISSION_FRAME_MAX_CELL_CM 1000000L
+#define SVA_CAN_MISSION_FRAME_MIN_TICK_MS 1L
+#define SVA_CAN_MISSION_FRAME_MAX_TICK_MS 3600000L
+#define SVA_CAN_MISSION_FRAME_MAX_T0_MS   253402300799999LL
 
 /// A mission frame in integers (sva_frame_t's fields).
 typedef struct {
@@ -54,29 +54,28 @@ typedef struct {
     uint8_t have;     ///< bit p set: part p (0 A .. 3 D) of the current group received
     uint8_t counter;  ///< part A's counter of the current group
     sva_can_mission_frame_t parts;
-} sva_can_frame_rx_t;
+} sva_can_mission_frame_rx_t;
 
 /// Encodes *frame as its four CAN frames, counters first_counter .. + 3 (mod 16).
 /// Returns SVA_CAN_OK, or SVA_CAN_ERR_ARGUMENT for NULL, a counter above 15 or a value
 /// outside its range (then out is untouched). O(1).
-SVA_CAN_NODISCARD sva_can_status_t sva_can_frame_encode(const sva_can_mission_frame_t* frame,
-                                                        uint8_t first_counter,
-                                                        sva_can_frame_t out[4]);
+SVA_CAN_NODISCARD sva_can_status_t sva_can_mission_frame_encode(
+    const sva_can_mission_frame_t* frame, uint8_t first_counter, sva_can_frame_t out[4]);
 
 /// Clears a receiver.
-void sva_can_frame_rx_init(sva_can_frame_rx_t* rx);
+void sva_can_mission_frame_rx_init(sva_can_mission_frame_rx_t* rx);
 
 /// Takes one received CAN frame. Returns SVA_CAN_IGNORED for any other id (and
 /// extended, RTR or FD frames), SVA_CAN_ERR_DLC, SVA_CAN_ERR_CRC, SVA_CAN_ERR_VALUE (a
 /// value out of range; the group is dropped), SVA_CAN_ERR_SEQUENCE (a part that is not
 /// the next of the group A started; the group is dropped), SVA_CAN_OK (stored), or
 /// SVA_CAN_APPLIED when it completed a group: *out then holds the frame. O(1).
-SVA_CAN_NODISCARD sva_can_status_t sva_can_frame_rx(sva_can_frame_rx_t* rx,
-                                                    const sva_can_frame_t* frame,
-                                                    sva_can_mission_frame_t* out);
+SVA_CAN_NODISCARD sva_can_status_t sva_can_mission_frame_rx(sva_can_mission_frame_rx_t* rx,
+                                                            const sva_can_frame_t* frame,
+                                                            sva_can_mission_frame_t* out);
 
 #ifdef __cplusplus
 }
 #endif
 
-#endif  // SVA_CAN_FRAME_H
+#endif  // SVA_CAN_MISSION_FRAME_H
