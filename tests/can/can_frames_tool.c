@@ -293,7 +293,7 @@ static int do_plan(const char* path, const char* algo_name, const char* id_text)
     sva_can_mission_frame_t mframe;
     bool has_frame = false;
     if (sva_can_mission_load_frame(path, &mission, NULL, 0, &mframe, &has_frame, err, sizeof err) !=
-        0) {
+        SVA_JSON_OK) {
         fprintf(stderr, "%s: %s\n", path, err);
         return 1;
     }
@@ -376,7 +376,7 @@ static int do_live(const char* path, const char* algo_name, const char* tick_tex
     char err[256];
     sva_algorithm_t algo;
     sva_can_msg_t m;
-    if (sva_can_mission_load(path, &mission, NULL, 0, err, sizeof err) != 0) {
+    if (sva_can_mission_load(path, &mission, NULL, 0, err, sizeof err) != SVA_JSON_OK) {
         fprintf(stderr, "%s: %s\n", path, err);
         return 1;
     }

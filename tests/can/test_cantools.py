@@ -258,7 +258,7 @@ def test_frame_check_against_cantools_frames(db, codec):
     print(f"frame check: {checked} cantools frames in sequence, 7 faults caught")
 
 
-# --- the mission frame (SVA_MISSION_FRAME_A..D, sva_can_mission_frame.h) ------------------------
+# --- the mission frame (SVA_MISSION_FRAME_A..D, sva_can_mission_frame.h) ----------------
 
 FRAMES = [(473977419, 85455939, 3000, 1000, 1000, 1780300800125, 3),
           (-850000000, -1800000000, 0, 10, 1, 0, 14),

@@ -22,9 +22,9 @@
 #include <sva/sva_json.h>
 #include <sva/sva_text.h>
 
+#include "exit_status.h"
 #include "schedule.h"
 
-enum { EXIT_PLANNED = 0, EXIT_FAILED = 1, EXIT_BAD_INPUT = 2 };
 enum { REPEAT_MAX = 1000 };  // --repeat: runs of one mission in one process
 
 // Large working structs live in static storage, as on firmware.
@@ -279,10 +279,10 @@ static bool g_has_frame;
 static int load(const char* path, char name[SVA_JSON_NAME_MAX + 1])
 {
     char err[SVA_JSON_ERROR_SIZE];
-    sva_json_result_t result = sva_json_load_mission_frame(path, &g_mission, name, &g_frame,
+    sva_json_status_t result = sva_json_load_mission_frame(path, &g_mission, name, &g_frame,
                                                            &g_has_frame, err, sizeof err);
     if (result != SVA_JSON_OK) {
-        return error_exit(result == SVA_JSON_BAD_INPUT ? EXIT_BAD_INPUT : EXIT_FAILED, "%s", err);
+        return error_exit(sva_cli_exit_of_json(result), "%s", err);
     }
     return EXIT_PLANNED;
 }
@@ -581,9 +581,9 @@ static int cmd_replan(int argc, char** argv)
         return code;
     }
     char err[SVA_JSON_ERROR_SIZE];
-    const sva_json_result_t loaded = sva_json_load_live(opt.mission, &g_doc, err, sizeof err);
+    const sva_json_status_t loaded = sva_json_load_live(opt.mission, &g_doc, err, sizeof err);
     if (loaded != SVA_JSON_OK) {
-        return error_exit(loaded == SVA_JSON_BAD_INPUT ? EXIT_BAD_INPUT : EXIT_FAILED, "%s", err);
+        return error_exit(sva_cli_exit_of_json(loaded), "%s", err);
     }
     if (sva_planner_init(&g_planner) != SVA_OK) {
         sva_json_live_free(&g_doc);

@@ -276,7 +276,7 @@ int main(int argc, char** argv)
         return 2;
     }
     if (sva_can_mission_load_frame(mission_path, &g_mission, name, sizeof name, &g_frame,
-                                   &g_has_frame, err, sizeof err) != 0) {
+                                   &g_has_frame, err, sizeof err) != SVA_JSON_OK) {
         fprintf(stderr, "sva_can_node: error: %s: %s\n",
                 sva_text_escape(shown_arg, sizeof shown_arg, mission_path), err);
         return 1;

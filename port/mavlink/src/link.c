@@ -50,7 +50,7 @@ static void send_packet(sva_mavlink_vehicle_t* v, const sva_mavlink_packet_t* f)
         }
         return;
     }
-    // A frame is queued whole or not at all: half a frame would corrupt the stream.
+    // A packet is queued whole or not at all: half a packet would corrupt the stream.
     if (v->link != SVA_MAVLINK_LINK_UP || v->tx_len + f->len > sizeof v->tx) {
         v->send_errors++;
         return;
@@ -130,7 +130,7 @@ static void tcp_connect(sva_mavlink_vehicle_t* v, int64_t now_ms)
         return;
     }
     int one = 1;
-    // Frames are small and answered one by one: no Nagle delay.
+    // Packets are small and answered one by one: no Nagle delay.
     (void)setsockopt(v->fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
     if (connect(v->fd, (const struct sockaddr*)(const void*)v->addr, (socklen_t)v->addr_len) == 0) {
         on_connected(v, now_ms);
@@ -163,9 +163,13 @@ static void tcp_check_connect(sva_mavlink_vehicle_t* v, int64_t now_ms)
     }
 }
 
-bool sva_mavlink_vehicle_open(sva_mavlink_vehicle_t* v, const sva_mavlink_vehicle_spec_t* spec,
-                              uint8_t own_system, char* err, size_t err_size)
+sva_mavlink_status_t sva_mavlink_vehicle_open(sva_mavlink_vehicle_t* v,
+                                              const sva_mavlink_vehicle_spec_t* spec,
+                                              uint8_t own_system, char* err, size_t err_size)
 {
+    if ((v == NULL) || (spec == NULL)) {
+        return SVA_MAVLINK_ERR_ARGUMENT;
+    }
     memset(v, 0, sizeof *v);
     v->spec = *spec;
     v->fd = -1;
@@ -179,14 +183,14 @@ bool sva_mavlink_vehicle_open(sva_mavlink_vehicle_t* v, const sva_mavlink_vehicl
     if (!is_tcp(v)) {
         v->fd = sva_mavlink_udp_open(spec, err, err_size);
         v->link = v->fd >= 0 ? SVA_MAVLINK_LINK_UP : SVA_MAVLINK_LINK_DOWN;
-        return v->fd >= 0;
+        return (v->fd >= 0) ? SVA_MAVLINK_OK : SVA_MAVLINK_ERR_IO;
     }
     if (!sva_mavlink_resolve(spec, SOCK_STREAM, v->addr, &v->addr_len, &v->addr_family, err,
                              err_size)) {
-        return false;
+        return SVA_MAVLINK_ERR_IO;
     }
     tcp_connect(v, sva_mavlink_now_ms());
-    return true;
+    return SVA_MAVLINK_OK;
 }
 
 void sva_mavlink_vehicle_close(sva_mavlink_vehicle_t* v)
@@ -215,7 +219,7 @@ static void on_message(sva_mavlink_vehicle_t* v, const mavlink_message_t* msg, i
     (void)sva_mavlink_telemetry_on_message(&v->telemetry, msg, now_ms);
 }
 
-// Feeds bytes to the parser and every frame it completes to on_message.
+// Feeds bytes to the parser and every packet it completes to on_message.
 static void feed(sva_mavlink_vehicle_t* v, const uint8_t* data, size_t size, bool datagram,
                  int64_t now_ms)
 {
@@ -244,7 +248,7 @@ static void receive(sva_mavlink_vehicle_t* v, int64_t now_ms)
             if (n <= 0) {
                 return;  // EAGAIN, or an ICMP error of an earlier send
             }
-            // Each datagram holds whole frames: it starts and ends a parse of its own
+            // Each datagram holds whole packets: it starts and ends a parse of its own
             // (after sva_mavlink_parser_end the parser is empty again).
             feed(v, buf, (size_t)n, true, now_ms);
         } else if (n > 0) {
