@@ -52,7 +52,7 @@ if(TARGET sva_can)
     set_target_properties(sva_can PROPERTIES EXPORT_NAME can)
     sva_install_component(can TARGETS sva_can PC sva-can.pc
                           HEADERS "${PROJECT_SOURCE_DIR}/port/can/include/sva/sva_can.h"
-                                  "${PROJECT_SOURCE_DIR}/port/can/include/sva/sva_can_frame.h"
+                                  "${PROJECT_SOURCE_DIR}/port/can/include/sva/sva_can_mission_frame.h"
                                   "${PROJECT_SOURCE_DIR}/port/can/include/sva/sva_can_transport.h")
     install(FILES "${PROJECT_SOURCE_DIR}/port/can/sva.dbc" DESTINATION "${SVA_SHARE_INSTALL_DIR}")
 endif()

@@ -174,16 +174,16 @@ SVA_PY_API int sva_py_plan(const char* text, size_t len, const char* source, con
     }
     char name[SVA_JSON_NAME_MAX + 1];
     char message[SVA_JSON_ERROR_SIZE];
-    sva_json_result_t parsed =
+    sva_json_status_t parsed =
         sva_json_parse_mission(text, len, source, &work->mission, name, message, sizeof message);
     sva_diag_t diag;
     sva_diag_clear(&diag);
     if (parsed == SVA_JSON_OK && sva_mission_validate(&work->mission, &diag) != SVA_OK) {
         (void)sva_diag_format(&diag, message, sizeof message);
-        parsed = SVA_JSON_BAD_INPUT;
+        parsed = SVA_JSON_ERR_INPUT;
     }
     if (parsed != SVA_JSON_OK) {
-        code = fail(parsed == SVA_JSON_BAD_INPUT ? SVA_PY_BAD_INPUT : SVA_PY_FAILED, err, err_size,
+        code = fail(parsed == SVA_JSON_ERR_INPUT ? SVA_PY_BAD_INPUT : SVA_PY_FAILED, err, err_size,
                     "%s", message);
         free(work);
         return code;
@@ -293,9 +293,9 @@ SVA_PY_API int sva_py_replan(const char* path, const char* algo, long flow_work,
         return code;
     }
     char message[SVA_JSON_ERROR_SIZE];
-    const sva_json_result_t loaded = sva_json_load_live(path, &work->doc, message, sizeof message);
+    const sva_json_status_t loaded = sva_json_load_live(path, &work->doc, message, sizeof message);
     if (loaded != SVA_JSON_OK) {
-        code = fail(loaded == SVA_JSON_BAD_INPUT ? SVA_PY_BAD_INPUT : SVA_PY_FAILED, err, err_size,
+        code = fail(loaded == SVA_JSON_ERR_INPUT ? SVA_PY_BAD_INPUT : SVA_PY_FAILED, err, err_size,
                     "%s", message);
         free(work);
         return code;

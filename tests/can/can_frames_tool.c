@@ -19,7 +19,7 @@
 #include "mission_file.h"
 #include "sva/sva.h"
 #include "sva/sva_can.h"
-#include "sva/sva_can_frame.h"
+#include "sva/sva_can_mission_frame.h"
 #include "sva/sva_can_transport.h"
 
 typedef struct {
@@ -294,7 +294,7 @@ static int do_plan(const char* path, const char* algo_name, const char* id_text)
     sva_can_mission_frame_t mframe;
     bool has_frame = false;
     if (sva_can_mission_load_frame(path, &mission, NULL, 0, &mframe, &has_frame, err, sizeof err) !=
-        0) {
+        SVA_JSON_OK) {
         fprintf(stderr, "%s: %s\n", path, err);
         return 1;
     }
@@ -343,7 +343,7 @@ static int print_wire(uint32_t covered, int64_t cost, const sva_can_mission_fram
         // what sva_can_node sends before the plan (counters from 0)
         sva_can_frame_t parts[4];
         int p;
-        if (sva_can_frame_encode(frame, 0u, parts) != SVA_CAN_OK) {
+        if (sva_can_mission_frame_encode(frame, 0u, parts) != SVA_CAN_OK) {
             fprintf(stderr, "frame encoding failed\n");
             return 1;
         }
@@ -377,7 +377,7 @@ static int do_live(const char* path, const char* algo_name, const char* tick_tex
     char err[256];
     sva_algorithm_t algo;
     sva_can_msg_t m;
-    if (sva_can_mission_load(path, &mission, NULL, 0, err, sizeof err) != 0) {
+    if (sva_can_mission_load(path, &mission, NULL, 0, err, sizeof err) != SVA_JSON_OK) {
         fprintf(stderr, "%s: %s\n", path, err);
         return 1;
     }
@@ -406,7 +406,7 @@ static int do_live(const char* path, const char* algo_name, const char* tick_tex
 }
 
 // "frame LAT_E7 LON_E7 ALT_CM CELL_CM TICK_MS T0_MS COUNTER": the four frames of a
-// mission frame (sva_can_frame_encode), or "error <status>".
+// mission frame (sva_can_mission_frame_encode), or "error <status>".
 static int do_frame_encode(char** v)
 {
     sva_can_mission_frame_t mf;
@@ -418,7 +418,8 @@ static int do_frame_encode(char** v)
     mf.cell_cm = (int32_t)strtol(v[3], NULL, 10);
     mf.tick_ms = (int32_t)strtol(v[4], NULL, 10);
     mf.t0_ms = (int64_t)strtoll(v[5], NULL, 10);
-    const sva_can_status_t st = sva_can_frame_encode(&mf, (uint8_t)strtoul(v[6], NULL, 10), out);
+    const sva_can_status_t st =
+        sva_can_mission_frame_encode(&mf, (uint8_t)strtoul(v[6], NULL, 10), out);
     if (st != SVA_CAN_OK) {
         printf("error %s\n", sva_can_status_name(st));
         return 1;
@@ -434,10 +435,10 @@ static int do_frame_encode(char** v)
 // a group completes, the frame's six integers.
 static int do_frame_rx(int n, char** v)
 {
-    sva_can_frame_rx_t rx;
+    sva_can_mission_frame_rx_t rx;
     sva_can_mission_frame_t mf;
     int i;
-    sva_can_frame_rx_init(&rx);
+    sva_can_mission_frame_rx_init(&rx);
     for (i = 0; i < n; ++i) {
         sva_can_frame_t f;
         const char* hash = strchr(v[i], '#');
@@ -455,7 +456,7 @@ static int do_frame_rx(int n, char** v)
             f.data[k] = (uint8_t)strtoul(b, NULL, 16);
         }
         f.dlc = (uint8_t)len;
-        const sva_can_status_t st = sva_can_frame_rx(&rx, &f, &mf);
+        const sva_can_status_t st = sva_can_mission_frame_rx(&rx, &f, &mf);
         printf("%s%s", (i == 0) ? "" : " ", sva_can_status_name(st));
         if (st == SVA_CAN_APPLIED) {
             printf(" lat_e7=%ld lon_e7=%ld alt_cm=%ld cell_cm=%ld tick_ms=%ld t0_ms=%lld",

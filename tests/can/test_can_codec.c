@@ -7,7 +7,7 @@
 #include "unity.h"
 
 #include "sva/sva_can.h"
-#include "sva/sva_can_frame.h"
+#include "sva/sva_can_mission_frame.h"
 
 static sva_can_frame_t enc(const sva_can_msg_t* m)
 {
@@ -386,10 +386,10 @@ void test_mission_frame_round_trip(void)
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
         sva_can_frame_t out[4];
         const uint8_t first = (uint8_t)(13u + c) & 15u;  // wraps past 15
-        TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_frame_encode(&cases[c], first, out));
-        sva_can_frame_rx_t rx;
+        TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_mission_frame_encode(&cases[c], first, out));
+        sva_can_mission_frame_rx_t rx;
         sva_can_mission_frame_t got;
-        sva_can_frame_rx_init(&rx);
+        sva_can_mission_frame_rx_init(&rx);
         for (unsigned p = 0; p < 4u; ++p) {
             TEST_ASSERT_EQUAL_INT(SVA_CAN_ID_MISSION_FRAME_A + p, out[p].id);
             TEST_ASSERT_EQUAL_INT(8, out[p].dlc);
@@ -397,45 +397,45 @@ void test_mission_frame_round_trip(void)
             TEST_ASSERT_EQUAL_INT(SVA_CAN_MSG_NONE,
                                   sva_can_kind_of_id(out[p].id));  // plan path ignores it
             TEST_ASSERT_EQUAL_INT(p < 3u ? SVA_CAN_OK : SVA_CAN_APPLIED,
-                                  sva_can_frame_rx(&rx, &out[p], &got));
+                                  sva_can_mission_frame_rx(&rx, &out[p], &got));
         }
         TEST_ASSERT_EQUAL_MEMORY(&cases[c], &got, sizeof got);
     }
     sva_can_mission_frame_t bad = cases[0];
     sva_can_frame_t out[4];
     bad.cell_cm = 9;
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_ARGUMENT, sva_can_frame_encode(&bad, 0, out));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_ARGUMENT, sva_can_mission_frame_encode(&bad, 0, out));
     bad = cases[0];
     bad.t0_ms = -1;
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_ARGUMENT, sva_can_frame_encode(&bad, 0, out));
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_ARGUMENT, sva_can_frame_encode(&cases[0], 16, out));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_ARGUMENT, sva_can_mission_frame_encode(&bad, 0, out));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_ARGUMENT, sva_can_mission_frame_encode(&cases[0], 16, out));
 
-    sva_can_frame_rx_t rx;
+    sva_can_mission_frame_rx_t rx;
     sva_can_mission_frame_t got;
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_frame_encode(&cases[0], 5, out));
-    sva_can_frame_rx_init(&rx);
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_mission_frame_encode(&cases[0], 5, out));
+    sva_can_mission_frame_rx_init(&rx);
     // B without A, then A and C (B missing): sequence errors, nothing taken
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_SEQUENCE, sva_can_frame_rx(&rx, &out[1], &got));
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_frame_rx(&rx, &out[0], &got));
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_SEQUENCE, sva_can_frame_rx(&rx, &out[2], &got));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_SEQUENCE, sva_can_mission_frame_rx(&rx, &out[1], &got));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_mission_frame_rx(&rx, &out[0], &got));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_SEQUENCE, sva_can_mission_frame_rx(&rx, &out[2], &got));
     // a part of another group (its counter does not follow A's)
     sva_can_frame_t other[4];
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_frame_encode(&cases[1], 9, other));
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_frame_rx(&rx, &out[0], &got));
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_SEQUENCE, sva_can_frame_rx(&rx, &other[1], &got));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_mission_frame_encode(&cases[1], 9, other));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_mission_frame_rx(&rx, &out[0], &got));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_SEQUENCE, sva_can_mission_frame_rx(&rx, &other[1], &got));
     // CRC, DLC, foreign ids
     sva_can_frame_t f = out[0];
     f.data[3] ^= 0x10u;
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_CRC, sva_can_frame_rx(&rx, &f, &got));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_CRC, sva_can_mission_frame_rx(&rx, &f, &got));
     f = out[0];
     f.dlc = 7;
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_DLC, sva_can_frame_rx(&rx, &f, &got));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_DLC, sva_can_mission_frame_rx(&rx, &f, &got));
     f = out[0];
     f.id = SVA_CAN_ID_PLAN_BEGIN;
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_IGNORED, sva_can_frame_rx(&rx, &f, &got));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_IGNORED, sva_can_mission_frame_rx(&rx, &f, &got));
     f = out[0];
     f.flags = SVA_CAN_FLAG_EXTENDED;
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_IGNORED, sva_can_frame_rx(&rx, &f, &got));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_IGNORED, sva_can_mission_frame_rx(&rx, &f, &got));
     // a tick of 0 on the wire (22 bits hold it): out of range when the group completes
     f = out[3];
     f.data[0] = (uint8_t)(f.data[0] & 0x0Fu);
@@ -443,8 +443,8 @@ void test_mission_frame_round_trip(void)
     f.data[2] = 0u;
     f.data[3] = (uint8_t)(f.data[3] & 0xFCu);
     f.data[7] = sva_can_frame_crc8(f.id, f.data);
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_frame_rx(&rx, &out[0], &got));
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_frame_rx(&rx, &out[1], &got));
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_frame_rx(&rx, &out[2], &got));
-    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_VALUE, sva_can_frame_rx(&rx, &f, &got));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_mission_frame_rx(&rx, &out[0], &got));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_mission_frame_rx(&rx, &out[1], &got));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_OK, sva_can_mission_frame_rx(&rx, &out[2], &got));
+    TEST_ASSERT_EQUAL_INT(SVA_CAN_ERR_VALUE, sva_can_mission_frame_rx(&rx, &f, &got));
 }

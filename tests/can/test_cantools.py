@@ -22,7 +22,7 @@ FRAME_MESSAGES = ["SVA_MISSION_FRAME_A", "SVA_MISSION_FRAME_B", "SVA_MISSION_FRA
 
 class PlanMessages:
     """The DBC as the generic codec (sva_can_encode/decode) sees it: every message but the
-    mission frame's, which has a codec of its own (sva_can_frame.h; tested below)."""
+    mission frame's, which has a codec of its own (sva_can_mission_frame.h; tested below)."""
 
     def __init__(self, db):
         self._db = db
@@ -258,7 +258,7 @@ def test_frame_check_against_cantools_frames(db, codec):
     print(f"frame check: {checked} cantools frames in sequence, 7 faults caught")
 
 
-# --- the mission frame (SVA_MISSION_FRAME_A..D, sva_can_frame.h) ------------------------
+# --- the mission frame (SVA_MISSION_FRAME_A..D, sva_can_mission_frame.h) ----------------
 
 FRAMES = [(473977419, 85455939, 3000, 1000, 1000, 1780300800125, 3),
           (-850000000, -1800000000, 0, 10, 1, 0, 14),

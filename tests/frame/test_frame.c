@@ -24,7 +24,7 @@ static void check_fails(const sva_frame_units_t* u, const char* expected)
     sva_frame_t f;
     memset(&f, 0x5a, sizeof f);
     const sva_frame_t before = f;
-    TEST_ASSERT_FALSE(sva_frame_from_units(u, &f, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_frame_from_units(u, &f, err, sizeof err));
     TEST_ASSERT_EQUAL_STRING(expected, err);
     TEST_ASSERT_EQUAL_MEMORY(&before, &f, sizeof f);
 }
@@ -39,7 +39,7 @@ void test_units_round_half_away_from_zero(void)
     u.tick_s = 0.0005;     // below the millisecond: out of range
     check_fails(&u, "frame.tick_s: must be >= 0.001, got 0.0005");
     u.tick_s = 2.0005;
-    TEST_ASSERT_TRUE(sva_frame_from_units(&u, &f, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_frame_from_units(&u, &f, err, sizeof err));
     TEST_ASSERT_EQUAL_INT(-330000001, f.lat_e7);
     TEST_ASSERT_EQUAL_INT(1235, f.cell_cm);
     TEST_ASSERT_EQUAL_INT(2001, f.tick_ms);
@@ -69,7 +69,7 @@ void test_ties_round_on_the_decimal_text(void)
         u.alt_m = cases[i].alt_m;
         u.cell_m = cases[i].cell_m;
         u.tick_s = cases[i].tick_s;
-        TEST_ASSERT_TRUE(sva_frame_from_units(&u, &f, err, sizeof err));
+        TEST_ASSERT_EQUAL_INT(SVA_OK, sva_frame_from_units(&u, &f, err, sizeof err));
         TEST_ASSERT_EQUAL_INT(cases[i].lat_e7, f.lat_e7);
         TEST_ASSERT_EQUAL_INT(cases[i].lon_e7, f.lon_e7);
         TEST_ASSERT_EQUAL_INT(cases[i].alt_cm, f.alt_cm);
@@ -79,10 +79,11 @@ void test_ties_round_on_the_decimal_text(void)
     // t0: the fraction past the millisecond on the text, half away from zero
     int64_t ms = -1;
     char err[SVA_FRAME_ERROR_SIZE] = "";
-    TEST_ASSERT_TRUE(sva_frame_parse_utc("1970-01-01T00:00:00.0005Z", "t0", &ms, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(
+        SVA_OK, sva_frame_parse_utc("1970-01-01T00:00:00.0005Z", "t0", &ms, err, sizeof err));
     TEST_ASSERT_EQUAL_INT(1, ms);
-    TEST_ASSERT_TRUE(
-        sva_frame_parse_utc("1970-01-01T00:00:00.00049999Z", "t0", &ms, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(
+        SVA_OK, sva_frame_parse_utc("1970-01-01T00:00:00.00049999Z", "t0", &ms, err, sizeof err));
     TEST_ASSERT_EQUAL_INT(0, ms);
 }
 
@@ -135,24 +136,28 @@ void test_every_range_is_named(void)
     // the integer form has the same ranges
     char err[SVA_FRAME_ERROR_SIZE] = "";
     sva_frame_t f = {0, 0, 0, SVA_FRAME_MAX_CELL_CM + 1, 1000, 0};
-    TEST_ASSERT_FALSE(sva_frame_check(&f, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_frame_check(&f, err, sizeof err));
     TEST_ASSERT_EQUAL_STRING("frame.cell_m: must be <= 10000, got 10000.01", err);
     f.cell_cm = 100;
     f.tick_ms = 0;
-    TEST_ASSERT_FALSE(sva_frame_check(&f, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_frame_check(&f, err, sizeof err));
     TEST_ASSERT_EQUAL_STRING("frame.tick_s: must be >= 0.001, got 0", err);
     f.tick_ms = 1;
     f.lat_e7 = -850000001;
-    TEST_ASSERT_FALSE(sva_frame_check(&f, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_frame_check(&f, err, sizeof err));
     TEST_ASSERT_EQUAL_STRING("frame.lat: must be >= -85, got -85.0000001", err);
     f.lat_e7 = 0;
     f.t0_ms = SVA_FRAME_MAX_T0_MS + 1;
-    TEST_ASSERT_FALSE(sva_frame_check(&f, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID, sva_frame_check(&f, err, sizeof err));
     TEST_ASSERT_EQUAL_STRING("frame.t0: must be <= 9999-12-31T23:59:59.999Z, got 253402300800000 "
                              "ms after 1970-01-01T00:00:00Z",
                              err);
     f.t0_ms = 0;
-    TEST_ASSERT_TRUE(sva_frame_check(&f, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_frame_check(&f, err, sizeof err));
+    // A NULL frame is misuse, not a refused value: no message.
+    err[0] = '\0';
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT, sva_frame_check(NULL, err, sizeof err));
+    TEST_ASSERT_EQUAL_STRING("", err);
 }
 
 // One message per rule of t0, in the Python tools' words, the first rule broken.
@@ -182,18 +187,22 @@ void test_t0_rules(void)
     int64_t ms = 7;
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         (void)snprintf(want, sizeof want, "frame.t0: %s, got \"%s\"", cases[i].rule, cases[i].text);
-        TEST_ASSERT_FALSE(sva_frame_parse_utc(cases[i].text, "frame.t0", &ms, err, sizeof err));
+        TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID,
+                              sva_frame_parse_utc(cases[i].text, "frame.t0", &ms, err, sizeof err));
         TEST_ASSERT_EQUAL_STRING(want, err);
         TEST_ASSERT_EQUAL_INT(7, ms);
     }
     // the ends of the range are in it
-    TEST_ASSERT_TRUE(sva_frame_parse_utc("9999-12-31T23:59:59.9990Z", "t0", &ms, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(
+        SVA_OK, sva_frame_parse_utc("9999-12-31T23:59:59.9990Z", "t0", &ms, err, sizeof err));
     TEST_ASSERT_EQUAL_INT(SVA_FRAME_MAX_T0_MS, ms);
-    TEST_ASSERT_TRUE(sva_frame_parse_utc("1970-01-01T01:00:00+01:00", "t0", &ms, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(
+        SVA_OK, sva_frame_parse_utc("1970-01-01T01:00:00+01:00", "t0", &ms, err, sizeof err));
     TEST_ASSERT_EQUAL_INT(0, ms);
     // a text that is no date is quoted as JSON writes it (json.dumps)
-    TEST_ASSERT_FALSE(sva_frame_parse_utc("8 \"h\"\\\n\x01\xc3\xa9\xf0\x9f\x9b\xb8", "frame.t0",
-                                          &ms, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID,
+                          sva_frame_parse_utc("8 \"h\"\\\n\x01\xc3\xa9\xf0\x9f\x9b\xb8", "frame.t0",
+                                              &ms, err, sizeof err));
     TEST_ASSERT_EQUAL_STRING("frame.t0: " SVA_FRAME_UTC_RULE
                              ", got \"8 \\\"h\\\"\\\\\\n\\u0001\\u00e9\\ud83d\\udef8\"",
                              err);
@@ -205,20 +214,22 @@ void test_utc_text(void)
     char text[SVA_FRAME_UTC_SIZE];
     int64_t ms = -1;
 
-    TEST_ASSERT_TRUE(sva_frame_parse_utc("1970-01-01T00:00:00Z", "t0", &ms, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(SVA_OK,
+                          sva_frame_parse_utc("1970-01-01T00:00:00Z", "t0", &ms, err, sizeof err));
     TEST_ASSERT_EQUAL_INT(0, ms);
     // 2024-02-29 is day 19782 after the epoch
-    TEST_ASSERT_TRUE(sva_frame_parse_utc("2024-02-29T12:30:15.25Z", "t0", &ms, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(
+        SVA_OK, sva_frame_parse_utc("2024-02-29T12:30:15.25Z", "t0", &ms, err, sizeof err));
     TEST_ASSERT_EQUAL_INT((19782LL * 86400 + 12 * 3600 + 30 * 60 + 15) * 1000 + 250, ms);
     TEST_ASSERT_TRUE(sva_frame_format_utc(ms, text, sizeof text));
     TEST_ASSERT_EQUAL_STRING("2024-02-29T12:30:15.250Z", text);
     // an offset is folded into UTC; a sub-millisecond fraction rounds
     int64_t ms2 = -1;
-    TEST_ASSERT_TRUE(
-        sva_frame_parse_utc("2024-02-29T14:30:15.2494+02:00", "t0", &ms2, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(
+        SVA_OK, sva_frame_parse_utc("2024-02-29T14:30:15.2494+02:00", "t0", &ms2, err, sizeof err));
     TEST_ASSERT_EQUAL_INT(ms - 1, ms2);
-    TEST_ASSERT_TRUE(
-        sva_frame_parse_utc("2024-02-29T07:00:15.2495-05:30", "t0", &ms2, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(
+        SVA_OK, sva_frame_parse_utc("2024-02-29T07:00:15.2495-05:30", "t0", &ms2, err, sizeof err));
     TEST_ASSERT_EQUAL_INT(ms, ms2);
 
     static const char* const bad[] = {"2026-06-01 08:00:00Z",     "2026-06-01T08:00:00",
@@ -228,7 +239,8 @@ void test_utc_text(void)
                                       "2026-06-01T08:00:00Zjunk", ""};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         ms = 7;
-        TEST_ASSERT_FALSE(sva_frame_parse_utc(bad[i], "frame.t0", &ms, err, sizeof err));
+        TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID,
+                              sva_frame_parse_utc(bad[i], "frame.t0", &ms, err, sizeof err));
         TEST_ASSERT_EQUAL_INT(7, ms);
         TEST_ASSERT_TRUE(strncmp(err, "frame.t0: ", 10) == 0);
     }
@@ -261,7 +273,7 @@ void test_cells_on_the_ellipsoid(void)
     sva_frame_t f;
     sva_frame_geo_t p;
     double dist, azi, east, north;
-    TEST_ASSERT_TRUE(sva_frame_from_units(&u, &f, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_frame_from_units(&u, &f, err, sizeof err));
     sva_frame_geodesy_t* g = sva_frame_geodesy_open(&f, err, sizeof err);
     TEST_ASSERT_NOT_NULL(g);
 

@@ -86,7 +86,7 @@ static void take(const mavlink_message_t* msg)
         }
     }
     (void)sva_mavlink_telemetry_on_message(&h.telemetry, msg, h.now_ms);
-    sva_mavlink_frame_t out;
+    sva_mavlink_packet_t out;
     if (sva_mavlink_upload_on_message(&h.upload, msg, h.now_ms, &out) &&
         out.len > sizeof out.bytes) {
         fail("the upload's answer is longer than its buffer");
@@ -98,11 +98,11 @@ static void check_state(void)
     if (h.parser.len > SVA_MAVLINK_PARSER_SIZE) {
         fail("the parser holds more than its size");
     }
-    if (h.parser.dropped < h.dropped || h.parser.frames < h.frames) {
+    if (h.parser.dropped < h.dropped || h.parser.packets < h.frames) {
         fail("a parser counter went back");
     }
     h.dropped = h.parser.dropped;
-    h.frames = h.parser.frames;
+    h.frames = h.parser.packets;
     const sva_mavlink_upload_t* up = &h.upload;
     if ((int)up->state < (int)SVA_MAVLINK_UPLOAD_IDLE ||
         (int)up->state > (int)SVA_MAVLINK_UPLOAD_FAILED) {
@@ -189,7 +189,7 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     h.upload.timeout_ms = 1500;
     h.upload.retries = 5;
     h.now_ms = 1000;
-    sva_mavlink_frame_t out;
+    sva_mavlink_packet_t out;
     (void)sva_mavlink_upload_start(&h.upload, h.items, ITEMS, h.now_ms, &out);
 
     size_t i = 0;

@@ -37,10 +37,10 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     char err[SVA_JSON_ERROR_SIZE];
     err[0] = '\0';
     sva_mission_init(&mission);
-    const sva_json_result_t r =
+    const sva_json_status_t r =
         sva_json_parse_mission((const char*)data, size, "fuzz", &mission, name, err, sizeof err);
     if (r != SVA_JSON_OK) {
-        if (r != SVA_JSON_BAD_INPUT || err[0] == '\0' || strchr(err, '\n') != NULL) {
+        if (r != SVA_JSON_ERR_INPUT || err[0] == '\0' || strchr(err, '\n') != NULL) {
             fail("reader refused without a one-line message", err);
         }
         return 0;

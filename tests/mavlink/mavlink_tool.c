@@ -91,7 +91,7 @@ static int parse_mode(void)
             h += 2;
         }
         if (datagram) {
-            frames += parser.frames;
+            frames += parser.packets;
             dropped += parser.dropped;
             sva_mavlink_parser_reset(&parser);
         }
@@ -112,7 +112,7 @@ static int parse_mode(void)
             }
         }
     }
-    printf("parser %u %u\n", (unsigned)(frames + parser.frames),
+    printf("parser %u %u\n", (unsigned)(frames + parser.packets),
            (unsigned)(dropped + parser.dropped));
     return 0;
 }
@@ -154,7 +154,7 @@ static void print_telemetry(size_t i, const sva_frame_t* frame, sva_frame_geodes
            (int)t->battery_percent, (int)t->mission_seq, (int)t->reached_seq,
            (unsigned)t->requests_sent, (unsigned)t->requests_accepted,
            (unsigned)t->requests_refused, (unsigned)t->reboots, (unsigned)v->connects,
-           (unsigned)v->drops, (unsigned)v->parser.dropped, (unsigned)v->parser.frames);
+           (unsigned)v->drops, (unsigned)v->parser.dropped, (unsigned)v->parser.packets);
     if (geo == NULL) {
         return;
     }
@@ -293,7 +293,7 @@ int main(void)
             t->end = (int32_t)a[4];
         } else if (sscanf(line, "vehicle %299s", spec_text) == 1) {
             sva_mavlink_vehicle_spec_t spec;
-            if (!sva_mavlink_parse_vehicle(spec_text, &spec, err, sizeof err)) {
+            if (sva_mavlink_parse_vehicle(spec_text, &spec, err, sizeof err) != SVA_MAVLINK_OK) {
                 fprintf(stderr, "mavlink_tool: %s\n", err);
                 return 2;
             }
@@ -309,7 +309,8 @@ int main(void)
                 routes[nroutes].uav_id = spec.uav_id;
                 nroutes++;
             }
-            if (!sva_mavlink_vehicle_open(&vehicles[i], &spec, 250, err, sizeof err)) {
+            if (sva_mavlink_vehicle_open(&vehicles[i], &spec, 250, err, sizeof err) !=
+                SVA_MAVLINK_OK) {
                 fprintf(stderr, "mavlink_tool: %s\n", err);
                 return 2;
             }
@@ -320,7 +321,7 @@ int main(void)
     }
     sva_frame_geodesy_t* geo = NULL;
     if (have_frame) {
-        if (!sva_frame_check(&frame, err, sizeof err)) {
+        if (sva_frame_check(&frame, err, sizeof err) != SVA_OK) {
             fprintf(stderr, "mavlink_tool: %s\n", err);
             return 2;
         }
@@ -341,7 +342,7 @@ int main(void)
         }
         routes[i].ticks_per_cell = tpc;
         built[i] = sva_mavlink_build(&frame, geo, &routes[i], items[i], SVA_MAVLINK_MAX_ITEMS,
-                                     &item_counts[i], err, sizeof err);
+                                     &item_counts[i], err, sizeof err) == SVA_MAVLINK_OK;
         if (!built[i]) {
             printf("result %d error %s\n", (int)routes[i].uav_id, err);
             status = 1;

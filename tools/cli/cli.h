@@ -16,7 +16,8 @@
 #include <sva/sva.h>
 #include <sva/sva_frame.h>
 
-enum { EXIT_PLANNED = 0, EXIT_FAILED = 1, EXIT_BAD_INPUT = 2 };
+#include "exit_status.h"
+
 enum { REPEAT_MAX = 1000 };  // --repeat: runs of one mission in one process
 
 /// A command's options (every command's; a command's table says which it takes).

@@ -28,11 +28,10 @@ static bool g_has_frame;
 static int load(const char* path, char name[SVA_JSON_NAME_MAX + 1])
 {
     char err[SVA_JSON_ERROR_SIZE];
-    sva_json_result_t result = sva_json_load_mission_frame(path, &g_mission, name, &g_frame,
+    sva_json_status_t result = sva_json_load_mission_frame(path, &g_mission, name, &g_frame,
                                                            &g_has_frame, err, sizeof err);
     if (result != SVA_JSON_OK) {
-        return sva_cli_error(result == SVA_JSON_BAD_INPUT ? EXIT_BAD_INPUT : EXIT_FAILED, "%s",
-                             err);
+        return sva_cli_error(sva_cli_exit_of_json(result), "%s", err);
     }
     return EXIT_PLANNED;
 }

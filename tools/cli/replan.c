@@ -136,10 +136,9 @@ int sva_cli_replan(int argc, char** argv)
         return code;
     }
     char err[SVA_JSON_ERROR_SIZE];
-    const sva_json_result_t loaded = sva_json_load_live(opt.mission, &g_doc, err, sizeof err);
+    const sva_json_status_t loaded = sva_json_load_live(opt.mission, &g_doc, err, sizeof err);
     if (loaded != SVA_JSON_OK) {
-        return sva_cli_error(loaded == SVA_JSON_BAD_INPUT ? EXIT_BAD_INPUT : EXIT_FAILED, "%s",
-                             err);
+        return sva_cli_error(sva_cli_exit_of_json(loaded), "%s", err);
     }
     if (sva_planner_init(&sva_cli_planner) != SVA_OK) {
         sva_json_live_free(&g_doc);

@@ -7,39 +7,40 @@
 #include "sva/sva_json.h"
 #include "sva/sva_can.h"
 
-// The CAN frame's ranges are sva_frame.h's: a frame the JSON layer accepts always fits.
-typedef char
-    sva_can_frame_ranges_agree[((SVA_CAN_FRAME_MAX_LAT_E7 == SVA_FRAME_MAX_LAT_DEG * 10000000L) &&
-                                (SVA_CAN_FRAME_MAX_LON_E7 == SVA_FRAME_MAX_LON_DEG * 10000000L) &&
-                                (SVA_CAN_FRAME_MAX_ALT_CM == SVA_FRAME_MAX_ALT_CM) &&
-                                (SVA_CAN_FRAME_MIN_CELL_CM == SVA_FRAME_MIN_CELL_CM) &&
-                                (SVA_CAN_FRAME_MAX_CELL_CM == SVA_FRAME_MAX_CELL_CM) &&
-                                (SVA_CAN_FRAME_MIN_TICK_MS == SVA_FRAME_MIN_TICK_MS) &&
-                                (SVA_CAN_FRAME_MAX_TICK_MS == SVA_FRAME_MAX_TICK_MS) &&
-                                (SVA_CAN_FRAME_MAX_T0_MS == SVA_FRAME_MAX_T0_MS))
-                                   ? 1
-                                   : -1];
+// The CAN mission frame's ranges are sva_frame.h's: a frame the JSON layer accepts always fits.
+typedef char sva_can_mission_frame_ranges_agree
+    [((SVA_CAN_MISSION_FRAME_MAX_LAT_E7 == SVA_FRAME_MAX_LAT_DEG * 10000000L) &&
+      (SVA_CAN_MISSION_FRAME_MAX_LON_E7 == SVA_FRAME_MAX_LON_DEG * 10000000L) &&
+      (SVA_CAN_MISSION_FRAME_MAX_ALT_CM == SVA_FRAME_MAX_ALT_CM) &&
+      (SVA_CAN_MISSION_FRAME_MIN_CELL_CM == SVA_FRAME_MIN_CELL_CM) &&
+      (SVA_CAN_MISSION_FRAME_MAX_CELL_CM == SVA_FRAME_MAX_CELL_CM) &&
+      (SVA_CAN_MISSION_FRAME_MIN_TICK_MS == SVA_FRAME_MIN_TICK_MS) &&
+      (SVA_CAN_MISSION_FRAME_MAX_TICK_MS == SVA_FRAME_MAX_TICK_MS) &&
+      (SVA_CAN_MISSION_FRAME_MAX_T0_MS == SVA_FRAME_MAX_T0_MS))
+         ? 1
+         : -1];
 
-int sva_can_mission_load(const char* path, sva_mission_t* m, char* name, size_t name_size,
-                         char* err, size_t err_size)
+sva_json_status_t sva_can_mission_load(const char* path, sva_mission_t* m, char* name,
+                                       size_t name_size, char* err, size_t err_size)
 {
     sva_can_mission_frame_t frame;
     bool has_frame;
     return sva_can_mission_load_frame(path, m, name, name_size, &frame, &has_frame, err, err_size);
 }
 
-int sva_can_mission_load_frame(const char* path, sva_mission_t* m, char* name, size_t name_size,
-                               sva_can_mission_frame_t* frame, bool* has_frame, char* err,
-                               size_t err_size)
+sva_json_status_t sva_can_mission_load_frame(const char* path, sva_mission_t* m, char* name,
+                                             size_t name_size, sva_can_mission_frame_t* frame,
+                                             bool* has_frame, char* err, size_t err_size)
 {
     char json_name[SVA_JSON_NAME_MAX + 1];
     sva_diag_t diag;
     sva_frame_t f;
     sva_mission_init(m);
     *has_frame = false;
-    if (sva_json_load_mission_frame(path, m, json_name, &f, has_frame, err, err_size) !=
-        SVA_JSON_OK) {
-        return -1;
+    const sva_json_status_t loaded =
+        sva_json_load_mission_frame(path, m, json_name, &f, has_frame, err, err_size);
+    if (loaded != SVA_JSON_OK) {
+        return loaded;
     }
     if (*has_frame) {
         frame->lat_e7 = f.lat_e7;
@@ -51,10 +52,10 @@ int sva_can_mission_load_frame(const char* path, sva_mission_t* m, char* name, s
     }
     if (sva_can_mission_check(m, &diag) != SVA_CAN_OK) {
         (void)sva_diag_format(&diag, err, err_size);
-        return -1;
+        return SVA_JSON_ERR_INPUT;
     }
     if ((name != NULL) && (name_size > 0U)) {
         (void)snprintf(name, name_size, "%s", json_name);
     }
-    return 0;
+    return SVA_JSON_OK;
 }

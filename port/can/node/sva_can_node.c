@@ -71,7 +71,7 @@ static uint8_t send_frame(void)
     if (!g_has_frame) {
         return 0u;
     }
-    if (sva_can_frame_encode(&g_frame, g_frame_counter, out) != SVA_CAN_OK) {
+    if (sva_can_mission_frame_encode(&g_frame, g_frame_counter, out) != SVA_CAN_OK) {
         return SVA_CAN_FAULT_TX_ERRORS;
     }
     g_frame_counter = (uint8_t)((g_frame_counter + SVA_CAN_MISSION_FRAME_PARTS) & 15u);
@@ -294,7 +294,7 @@ static int open_state(const node_options_t* o, char* name, size_t name_size)
     char err[256];
     char shown_arg[SHOWN_SIZE];
     if (sva_can_mission_load_frame(o->mission_path, &g_mission, name, name_size, &g_frame,
-                                   &g_has_frame, err, sizeof err) != 0) {
+                                   &g_has_frame, err, sizeof err) != SVA_JSON_OK) {
         fprintf(stderr, "sva_can_node: error: %s: %s\n",
                 sva_text_escape(shown_arg, sizeof shown_arg, o->mission_path), err);
         return 1;

@@ -1,6 +1,6 @@
-// The mission frame on the CAN wire (sva_can_frame.h): four frames, packed bit by bit
+// The mission frame on the CAN wire (sva_can_mission_frame.h): four frames, packed bit by bit
 // as every frame of sva.dbc (can_internal.h's helpers), so host byte order plays no part.
-#include "sva/sva_can_frame.h"
+#include "sva/sva_can_mission_frame.h"
 
 #include <string.h>
 
@@ -8,12 +8,16 @@
 
 static bool in_range(const sva_can_mission_frame_t* f)
 {
-    return (f->lat_e7 >= -SVA_CAN_FRAME_MAX_LAT_E7) && (f->lat_e7 <= SVA_CAN_FRAME_MAX_LAT_E7) &&
-           (f->lon_e7 >= -SVA_CAN_FRAME_MAX_LON_E7) && (f->lon_e7 <= SVA_CAN_FRAME_MAX_LON_E7) &&
-           (f->alt_cm >= 0) && (f->alt_cm <= SVA_CAN_FRAME_MAX_ALT_CM) &&
-           (f->cell_cm >= SVA_CAN_FRAME_MIN_CELL_CM) && (f->cell_cm <= SVA_CAN_FRAME_MAX_CELL_CM) &&
-           (f->tick_ms >= SVA_CAN_FRAME_MIN_TICK_MS) && (f->tick_ms <= SVA_CAN_FRAME_MAX_TICK_MS) &&
-           (f->t0_ms >= 0) && (f->t0_ms <= SVA_CAN_FRAME_MAX_T0_MS);
+    return (f->lat_e7 >= -SVA_CAN_MISSION_FRAME_MAX_LAT_E7) &&
+           (f->lat_e7 <= SVA_CAN_MISSION_FRAME_MAX_LAT_E7) &&
+           (f->lon_e7 >= -SVA_CAN_MISSION_FRAME_MAX_LON_E7) &&
+           (f->lon_e7 <= SVA_CAN_MISSION_FRAME_MAX_LON_E7) && (f->alt_cm >= 0) &&
+           (f->alt_cm <= SVA_CAN_MISSION_FRAME_MAX_ALT_CM) &&
+           (f->cell_cm >= SVA_CAN_MISSION_FRAME_MIN_CELL_CM) &&
+           (f->cell_cm <= SVA_CAN_MISSION_FRAME_MAX_CELL_CM) &&
+           (f->tick_ms >= SVA_CAN_MISSION_FRAME_MIN_TICK_MS) &&
+           (f->tick_ms <= SVA_CAN_MISSION_FRAME_MAX_TICK_MS) && (f->t0_ms >= 0) &&
+           (f->t0_ms <= SVA_CAN_MISSION_FRAME_MAX_T0_MS);
 }
 
 // A two's complement int32 as its 32 bits, and back.
@@ -37,8 +41,8 @@ static void finish(sva_can_frame_t* out, uint32_t id, uint8_t counter)
     out->data[7] = sva_can_frame_crc8(id, out->data);
 }
 
-sva_can_status_t sva_can_frame_encode(const sva_can_mission_frame_t* f, uint8_t first_counter,
-                                      sva_can_frame_t out[4])
+sva_can_status_t sva_can_mission_frame_encode(const sva_can_mission_frame_t* f,
+                                              uint8_t first_counter, sva_can_frame_t out[4])
 {
     if ((f == NULL) || (out == NULL) || (first_counter > 15u) || !in_range(f)) {
         return SVA_CAN_ERR_ARGUMENT;
@@ -57,15 +61,16 @@ sva_can_status_t sva_can_frame_encode(const sva_can_mission_frame_t* f, uint8_t 
     return SVA_CAN_OK;
 }
 
-void sva_can_frame_rx_init(sva_can_frame_rx_t* rx)
+void sva_can_mission_frame_rx_init(sva_can_mission_frame_rx_t* rx)
 {
     if (rx != NULL) {
         memset(rx, 0, sizeof *rx);
     }
 }
 
-sva_can_status_t sva_can_frame_rx(sva_can_frame_rx_t* rx, const sva_can_frame_t* frame,
-                                  sva_can_mission_frame_t* out)
+sva_can_status_t sva_can_mission_frame_rx(sva_can_mission_frame_rx_t* rx,
+                                          const sva_can_frame_t* frame,
+                                          sva_can_mission_frame_t* out)
 {
     if ((rx == NULL) || (frame == NULL) || (out == NULL)) {
         return SVA_CAN_ERR_ARGUMENT;

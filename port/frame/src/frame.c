@@ -8,12 +8,13 @@
 
 #include "sva/sva_frame.h"
 
-static bool fail(char* err, size_t err_size, const char* text)
+// Every refusal: one line in err (when there is room), SVA_ERR_INVALID.
+static sva_status_t fail(char* err, size_t err_size, const char* text)
 {
     if ((err != NULL) && (err_size > 0U)) {
         (void)snprintf(err, err_size, "%s", text);
     }
-    return false;
+    return SVA_ERR_INVALID;
 }
 
 // --- numbers as text -----------------------------------------------------------------
@@ -223,7 +224,8 @@ static const field_t FIELDS[5] = {
     {"tick_s", 3, SVA_FRAME_MIN_TICK_MS, SVA_FRAME_MAX_TICK_MS, "0.001", "3600"},
 };
 
-static bool out_of_range(const field_t* f, bool below, const char* got, char* err, size_t err_size)
+static sva_status_t out_of_range(const field_t* f, bool below, const char* got, char* err,
+                                 size_t err_size)
 {
     char line[SVA_FRAME_ERROR_SIZE];
     (void)snprintf(line, sizeof line, "frame.%s: must be %s %s, got %s", f->name,
@@ -231,8 +233,8 @@ static bool out_of_range(const field_t* f, bool below, const char* got, char* er
     return fail(err, err_size, line);
 }
 
-static bool t0_failure(const char* field, const char* rule, const char* text, char* err,
-                       size_t err_size)
+static sva_status_t t0_failure(const char* field, const char* rule, const char* text, char* err,
+                               size_t err_size)
 {
     char line[SVA_FRAME_ERROR_SIZE];
     char got[SVA_FRAME_ERROR_SIZE / 2];
@@ -241,8 +243,11 @@ static bool t0_failure(const char* field, const char* rule, const char* text, ch
     return fail(err, err_size, line);
 }
 
-bool sva_frame_check(const sva_frame_t* f, char* err, size_t err_size)
+sva_status_t sva_frame_check(const sva_frame_t* f, char* err, size_t err_size)
 {
+    if (f == NULL) {
+        return SVA_ERR_ARGUMENT;
+    }
     const int64_t v[5] = {f->lat_e7, f->lon_e7, f->alt_cm, f->cell_cm, f->tick_ms};
     char got[48];
 
@@ -259,14 +264,18 @@ bool sva_frame_check(const sva_frame_t* f, char* err, size_t err_size)
                        (long long)f->t0_ms, SVA_FRAME_T0_MIN);
         return fail(err, err_size, line);
     }
-    return true;
+    return SVA_OK;
 }
 
-bool sva_frame_from_units(const sva_frame_units_t* u, sva_frame_t* frame, char* err,
-                          size_t err_size)
+sva_status_t sva_frame_from_units(const sva_frame_units_t* u, sva_frame_t* frame, char* err,
+                                  size_t err_size)
 {
     sva_frame_t f;
     int64_t v[5];
+    sva_status_t status;
+    if ((u == NULL) || (frame == NULL)) {
+        return SVA_ERR_ARGUMENT;
+    }
     const double values[5] = {u->lat, u->lon, u->alt_m, u->cell_m, u->tick_s};
     char got[48];
 
@@ -300,14 +309,14 @@ bool sva_frame_from_units(const sva_frame_units_t* u, sva_frame_t* frame, char* 
     if (u->t0 == NULL) {
         return fail(err, err_size, "frame: missing key \"t0\"");
     }
-    if (!sva_frame_parse_utc(u->t0, "frame.t0", &f.t0_ms, err, err_size)) {
-        return false;
+    status = sva_frame_parse_utc(u->t0, "frame.t0", &f.t0_ms, err, err_size);
+    if (status == SVA_OK) {
+        status = sva_frame_check(&f, err, err_size);
     }
-    if (!sva_frame_check(&f, err, err_size)) {
-        return false;
+    if (status == SVA_OK) {
+        *frame = f;
     }
-    *frame = f;
-    return true;
+    return status;
 }
 
 // --- UTC text -------------------------------------------------------------------------
@@ -330,14 +339,18 @@ static bool leap(int64_t y)
     return ((y % 4) == 0) && (((y % 100) != 0) || ((y % 400) == 0));
 }
 
-bool sva_frame_parse_utc(const char* text, const char* field, int64_t* ms, char* err,
-                         size_t err_size)
+sva_status_t sva_frame_parse_utc(const char* text, const char* field, int64_t* ms, char* err,
+                                 size_t err_size)
 {
     static const int month_days[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
     int64_t y, mo, d, h, mi, s, frac = 0, oh = 0, om = 0;
     bool finer = false;  // nonzero digits past the millisecond
     bool round_up = false;
     const char* p = text;
+
+    if ((text == NULL) || (field == NULL) || (ms == NULL)) {
+        return SVA_ERR_ARGUMENT;
+    }
 
     // The form: YYYY-MM-DDThh:mm:ss[.f...] then Z or +hh:mm or -hh:mm.
     bool form = (strlen(text) >= 20U) && digits(p, 4, &y) && (p[4] == '-') &&
@@ -403,7 +416,7 @@ bool sva_frame_parse_utc(const char* text, const char* field, int64_t* ms, char*
         return t0_failure(field, "must be <= " SVA_FRAME_T0_MAX, text, err, err_size);
     }
     *ms = t + (round_up ? 1 : 0);  // half away from zero (t >= 0)
-    return true;
+    return SVA_OK;
 }
 
 bool sva_frame_format_utc(int64_t ms, char* out, size_t size)

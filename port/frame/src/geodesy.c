@@ -19,7 +19,7 @@ sva_frame_geodesy_t* sva_frame_geodesy_open(const sva_frame_t* frame, char* err,
     char pipeline[384];
     sva_frame_geodesy_t* g;
 
-    if (!sva_frame_check(frame, err, err_size)) {
+    if (sva_frame_check(frame, err, err_size) != SVA_OK) {
         return NULL;
     }
     g = calloc(1U, sizeof *g);

@@ -7,7 +7,7 @@
 
 sva_frame_geodesy_t* sva_frame_geodesy_open(const sva_frame_t* frame, char* err, size_t err_size)
 {
-    if (!sva_frame_check(frame, err, err_size)) {
+    if (sva_frame_check(frame, err, err_size) != SVA_OK) {
         return NULL;
     }
     if ((err != NULL) && (err_size > 0U)) {

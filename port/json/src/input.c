@@ -11,7 +11,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-static sva_json_result_t read_stream(FILE* in, const char* name, char** text, size_t* len,
+static sva_json_status_t read_stream(FILE* in, const char* name, char** text, size_t* len,
                                      char* err, size_t err_size)
 {
     size_t cap = 4096;
@@ -19,7 +19,7 @@ static sva_json_result_t read_stream(FILE* in, const char* name, char** text, si
     char* buf = malloc(cap);
     if (buf == NULL) {
         snprintf(err, err_size, "%s: out of memory", name);
-        return SVA_JSON_IO_ERROR;
+        return SVA_JSON_ERR_IO;
     }
     for (;;) {
         if (used + 1 >= cap) {
@@ -30,7 +30,7 @@ static sva_json_result_t read_stream(FILE* in, const char* name, char** text, si
             if (grown == NULL) {
                 free(buf);
                 snprintf(err, err_size, "%s: out of memory", name);
-                return SVA_JSON_IO_ERROR;
+                return SVA_JSON_ERR_IO;
             }
             buf = grown;
             cap = next;
@@ -40,7 +40,7 @@ static sva_json_result_t read_stream(FILE* in, const char* name, char** text, si
         if (used > (size_t)SVA_JSON_MAX_INPUT_BYTES) {
             free(buf);
             snprintf(err, err_size, "%s: input exceeds %ld bytes", name, SVA_JSON_MAX_INPUT_BYTES);
-            return SVA_JSON_BAD_INPUT;
+            return SVA_JSON_ERR_INPUT;
         }
         if (got == 0) {
             break;
@@ -50,7 +50,7 @@ static sva_json_result_t read_stream(FILE* in, const char* name, char** text, si
         int saved = errno;
         free(buf);
         snprintf(err, err_size, "%s: cannot read: %s", name, strerror(saved));
-        return SVA_JSON_IO_ERROR;
+        return SVA_JSON_ERR_IO;
     }
     buf[used] = '\0';
     *text = buf;
@@ -58,7 +58,7 @@ static sva_json_result_t read_stream(FILE* in, const char* name, char** text, si
     return SVA_JSON_OK;
 }
 
-sva_json_result_t sva_json_read_input(const char* path, char** text, size_t* len, char* err,
+sva_json_status_t sva_json_read_input(const char* path, char** text, size_t* len, char* err,
                                       size_t err_size)
 {
     *text = NULL;
@@ -72,20 +72,20 @@ sva_json_result_t sva_json_read_input(const char* path, char** text, size_t* len
     FILE* in = fopen(path, "rb");
     if (in == NULL) {
         snprintf(err, err_size, "%s: cannot open: %s", shown, strerror(errno));
-        return SVA_JSON_BAD_INPUT;
+        return SVA_JSON_ERR_INPUT;
     }
     struct stat st;
     if (fstat(fileno(in), &st) == 0 && S_ISDIR(st.st_mode)) {
         fclose(in);
         snprintf(err, err_size, "%s: cannot open: %s", shown, strerror(EISDIR));
-        return SVA_JSON_BAD_INPUT;
+        return SVA_JSON_ERR_INPUT;
     }
-    sva_json_result_t result = read_stream(in, shown, text, len, err, err_size);
+    sva_json_status_t result = read_stream(in, shown, text, len, err, err_size);
     fclose(in);
     return result;
 }
 
-sva_json_result_t sva_json_refuse(char* err, size_t size, const char* fmt, ...)
+sva_json_status_t sva_json_refuse(char* err, size_t size, const char* fmt, ...)
 {
     va_list args;
     va_start(args, fmt);
@@ -93,7 +93,7 @@ sva_json_result_t sva_json_refuse(char* err, size_t size, const char* fmt, ...)
         vsnprintf(err, size, fmt, args);
     }
     va_end(args);
-    return SVA_JSON_BAD_INPUT;
+    return SVA_JSON_ERR_INPUT;
 }
 
 const char* sva_json_other_kind(const json_t* root, const char* expected)

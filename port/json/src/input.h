@@ -10,18 +10,18 @@
 /// Reads all of `path` ("-" for standard input) into a new NUL-terminated buffer
 /// (*text, to be freed with free(); *len excludes the NUL). At most
 /// SVA_JSON_MAX_INPUT_BYTES are accepted.
-/// Returns SVA_JSON_OK; SVA_JSON_BAD_INPUT when the path cannot be opened, is a
-/// directory or holds too much; SVA_JSON_IO_ERROR when reading fails or memory runs
+/// Returns SVA_JSON_OK; SVA_JSON_ERR_INPUT when the path cannot be opened, is a
+/// directory or holds too much; SVA_JSON_ERR_IO when reading fails or memory runs
 /// out. On error *text is NULL and err holds one printable line naming the path.
-sva_json_result_t sva_json_read_input(const char* path, char** text, size_t* len, char* err,
+sva_json_status_t sva_json_read_input(const char* path, char** text, size_t* len, char* err,
                                       size_t err_size);
 
 /// Writes one printf-style error line into err (when size > 0) and returns
-/// SVA_JSON_BAD_INPUT: the one way a document's rule is refused.
+/// SVA_JSON_ERR_INPUT: the one way a document's rule is refused.
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((format(printf, 3, 4)))
 #endif
-sva_json_result_t
+sva_json_status_t
 sva_json_refuse(char* err, size_t size, const char* fmt, ...);
 
 /// The SPEC section 4 name of a JSON value's type: object, array, string, integer,

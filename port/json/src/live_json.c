@@ -13,7 +13,7 @@
 #include "plan_check.h"
 
 // A required or optional integer member of `object` that must fit int32.
-static sva_json_result_t member_int(const json_t* object, const char* path, const char* key,
+static sva_json_status_t member_int(const json_t* object, const char* path, const char* key,
                                     bool optional, int32_t* out, char* err, size_t size)
 {
     const json_t* value = json_object_get(object, key);
@@ -35,7 +35,7 @@ static sva_json_result_t member_int(const json_t* object, const char* path, cons
 }
 
 // Every key of `object` is one of `keys` (NULL-terminated).
-static sva_json_result_t known_keys(const json_t* object, const char* path, const char* const* keys,
+static sva_json_status_t known_keys(const json_t* object, const char* path, const char* const* keys,
                                     char* err, size_t size)
 {
     const char* key;
@@ -66,7 +66,7 @@ static int32_t target_index(const sva_mission_t* m, json_int_t id)
 
 // The plan in force: routes in mission order, target ids mapped to indices. Other
 // keys of a plan document are allowed and ignored (the figures follow from the routes).
-static sva_json_result_t parse_plan(const json_t* doc, const sva_mission_t* m, sva_plan_t* plan,
+static sva_json_status_t parse_plan(const json_t* doc, const sva_mission_t* m, sva_plan_t* plan,
                                     char* err, size_t size)
 {
     static const char* const keys[] = {"mission", "algorithm", "status",   "covered", "uncovered",
@@ -77,7 +77,7 @@ static sva_json_result_t parse_plan(const json_t* doc, const sva_mission_t* m, s
                                sva_json_type_name(doc));
     }
     if (known_keys(doc, "plan", keys, err, size) != SVA_JSON_OK) {
-        return SVA_JSON_BAD_INPUT;
+        return SVA_JSON_ERR_INPUT;
     }
     const json_t* routes = json_object_get(doc, "routes");
     if (routes == NULL) {
@@ -105,7 +105,7 @@ static sva_json_result_t parse_plan(const json_t* doc, const sva_mission_t* m, s
         }
         if (known_keys(route, path, route_keys, err, size) != SVA_JSON_OK ||
             member_int(route, path, "uav", false, &uav, err, size) != SVA_JSON_OK) {
-            return SVA_JSON_BAD_INPUT;
+            return SVA_JSON_ERR_INPUT;
         }
         const json_t* targets = json_object_get(route, "targets");
         if (targets == NULL) {
@@ -141,7 +141,7 @@ static sva_json_result_t parse_plan(const json_t* doc, const sva_mission_t* m, s
 }
 
 // One event object (docs/SPEC.md: `{"at": T, "type": NAME, ...}`).
-static sva_json_result_t parse_event(const json_t* doc, const char* path, sva_event_t* e, char* err,
+static sva_json_status_t parse_event(const json_t* doc, const char* path, sva_event_t* e, char* err,
                                      size_t size)
 {
     static const char* const keys[SVA_EVENT_COUNT_][7] = {
@@ -169,7 +169,7 @@ static sva_json_result_t parse_event(const json_t* doc, const char* path, sva_ev
     }
     if (known_keys(doc, path, keys[e->type], err, size) != SVA_JSON_OK ||
         member_int(doc, path, "at", false, &e->at_ticks, err, size) != SVA_JSON_OK) {
-        return SVA_JSON_BAD_INPUT;
+        return SVA_JSON_ERR_INPUT;
     }
     // uav_back and position carry a place and a fuel reading.
     const bool back = e->type == SVA_EVENT_UAV_BACK || e->type == SVA_EVENT_POSITION;
@@ -179,7 +179,7 @@ static sva_json_result_t parse_event(const json_t* doc, const char* path, sva_ev
         (back && member_int(doc, path, "y", false, &e->y, err, size) != SVA_JSON_OK) ||
         ((back || e->type == SVA_EVENT_FUEL) &&
          member_int(doc, path, "fuel", false, &e->fuel, err, size) != SVA_JSON_OK)) {
-        return SVA_JSON_BAD_INPUT;
+        return SVA_JSON_ERR_INPUT;
     }
     if (e->type == SVA_EVENT_TARGET_CANCELLED) {
         return member_int(doc, path, "target", false, &e->target.id, err, size);
@@ -193,12 +193,12 @@ static sva_json_result_t parse_event(const json_t* doc, const char* path, sva_ev
         }
         return sva_json_target_from(target, target_path, &e->target, err, size)
                    ? SVA_JSON_OK
-                   : SVA_JSON_BAD_INPUT;
+                   : SVA_JSON_ERR_INPUT;
     }
     return SVA_JSON_OK;
 }
 
-static sva_json_result_t parse_live(const json_t* root, sva_json_live_t* live, char* err,
+static sva_json_status_t parse_live(const json_t* root, sva_json_live_t* live, char* err,
                                     size_t size)
 {
     static const char* const keys[] = {"mission", "plan", "events", "now", NULL};
@@ -207,7 +207,7 @@ static sva_json_result_t parse_live(const json_t* root, sva_json_live_t* live, c
                                sva_json_type_name(root));
     }
     if (known_keys(root, "live mission", keys, err, size) != SVA_JSON_OK) {
-        return SVA_JSON_BAD_INPUT;
+        return SVA_JSON_ERR_INPUT;
     }
     const json_t* mission = json_object_get(root, "mission");
     if (mission == NULL) {
@@ -233,7 +233,7 @@ static sva_json_result_t parse_live(const json_t* root, sva_json_live_t* live, c
     if (live->has_plan &&
         (parse_plan(plan, &live->mission, &live->plan, err, size) != SVA_JSON_OK ||
          sva_json_check_plan(&live->mission, &live->plan, err, size) != SVA_JSON_OK)) {
-        return SVA_JSON_BAD_INPUT;
+        return SVA_JSON_ERR_INPUT;
     }
     const json_t* events = json_object_get(root, "events");
     if (events != NULL && !json_is_array(events)) {
@@ -255,7 +255,7 @@ static sva_json_result_t parse_live(const json_t* root, sva_json_live_t* live, c
         snprintf(path, sizeof path, "events[%zu]", i);
         if (parse_event(json_array_get(events, i), path, &live->events[i], err, size) !=
             SVA_JSON_OK) {
-            return SVA_JSON_BAD_INPUT;
+            return SVA_JSON_ERR_INPUT;
         }
     }
     live->now_ticks = count > 0 ? live->events[count - 1].at_ticks : 0;
@@ -263,13 +263,13 @@ static sva_json_result_t parse_live(const json_t* root, sva_json_live_t* live, c
     return member_int(root, "live mission", "now", true, &live->now_ticks, err, size);
 }
 
-sva_json_result_t sva_json_load_live(const char* path, sva_json_live_t* live, char* err,
+sva_json_status_t sva_json_load_live(const char* path, sva_json_live_t* live, char* err,
                                      size_t err_size)
 {
     memset(live, 0, sizeof *live);
     char* text;
     size_t len;
-    sva_json_result_t result = sva_json_read_input(path, &text, &len, err, err_size);
+    sva_json_status_t result = sva_json_read_input(path, &text, &len, err, err_size);
     if (result != SVA_JSON_OK) {
         return result;
     }

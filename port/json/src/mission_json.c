@@ -337,7 +337,7 @@ static bool parse_frame(const json_t* root, sva_frame_t* frame, bool* present, c
     }
     units.t0 = json_string_value(t0);
     char line[SVA_FRAME_ERROR_SIZE];
-    if (!sva_frame_from_units(&units, frame, line, sizeof line)) {
+    if (sva_frame_from_units(&units, frame, line, sizeof line) != SVA_OK) {
         return fail(err, "%s", line);
     }
     *present = true;
@@ -376,7 +376,7 @@ static bool is_blank(const char* text, size_t len)
 }
 
 // sva_json_parse_mission with the frame.
-static sva_json_result_t parse_text(const char* text, size_t len, const char* source,
+static sva_json_status_t parse_text(const char* text, size_t len, const char* source,
                                     sva_mission_t* mission, char name[SVA_JSON_NAME_MAX + 1],
                                     sva_frame_t* frame, bool* present, char* err, size_t err_size)
 {
@@ -386,7 +386,7 @@ static sva_json_result_t parse_text(const char* text, size_t len, const char* so
     name[0] = '\0';
     if (is_blank(text, len)) {
         fail(&sink, "%s: empty input", source);
-        return SVA_JSON_BAD_INPUT;
+        return SVA_JSON_ERR_INPUT;
     }
     // jansson stops at a raw NUL byte and reports "end of file"; name it instead.
     const char* nul = memchr(text, '\0', len);
@@ -398,13 +398,13 @@ static sva_json_result_t parse_text(const char* text, size_t len, const char* so
             column = *c == '\n' ? 1 : column + 1;
         }
         fail(&sink, "%s:%d:%d: invalid JSON: NUL byte in input", source, line, column);
-        return SVA_JSON_BAD_INPUT;
+        return SVA_JSON_ERR_INPUT;
     }
     json_error_t error;
     json_t* root = json_loadb(text, len, JSON_REJECT_DUPLICATES | JSON_DECODE_ANY, &error);
     if (root == NULL) {
         fail(&sink, "%s:%d:%d: invalid JSON: %s", source, error.line, error.column, error.text);
-        return SVA_JSON_BAD_INPUT;
+        return SVA_JSON_ERR_INPUT;
     }
     const char* other = sva_json_other_kind(root, "mission");
     if (other != NULL) {
@@ -413,7 +413,7 @@ static sva_json_result_t parse_text(const char* text, size_t len, const char* so
              "targets; SPEC 3)",
              source, other);
         json_decref(root);
-        return SVA_JSON_BAD_INPUT;
+        return SVA_JSON_ERR_INPUT;
     }
     bool ok = parse_root(root, mission, name, frame, present, &sink);
     json_decref(root);
@@ -422,12 +422,12 @@ static sva_json_result_t parse_text(const char* text, size_t len, const char* so
         sva_mission_init(mission);
         name[0] = '\0';
         *present = false;
-        return SVA_JSON_BAD_INPUT;
+        return SVA_JSON_ERR_INPUT;
     }
     return SVA_JSON_OK;
 }
 
-sva_json_result_t sva_json_parse_mission(const char* text, size_t len, const char* source,
+sva_json_status_t sva_json_parse_mission(const char* text, size_t len, const char* source,
                                          sva_mission_t* mission, char name[SVA_JSON_NAME_MAX + 1],
                                          char* err, size_t err_size)
 {
@@ -436,7 +436,7 @@ sva_json_result_t sva_json_parse_mission(const char* text, size_t len, const cha
     return parse_text(text, len, source, mission, name, &frame, &present, err, err_size);
 }
 
-sva_json_result_t sva_json_load_mission(const char* path, sva_mission_t* mission,
+sva_json_status_t sva_json_load_mission(const char* path, sva_mission_t* mission,
                                         char name[SVA_JSON_NAME_MAX + 1], char* err,
                                         size_t err_size)
 {
@@ -445,14 +445,14 @@ sva_json_result_t sva_json_load_mission(const char* path, sva_mission_t* mission
     return sva_json_load_mission_frame(path, mission, name, &frame, &present, err, err_size);
 }
 
-sva_json_result_t sva_json_load_mission_frame(const char* path, sva_mission_t* mission,
+sva_json_status_t sva_json_load_mission_frame(const char* path, sva_mission_t* mission,
                                               char name[SVA_JSON_NAME_MAX + 1], sva_frame_t* frame,
                                               bool* present, char* err, size_t err_size)
 {
     *present = false;
     char* text;
     size_t len;
-    sva_json_result_t result = sva_json_read_input(path, &text, &len, err, err_size);
+    sva_json_status_t result = sva_json_read_input(path, &text, &len, err, err_size);
     if (result != SVA_JSON_OK) {
         return result;
     }
@@ -467,12 +467,12 @@ sva_json_result_t sva_json_load_mission_frame(const char* path, sva_mission_t* m
     if (sva_mission_validate(mission, &diag) != SVA_OK) {
         // The core's message names a field, a rule and numbers: nothing to escape.
         (void)sva_diag_format(&diag, err, err_size);
-        return SVA_JSON_BAD_INPUT;
+        return SVA_JSON_ERR_INPUT;
     }
     return SVA_JSON_OK;
 }
 
-sva_json_result_t sva_json_mission_from(const json_t* root, sva_mission_t* mission,
+sva_json_status_t sva_json_mission_from(const json_t* root, sva_mission_t* mission,
                                         char name[SVA_JSON_NAME_MAX + 1], char* err,
                                         size_t err_size)
 {
@@ -484,24 +484,24 @@ sva_json_result_t sva_json_mission_from(const json_t* root, sva_mission_t* missi
     if (!parse_root(root, mission, name, &frame, &present, &sink)) {
         sva_mission_init(mission);
         name[0] = '\0';
-        return SVA_JSON_BAD_INPUT;
+        return SVA_JSON_ERR_INPUT;
     }
     return SVA_JSON_OK;
 }
 
-sva_json_result_t sva_json_mission_frame(const json_t* root, sva_frame_t* frame, bool* present,
+sva_json_status_t sva_json_mission_frame(const json_t* root, sva_frame_t* frame, bool* present,
                                          char* err, size_t err_size)
 {
     const sink_t sink = {err, err_size};
     *present = false;
     if (!json_is_object(root)) {
         fail(&sink, "mission: must be an object, got %s", sva_json_type_name(root));
-        return SVA_JSON_BAD_INPUT;
+        return SVA_JSON_ERR_INPUT;
     }
     sva_frame_t read;
     if (!parse_frame(root, &read, present, &sink)) {
         *present = false;
-        return SVA_JSON_BAD_INPUT;
+        return SVA_JSON_ERR_INPUT;
     }
     if (*present) {
         *frame = read;

@@ -11,7 +11,7 @@
 #include <stdio.h>
 
 // A rule the core words (sva_diag_format()), on the plan document.
-static sva_json_result_t fail_diag(char* err, size_t size, sva_field_t field, sva_rule_t rule,
+static sva_json_status_t fail_diag(char* err, size_t size, sva_field_t field, sva_rule_t rule,
                                    int32_t index, int64_t value, int64_t limit,
                                    const char* limit_name)
 {
@@ -30,7 +30,7 @@ static int64_t cells(int32_t ax, int32_t ay, int32_t bx, int32_t by)
 }
 
 // One route's layout: its UAV in mission order, known targets, none twice.
-static sva_json_result_t check_layout(const sva_mission_t* m, const sva_route_t* r, uint16_t u,
+static sva_json_status_t check_layout(const sva_mission_t* m, const sva_route_t* r, uint16_t u,
                                       char* err, size_t size)
 {
     if (r->uav_id != m->uavs[u].id) {
@@ -60,7 +60,7 @@ static sva_json_result_t check_layout(const sva_mission_t* m, const sva_route_t*
 // UAV's position and ready_at, then from the previous window's end), and the fuel of
 // the whole route, return leg and hovers included. An empty route flies nothing the
 // plan chose (a UAV that cannot get home is stranded).
-static sva_json_result_t check_route(const sva_mission_t* m, const sva_route_t* r, uint16_t u,
+static sva_json_status_t check_route(const sva_mission_t* m, const sva_route_t* r, uint16_t u,
                                      char* err, size_t size)
 {
     const sva_uav_t* uav = &m->uavs[u];
@@ -109,7 +109,7 @@ static sva_json_result_t check_route(const sva_mission_t* m, const sva_route_t* 
     return SVA_JSON_OK;
 }
 
-sva_json_result_t sva_json_check_plan(const sva_mission_t* m, const sva_plan_t* plan, char* err,
+sva_json_status_t sva_json_check_plan(const sva_mission_t* m, const sva_plan_t* plan, char* err,
                                       size_t size)
 {
     if (plan->route_count != m->uav_count) {
@@ -121,7 +121,7 @@ sva_json_result_t sva_json_check_plan(const sva_mission_t* m, const sva_plan_t* 
         const sva_route_t* r = &plan->routes[u];
         if (check_layout(m, r, u, err, size) != SVA_JSON_OK ||
             check_route(m, r, u, err, size) != SVA_JSON_OK) {
-            return SVA_JSON_BAD_INPUT;
+            return SVA_JSON_ERR_INPUT;
         }
         for (uint16_t k = 0; k < r->target_count; ++k) {
             served[r->targets[k]]++;

@@ -124,12 +124,12 @@ json_t* sva_json_plan(const sva_mission_t* mission, const char* name, const sva_
     return NULL;
 }
 
-int sva_json_write_plan(FILE* out, const json_t* plan)
+sva_json_status_t sva_json_write_plan(FILE* out, const json_t* plan)
 {
     if (json_dumpf(plan, out, JSON_INDENT(2) | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(15)) !=
             0 ||
         fputc('\n', out) == EOF || fflush(out) != 0 || ferror(out)) {
-        return -1;
+        return SVA_JSON_ERR_IO;
     }
-    return 0;
+    return SVA_JSON_OK;
 }

@@ -105,7 +105,7 @@ static bool check_frame_fields(const sva_lcm_frame_t* w, char* err, size_t err_s
     f.cell_cm = w->cell_cm;
     f.tick_ms = w->tick_ms;
     f.t0_ms = w->t0_ms;
-    return sva_frame_check(&f, err, err_size);
+    return sva_frame_check(&f, err, err_size) == SVA_OK;
 }
 
 sva_lcm_verdict_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_t size)

@@ -86,7 +86,7 @@ static bool add_vehicle(bridge_options_t* o, const char* v)
         return false;
     }
     sva_mavlink_vehicle_spec_t* spec = &o->specs[o->spec_count];
-    if (!sva_mavlink_parse_vehicle(v, spec, err, sizeof err)) {
+    if (sva_mavlink_parse_vehicle(v, spec, err, sizeof err) != SVA_MAVLINK_OK) {
         fprintf(stderr, PROGRAM ": error: %s\n", err);
         return false;
     }

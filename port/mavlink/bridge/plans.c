@@ -134,7 +134,7 @@ static void dispatch(const sva_lcm_plan_t* p, const sva_lcm_fleet_state_t* f,
         return;
     }
     sva_frame_t frame = {lf->lat_e7, lf->lon_e7, lf->alt_cm, lf->cell_cm, lf->tick_ms, lf->t0_ms};
-    if (!sva_frame_check(&frame, err, sizeof err)) {
+    if (sva_frame_check(&frame, err, sizeof err) != SVA_OK) {
         bridge_reports_release();
         for (size_t i = 0; i < bridge_slot_count; i++) {
             char text[SVA_MAVLINK_ERROR_SIZE + 32];
@@ -196,8 +196,8 @@ static void dispatch(const sva_lcm_plan_t* p, const sva_lcm_fleet_state_t* f,
         sva_mavlink_route_t rt = {route->uav_id,     u->x,          u->y, u->ready_at_ticks,
                                   m->ticks_per_cell, route_targets, n,    cruise_m_s};
         size_t count = 0;
-        if (!sva_mavlink_build(&frame, geo, &rt, built, SVA_MAVLINK_MAX_ITEMS, &count, err,
-                               sizeof err)) {
+        if (sva_mavlink_build(&frame, geo, &rt, built, SVA_MAVLINK_MAX_ITEMS, &count, err,
+                              sizeof err) != SVA_MAVLINK_OK) {
             char text[SVA_MAVLINK_ERROR_SIZE + 32];
             snprintf(text, sizeof text, "error: %s; nothing uploaded", err);
             say_vehicle(s, p->plan_id, text);

@@ -25,8 +25,8 @@ bool bridge_vehicles_open(const bridge_options_t* o)
     upload_retries = (int32_t)o->upload_retries;
     for (size_t k = 0; k < o->spec_count; k++) {
         vehicle_slot_t* s = &bridge_slots[k];
-        if (!sva_mavlink_vehicle_open(&s->link, &o->specs[k], (uint8_t)o->own_system, err,
-                                      sizeof err)) {
+        if (sva_mavlink_vehicle_open(&s->link, &o->specs[k], (uint8_t)o->own_system, err,
+                                     sizeof err) != SVA_MAVLINK_OK) {
             fprintf(stderr, "sva_mavlink_bridge: error: %s\n", err);
             return false;
         }

@@ -42,9 +42,12 @@ const char* sva_mavlink_transport_name(sva_mavlink_transport_t transport)
     return transport == SVA_MAVLINK_TCP ? "tcp" : "udp";
 }
 
-bool sva_mavlink_parse_vehicle(const char* text, sva_mavlink_vehicle_spec_t* spec, char* err,
-                               size_t err_size)
+sva_mavlink_status_t sva_mavlink_parse_vehicle(const char* text, sva_mavlink_vehicle_spec_t* spec,
+                                               char* err, size_t err_size)
 {
+    if ((text == NULL) || (spec == NULL)) {
+        return SVA_MAVLINK_ERR_ARGUMENT;
+    }
     memset(spec, 0, sizeof *spec);
     const char* eq = strchr(text, '=');
     long v = 0;
@@ -53,12 +56,12 @@ bool sva_mavlink_parse_vehicle(const char* text, sva_mavlink_vehicle_spec_t* spe
                  "--vehicle: must be UAV_ID=udp:HOST:PORT[:SYSID] or UAV_ID=tcp:HOST:PORT[:SYSID], "
                  "got \"%.*s\"",
                  QUOTE_LEN, text);
-        return false;
+        return SVA_MAVLINK_ERR_INVALID;
     }
     if (!parse_int(text, (size_t)(eq - text), 1, MAX_UAV_ID, &v)) {
         snprintf(err, err_size, "--vehicle: UAV_ID must be an integer in [1, %ld], got \"%.*s\"",
                  MAX_UAV_ID, (int)((eq - text) > 40 ? 40 : (eq - text)), text);
-        return false;
+        return SVA_MAVLINK_ERR_INVALID;
     }
     spec->uav_id = (int32_t)v;
     const char* rest = eq + 1;
@@ -70,7 +73,7 @@ bool sva_mavlink_parse_vehicle(const char* text, sva_mavlink_vehicle_spec_t* spe
         snprintf(err, err_size,
                  "--vehicle: %d: the endpoint must start with udp: or tcp:, got \"%.*s\"",
                  (int)spec->uav_id, QUOTE_LEN, rest);
-        return false;
+        return SVA_MAVLINK_ERR_INVALID;
     }
     const char* kind = sva_mavlink_transport_name(spec->transport);
     rest += 4;
@@ -78,7 +81,7 @@ bool sva_mavlink_parse_vehicle(const char* text, sva_mavlink_vehicle_spec_t* spe
     if (c1 == NULL || c1 == rest || (size_t)(c1 - rest) >= sizeof spec->host) {
         snprintf(err, err_size, "--vehicle: %d: must be %s:HOST:PORT[:SYSID], got \"%.*s\"",
                  (int)spec->uav_id, kind, QUOTE_LEN, eq + 1);
-        return false;
+        return SVA_MAVLINK_ERR_INVALID;
     }
     memcpy(spec->host, rest, (size_t)(c1 - rest));
     const char* port = c1 + 1;
@@ -87,7 +90,7 @@ bool sva_mavlink_parse_vehicle(const char* text, sva_mavlink_vehicle_spec_t* spe
     if (!parse_int(port, port_len, 1, MAX_PORT, &v)) {
         snprintf(err, err_size, "--vehicle: %d: PORT must be an integer in [1, %ld], got \"%.*s\"",
                  (int)spec->uav_id, MAX_PORT, (int)(port_len > 20 ? 20 : port_len), port);
-        return false;
+        return SVA_MAVLINK_ERR_INVALID;
     }
     spec->port = (uint16_t)v;
     spec->system = 1;
@@ -96,11 +99,11 @@ bool sva_mavlink_parse_vehicle(const char* text, sva_mavlink_vehicle_spec_t* spe
             snprintf(err, err_size,
                      "--vehicle: %d: SYSID must be an integer in [1, %ld], got \"%.20s\"",
                      (int)spec->uav_id, MAX_SYSID, c2 + 1);
-            return false;
+            return SVA_MAVLINK_ERR_INVALID;
         }
         spec->system = (uint8_t)v;
     }
-    return true;
+    return SVA_MAVLINK_OK;
 }
 
 bool sva_mavlink_resolve(const sva_mavlink_vehicle_spec_t* spec, int socktype, uint8_t* addr,

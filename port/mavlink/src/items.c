@@ -62,13 +62,16 @@ static size_t items_needed(size_t targets)
 /// The builder's own bound (SVA_MAVLINK_MAX_ITEMS keeps one more for ArduPilot's home).
 #define ROUTE_ITEMS_MAX (3 + 2 * SVA_MAVLINK_MAX_ROUTE_TARGETS)
 
-bool sva_mavlink_build(const sva_frame_t* frame, sva_frame_geodesy_t* geodesy,
-                       const sva_mavlink_route_t* route, sva_mavlink_item_t* items, size_t capacity,
-                       size_t* count, char* err, size_t err_size)
+sva_mavlink_status_t sva_mavlink_build(const sva_frame_t* frame, sva_frame_geodesy_t* geodesy,
+                                       const sva_mavlink_route_t* route, sva_mavlink_item_t* items,
+                                       size_t capacity, size_t* count, char* err, size_t err_size)
 {
+    if ((frame == NULL) || (route == NULL) || (items == NULL) || (count == NULL)) {
+        return SVA_MAVLINK_ERR_ARGUMENT;
+    }
     *count = 0;
     if (route->target_count == 0) {
-        return true;
+        return SVA_MAVLINK_OK;
     }
     if (route->target_count > SVA_MAVLINK_MAX_ROUTE_TARGETS ||
         items_needed(route->target_count) > capacity) {
@@ -76,12 +79,12 @@ bool sva_mavlink_build(const sva_frame_t* frame, sva_frame_geodesy_t* geodesy,
                  "uav %d: route: %zu targets need %zu mission items, more than the limit %zu",
                  (int)route->uav_id, route->target_count, items_needed(route->target_count),
                  capacity < (size_t)ROUTE_ITEMS_MAX ? capacity : (size_t)ROUTE_ITEMS_MAX);
-        return false;
+        return SVA_MAVLINK_ERR_LIMIT;
     }
     if (route->ticks_per_cell < 1) {
         snprintf(err, err_size, "uav %d: ticks_per_cell: must be >= 1, got %d", (int)route->uav_id,
                  (int)route->ticks_per_cell);
-        return false;
+        return SVA_MAVLINK_ERR_INVALID;
     }
     float speed = sva_mavlink_speed(frame, route->ticks_per_cell);
     if (route->cruise_m_s > 0.0f) {
@@ -90,7 +93,7 @@ bool sva_mavlink_build(const sva_frame_t* frame, sva_frame_geodesy_t* geodesy,
                      "uav %d: cruise speed %.3g m/s is below the plan's speed %.3g m/s "
                      "(cell_m / (ticks_per_cell * tick_s), raised for the altitude)",
                      (int)route->uav_id, (double)route->cruise_m_s, (double)speed);
-            return false;
+            return SVA_MAVLINK_ERR_INVALID;
         }
         speed = route->cruise_m_s;
     }
@@ -101,7 +104,7 @@ bool sva_mavlink_build(const sva_frame_t* frame, sva_frame_geodesy_t* geodesy,
     if (!sva_frame_cell_to_geo(geodesy, route->x, route->y, &geo)) {
         snprintf(err, err_size, "uav %d: start cell (%d, %d): PROJ cannot convert it",
                  (int)route->uav_id, (int)route->x, (int)route->y);
-        return false;
+        return SVA_MAVLINK_ERR_GEODESY;
     }
     (void)put(items, capacity, &n, MAV_CMD_NAV_TAKEOFF, global, 0.0f, 0.0f, 0.0f, NAN,
               to_e7(geo.lat_deg), to_e7(geo.lon_deg), alt);
@@ -120,7 +123,7 @@ bool sva_mavlink_build(const sva_frame_t* frame, sva_frame_geodesy_t* geodesy,
                      "arrives after the window's start %d",
                      (int)route->uav_id, i, (int)t->id, (long long)departure, (long long)travel,
                      (int)t->start);
-            return false;
+            return SVA_MAVLINK_ERR_INVALID;
         }
         int64_t end_ms = sva_frame_tick_utc_ms(frame, t->end);
         int64_t dep_ms = sva_frame_tick_utc_ms(frame, departure);
@@ -129,7 +132,7 @@ bool sva_mavlink_build(const sva_frame_t* frame, sva_frame_geodesy_t* geodesy,
                      "uav %d: targets[%zu] (id %d).end: tick %d is outside the frame's UTC "
                      "range (1970 to 9999)",
                      (int)route->uav_id, i, (int)t->id, (int)t->end);
-            return false;
+            return SVA_MAVLINK_ERR_INVALID;
         }
         if (end_ms - dep_ms >= SVA_MAVLINK_MAX_HOLD_MS) {
             snprintf(err, err_size,
@@ -138,12 +141,12 @@ bool sva_mavlink_build(const sva_frame_t* frame, sva_frame_geodesy_t* geodesy,
                      "until a UTC time of day)",
                      (int)route->uav_id, i, (int)t->id, (long long)departure, (int)t->end,
                      (long long)(end_ms - dep_ms));
-            return false;
+            return SVA_MAVLINK_ERR_INVALID;
         }
         if (!sva_frame_cell_to_geo(geodesy, t->x, t->y, &geo)) {
             snprintf(err, err_size, "uav %d: targets[%zu] (id %d): PROJ cannot convert (%d, %d)",
                      (int)route->uav_id, i, (int)t->id, (int)t->x, (int)t->y);
-            return false;
+            return SVA_MAVLINK_ERR_GEODESY;
         }
         (void)put(items, capacity, &n, MAV_CMD_NAV_WAYPOINT, global, 0.0f, 0.0f, 0.0f, NAN,
                   to_e7(geo.lat_deg), to_e7(geo.lon_deg), alt);
@@ -162,7 +165,7 @@ bool sva_mavlink_build(const sva_frame_t* frame, sva_frame_geodesy_t* geodesy,
     (void)put(items, capacity, &n, MAV_CMD_NAV_RETURN_TO_LAUNCH, MAV_FRAME_MISSION, 0.0f, 0.0f,
               0.0f, 0.0f, 0, 0, 0.0f);
     *count = n;
-    return true;
+    return SVA_MAVLINK_OK;
 }
 
 // Equal values, or both NaN (the yaw parameters are NaN on purpose).

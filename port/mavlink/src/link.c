@@ -42,7 +42,7 @@ static void flush_tx(sva_mavlink_vehicle_t* v)
     // n < 0: EAGAIN keeps the bytes for later; a broken connection shows up on reading.
 }
 
-static void send_frame(sva_mavlink_vehicle_t* v, const sva_mavlink_frame_t* f)
+static void send_packet(sva_mavlink_vehicle_t* v, const sva_mavlink_packet_t* f)
 {
     if (!is_tcp(v)) {
         if (send(v->fd, f->bytes, f->len, 0) != (ssize_t)f->len) {
@@ -50,7 +50,7 @@ static void send_frame(sva_mavlink_vehicle_t* v, const sva_mavlink_frame_t* f)
         }
         return;
     }
-    // A frame is queued whole or not at all: half a frame would corrupt the stream.
+    // A packet is queued whole or not at all: half a packet would corrupt the stream.
     if (v->link != SVA_MAVLINK_LINK_UP || v->tx_len + f->len > sizeof v->tx) {
         v->send_errors++;
         return;
@@ -62,9 +62,9 @@ static void send_frame(sva_mavlink_vehicle_t* v, const sva_mavlink_frame_t* f)
 
 static void send_heartbeat(sva_mavlink_vehicle_t* v, int64_t now_ms)
 {
-    sva_mavlink_frame_t f;
+    sva_mavlink_packet_t f;
     sva_mavlink_heartbeat(v->upload.own_system, v->upload.own_component, &f);
-    send_frame(v, &f);
+    send_packet(v, &f);
     v->next_heartbeat_ms = now_ms + SVA_MAVLINK_HEARTBEAT_MS;
 }
 
@@ -80,9 +80,9 @@ static void on_connected(sva_mavlink_vehicle_t* v, int64_t now_ms)
     send_heartbeat(v, now_ms);
     if (v->upload.state == SVA_MAVLINK_UPLOAD_COUNT) {
         // Its MISSION_COUNT went nowhere: send it now, with every retry still to come.
-        sva_mavlink_frame_t f;
+        sva_mavlink_packet_t f;
         if (sva_mavlink_upload_start(&v->upload, v->upload.items, v->upload.count, now_ms, &f)) {
-            send_frame(v, &f);
+            send_packet(v, &f);
         }
     }
 }
@@ -130,7 +130,7 @@ static void tcp_connect(sva_mavlink_vehicle_t* v, int64_t now_ms)
         return;
     }
     int one = 1;
-    // Frames are small and answered one by one: no Nagle delay.
+    // Packets are small and answered one by one: no Nagle delay.
     (void)setsockopt(v->fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
     if (connect(v->fd, (const struct sockaddr*)(const void*)v->addr, (socklen_t)v->addr_len) == 0) {
         on_connected(v, now_ms);
@@ -163,9 +163,13 @@ static void tcp_check_connect(sva_mavlink_vehicle_t* v, int64_t now_ms)
     }
 }
 
-bool sva_mavlink_vehicle_open(sva_mavlink_vehicle_t* v, const sva_mavlink_vehicle_spec_t* spec,
-                              uint8_t own_system, char* err, size_t err_size)
+sva_mavlink_status_t sva_mavlink_vehicle_open(sva_mavlink_vehicle_t* v,
+                                              const sva_mavlink_vehicle_spec_t* spec,
+                                              uint8_t own_system, char* err, size_t err_size)
 {
+    if ((v == NULL) || (spec == NULL)) {
+        return SVA_MAVLINK_ERR_ARGUMENT;
+    }
     memset(v, 0, sizeof *v);
     v->spec = *spec;
     v->fd = -1;
@@ -179,14 +183,14 @@ bool sva_mavlink_vehicle_open(sva_mavlink_vehicle_t* v, const sva_mavlink_vehicl
     if (!is_tcp(v)) {
         v->fd = sva_mavlink_udp_open(spec, err, err_size);
         v->link = v->fd >= 0 ? SVA_MAVLINK_LINK_UP : SVA_MAVLINK_LINK_DOWN;
-        return v->fd >= 0;
+        return (v->fd >= 0) ? SVA_MAVLINK_OK : SVA_MAVLINK_ERR_IO;
     }
     if (!sva_mavlink_resolve(spec, SOCK_STREAM, v->addr, &v->addr_len, &v->addr_family, err,
                              err_size)) {
-        return false;
+        return SVA_MAVLINK_ERR_IO;
     }
     tcp_connect(v, sva_mavlink_now_ms());
-    return true;
+    return SVA_MAVLINK_OK;
 }
 
 void sva_mavlink_vehicle_close(sva_mavlink_vehicle_t* v)
@@ -198,24 +202,24 @@ void sva_mavlink_vehicle_close(sva_mavlink_vehicle_t* v)
 bool sva_mavlink_vehicle_start(sva_mavlink_vehicle_t* v, int64_t now_ms)
 {
     send_heartbeat(v, now_ms);
-    sva_mavlink_frame_t f;
+    sva_mavlink_packet_t f;
     if (!sva_mavlink_upload_start(&v->upload, v->items, v->item_count, now_ms, &f)) {
         return false;
     }
-    send_frame(v, &f);
+    send_packet(v, &f);
     return true;
 }
 
 static void on_message(sva_mavlink_vehicle_t* v, const mavlink_message_t* msg, int64_t now_ms)
 {
-    sva_mavlink_frame_t f;
+    sva_mavlink_packet_t f;
     if (sva_mavlink_upload_on_message(&v->upload, msg, now_ms, &f)) {
-        send_frame(v, &f);
+        send_packet(v, &f);
     }
     (void)sva_mavlink_telemetry_on_message(&v->telemetry, msg, now_ms);
 }
 
-// Feeds bytes to the parser and every frame it completes to on_message.
+// Feeds bytes to the parser and every packet it completes to on_message.
 static void feed(sva_mavlink_vehicle_t* v, const uint8_t* data, size_t size, bool datagram,
                  int64_t now_ms)
 {
@@ -244,7 +248,7 @@ static void receive(sva_mavlink_vehicle_t* v, int64_t now_ms)
             if (n <= 0) {
                 return;  // EAGAIN, or an ICMP error of an earlier send
             }
-            // Each datagram holds whole frames: it starts and ends a parse of its own
+            // Each datagram holds whole packets: it starts and ends a parse of its own
             // (after sva_mavlink_parser_end the parser is empty again).
             feed(v, buf, (size_t)n, true, now_ms);
         } else if (n > 0) {
@@ -271,10 +275,10 @@ void sva_mavlink_vehicle_service(sva_mavlink_vehicle_t* v, int64_t now_ms)
         flush_tx(v);
     }
     receive(v, now_ms);
-    sva_mavlink_frame_t f;
+    sva_mavlink_packet_t f;
     const bool was_busy = sva_mavlink_vehicle_busy(v);
     if (sva_mavlink_upload_on_time(&v->upload, now_ms, &f)) {
-        send_frame(v, &f);
+        send_packet(v, &f);
     }
     if (was_busy && v->upload.state == SVA_MAVLINK_UPLOAD_FAILED && is_tcp(v) &&
         v->link != SVA_MAVLINK_LINK_UP) {
@@ -290,12 +294,12 @@ void sva_mavlink_vehicle_service(sva_mavlink_vehicle_t* v, int64_t now_ms)
     if (now_ms >= v->next_heartbeat_ms) {
         send_heartbeat(v, now_ms);
     }
-    sva_mavlink_frame_t requests[SVA_MAVLINK_STREAM_COUNT];
+    sva_mavlink_packet_t requests[SVA_MAVLINK_STREAM_COUNT];
     size_t n =
         sva_mavlink_telemetry_requests(&v->telemetry, now_ms, v->upload.own_system,
                                        v->upload.own_component, requests, SVA_MAVLINK_STREAM_COUNT);
     for (size_t k = 0; k < n; k++) {
-        send_frame(v, &requests[k]);
+        send_packet(v, &requests[k]);
     }
 }
 

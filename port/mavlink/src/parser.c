@@ -1,7 +1,7 @@
-// The MAVLink frame parser (sva_mavlink.h): a window over the bytes of the candidate
-// frame. A bad candidate loses its first byte only; the search resumes right after it,
-// so whatever good frame its bytes hid is found (the generated parser would have taken
-// them as the bad frame's payload).
+// The MAVLink packet parser (sva_mavlink.h): a window over the bytes of the candidate
+// packet. A bad candidate loses its first byte only; the search resumes right after it,
+// so whatever good packet its bytes hid is found (the generated parser would have taken
+// them as the bad packet's payload).
 #include <string.h>
 
 #include "sva/sva_mavlink.h"
@@ -12,7 +12,7 @@
 #define V2_HEADER_LEN MAVLINK_NUM_HEADER_BYTES
 #define CRC_LEN       MAVLINK_NUM_CHECKSUM_BYTES
 
-typedef enum verdict { FRAME_GOOD, FRAME_BAD, FRAME_INCOMPLETE } verdict_t;
+typedef enum verdict { PACKET_GOOD, PACKET_BAD, PACKET_INCOMPLETE } verdict_t;
 
 void sva_mavlink_parser_reset(sva_mavlink_parser_t* self)
 {
@@ -38,7 +38,7 @@ static bool is_stx(uint8_t b)
     return b == MAVLINK_STX || b == MAVLINK_STX_MAVLINK1;
 }
 
-// Drops the first byte and every byte after it up to the next possible start of frame.
+// Drops the first byte and every byte after it up to the next possible start of packet.
 static void drop_candidate(sva_mavlink_parser_t* self)
 {
     uint16_t n = 1;
@@ -56,31 +56,31 @@ static void consume(sva_mavlink_parser_t* self, size_t n)
     self->len = (uint16_t)(self->len - n);
 }
 
-// Judges the candidate at bytes[0] (an STX) with what is held so far; on FRAME_GOOD
-// fills *msg and sets *frame_len.
-static verdict_t judge(const sva_mavlink_parser_t* self, mavlink_message_t* msg, size_t* frame_len)
+// Judges the candidate at bytes[0] (an STX) with what is held so far; on PACKET_GOOD
+// fills *msg and sets *packet_len.
+static verdict_t judge(const sva_mavlink_parser_t* self, mavlink_message_t* msg, size_t* packet_len)
 {
     const uint8_t* b = self->bytes;
     const bool v2 = b[0] == MAVLINK_STX;
     const size_t header = v2 ? V2_HEADER_LEN : V1_HEADER_LEN;
     if (v2 && self->len > 2 && (b[2] & ~MAVLINK_IFLAG_MASK) != 0) {
-        return FRAME_BAD;
+        return PACKET_BAD;
     }
     if (self->len < header) {
-        return FRAME_INCOMPLETE;
+        return PACKET_INCOMPLETE;
     }
     const uint8_t payload_len = b[1];
     const uint32_t msgid =
         v2 ? (uint32_t)b[7] | ((uint32_t)b[8] << 8) | ((uint32_t)b[9] << 16) : (uint32_t)b[5];
     const mavlink_msg_entry_t* entry = mavlink_get_msg_entry(msgid);
     if (entry == NULL || payload_len > entry->max_msg_len) {
-        return FRAME_BAD;
+        return PACKET_BAD;
     }
-    const bool signed_frame = v2 && (b[2] & MAVLINK_IFLAG_SIGNED) != 0;
+    const bool signed_packet = v2 && (b[2] & MAVLINK_IFLAG_SIGNED) != 0;
     const size_t total =
-        header + payload_len + CRC_LEN + (signed_frame ? MAVLINK_SIGNATURE_BLOCK_LEN : 0u);
+        header + payload_len + CRC_LEN + (signed_packet ? MAVLINK_SIGNATURE_BLOCK_LEN : 0u);
     if (self->len < total) {
-        return FRAME_INCOMPLETE;
+        return PACKET_INCOMPLETE;
     }
     uint16_t crc;
     crc_init(&crc);
@@ -88,7 +88,7 @@ static verdict_t judge(const sva_mavlink_parser_t* self, mavlink_message_t* msg,
     crc_accumulate(entry->crc_extra, &crc);
     const uint8_t* ck = b + header + payload_len;
     if (ck[0] != (uint8_t)(crc & 0xFFu) || ck[1] != (uint8_t)(crc >> 8)) {
-        return FRAME_BAD;
+        return PACKET_BAD;
     }
     // Zeroed first: decoders read a MAVLink 2 payload cut at its trailing zeros as zeros.
     memset(msg, 0, sizeof *msg);
@@ -110,11 +110,11 @@ static verdict_t judge(const sva_mavlink_parser_t* self, mavlink_message_t* msg,
     msg->checksum = crc;
     msg->ck[0] = ck[0];
     msg->ck[1] = ck[1];
-    if (signed_frame) {
+    if (signed_packet) {
         memcpy(msg->signature, ck + CRC_LEN, MAVLINK_SIGNATURE_BLOCK_LEN);
     }
-    *frame_len = total;
-    return FRAME_GOOD;
+    *packet_len = total;
+    return PACKET_GOOD;
 }
 
 bool sva_mavlink_parser_next(sva_mavlink_parser_t* self, mavlink_message_t* msg)
@@ -128,16 +128,16 @@ bool sva_mavlink_parser_next(sva_mavlink_parser_t* self, mavlink_message_t* msg)
             drop_candidate(self);
             continue;
         }
-        size_t frame_len = 0;
-        switch (judge(self, msg, &frame_len)) {
-        case FRAME_GOOD:
-            consume(self, frame_len);
-            self->frames++;
+        size_t packet_len = 0;
+        switch (judge(self, msg, &packet_len)) {
+        case PACKET_GOOD:
+            consume(self, packet_len);
+            self->packets++;
             return true;
-        case FRAME_BAD:
+        case PACKET_BAD:
             drop_candidate(self);
             break;
-        case FRAME_INCOMPLETE:
+        case PACKET_INCOMPLETE:
             if (!self->flushing) {
                 return false;
             }
@@ -149,8 +149,8 @@ bool sva_mavlink_parser_next(sva_mavlink_parser_t* self, mavlink_message_t* msg)
 
 bool sva_mavlink_parse(sva_mavlink_parser_t* parser, uint8_t byte, mavlink_message_t* msg)
 {
-    // Room is guaranteed: a held frame still incomplete is shorter than the buffer, and
-    // a frame returned freed at least its own length.
+    // Room is guaranteed: a held packet still incomplete is shorter than the buffer, and
+    // a packet returned freed at least its own length.
     (void)sva_mavlink_parser_put(parser, &byte, 1);
     return sva_mavlink_parser_next(parser, msg);
 }

@@ -184,7 +184,7 @@ bool sva_mavlink_telemetry_on_message(sva_mavlink_telemetry_t* self, const mavli
 
 size_t sva_mavlink_telemetry_requests(sva_mavlink_telemetry_t* self, int64_t now_host_ms,
                                       uint8_t own_system, uint8_t own_component,
-                                      sva_mavlink_frame_t* out, size_t capacity)
+                                      sva_mavlink_packet_t* out, size_t capacity)
 {
     if (!self->streams_pending || now_host_ms < self->streams_due_host_ms) {
         return 0;

@@ -7,12 +7,12 @@
 
 #include "sva/sva_mavlink.h"
 
-static void finish(const mavlink_message_t* msg, sva_mavlink_frame_t* out)
+static void finish(const mavlink_message_t* msg, sva_mavlink_packet_t* out)
 {
     out->len = mavlink_msg_to_send_buffer(out->bytes, msg);
 }
 
-static void send_count(sva_mavlink_upload_t* up, sva_mavlink_frame_t* out)
+static void send_count(sva_mavlink_upload_t* up, sva_mavlink_packet_t* out)
 {
     mavlink_message_t msg;
     mavlink_msg_mission_count_pack(up->own_system, up->own_component, &msg, up->target_system,
@@ -20,7 +20,7 @@ static void send_count(sva_mavlink_upload_t* up, sva_mavlink_frame_t* out)
     finish(&msg, out);
 }
 
-static void send_item(sva_mavlink_upload_t* up, uint16_t seq, sva_mavlink_frame_t* out)
+static void send_item(sva_mavlink_upload_t* up, uint16_t seq, sva_mavlink_packet_t* out)
 {
     const sva_mavlink_item_t* it = &up->items[seq];
     mavlink_message_t msg;
@@ -84,7 +84,7 @@ static const char* result_name(uint8_t type)
 }
 
 bool sva_mavlink_upload_start(sva_mavlink_upload_t* up, const sva_mavlink_item_t* items,
-                              size_t count, int64_t now_ms, sva_mavlink_frame_t* out)
+                              size_t count, int64_t now_ms, sva_mavlink_packet_t* out)
 {
     up->error[0] = '\0';
     up->refusal = MAV_MISSION_ACCEPTED;
@@ -115,7 +115,7 @@ bool sva_mavlink_upload_start(sva_mavlink_upload_t* up, const sva_mavlink_item_t
 }
 
 bool sva_mavlink_upload_on_message(sva_mavlink_upload_t* up, const mavlink_message_t* msg,
-                                   int64_t now_ms, sva_mavlink_frame_t* out)
+                                   int64_t now_ms, sva_mavlink_packet_t* out)
 {
     if (up->state != SVA_MAVLINK_UPLOAD_COUNT && up->state != SVA_MAVLINK_UPLOAD_ITEMS) {
         return false;
@@ -184,7 +184,7 @@ bool sva_mavlink_upload_on_message(sva_mavlink_upload_t* up, const mavlink_messa
     return true;
 }
 
-bool sva_mavlink_upload_on_time(sva_mavlink_upload_t* up, int64_t now_ms, sva_mavlink_frame_t* out)
+bool sva_mavlink_upload_on_time(sva_mavlink_upload_t* up, int64_t now_ms, sva_mavlink_packet_t* out)
 {
     if (up->state != SVA_MAVLINK_UPLOAD_COUNT && up->state != SVA_MAVLINK_UPLOAD_ITEMS) {
         return false;
@@ -239,7 +239,7 @@ bool sva_mavlink_upload_refused_for_good(const sva_mavlink_upload_t* up)
     }
 }
 
-void sva_mavlink_heartbeat(uint8_t own_system, uint8_t own_component, sva_mavlink_frame_t* out)
+void sva_mavlink_heartbeat(uint8_t own_system, uint8_t own_component, sva_mavlink_packet_t* out)
 {
     mavlink_message_t msg;
     mavlink_msg_heartbeat_pack(own_system, own_component, &msg, MAV_TYPE_ONBOARD_CONTROLLER,

@@ -12,7 +12,7 @@ int main(void)
                                      0U};
     sva_frame_t frame;
     char err[SVA_FRAME_ERROR_SIZE];
-    if (!sva_frame_from_units(&units, &frame, err, sizeof err)) {
+    if (sva_frame_from_units(&units, &frame, err, sizeof err) != SVA_OK) {
         fprintf(stderr, "consumer_frame: %s\n", err);
         return 1;
     }

@@ -17,14 +17,16 @@ int main(void)
 {
     sva_mavlink_vehicle_spec_t spec;
     char err[SVA_MAVLINK_ERROR_SIZE];
-    if (!sva_mavlink_parse_vehicle("3=udp:127.0.0.1:14550:2", &spec, err, sizeof err)) {
+    if (sva_mavlink_parse_vehicle("3=udp:127.0.0.1:14550:2", &spec, err, sizeof err) !=
+        SVA_MAVLINK_OK) {
         return fail(err);
     }
     if (spec.uav_id != 3 || strcmp(spec.host, "127.0.0.1") != 0 || spec.port != 14550U ||
         spec.system != 2U) {
         return fail("3=udp:127.0.0.1:14550:2 parsed wrong");
     }
-    if (sva_mavlink_parse_vehicle("3=serial:127.0.0.1:14550", &spec, err, sizeof err) ||
+    if (sva_mavlink_parse_vehicle("3=serial:127.0.0.1:14550", &spec, err, sizeof err) !=
+            SVA_MAVLINK_ERR_INVALID ||
         strstr(err, "must start with udp:") == NULL) {
         return fail("3=serial:... not refused with the rule");
     }
@@ -40,7 +42,7 @@ int main(void)
         return 1;
     }
 
-    sva_mavlink_frame_t out;
+    sva_mavlink_packet_t out;
     sva_mavlink_heartbeat(250, MAV_COMP_ID_MISSIONPLANNER, &out);
     static sva_mavlink_parser_t parser;
     mavlink_message_t msg;

@@ -8,12 +8,20 @@
 /// y * cell north of the origin in the local East-North-Up tangent plane of the WGS84
 /// ellipsoid at the origin (height 0); every waypoint flies alt above home (the launch
 /// point). Tick t is the UTC instant t0 + t * tick.
+///
+/// Errors follow the ports' convention (DESIGN.md section 10): a fallible function returns
+/// the core's sva_status_t (SVA_OK, SVA_ERR_ARGUMENT for a NULL pointer, SVA_ERR_INVALID
+/// for a value it refuses) and writes the detail as one line into the caller's err
+/// buffer (NULL allowed), since the core has no words for a frame's fields. The one
+/// exception is sva_frame_geodesy_open, a constructor: its handle or NULL.
 #ifndef SVA_FRAME_H
 #define SVA_FRAME_H
 
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+
+#include "sva/sva.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -69,29 +77,32 @@ typedef struct sva_frame_geo {
     double alt_m;
 } sva_frame_geo_t;
 
-/// Checks every field against its range. False with one line in err naming the field,
-/// the rule and the limit, as the Python tools word it ("frame.cell_m: must be >= 0.1,
-/// got 0.05"; the value is the exact decimal of the stored integer).
-bool sva_frame_check(const sva_frame_t* frame, char* err, size_t err_size);
+/// Checks every field against its range. Returns SVA_OK, SVA_ERR_ARGUMENT when frame is
+/// NULL, or SVA_ERR_INVALID with one line in err naming the field, the rule and the
+/// limit, as the Python tools word it ("frame.cell_m: must be >= 0.1, got 0.05"; the
+/// value is the exact decimal of the stored integer).
+SVA_NODISCARD sva_status_t sva_frame_check(const sva_frame_t* frame, char* err, size_t err_size);
 
 /// Converts units into *frame, rounding half away from zero to the stored resolution on
 /// the value's shortest decimal form (the literal as written, for up to 15 significant
 /// digits: 47.12345675 -> 47.1234568), then checks it. Ranges apply to the value as
-/// written. False with one line in err (frame unchanged) when a value is not finite, out
-/// of range, or t0 breaks a rule of sva_frame_parse_utc; the messages are the Python
+/// written. Returns SVA_OK; SVA_ERR_ARGUMENT when units or frame is NULL; SVA_ERR_INVALID
+/// with one line in err (frame unchanged) when a value is not finite, out of range, t0
+/// is missing, or t0 breaks a rule of sva_frame_parse_utc; the messages are the Python
 /// tools' (docs/flight-stack.md), e.g. "frame.lat: must be <= 85, got 85.5".
-bool sva_frame_from_units(const sva_frame_units_t* units, sva_frame_t* frame, char* err,
-                          size_t err_size);
+SVA_NODISCARD sva_status_t sva_frame_from_units(const sva_frame_units_t* units, sva_frame_t* frame,
+                                                char* err, size_t err_size);
 
 /// Parses "YYYY-MM-DDTHH:MM:SS[.fff...](Z|+hh:mm|-hh:mm)" into ms since the epoch
 /// (fractions past the millisecond rounded half away from zero; the range applies to the
-/// instant as written). `field` names the value in the message. False with one line in
-/// err naming the first rule broken, in this order: the form (SVA_FRAME_UTC_RULE), a
-/// date of the calendar, the time of day, the UTC offset, the range (SVA_FRAME_T0_MIN
-/// to SVA_FRAME_T0_MAX), e.g. `frame.t0: must be a date of the calendar, got
-/// "2026-02-29T08:00:00Z"`.
-bool sva_frame_parse_utc(const char* text, const char* field, int64_t* ms, char* err,
-                         size_t err_size);
+/// instant as written). `field` names the value in the message. Returns SVA_OK;
+/// SVA_ERR_ARGUMENT when text, field or ms is NULL; SVA_ERR_INVALID (*ms unchanged) with
+/// one line in err naming the first rule broken, in this order: the form
+/// (SVA_FRAME_UTC_RULE), a date of the calendar, the time of day, the UTC offset, the
+/// range (SVA_FRAME_T0_MIN to SVA_FRAME_T0_MAX), e.g. `frame.t0: must be a date of the
+/// calendar, got "2026-02-29T08:00:00Z"`.
+SVA_NODISCARD sva_status_t sva_frame_parse_utc(const char* text, const char* field, int64_t* ms,
+                                               char* err, size_t err_size);
 
 /// Writes ms since the epoch as "YYYY-MM-DDTHH:MM:SS.fffZ" into out (at least
 /// SVA_FRAME_UTC_SIZE bytes). False when ms is outside [0, SVA_FRAME_MAX_T0_MS].

@@ -42,11 +42,15 @@ extern "C" {
 /// Largest mission document read (bigger input is rejected as bad input).
 #define SVA_JSON_MAX_INPUT_BYTES (16L * 1024L * 1024L)
 
+/// What a function of this layer that can fail returns (DESIGN.md section 10): 0 on
+/// success, a negative error otherwise, with one line in the caller's err buffer (the
+/// core has no words for a file or JSON syntax; a broken core rule is worded by
+/// sva_diag_format). The sva CLI maps these to its exit statuses (docs/cli.md).
 typedef enum {
     SVA_JSON_OK = 0,
-    SVA_JSON_BAD_INPUT = 2,  ///< the document or the mission is wrong (CLI exit 2)
-    SVA_JSON_IO_ERROR = 1,   ///< the input could not be read (CLI exit 1)
-} sva_json_result_t;
+    SVA_JSON_ERR_INPUT = -1,  ///< the document or the mission is wrong, or cannot be opened
+    SVA_JSON_ERR_IO = -2,     ///< reading or writing failed, or memory ran out
+} sva_json_status_t;
 
 /// Parses `len` bytes of JSON text into *mission (reset with sva_mission_init first)
 /// and its name. The name is copied as the document gives it and may hold any
@@ -54,22 +58,22 @@ typedef enum {
 /// before printing it outside JSON. `source` names the input in syntax-error messages
 /// ("<source>:<line>:<column>: invalid JSON: ..."). Checks the document's shape only,
 /// not the core's value rules. On error writes one line (no "sva: error: " prefix, no
-/// newline) into err and returns SVA_JSON_BAD_INPUT.
-sva_json_result_t sva_json_parse_mission(const char* text, size_t len, const char* source,
+/// newline) into err and returns SVA_JSON_ERR_INPUT.
+sva_json_status_t sva_json_parse_mission(const char* text, size_t len, const char* source,
                                          sva_mission_t* mission, char name[SVA_JSON_NAME_MAX + 1],
                                          char* err, size_t err_size);
 
 /// The mission object `root` (an already parsed document) into *mission and its name,
 /// as sva_json_parse_mission() does for text; the core's value rules are not checked.
-sva_json_result_t sva_json_mission_from(const json_t* root, sva_mission_t* mission,
+sva_json_status_t sva_json_mission_from(const json_t* root, sva_mission_t* mission,
                                         char name[SVA_JSON_NAME_MAX + 1], char* err,
                                         size_t err_size);
 
 /// The optional "frame" of the mission object `root`: *present false when it has none,
 /// else the frame in integers (sva_frame_from_units). On error (frame unchanged, present
 /// false) one line in err naming the field, the rule and the limit, and
-/// SVA_JSON_BAD_INPUT.
-sva_json_result_t sva_json_mission_frame(const json_t* root, sva_frame_t* frame, bool* present,
+/// SVA_JSON_ERR_INPUT.
+sva_json_status_t sva_json_mission_frame(const json_t* root, sva_frame_t* frame, bool* present,
                                          char* err, size_t err_size);
 
 /// A frame as the mission JSON writes it: lat, lon, alt_m, cell_m, tick_s (numbers at
@@ -95,16 +99,16 @@ json_t* sva_json_mission_framed(const sva_mission_t* mission, const char* name,
                                 const sva_frame_t* frame);
 
 /// Reads the mission at `path` ("-" for standard input), parses it and runs
-/// sva_mission_validate(). Returns SVA_JSON_OK, SVA_JSON_BAD_INPUT (unreadable
+/// sva_mission_validate(). Returns SVA_JSON_OK, SVA_JSON_ERR_INPUT (unreadable
 /// path, empty or oversized input, malformed document, broken rule) or
-/// SVA_JSON_IO_ERROR (a read failing after the file was opened), with a message in err.
-sva_json_result_t sva_json_load_mission(const char* path, sva_mission_t* mission,
+/// SVA_JSON_ERR_IO (a read failing after the file was opened), with a message in err.
+sva_json_status_t sva_json_load_mission(const char* path, sva_mission_t* mission,
                                         char name[SVA_JSON_NAME_MAX + 1], char* err,
                                         size_t err_size);
 
 /// sva_json_load_mission that also returns the mission's frame (*present false when it
 /// has none).
-sva_json_result_t sva_json_load_mission_frame(const char* path, sva_mission_t* mission,
+sva_json_status_t sva_json_load_mission_frame(const char* path, sva_mission_t* mission,
                                               char name[SVA_JSON_NAME_MAX + 1], sva_frame_t* frame,
                                               bool* present, char* err, size_t err_size);
 
@@ -125,8 +129,8 @@ json_t* sva_json_plan(const sva_mission_t* mission, const char* name, const sva_
 
 /// Writes `plan` indented by 2, keys in insertion order, reals with 15 significant
 /// digits (a frame's values come back as written), and a final newline.
-/// Returns 0, or -1 when writing fails (errno tells why).
-int sva_json_write_plan(FILE* out, const json_t* plan);
+/// Returns SVA_JSON_OK, or SVA_JSON_ERR_IO when writing fails (errno tells why).
+sva_json_status_t sva_json_write_plan(FILE* out, const json_t* plan);
 
 // ---------------------------------------------------------------------------------
 // Transportation problems as JSON Lines (sva plan --trace FILE).
@@ -186,9 +190,9 @@ typedef struct {
 /// fuel, every target served by exactly its need or by none), each refused with a
 /// message starting "plan." that names the route or field, the rule and the limit.
 /// Event rules (ids, ticks) are the core's, checked when sva_live_apply() takes each
-/// event. Returns SVA_JSON_OK, or SVA_JSON_BAD_INPUT / SVA_JSON_IO_ERROR with one line
+/// event. Returns SVA_JSON_OK, or SVA_JSON_ERR_INPUT / SVA_JSON_ERR_IO with one line
 /// in err (nothing to free then).
-sva_json_result_t sva_json_load_live(const char* path, sva_json_live_t* live, char* err,
+sva_json_status_t sva_json_load_live(const char* path, sva_json_live_t* live, char* err,
                                      size_t err_size);
 
 /// Frees the events of a loaded live document.
