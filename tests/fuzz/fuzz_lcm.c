@@ -135,8 +135,8 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
             }
             continue;
         }
-        const sva_lcm_verdict_t v = is_mission ? sva_lcm_on_mission(&node, message, n)
-                                               : sva_lcm_on_fleet(&node, message, n);
+        const sva_lcm_status_t v = is_mission ? sva_lcm_on_mission(&node, message, n)
+                                              : sva_lcm_on_fleet(&node, message, n);
         if (v != SVA_LCM_ACCEPTED) {
             if (memcmp(&before, &node.priv.mission, sizeof before) != 0 ||
                 memcmp(&frame_before, &node.priv.frame, sizeof frame_before) != 0 ||

@@ -504,7 +504,7 @@ static void expect_reject(bool is_fleet, const uint8_t* data, size_t size, sva_l
     const int plans = plans_seen;
     const int64_t fr = node.priv.fleet_revision;
     const int64_t mr = node.priv.mission_revision;
-    const sva_lcm_verdict_t v =
+    const sva_lcm_status_t v =
         is_fleet ? sva_lcm_on_fleet(&node, data, size) : sva_lcm_on_mission(&node, data, size);
     TEST_ASSERT_EQUAL_INT(SVA_LCM_REJECTED, v);
     TEST_ASSERT_EQUAL_INT(why, node.last_reject);
@@ -1074,8 +1074,8 @@ void test_fleet_reports(void)
     TEST_ASSERT_EQUAL_INT(SVA_LCM_EVENT_T_TYPE_POSITION, got_replan.event_type);
 }
 
-static sva_lcm_verdict_t send_report(int32_t uav, int32_t at, int8_t health, int32_t x, int32_t y,
-                                     int32_t fuel)
+static sva_lcm_status_t send_report(int32_t uav, int32_t at, int8_t health, int32_t x, int32_t y,
+                                    int32_t fuel)
 {
     static uint8_t buf[SVA_LCM_REPORT_BYTES];
     sva_lcm_report_t r;

@@ -282,7 +282,7 @@ static void add_report(int32_t uav, int32_t at, int8_t health, int32_t x, int32_
     add_input(SVA_LCM_INPUT_REPORT, buf, SVA_LCM_REPORT_BYTES);
 }
 
-static sva_lcm_verdict_t feed(sva_lcm_node_t* n, const input_t* in, uint32_t size)
+static sva_lcm_status_t feed(sva_lcm_node_t* n, const input_t* in, uint32_t size)
 {
     switch (in->kind) {
     case SVA_LCM_INPUT_FLEET:
@@ -315,7 +315,7 @@ static mem_t ref_mem;
 static mem_t mem;
 static answers_t ref_answers[MAX_INPUTS];
 static answers_t answers;
-static sva_lcm_verdict_t ref_verdicts[MAX_INPUTS];
+static sva_lcm_status_t ref_verdicts[MAX_INPUTS];
 /// The input that made the journal's last compaction: inputs before it are not in it.
 static int search_from;
 static uint32_t records_after[MAX_INPUTS];  ///< the journal's records after input i

@@ -24,7 +24,7 @@ void sva_lcm_log(sva_lcm_node_t* self, const char* line)
     }
 }
 
-sva_lcm_verdict_t sva_lcm_reject(sva_lcm_node_t* self, sva_lcm_reject_t reason, const char* what)
+sva_lcm_status_t sva_lcm_reject(sva_lcm_node_t* self, sva_lcm_reject_t reason, const char* what)
 {
     self->last_reject = reason;
     self->counters.rejected[reason] += 1U;
@@ -40,8 +40,8 @@ sva_lcm_verdict_t sva_lcm_reject(sva_lcm_node_t* self, sva_lcm_reject_t reason, 
     return SVA_LCM_REJECTED;
 }
 
-sva_lcm_verdict_t sva_lcm_reject_diag(sva_lcm_node_t* self, sva_lcm_reject_t reason,
-                                      const char* channel)
+sva_lcm_status_t sva_lcm_reject_diag(sva_lcm_node_t* self, sva_lcm_reject_t reason,
+                                     const char* channel)
 {
     char msg[160];
     char what[240];
@@ -52,8 +52,8 @@ sva_lcm_verdict_t sva_lcm_reject_diag(sva_lcm_node_t* self, sva_lcm_reject_t rea
 
 // Size and fingerprint, before the generated decoder sees the bytes. Returns
 // SVA_LCM_ACCEPTED when the bytes may be decoded.
-sva_lcm_verdict_t sva_lcm_check_frame(sva_lcm_node_t* self, const char* channel, const void* data,
-                                      size_t size, size_t want, int64_t fingerprint)
+sva_lcm_status_t sva_lcm_check_frame(sva_lcm_node_t* self, const char* channel, const void* data,
+                                     size_t size, size_t want, int64_t fingerprint)
 {
     char what[160];
     if ((data == NULL) || (size < want)) {
@@ -81,14 +81,13 @@ sva_lcm_verdict_t sva_lcm_check_frame(sva_lcm_node_t* self, const char* channel,
 
 // A decoded message's version field against the type's VERSION: a refusal names both.
 bool sva_lcm_version_ok(sva_lcm_node_t* self, const char* channel, const char* type, int version,
-                        int want, sva_lcm_verdict_t* verdict)
+                        int want, sva_lcm_status_t* verdict)
 {
     if (version == want) {
         return true;
     }
     char what[160];
-    (void)snprintf(what, sizeof what, "%.63s: %s.version is %d, this node speaks version %d",
-                   channel, type, version, want);
+    (void)sva_lcm_version_check(channel, type, version, want, "node", what, sizeof what);
     *verdict = sva_lcm_reject(self, SVA_LCM_REJECT_VERSION, what);
     return false;
 }

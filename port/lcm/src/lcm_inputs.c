@@ -108,13 +108,13 @@ static bool check_frame_fields(const sva_lcm_frame_t* w, char* err, size_t err_s
     return sva_frame_check(&f, err, err_size) == SVA_OK;
 }
 
-sva_lcm_verdict_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_t size)
+sva_lcm_status_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_t size)
 {
     if (self->halted) {
         return SVA_LCM_HALTED;
     }
     self->counters.fleet_rx += 1U;
-    sva_lcm_verdict_t v =
+    sva_lcm_status_t v =
         sva_lcm_check_frame(self, self->channel_fleet, data, size, SVA_LCM_FLEET_BYTES,
                             __sva_lcm_fleet_state_t_get_hash());
     if (v != SVA_LCM_ACCEPTED) {
@@ -177,15 +177,14 @@ sva_lcm_verdict_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_
     return SVA_LCM_ACCEPTED;
 }
 
-sva_lcm_verdict_t sva_lcm_on_mission(sva_lcm_node_t* self, const void* data, size_t size)
+sva_lcm_status_t sva_lcm_on_mission(sva_lcm_node_t* self, const void* data, size_t size)
 {
     if (self->halted) {
         return SVA_LCM_HALTED;
     }
     self->counters.mission_rx += 1U;
-    sva_lcm_verdict_t v =
-        sva_lcm_check_frame(self, self->channel_mission, data, size, SVA_LCM_MISSION_BYTES,
-                            __sva_lcm_mission_t_get_hash());
+    sva_lcm_status_t v = sva_lcm_check_frame(self, self->channel_mission, data, size,
+                                             SVA_LCM_MISSION_BYTES, __sva_lcm_mission_t_get_hash());
     if (v != SVA_LCM_ACCEPTED) {
         return v;
     }

@@ -20,21 +20,21 @@
 void sva_lcm_log(sva_lcm_node_t* self, const char* line);
 
 /// Counts a refused message under `reason` (logged once per reason); returns REJECTED.
-sva_lcm_verdict_t sva_lcm_reject(sva_lcm_node_t* self, sva_lcm_reject_t reason, const char* what);
+sva_lcm_status_t sva_lcm_reject(sva_lcm_node_t* self, sva_lcm_reject_t reason, const char* what);
 
 /// A refusal described by last_diag, prefixed with `channel`; returns REJECTED.
-sva_lcm_verdict_t sva_lcm_reject_diag(sva_lcm_node_t* self, sva_lcm_reject_t reason,
-                                      const char* channel);
+sva_lcm_status_t sva_lcm_reject_diag(sva_lcm_node_t* self, sva_lcm_reject_t reason,
+                                     const char* channel);
 
 /// Size and fingerprint, before the generated decoder sees the bytes: ACCEPTED when
 /// the bytes may be decoded, else the refusal (counted).
-sva_lcm_verdict_t sva_lcm_check_frame(sva_lcm_node_t* self, const char* channel, const void* data,
-                                      size_t size, size_t want, int64_t fingerprint);
+sva_lcm_status_t sva_lcm_check_frame(sva_lcm_node_t* self, const char* channel, const void* data,
+                                     size_t size, size_t want, int64_t fingerprint);
 
 /// A decoded message's version field against the type's VERSION: false with *verdict
 /// the refusal (naming both) when they differ.
 bool sva_lcm_version_ok(sva_lcm_node_t* self, const char* channel, const char* type, int version,
-                        int want, sva_lcm_verdict_t* verdict);
+                        int want, sva_lcm_status_t* verdict);
 
 // --- lcm_hook.c -------------------------------------------------------------------
 

@@ -278,7 +278,7 @@ static sva_lcm_journal_status_t replay_record(sva_lcm_journal_t* self, uint32_t 
     }
     replay_t r = {SVA_LCM_INPUT_FLEET, payload, len, false};
     node->input_hook_user = &r;
-    sva_lcm_verdict_t v;
+    sva_lcm_status_t v;
     if (type == (uint32_t)SVA_LCM_RECORD_FLEET) {
         v = sva_lcm_on_fleet(node, payload, len);
     } else if (type == (uint32_t)SVA_LCM_RECORD_MISSION) {

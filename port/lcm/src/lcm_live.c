@@ -23,8 +23,8 @@ static void publish_replan(sva_lcm_node_t* self)
 // Answers the event in replan_tx (its header already set) as refused: `text` names the
 // field, the rule and the limit; diag (may be NULL) gives the fields. Counts and logs the
 // refusal as `reason`, publishes, and leaves the live mission as it was.
-static sva_lcm_verdict_t refuse_event(sva_lcm_node_t* self, sva_lcm_reject_t reason,
-                                      const sva_diag_t* diag, const char* text)
+static sva_lcm_status_t refuse_event(sva_lcm_node_t* self, sva_lcm_reject_t reason,
+                                     const sva_diag_t* diag, const char* text)
 {
     sva_lcm_replan_t* r = &self->priv.replan_tx;
     r->accepted = 0;
@@ -44,7 +44,7 @@ static sva_lcm_verdict_t refuse_event(sva_lcm_node_t* self, sva_lcm_reject_t rea
     r->plan.algorithm = (int8_t)self->algorithm;
     r->plan.fleet_revision = self->priv.fleet_revision;
     r->plan.mission_revision = self->priv.mission_revision;
-    const sva_lcm_verdict_t v = sva_lcm_reject(self, reason, text);
+    const sva_lcm_status_t v = sva_lcm_reject(self, reason, text);
     publish_replan(self);
     return v;
 }
@@ -73,13 +73,13 @@ void sva_lcm_stamp_replan_versions(sva_lcm_replan_t* r)
     r->plan.version = SVA_LCM_PLAN_T_VERSION;
 }
 
-sva_lcm_verdict_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_t size)
+sva_lcm_status_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_t size)
 {
     if (self->halted) {
         return SVA_LCM_HALTED;
     }
     self->counters.event_rx += 1U;
-    const sva_lcm_verdict_t v = sva_lcm_check_frame(
+    const sva_lcm_status_t v = sva_lcm_check_frame(
         self, self->channel_event, data, size, SVA_LCM_EVENT_BYTES, __sva_lcm_event_t_get_hash());
     if (v != SVA_LCM_ACCEPTED) {
         return v;

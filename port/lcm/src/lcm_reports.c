@@ -60,7 +60,7 @@ void sva_lcm_fleet_report(sva_lcm_node_t* self)
 
 // A field of a report outside [lo, hi]: refused as a value, naming the field and limit.
 static bool report_field_ok(sva_lcm_node_t* self, const char* field, int64_t value, int64_t lo,
-                            int64_t hi, sva_lcm_verdict_t* verdict)
+                            int64_t hi, sva_lcm_status_t* verdict)
 {
     if ((value >= lo) && (value <= hi)) {
         return true;
@@ -72,14 +72,14 @@ static bool report_field_ok(sva_lcm_node_t* self, const char* field, int64_t val
     return false;
 }
 
-sva_lcm_verdict_t sva_lcm_on_report(sva_lcm_node_t* self, const void* data, size_t size)
+sva_lcm_status_t sva_lcm_on_report(sva_lcm_node_t* self, const void* data, size_t size)
 {
     if (self->halted) {
         return SVA_LCM_HALTED;
     }
     self->counters.report_rx += 1U;
-    sva_lcm_verdict_t v = sva_lcm_check_frame(self, self->channel_report, data, size,
-                                              SVA_LCM_REPORT_BYTES, __sva_lcm_report_t_get_hash());
+    sva_lcm_status_t v = sva_lcm_check_frame(self, self->channel_report, data, size,
+                                             SVA_LCM_REPORT_BYTES, __sva_lcm_report_t_get_hash());
     if (v != SVA_LCM_ACCEPTED) {
         return v;
     }

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "bridge.h"
+#include "sva/sva_lcm.h"
 #include "sva_lcm_fleet_state_t.h"
 #include "sva_lcm_mission_t.h"
 #include "sva_lcm_plan_t.h"
@@ -240,16 +241,15 @@ static void dispatch(const sva_lcm_plan_t* p, const sva_lcm_fleet_state_t* f,
 }
 
 // A message (or a message inside one, `what`) of its type's version: true; else one
-// line naming both versions on stderr and false (docs/flight-stack.md "Wire versions").
+// line naming both versions on stderr and false (the adapter's check, sva_lcm.h).
 static bool version_ok(const char* kind, const char* what, int got, int want)
 {
-    if (got == want) {
+    char err[200];
+    if (sva_lcm_version_check(kind, what, got, want, "bridge", err, sizeof err) ==
+        SVA_LCM_ACCEPTED) {
         return true;
     }
-    fprintf(stderr,
-            "sva_mavlink_bridge: %s: %s.version is %d, this bridge speaks version %d; "
-            "ignored\n",
-            kind, what, got, want);
+    fprintf(stderr, "sva_mavlink_bridge: %s; ignored\n", err);
     return false;
 }
 

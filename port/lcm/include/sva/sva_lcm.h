@@ -154,13 +154,14 @@ typedef enum {
     SVA_LCM_REJECT_COUNT_          ///< number of reasons (not a reason)
 } sva_lcm_reject_t;
 
-/// What became of one input message.
+/// What became of one input message: 0 taken, positive taken as it was, negative not taken
+/// (the ports' status shape, DESIGN.md section 10).
 typedef enum {
-    SVA_LCM_ACCEPTED = 0,  ///< new input stored (and a plan published if both present)
-    SVA_LCM_UNCHANGED,     ///< byte-identical to the current input: counted, no replan
-    SVA_LCM_REJECTED,      ///< refused: see sva_lcm_node_t.last_reject
-    SVA_LCM_HALTED,        ///< the input hook failed (now or before): nothing answered
-} sva_lcm_verdict_t;
+    SVA_LCM_ACCEPTED = 0,   ///< new input stored (and a plan published if both present)
+    SVA_LCM_UNCHANGED = 1,  ///< byte-identical to the current input: counted, no replan
+    SVA_LCM_REJECTED = -1,  ///< refused: see sva_lcm_node_t.last_reject
+    SVA_LCM_HALTED = -2,    ///< the input hook failed (now or before): nothing answered
+} sva_lcm_status_t;
 
 /// The kind of an input handed to sva_lcm_node_t.input_hook.
 typedef enum {
@@ -306,16 +307,16 @@ void sva_lcm_node_unsubscribe(sva_lcm_node_t* self);
 /// Handles one fleet_state_t message (what the LCM handler calls). See the pipeline
 /// above; replans and publishes when the fleet changed and a mission is present.
 /// Allocates nothing (publish aside); O(U + T) plus sva_plan's complexity.
-sva_lcm_verdict_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_t size);
+sva_lcm_status_t sva_lcm_on_fleet(sva_lcm_node_t* self, const void* data, size_t size);
 
 /// Handles one mission_t message; as sva_lcm_on_fleet.
-sva_lcm_verdict_t sva_lcm_on_mission(sva_lcm_node_t* self, const void* data, size_t size);
+sva_lcm_status_t sva_lcm_on_mission(sva_lcm_node_t* self, const void* data, size_t size);
 
 /// Handles one event_t message (see "The live mission" above): applies it to the live
 /// mission and replans, publishing a replan_t on REPLAN (also for a refused event that
 /// passed the fingerprint check). Allocates nothing (publish aside); sva_live_apply's
 /// and sva_live_replan's complexity.
-sva_lcm_verdict_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_t size);
+sva_lcm_status_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_t size);
 
 /// Handles one report_t message (see "Vehicle reports" above): while a live mission
 /// runs, moves its clock to the report's tick when that is later than now, turns the
@@ -324,7 +325,7 @@ sva_lcm_verdict_t sva_lcm_on_event(sva_lcm_node_t* self, const void* data, size_
 /// (event_seq -1). Refused (counted, nothing changed, no replan published): a wrong
 /// size or fingerprint, another version, no live mission, a field out of range.
 /// Allocates nothing (publish aside); sva_live_apply's and sva_live_replan's complexity.
-sva_lcm_verdict_t sva_lcm_on_report(sva_lcm_node_t* self, const void* data, size_t size);
+sva_lcm_status_t sva_lcm_on_report(sva_lcm_node_t* self, const void* data, size_t size);
 
 /// Sets the plan id sequence: the next plan or replan gets plan_id + 1. For a journal's
 /// replay (sva_lcm_journal.h), before the inputs that follow it. Returns SVA_OK, or
@@ -344,6 +345,13 @@ SVA_NODISCARD sva_status_t sva_lcm_channel_escape(const char* name, char* out, s
 /// The reason's name ("truncated", "trailing", "fingerprint", "count", "value",
 /// "invalid", "planner", "too_large", "version"), or "" when out of range. Never NULL.
 const char* sva_lcm_reject_name(sva_lcm_reject_t reason);
+
+/// The version check every reader of this port's messages makes (the node, the MAVLink
+/// bridge): SVA_LCM_ACCEPTED when `version` is `want`; else SVA_LCM_REJECTED with one
+/// line in err (when not NULL): "<where>: <type>.version is V, this <reader> speaks
+/// version W" (docs/flight-stack.md, "Wire versions"). Allocates nothing; O(err_size).
+sva_lcm_status_t sva_lcm_version_check(const char* where, const char* type, int version, int want,
+                                       const char* reader, char* err, size_t err_size);
 
 #ifdef __cplusplus
 }
