@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 
 if not os.environ.get("SVA_LCM_NETNS"):
-    pytest.skip("run through tests/lcm/netns_run.sh (multicast only in a private netns)",
+    pytest.skip("run through tools/netns/netns_run.sh (multicast only in a private netns)",
                 allow_module_level=True)
 
 import lcm  # noqa: E402

@@ -1,5 +1,5 @@
 """sva_mavlink_bridge driven through LCM inside a private network namespace
-(tests/lcm/netns_run.sh): fleet, mission (with its frame) and plan messages go in as
+(tools/netns/netns_run.sh): fleet, mission (with its frame) and plan messages go in as
 sva_node sends them (the build's lcm-gen Python types), missions go out to MAVSDK
 vehicles (and pymavlink ones that refuse) over UDP on loopback. A replan that changes
 one UAV's route uploads to that vehicle only (a cancelled target not yet due is a change;
@@ -16,7 +16,7 @@ import time
 import pytest
 
 if not os.environ.get("SVA_LCM_NETNS"):
-    pytest.skip("run through tests/lcm/netns_run.sh (multicast only in a private netns)",
+    pytest.skip("run through tools/netns/netns_run.sh (multicast only in a private netns)",
                 allow_module_level=True)
 
 sys.path.insert(0, os.environ["SVA_LCM_PYTHON_TYPES"])

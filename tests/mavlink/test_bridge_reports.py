@@ -1,5 +1,5 @@
 """sva_mavlink_bridge's reports, driven through LCM inside a private network namespace
-(tests/lcm/netns_run.sh), with a pymavlink vehicle stand-in (standin.py) served over TCP.
+(tools/netns/netns_run.sh), with a pymavlink vehicle stand-in (standin.py) served over TCP.
 
 The bridge uploads the plan over TCP and, while it holds a plan, publishes one report_t
 per heard vehicle and period on SVA_REPORT: the cell of the vehicle's position, the tick
@@ -18,7 +18,7 @@ import time
 import pytest
 
 if not os.environ.get("SVA_LCM_NETNS"):
-    pytest.skip("run through tests/lcm/netns_run.sh (multicast only in a private netns)",
+    pytest.skip("run through tools/netns/netns_run.sh (multicast only in a private netns)",
                 allow_module_level=True)
 
 sys.path.insert(0, os.environ["SVA_LCM_PYTHON_TYPES"])

@@ -23,7 +23,7 @@ Goals: flow covers as many targets as ref on at least 99 % of the residual missi
 flow at 25 x 5 replans in p50 < 1 ms and p99 < 10 ms.
 
 --node measures the node instead (root: the bench re-runs itself in a network namespace
-made with tests/lcm/netns_run.sh): every scenario is flown in process (a campaign task,
+made with tools/netns/netns_run.sh): every scenario is flown in process (a campaign task,
 as above) and again with `sva-tools sim --via lcm`'s planner, a real sva_node per flight
 over LCM multicast, in the bench's process (cached under --work/<set>/logs/); ref is not
 run. Its table gives per algorithm and penalty: flights whose coverage equals the in-process flight's, the replan round trip (event_t published to

@@ -9,7 +9,7 @@ each replan_t. The last replan_t of the tick is the plan the UAVs fly. Every mes
 round trip (publish to answer, monotonic clock) and the node's solve time are kept.
 
 Where the node runs: `run_via_lcm` enters a network namespace made for the run
-(tests/lcm/netns_run.sh, root only) unless it is already inside one (SVA_LCM_NETNS),
+(tools/netns/netns_run.sh, root only) unless it is already inside one (SVA_LCM_NETNS),
 and there starts sva_node (SVA_NODE, else build/bin/sva_node) with the algorithm and
 the scenario's change_penalty, or, with `attach`, uses the node already running there.
 
@@ -61,7 +61,7 @@ def node_bin() -> Path:
 
 def netns_helper() -> Path:
     env = os.environ.get("SVA_NETNS_RUN")
-    return Path(env) if env else REPO / "tests" / "lcm" / "netns_run.sh"
+    return Path(env) if env else REPO / "tools" / "netns" / "netns_run.sh"
 
 
 def percentile(values: List[float], q: float) -> Optional[float]:
@@ -348,13 +348,13 @@ def reexec_in_netns(argv: List[str]) -> int:
     if os.geteuid() != 0:
         print("sva-tools: error: sim --via lcm: needs root to create the network namespace "
               "the node and the simulator talk in (ip netns); run it as root, or inside a "
-              "namespace made for it (SVA_LCM_NETNS set, as tests/lcm/netns_run.sh does)",
+              "namespace made for it (SVA_LCM_NETNS set, as tools/netns/netns_run.sh does)",
               file=sys.stderr)
         return 2
     helper = netns_helper()
     if not os.access(helper, os.X_OK):
         print(f"sva-tools: error: sim --via lcm: the network namespace helper {helper} is "
-              "missing (point SVA_NETNS_RUN at tests/lcm/netns_run.sh)", file=sys.stderr)
+              "missing (point SVA_NETNS_RUN at tools/netns/netns_run.sh)", file=sys.stderr)
         return 2
     env = dict(os.environ)
     tools = str(Path(__file__).resolve().parents[2])

@@ -196,7 +196,7 @@ def _netns(argv: List[str]) -> int:
     helper = simnode.netns_helper()
     if not os.access(helper, os.X_OK):
         print(f"sva-tools: error: sitl: the network namespace helper {helper} is missing "
-              "(point SVA_NETNS_RUN at tests/lcm/netns_run.sh)", file=sys.stderr)
+              "(point SVA_NETNS_RUN at tools/netns/netns_run.sh)", file=sys.stderr)
         return 2
     env = dict(os.environ)
     tools = str(Path(__file__).resolve().parents[2])
