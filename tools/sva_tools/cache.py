@@ -29,7 +29,7 @@ from pathlib import Path
 from typing import Any, Dict, Optional
 
 from . import __version__, io, schema
-from . import model as M
+from . import model
 
 CACHED_SOLVERS = ("ih", "ref", "peer")
 _SOURCES = {"ih": ("ih.py", "solvers.py", "model.py"),
@@ -47,7 +47,7 @@ def sha256(text: str) -> str:
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
-def mission_hash(m: M.Mission) -> str:
+def mission_hash(m: model.Mission) -> str:
     return sha256(canonical(m.to_json()))
 
 
@@ -70,7 +70,7 @@ def version(solver: str) -> dict:
     return {"sva_tools": __version__, "ortools": ortools, "code": code_hash(solver)}
 
 
-def key_fields(m: M.Mission, solver: str, settings: dict) -> dict:
+def key_fields(m: model.Mission, solver: str, settings: dict) -> dict:
     if solver not in CACHED_SOLVERS:
         raise ValueError(f"solver {solver!r} is not cached (only {', '.join(CACHED_SOLVERS)})")
     return {"mission": mission_hash(m), "solver": solver,
@@ -86,7 +86,7 @@ class Cache:
     def path(self, fields: dict) -> Path:
         return self.root / fields["solver"] / f"{sha256(canonical(fields))}.json"
 
-    def get(self, m: M.Mission, solver: str, settings: dict) -> Optional[dict]:
+    def get(self, m: model.Mission, solver: str, settings: dict) -> Optional[dict]:
         """The stored entry {"result": {...}, "measured": {...}} or None on a miss.
         result: {"plan": Plan|None, "us": int|None, "error": str|None}."""
         fields = key_fields(m, solver, settings)
@@ -113,7 +113,7 @@ class Cache:
         return {"result": {"plan": plan, "us": res.get("us"), "error": res.get("error")},
                 "measured": doc.get("measured", {})}
 
-    def put(self, m: M.Mission, solver: str, settings: dict, result: dict,
+    def put(self, m: model.Mission, solver: str, settings: dict, result: dict,
             measured: dict) -> Path:
         fields = key_fields(m, solver, settings)
         p = self.path(fields)

@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import List, Optional
 
 from . import io
-from . import model as M
+from . import model
 
 C_ALGORITHMS = ("sva", "ga", "hga", "bfa", "flow")
 REPO = Path(__file__).resolve().parents[2]
@@ -32,7 +32,7 @@ def sva_bin() -> Path:
 @dataclass
 class CResult:
     status: int               # exit status of `sva plan`
-    plan: Optional[M.Plan]    # when status is 0
+    plan: Optional[model.Plan]    # when status is 0
     raw: Optional[dict]
     stderr: str
     trace: Optional[List[dict]] = None
@@ -85,7 +85,7 @@ def algorithm_available(algo: str) -> Optional[str]:
     return _known[algo]
 
 
-def plan_mission(m: M.Mission, algo: str, trace: bool = False, timeout: float = 600) -> CResult:
+def plan_mission(m: model.Mission, algo: str, trace: bool = False, timeout: float = 600) -> CResult:
     with tempfile.TemporaryDirectory(prefix="sva-m-") as d:
         path = os.path.join(d, "mission.json")
         io.write_json(m.to_json(), path)

@@ -1,36 +1,18 @@
-"""`sva-tools mavlink upload PLAN.json --mission MISSION.json --vehicle UAV_ID=udp|tcp:HOST:PORT[:SYSID]`:
-a plan's routes as MAVLink missions, uploaded to the vehicles (docs/mavlink.md).
-
-Per UAV with a vehicle: MAV_CMD_NAV_TAKEOFF at its start cell, MAV_CMD_DO_CHANGE_SPEED
-to the plan's ground speed, per target a MAV_CMD_NAV_WAYPOINT at the target cell
-(MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, the frame's alt_m) and a MAV_CMD_NAV_DELAY until the
-UTC time of day of the window's end, then MAV_CMD_NAV_RETURN_TO_LAUNCH. The frame comes
-from the plan's `frame` when it has one, else from the mission's. Each vehicle gets the
-MAVLink mission protocol (MISSION_COUNT, MISSION_REQUEST_INT -> MISSION_ITEM_INT,
-MISSION_ACK) with pymavlink's codec, all vehicles at once, over UDP (datagrams from the
-vehicle's address and port only) or TCP; only the vehicle's autopilot (its system id,
-component 1) is heard, and stray or broken bytes lose no good frame. One line per
-vehicle tells how it went. Exit 0 when every upload was accepted, 1 when one failed, 2
-on bad input (files, frame, command line, a route the items cannot carry).
-"""
+"""A plan's routes as MAVLink missions, uploaded over the MAVLink mission protocol (`sva-tools mavlink`)."""
 from __future__ import annotations
 
-import argparse
 import math
 import re
 import select
 import socket
 import struct
-import sys
-import threading
 import time
 from dataclasses import dataclass
-from typing import Dict, List, Optional, Tuple
+from typing import List, Optional, Tuple
 
-from . import frame as F
 from . import io
-from . import model as M
-from .check import check_plan
+from .frame import Frame as GeoFrame
+from .model import SVA_MAX_ID, Mission, Uav
 from .text import shown
 
 # MAVLink common.xml values (pymavlink.dialects.v20.common has the same names).
@@ -87,7 +69,7 @@ def _round_half_away(v: float) -> int:
 def frame_from_json(doc: dict) -> Frame:
     """The integers of a frame that passed validation (the mission and plan schemas and
     SPEC section 4's t0 rules, sva_tools.frame), as sva_frame_t holds them."""
-    f = F.Frame.from_json(doc)
+    f = GeoFrame.from_json(doc)
     return Frame(_round_half_away(f.lat * 1e7), _round_half_away(f.lon * 1e7),
                  _round_half_away(f.alt_m * 100), _round_half_away(f.cell_m * 100), f.tick_ms,
                  f.t0_ms)
@@ -124,7 +106,7 @@ def cell_to_geo(frame: Frame, x: int, y: int) -> Tuple[int, int]:
     return _round_half_away(float(lat) * 1e7), _round_half_away(float(lon) * 1e7)
 
 
-def build_items(frame: Frame, m: M.Mission, uav: M.Uav, target_ids: List[int]) -> List[Item]:
+def build_items(frame: Frame, m: Mission, uav: Uav, target_ids: List[int]) -> List[Item]:
     """The items of one UAV's route (none when it has no targets). InputError naming the
     UAV and the rule when the route cannot be carried."""
     if not target_ids:
@@ -485,10 +467,10 @@ _VEHICLE = re.compile(r"^([1-9][0-9]{0,9})=(udp|tcp):([^:]+):([0-9]{1,5})(?::([0
 def parse_vehicle(text: str) -> Vehicle:
     """A --vehicle value (its address not resolved yet)."""
     m = _VEHICLE.match(text)
-    if not m or int(m.group(1)) > M.SVA_MAX_ID or not 1 <= int(m.group(4)) <= 65535 or \
+    if not m or int(m.group(1)) > SVA_MAX_ID or not 1 <= int(m.group(4)) <= 65535 or \
             (m.group(5) is not None and not 1 <= int(m.group(5)) <= 255):
         raise io.InputError(f"--vehicle: must be UAV_ID=udp:HOST:PORT[:SYSID] or "
-                            f"UAV_ID=tcp:HOST:PORT[:SYSID] (UAV_ID in [1, {M.SVA_MAX_ID}], PORT in "
+                            f"UAV_ID=tcp:HOST:PORT[:SYSID] (UAV_ID in [1, {SVA_MAX_ID}], PORT in "
                             f"[1, 65535], SYSID in [1, 255]), got \"{shown(text)[:60]}\"")
     return Vehicle(int(m.group(1)), m.group(2), m.group(3), int(m.group(4)), int(m.group(5) or 1))
 
@@ -503,114 +485,3 @@ def resolve(vehicle: Vehicle) -> Vehicle:
                             f"resolve: {shown(getattr(e, 'strerror', None) or e)}") from None
     return Vehicle(vehicle.uav, vehicle.transport, vehicle.host, vehicle.port, vehicle.sysid,
                    family, address)
-
-
-def _load(path: str, kind: str):
-    """The mission or plan in path, validated with its frame (SPEC sections 3 and 4),
-    and its frame object (None when it has none)."""
-    try:
-        doc = io.read_json(path)
-        parsed = io.mission_from_json(doc) if kind == "mission" else io.plan_from_json(doc)
-    except io.InputError as e:
-        e.path = path
-        raise
-    return parsed, doc.get("frame")
-
-
-def add_parser(sub) -> None:
-    ap = sub.add_parser("mavlink", help="upload a plan's routes as MAVLink missions",
-                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    msub = ap.add_subparsers(dest="mavlink_command", metavar="COMMAND")
-    msub.required = True
-    up = msub.add_parser("upload", help="upload the routes to the vehicles (MAVLink over UDP or TCP)")
-    up.add_argument("plan", metavar="PLAN.json")
-    up.add_argument("--mission", required=True, metavar="MISSION.json")
-    up.add_argument("--vehicle", action="append", required=True,
-                    metavar="UAV_ID=udp|tcp:HOST:PORT[:SYSID]",
-                    help="a UAV's vehicle: UDP to its address and port (only datagrams from "
-                    "there are read), or a TCP connection; SYSID its system id (default 1)")
-    up.add_argument("--timeout-ms", type=int, default=TIMEOUT_MS,
-                    help=f"wait per message before resending (default {TIMEOUT_MS})")
-    up.add_argument("--ardupilot", action="store_true",
-                    help="put a home item 0 first (ArduPilot overwrites item 0 with home)")
-    up.add_argument("--retries", type=int, default=RETRIES,
-                    help=f"resends of one message before giving up (default {RETRIES})")
-    up.set_defaults(func=run)
-
-
-def run(args) -> int:
-    if not 1 <= args.timeout_ms <= 600_000 or not 0 <= args.retries <= 100:
-        print("sva-tools: error: mavlink upload: --timeout-ms must be in [1, 600000] and "
-              "--retries in [0, 100]", file=sys.stderr)
-        return 2
-    vehicles: Dict[int, Tuple[Vehicle, str]] = {}
-    for text in args.vehicle:
-        try:
-            vehicle = parse_vehicle(text)
-        except io.InputError as e:
-            return io.fail("mavlink upload", e)
-        if vehicle.uav in vehicles:
-            return io.fail("mavlink upload",
-                           io.InputError(f"--vehicle: UAV {vehicle.uav} given twice"))
-        vehicles[vehicle.uav] = (vehicle, text.split("=", 1)[1])
-    for uid, (vehicle, text) in vehicles.items():
-        try:
-            vehicles[uid] = (resolve(vehicle), text)
-        except io.InputError as e:
-            return io.fail("mavlink upload", e)
-    mission, mframe = _load(args.mission, "mission")
-    plan, pframe = _load(args.plan, "plan")
-    where = pframe if pframe is not None else mframe
-    if where is None:
-        return io.fail(args.plan, io.InputError(
-            "frame: missing: neither the plan nor the mission has a \"frame\" (lat, lon, alt_m, "
-            "cell_m, tick_s, t0): cells and ticks cannot be placed on the Earth"))
-    frame = frame_from_json(where)
-    problems = check_plan(mission, plan)
-    if problems:
-        return io.fail(args.plan, io.InputError(f"plan: does not fit {shown(args.mission)}: "
-                                                f"{problems[0]}"))
-    uavs = {u.id: u for u in mission.uavs}
-    routes = {r.uav: r.targets for r in plan.routes}
-    for uid in vehicles:
-        if uid not in uavs:
-            return io.fail("mavlink upload", io.InputError(
-                f"--vehicle: UAV {uid} is not in the mission"))
-    work: List[Tuple[int, List[Item]]] = []
-    results: Dict[int, str] = {}
-    status = 0
-    for uid in sorted(vehicles, key=lambda u: [x.id for x in mission.uavs].index(u)):
-        try:
-            items = build_items(frame, mission, uavs[uid], routes.get(uid, []))
-        except io.InputError as e:
-            results[uid] = f"error: {e}"
-            status = 1
-            continue
-        if not items:
-            results[uid] = "nothing to upload: the plan gives it no targets"
-            continue
-        if args.ardupilot:
-            items = [prepend_home(items[0])] + items
-        work.append((uid, items))
-
-    def one(uid: int, items: List[Item]) -> None:
-        vehicle = vehicles[uid][0]
-        try:
-            why = upload(vehicle, items, args.timeout_ms, args.retries)
-        except OSError as e:
-            why = f"{vehicle.transport}: {e.strerror or e}"
-        except Exception as e:  # noqa: BLE001 -- one vehicle's fault must not stop the others
-            why = f"{type(e).__name__}: {shown(e)}"
-        results[uid] = f"uploaded {len(items)} items" if why is None else f"error: {why}"
-
-    threads = [threading.Thread(target=one, args=w) for w in work]
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
-    for uid in vehicles:
-        line = results[uid]
-        if line.startswith("error"):
-            status = 1
-        print(f"uav {uid}: {shown(vehicles[uid][1])}: {shown(line)}")
-    return status

@@ -23,8 +23,8 @@ from typing import Any, Dict, List, Optional, Tuple
 from jsonschema import Draft202012Validator, validators
 from referencing import Registry, Resource
 
-from . import frame as F
-from . import model as M
+from .frame import ISO_RULE, t0_rule
+from .model import SVA_MAX_TARGETS, SVA_MAX_UAVS
 
 # The repository's docs/schema; an installed package carries a copy (schema_files/).
 SCHEMA_DIR = Path(__file__).resolve().parents[2] / "docs" / "schema"
@@ -186,7 +186,7 @@ def _described(err, root: str, prefix: Tuple = ()) -> Optional[Found]:
         return (_SHAPE, pos, 2, f"{where}: must be null or {_article(_first_type(err))} "
                                 f"{_first_type(err)}, got {json_type(v)}")
     if rule == "utc-time" and kw == "pattern":
-        return (_VALUE, pos, 0, f"{where}: {F.ISO_RULE}, got {json.dumps(v)}")
+        return (_VALUE, pos, 0, f"{where}: {ISO_RULE}, got {json.dumps(v)}")
     if kw == "pattern":
         return (_VALUE, pos, 0, f"{where}: must match {err.validator_value}, got {json.dumps(v)}")
     return (_VALUE, pos, 0, f"{where}: {err.message}")
@@ -222,7 +222,7 @@ def _frame_rules(doc: Any, found: List[Found]) -> None:
     frame = doc.get("frame")
     if not isinstance(frame, dict) or not isinstance(frame.get("t0"), str):
         return
-    rule = F.t0_rule(frame["t0"])
+    rule = t0_rule(frame["t0"])
     if rule:
         found.append((_VALUE, _position(["frame", "t0"]), 0,
                       f"frame.t0: {rule}, got {json.dumps(frame['t0'])}"))
@@ -243,8 +243,8 @@ def _mission_rules(doc: Any, found: List[Found]) -> None:
     if isinstance(name, str) and len(name) <= limit < len(name.encode("utf-8")):
         found.append((_SHAPE, _position(["name"]), 3, f"name: must be a non-empty string of at "
                                                       f"most {limit} bytes, got {len(name.encode('utf-8'))}"))
-    for key, bound, bound_name in (("uavs", M.SVA_MAX_UAVS, "SVA_MAX_UAVS"),
-                                   ("targets", M.SVA_MAX_TARGETS, "SVA_MAX_TARGETS")):
+    for key, bound, bound_name in (("uavs", SVA_MAX_UAVS, "SVA_MAX_UAVS"),
+                                   ("targets", SVA_MAX_TARGETS, "SVA_MAX_TARGETS")):
         items = doc.get(key)
         if isinstance(items, list) and len(items) > bound:
             found.append((_SHAPE, _position([key]), 3,
@@ -257,9 +257,9 @@ def _mission_rules(doc: Any, found: List[Found]) -> None:
             if not isinstance(t, dict):
                 continue
             need = t.get("need")
-            if _ints(need) and need > M.SVA_MAX_UAVS:
+            if _ints(need) and need > SVA_MAX_UAVS:
                 found.append((_VALUE, _position(["targets", i, "need"]), 1,
-                              f"targets[{i}].need: must be <= SVA_MAX_UAVS ({M.SVA_MAX_UAVS}), got {need}"))
+                              f"targets[{i}].need: must be <= SVA_MAX_UAVS ({SVA_MAX_UAVS}), got {need}"))
             start, end = t.get("start"), t.get("end")
             if _ints(start, end) and end <= start:
                 found.append((_VALUE, _position(["targets", i]) + ((_AFTER_FIELDS, ""),), 0,

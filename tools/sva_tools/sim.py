@@ -1,46 +1,15 @@
-"""`sva-tools sim SCENARIO.json [--algo A] [--out LOG.json] [--plot FILE.png]`: a live
-mission flown tick by tick as ground truth, steered by the on-board planner.
-
-The scenario is `{"mission": MISSION, "events": [EVENT, ...], "change_penalty": N}`
-(the last optional). This module flies its own physics (SPEC section 12.2): a UAV flies
-each leg x first, then y, one cell per ticks_per_cell ticks, paying 1 fuel when a cell's
-step starts; it waits at a target until its start, pays hover_fuel at the start and
-leaves at the end; arriving after a start it does not stop; a step in progress is
-finished before new orders; with no orders it flies home. A lost UAV vanishes at its
-event and reappears on uav_back. A position event puts a UAV in service on its cell
-with its fuel (blown off course), a step in progress dropped; off its target's cell
-during a visit, it breaks the visit as a loss there would.
-
-At tick 0 (cause "start") and at every tick with events (after applying them) it runs
-the C CLI's `sva replan` over the whole history (mission, events so far, now) and gives
-every UAV in service the new plan's route as its orders. With `--via lcm` the planner
-is a real sva_node over LCM instead (sva_tools.lcm.simnode, in a network namespace of
-its own; root); `--kill-node N` then kills it N times with SIGKILL at seeded moments
-(`--seed`) and starts it again on its journal (`--state-dir`): it must resume by itself,
-and the flight log lists the kills (`node_kills`). It stops when every UAV in
-service is home with no orders (or out of fuel) and no window or event is left. The
-flight log (docs/live.md) is JSON: tracks, visits, every target's outcome, every
-replan with its residual mission and plan, and a summary.
-
-Order of work within tick t: steps ending at t complete and visits ending at t end;
-UAVs standing at their next target at its start begin to hover (hover_fuel paid); the
-events at t are applied and the planner replans; then every free UAV takes its next
-step (its fuel paid). A track entry [t, x, y, fuel] is the state after all of that.
-"""
+"""The live-mission simulator: scenarios flown with replans (`sva-tools sim`)."""
 from __future__ import annotations
 
-import argparse
 import json
 import os
 import subprocess
-import sys
 import tempfile
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Tuple
 
-from . import cbin
-from . import io
-from . import model as M
+from . import cbin, io
+from . import model
 
 EVENT_TYPES = ("clock", "uav_lost", "uav_back", "fuel", "target_added", "target_cancelled",
                "target_changed", "position")
@@ -76,14 +45,14 @@ class Craft:
     cells: int = 0
 
 
-def _target(doc: dict, where: str) -> M.Target:
+def _target(doc: dict, where: str) -> model.Target:
     """A target in mission JSON form, through the mission parser's own checks."""
     m = io.mission_from_json({"name": where, "depot": {"x": 0, "y": 0}, "uavs": [],
                               "targets": [doc]})
     return m.targets[0]
 
 
-def parse_scenario(doc) -> Tuple[M.Mission, List[dict], Optional[int]]:
+def parse_scenario(doc) -> Tuple[model.Mission, List[dict], Optional[int]]:
     """The mission, the events and the change penalty of a scenario document. The shape
     is checked here; whether each event may be applied is the planner's to judge."""
     if not isinstance(doc, dict):
@@ -168,7 +137,7 @@ def _toward(x: int, y: int, tx: int, ty: int) -> Tuple[int, int]:
 
 
 class Flight:
-    def __init__(self, mission: M.Mission, events: List[dict], penalty: Optional[int],
+    def __init__(self, mission: model.Mission, events: List[dict], penalty: Optional[int],
                  algo: str, planner=replan):
         self.m = mission
         self.events = events
@@ -177,7 +146,7 @@ class Flight:
         self.planner = planner
         self.crafts = [Craft(u.id, u.x, u.y, u.fuel, free_at=u.ready_at) for u in mission.uavs]
         self.by_id = {c.id: c for c in self.crafts}
-        self.targets: Dict[int, M.Target] = {t.id: t for t in mission.targets}
+        self.targets: Dict[int, model.Target] = {t.id: t for t in mission.targets}
         self.order = [t.id for t in mission.targets]   # first appearance
         self.outcome: Dict[int, str] = {}               # cancelled / lost, decided early
         self.replans: List[dict] = []
@@ -396,7 +365,7 @@ class Flight:
 
     # --- the log ---------------------------------------------------------------------
 
-    def _served_by(self, tg: M.Target) -> List[int]:
+    def _served_by(self, tg: model.Target) -> List[int]:
         """UAVs in service at the target's cell at every tick of [start, end)."""
         ids = []
         for c in self.crafts:
@@ -440,7 +409,7 @@ class Flight:
         return doc
 
 
-def simulate(mission: M.Mission, events: List[dict], penalty: Optional[int] = None,
+def simulate(mission: model.Mission, events: List[dict], penalty: Optional[int] = None,
              algo: str = "sva", planner=replan) -> dict:
     """Flies the scenario and returns the flight log (raises SimError)."""
     return Flight(mission, events, penalty, algo, planner).fly()
@@ -503,56 +472,7 @@ def timeline(log: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-# --- the command ---------------------------------------------------------------------
-
-def add_parser(sub) -> None:
-    ap = sub.add_parser("sim", help="fly a live-mission scenario, steered by `sva replan`",
-                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("scenario", help="SCENARIO.json: {mission, events, change_penalty}")
-    ap.add_argument("--algo", default="sva", choices=list(cbin.C_ALGORITHMS),
-                    help="the on-board planner's algorithm (default sva)")
-    ap.add_argument("--out", help="flight log JSON (default: stdout, or none with --timeline)")
-    ap.add_argument("--timeline", action="store_true",
-                    help="print a timeline of events and replans on stdout instead of the log")
-    ap.add_argument("--plot", metavar="FILE.png", help="also draw the flight (map and Gantt)")
-    ap.add_argument("--via", choices=["cli", "lcm"], default="cli",
-                    help="how the planner is reached: cli (`sva replan`, default) or lcm (a "
-                         "real sva_node over LCM multicast, in a network namespace made for "
-                         "the run; needs root)")
-    ap.add_argument("--attach", action="store_true",
-                    help="--via lcm: use the sva_node already running (started with the same "
-                         "--algorithm and --change-penalty) instead of starting one, and no "
-                         "namespace of its own")
-    ap.add_argument("--url", default=None,
-                    help="--via lcm: LCM provider (default udpm://239.255.76.67:7667?ttl=0)")
-    ap.add_argument("--prefix", default=None, help="--via lcm: channel prefix (default SVA_)")
-    ap.add_argument("--timeout", type=float, default=10.0,
-                    help="--via lcm: seconds to wait for each answer of the node (default 10)")
-    ap.add_argument("--kill-node", type=int, default=0, metavar="N",
-                    help="--via lcm: SIGKILL the node N times at seeded moments of the flight and "
-                         "start it again on its journal (sva_node --state-dir, a temporary folder "
-                         "of the run's own); it must resume by itself (default 0)")
-    ap.add_argument("--seed", type=int, default=0,
-                    help="--kill-node: the seed of the moments (default 0)")
-    ap.set_defaults(func=run)
-
-
-def _argv(args) -> List[str]:
-    """The command line of this run, for its re-execution inside a network namespace."""
-    argv = ["sim", args.scenario, "--algo", args.algo, "--via", "lcm",
-            "--timeout", str(args.timeout), "--kill-node", str(args.kill_node),
-            "--seed", str(args.seed)]
-    for opt in ("out", "plot", "url", "prefix"):
-        if getattr(args, opt) is not None:
-            argv += [f"--{opt}", getattr(args, opt)]
-    if args.timeline:
-        argv.append("--timeline")
-    if args.attach:
-        argv.append("--attach")
-    return argv
-
-
-def simulate_via_lcm(mission: M.Mission, events: List[dict], penalty: Optional[int] = None,
+def simulate_via_lcm(mission: model.Mission, events: List[dict], penalty: Optional[int] = None,
                      algo: str = "sva", kill_node: int = 0, seed: int = 0, **link) -> dict:
     """Flies the scenario against sva_node over LCM (sva_tools.lcm.simnode; `link`: url,
     prefix, attach, timeout) from inside a network namespace; with kill_node, kills and
@@ -571,49 +491,3 @@ def simulate_via_lcm(mission: M.Mission, events: List[dict], penalty: Optional[i
     if kill_node > 0:
         log["node_kills"] = node.kills
     return log
-
-
-def _fly_via_lcm(args, mission, events, penalty) -> dict:
-    kw = {k: getattr(args, k) for k in ("url", "prefix") if getattr(args, k) is not None}
-    return simulate_via_lcm(mission, events, penalty, args.algo, kill_node=args.kill_node,
-                            seed=args.seed, attach=args.attach, timeout=args.timeout, **kw)
-
-
-def run(args) -> int:
-    if args.via == "cli" and (args.attach or args.url or args.prefix):
-        print("sva-tools: error: sim: --attach, --url and --prefix need --via lcm",
-              file=sys.stderr)
-        return 2
-    if args.kill_node and (args.via != "lcm" or args.attach or args.kill_node < 0):
-        print("sva-tools: error: sim: --kill-node: needs --via lcm and a node of the run's own "
-              f"(not --attach), and a count >= 0, got {args.kill_node}", file=sys.stderr)
-        return 2
-    if args.via == "lcm" and not args.attach and not os.environ.get("SVA_LCM_NETNS"):
-        load_scenario(args.scenario)  # a bad scenario is reported before any namespace
-        from .lcm import simnode
-        return simnode.reexec_in_netns(_argv(args))
-    mission, events, penalty = load_scenario(args.scenario)
-    try:
-        if args.via == "lcm":
-            from .lcm import simnode
-            try:
-                log = _fly_via_lcm(args, mission, events, penalty)
-            except simnode.NodeError as e:
-                print(f"sva-tools: error: {args.scenario}: --via lcm: {e}", file=sys.stderr)
-                return e.status
-        else:
-            log = simulate(mission, events, penalty, args.algo)
-    except cbin.CliMissing as e:
-        print(f"sva-tools: error: sim: {e}", file=sys.stderr)
-        return 2
-    except SimError as e:
-        print(f"sva-tools: error: {args.scenario}: {e}", file=sys.stderr)
-        return e.status
-    if args.timeline:
-        sys.stdout.write(timeline(log))
-    if args.out or not args.timeline:
-        io.write_json(log, args.out or "-")
-    if args.plot:
-        from . import simplot
-        simplot.render_flight(log, args.plot)
-    return 0

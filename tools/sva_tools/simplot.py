@@ -11,23 +11,23 @@ from __future__ import annotations
 
 from typing import Dict
 
-from . import model as M
+from . import model
 from . import plot
 
 OUTCOME_COLOUR = {"covered": "tab:green", "uncovered": "tab:red", "cancelled": "tab:gray",
                   "lost": "tab:purple"}
 
 
-def final_targets(log: dict) -> Dict[int, M.Target]:
+def final_targets(log: dict) -> Dict[int, model.Target]:
     """Every target of the scenario as it finally stood (added and changed ones too)."""
     sc = log["scenario"]
     out = {}
     for t in sc["mission"]["targets"]:
-        out[t["id"]] = M.Target(t["id"], t["x"], t["y"], t["start"], t["end"], t["need"])
+        out[t["id"]] = model.Target(t["id"], t["x"], t["y"], t["start"], t["end"], t["need"])
     for e in sc["events"]:
         if e["type"] in ("target_added", "target_changed"):
             t = e["target"]
-            out[t["id"]] = M.Target(t["id"], t["x"], t["y"], t["start"], t["end"], t["need"])
+            out[t["id"]] = model.Target(t["id"], t["x"], t["y"], t["start"], t["end"], t["need"])
     return out
 
 

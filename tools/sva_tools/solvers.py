@@ -13,7 +13,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import List, Optional, Sequence
 
-
 Cost = Sequence[Sequence[Optional[int]]]
 
 

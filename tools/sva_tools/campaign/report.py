@@ -12,8 +12,8 @@ import os
 import statistics
 from typing import Dict, List
 
-from . import spec as S
-from . import tasks as T
+from .spec import missions, set_label
+from .tasks import mission_hash, residual_for_ref
 
 
 def percentile(values: List[float], p: float):
@@ -124,7 +124,7 @@ def _live(t, refs):
         for rp in log["replans"]:
             if not rp["mission"]["targets"]:
                 continue
-            q = by_hash.get(T.mission_hash(T.residual_for_ref(rp["mission"])))
+            q = by_hash.get(mission_hash(residual_for_ref(rp["mission"])))
             if q is None:
                 continue
             judged += 1
@@ -183,7 +183,7 @@ def groups(spec: dict, records) -> List[dict]:
         c = records[k]
         change = pc.or_(change, pc.fill_null(pc.not_equal(c.slice(1), c.slice(0, max(n - 1, 0))), False))
     bounds = ([0] if n else []) + [i + 1 for i in pc.indices_nonzero(change).to_pylist()] + [n]
-    order = [S.set_label(s) for s in spec["sets"]]
+    order = [set_label(s) for s in spec["sets"]]
     tools = list(spec["algorithms"]) + ["ref"]
     out = []
     for a, b in zip(bounds, bounds[1:]):
@@ -266,7 +266,7 @@ def markdown(rows: List[List[str]]) -> str:
 def summary(spec: dict, stats: dict, gs: List[dict]) -> str:
     """The printed summary: one line of counts and times, and the table of groups()."""
     units = "missions" if spec["kind"] == "plan" else "scenarios"
-    n = S.missions(spec)
+    n = missions(spec)
     wall = stats.get("wall_s") or 0.0
     head = (f"campaign {spec['name']}: {stats['tasks']} tasks for {n} {units}; {stats['stored']} already stored, "
             f"{stats['computed']} computed, {len(stats['failed'])} failed; "

@@ -28,7 +28,7 @@ from jsonschema import Draft202012Validator, validators
 
 from .. import gen
 from ..schema import field_path, json_type
-from . import tasks as T
+from . import tasks
 
 SCHEMA = Path(__file__).resolve().parent / "spec.schema.json"
 DEFAULT_REF = {"det_limit": 10.0, "time_limit": 600.0, "max_targets": 40}
@@ -384,13 +384,13 @@ def _base(spec: dict, run: str, s: dict, seed: int, index: int) -> dict:
 
 def _task(base: dict, task: str, tool: str, mission_doc: dict, settings: dict,
           penalty: Optional[int] = None, coverable: Optional[int] = None) -> dict:
-    version = T.tool_version(task)
-    mh = T.mission_hash(mission_doc)
+    version = tasks.tool_version(task)
+    mh = tasks.mission_hash(mission_doc)
     key_settings = dict(settings, penalty=penalty) if task == "fly" else settings
     t = dict(base, task=task, tool=tool, settings=settings, version=version, mission_hash=mh,
              mission_name=(mission_doc.get("mission") or mission_doc).get("name"),
-             mission=T.canonical(mission_doc), coverable=coverable,
-             key=T.task_key(task, tool, mh, key_settings, version))
+             mission=tasks.canonical(mission_doc), coverable=coverable,
+             key=tasks.task_key(task, tool, mh, key_settings, version))
     if penalty is not None:
         t["penalty"] = penalty
     return t
@@ -456,7 +456,7 @@ def ref_tasks(spec: dict, run: str, flights: List[dict], logs: Dict[str, dict]) 
         s = by_set[f["set"]]
         if f["index"] >= s.get("ref_count", s.get("count", spec["count"])) or f["key"] not in logs:
             continue
-        for doc in T.residuals(logs[f["key"]]):
+        for doc in tasks.residuals(logs[f["key"]]):
             if len(doc["targets"]) > spec["ref"]["max_targets"]:
                 continue
             t = _task(_base(spec, run, s, f["seed"], f["index"]), "ref", "ref", doc, ref_settings(spec),

@@ -82,6 +82,7 @@ def _plan_figures(plan: dict) -> dict:
 def _run_plan(task: dict) -> dict:
     import subprocess
     import tempfile
+
     from .. import cbin
     s = task["settings"]
     cmd = [str(cbin.sva_bin()), "plan", "--algo", task["tool"]]

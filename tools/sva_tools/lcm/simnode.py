@@ -29,7 +29,6 @@ import re
 import shutil
 import signal
 import subprocess
-import sys
 import tempfile
 import time
 from pathlib import Path
@@ -340,31 +339,6 @@ class NodePlanner:
                 "restarts": len(self.kills), "messages": len(rts),
                 "round_trip_us": {"p50": percentile(rts, 50), "p99": percentile(rts, 99),
                                   "max": max(rts) if rts else None}}
-
-
-def reexec_in_netns(argv: List[str]) -> int:
-    """Runs `python -m sva_tools ARGV` in a fresh network namespace (netns_run.sh) and
-    returns its exit status; 2 with a clear message when that cannot be done."""
-    if os.geteuid() != 0:
-        print("sva-tools: error: sim --via lcm: needs root to create the network namespace "
-              "the node and the simulator talk in (ip netns); run it as root, or inside a "
-              "namespace made for it (SVA_LCM_NETNS set, as tools/netns/netns_run.sh does)",
-              file=sys.stderr)
-        return 2
-    helper = netns_helper()
-    if not os.access(helper, os.X_OK):
-        print(f"sva-tools: error: sim --via lcm: the network namespace helper {helper} is "
-              "missing (point SVA_NETNS_RUN at tools/netns/netns_run.sh)", file=sys.stderr)
-        return 2
-    env = dict(os.environ)
-    tools = str(Path(__file__).resolve().parents[2])
-    env["PYTHONPATH"] = tools + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
-    rc = subprocess.run([str(helper), sys.executable, "-m", "sva_tools", *argv], env=env).returncode
-    if rc == 77:
-        print("sva-tools: error: sim --via lcm: could not create a network namespace "
-              "(ip netns: needs root and iproute2)", file=sys.stderr)
-        return 2
-    return rc
 
 
 def comparable_flight(log: dict) -> dict:

@@ -10,8 +10,17 @@ import math
 import time
 from typing import List, Optional
 
-from .vehicle import (COPTER_AUTO, COPTER_GUIDED, EKF_POS_HORIZ_ABS, MAV_MODE_FLAG_SAFETY_ARMED,
-                      STREAMS_US, Clock, Link, MissionReader, Process)
+from .vehicle import (
+    COPTER_AUTO,
+    COPTER_GUIDED,
+    EKF_POS_HORIZ_ABS,
+    MAV_MODE_FLAG_SAFETY_ARMED,
+    STREAMS_US,
+    Clock,
+    Link,
+    MissionReader,
+    Process,
+)
 
 MAV_CMD_NAV_DELAY = 93
 MAV_CMD_NAV_RETURN_TO_LAUNCH = 20

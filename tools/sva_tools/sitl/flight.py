@@ -35,8 +35,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Dict, List, Optional
 
-from .. import frame as F
-from .. import model as M
+from ..frame import Frame, format_utc
+from ..model import Mission
 from . import judge, record
 from .craft import Craft
 from .ground import Ground, GroundError
@@ -65,7 +65,7 @@ def takeoff_allowance_s(alt_m: float) -> int:
 @dataclass
 class Settings:
     scenario_path: str
-    mission: M.Mission
+    mission: Mission
     events: List[dict]
     penalty: Optional[int]
     frame: dict                 # lat, lon, alt_m, cell_m, tick_s, and t0 (None: choose it)
@@ -84,7 +84,7 @@ class Flight:
         self.s = s
         self.tmp = Path(tempfile.mkdtemp(prefix="sva-sitl-"))
         f = s.frame
-        self.geo = F.Frame.from_json({**f, "t0": f.get("t0") or "1970-01-01T00:00:00Z"})
+        self.geo = Frame.from_json({**f, "t0": f.get("t0") or "1970-01-01T00:00:00Z"})
         self.t0_ms: Optional[int] = self.geo.t0_ms if f.get("t0") else None
         self.tick_ms = self.geo.tick_ms
         self.allowance_s = takeoff_allowance_s(self.geo.alt_m)
@@ -213,7 +213,7 @@ class Flight:
         if self.t0_ms is None:
             self.t0_ms = int(math.ceil((max(clocks) + self.allowance_s * 1000.0) / 1000.0)) * 1000
         frame_doc = dict(self.s.frame)
-        frame_doc["t0"] = F.format_utc(self.t0_ms)
+        frame_doc["t0"] = format_utc(self.t0_ms)
         self.frame_doc = frame_doc
         doc = s.mission.to_json()
         doc["frame"] = frame_doc

@@ -25,7 +25,7 @@ from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
-from .. import frame as F
+from .. import frame
 from ..lcm.simnode import percentile
 
 MIN_RADIUS_M = 5.0
@@ -266,7 +266,7 @@ def _losses(log: dict) -> List[dict]:
 def judge_log(log: dict) -> dict:
     """The flight log of a record (or of a flight log: judged again): targets, each UAV's
     track, visits and holds, the losses' latencies and the summary."""
-    geo = F.Frame.from_json(log["sitl"]["frame"])
+    geo = frame.Frame.from_json(log["sitl"]["frame"])
     tick_ms = geo.tick_ms
     r = radius_m(geo.cell_m)
     tracks = {u["id"]: Track(geo, u["telemetry"]) for u in log["uavs"]}

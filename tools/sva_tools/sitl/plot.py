@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import frame as F
+from .. import frame
 from .. import plot
 from ..simplot import OUTCOME_COLOUR
 from . import judge
@@ -32,7 +32,7 @@ def render(log: dict, path: str) -> None:
     plt = plot.pyplot()
     sc = log["scenario"]
     mission = sc["mission"]
-    geo = F.Frame.from_json(log["sitl"]["frame"])
+    geo = frame.Frame.from_json(log["sitl"]["frame"])
     r_cells = log["sitl"]["radius_m"] / geo.cell_m
     targets, _cancelled, order = judge.final_targets(mission["targets"], sc["events"])
     outcome = {t["id"]: t["outcome"] for t in log["targets"]}

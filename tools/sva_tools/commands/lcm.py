@@ -11,8 +11,9 @@ import json
 import sys
 import time
 
-from . import wire
-from ..text import Parser, shown
+from ..lcm import wire
+from ..text import shown
+from .common import Parser
 
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0"
 DEFAULT_PREFIX = "SVA_"
