@@ -6,10 +6,9 @@ import statistics
 import tempfile
 import time
 from collections import defaultdict
-from typing import List, Optional
+from typing import Any
 
-from . import cache, cbin, check, ih, io, peer, ref
-from . import model
+from . import cache, cbin, check, ih, io, model, peer, ref
 
 PY_ALGOS = ("ih", "ref", "peer")
 DEFAULT_ALGOS = "sva,ga,hga,bfa,flow,ih,ref,peer"
@@ -17,7 +16,7 @@ DEFAULT_SCALING_ALGOS = "sva,ga,hga,flow,ih,peer"
 SIZE_SETS = [(3, 3), (5, 3), (7, 5), (10, 5), (25, 5)]
 RATIO_SETS = ["low", "mid", "high"]
 SCALING_SETS = [(50, 10), (100, 20), (200, 40)]
-GEN = dict(width=(20, 40), max_coord=20, need=(2, 2), fuel=150, hover=0)
+GEN: dict[str, Any] = dict(width=(20, 40), max_coord=20, need=(2, 2), fuel=150, hover=0)
 
 
 def solver_settings(algo: str, opts) -> dict:
@@ -41,7 +40,7 @@ def _run_algo(algo: str, m: model.Mission, path: str, opts) -> dict:
             p = peer.solve_peer(m, opts.peer_solution_limit, opts.peer_time_limit)
         else:
             r = cbin.plan(path, algo)
-            if r.status != 0:
+            if r.status != 0 or r.plan is None:
                 msg = r.stderr.strip().splitlines()
                 return {"plan": None, "us": None, "error": f"exit {r.status}: {msg[-1] if msg else ''}"}
             p = r.plan
@@ -55,9 +54,8 @@ def _solve(algo: str, m: model.Mission, path: str, opts) -> dict:
     """_run_algo through the cache (ih, ref, peer with --cache): the record also says
     whether it came from the cache ('cached') and when and under what load it was
     measured ('measured': utc, loadavg, cpus)."""
-    store = getattr(opts, "cache_store", None)
-    cached = store is not None and algo in cache.CACHED_SOLVERS
-    if cached:
+    store = getattr(opts, "cache_store", None) if algo in cache.CACHED_SOLVERS else None
+    if store is not None:
         hit = store.get(m, algo, solver_settings(algo, opts))
         if hit is not None:
             r = dict(hit["result"])
@@ -65,13 +63,13 @@ def _solve(algo: str, m: model.Mission, path: str, opts) -> dict:
             return r
     meas = cache.measurement()
     r = _run_algo(algo, m, path, opts)
-    if cached:
+    if store is not None:
         store.put(m, algo, solver_settings(algo, opts), r, meas)
     r.update(cached=False, measured=meas)
     return r
 
 
-def _pct(xs: List[float], q: float) -> Optional[float]:
+def _pct(xs: list[float], q: float) -> float | None:
     if not xs:
         return None
     xs = sorted(xs)
@@ -84,7 +82,7 @@ def new_set(label: str) -> dict:
             "bounds": [], "disagree": []}
 
 
-def run_mission(s: dict, m: model.Mission, algos: List[str], opts, workdir: str) -> None:
+def run_mission(s: dict, m: model.Mission, algos: list[str], opts, workdir: str) -> None:
     """Runs every algorithm on one mission and appends the records to set s."""
     path = os.path.join(workdir, f"{m.name}.json")
     io.write_json(m.to_json(), path)
@@ -111,7 +109,7 @@ def run_mission(s: dict, m: model.Mission, algos: List[str], opts, workdir: str)
     s["bounds"].append(ref.fuel_free_bound(m) if opts.bounds else None)
 
 
-def run_set(label: str, missions: List[model.Mission], algos: List[str], opts, bar) -> dict:
+def run_set(label: str, missions: list[model.Mission], algos: list[str], opts, bar) -> dict:
     """Runs every algorithm on every mission of one set; returns the raw records."""
     s = new_set(label)
     with tempfile.TemporaryDirectory(prefix="sva-bench-") as d:
@@ -213,15 +211,18 @@ def _name(a: str, x: dict) -> str:
     return f"{a} (cached)" if x["cached"] == x["n"] else f"{a} (cached {x['cached']}/{x['n']})"
 
 
-def table(sets: List[dict], algos: List[str], bound_mode: bool = False) -> str:
+def table(sets: list[dict], algos: list[str], bound_mode: bool = False) -> str:
     gap_h = "mean gap to bound % (n)" if bound_mode else "mean gap to optimum % (n)"
-    lines = [f"| set | algorithm | planned | complete % | mean covered | mean cost | {gap_h} | fewer covered than optimum | certified gap % (n); proven optimal | median time | p95 time | check failures |",
+    lines = [f"| set | algorithm | planned | complete % | mean covered | mean cost | {gap_h} "
+             "| fewer covered than optimum | certified gap % (n); proven optimal | median time | p95 time "
+             "| check failures |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for s in sets:
         for a in algos:
             x = summarise(s, a)
             if x["planned"] == 0:
-                lines.append(f"| {s['label']} | {_name(a, x)} | 0/{x['n']} ({'; '.join(x['errors'])[:80]}) | | | | | | | | | |")
+                errors = "; ".join(x["errors"])[:80]
+                lines.append(f"| {s['label']} | {_name(a, x)} | 0/{x['n']} ({errors}) | | | | | | | | | |")
                 continue
             if bound_mode:
                 gap = f"{_fmt(x['bound_gap'])} ({x['bound_gap_n']})"
@@ -235,7 +236,7 @@ def table(sets: List[dict], algos: List[str], bound_mode: bool = False) -> str:
     return "\n".join(lines)
 
 
-def figure(sets: List[dict], algos: List[str], xlabel: str, path: str, title: str) -> None:
+def figure(sets: list[dict], algos: list[str], xlabel: str, path: str, title: str) -> None:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -266,7 +267,7 @@ def figure(sets: List[dict], algos: List[str], xlabel: str, path: str, title: st
     plt.close(fig)
 
 
-def headline(sets: List[dict], algos: List[str]) -> str:
+def headline(sets: list[dict], algos: list[str]) -> str:
     """Compact table: one row per set, one column per algorithm, each cell
     'complete % / mean gap to the optimum % / median time' (README headline)."""
     lines = ["| set | " + " | ".join(algos) + " |", "|---" * (len(algos) + 1) + "|"]
@@ -285,17 +286,18 @@ def headline(sets: List[dict], algos: List[str]) -> str:
     return "\n".join(lines)
 
 
-def _range(xs: List[float], spec: str = "{:.2f}") -> str:
+def _range(xs: list[float], spec: str = "{:.2f}") -> str:
     if not xs:
         return "–"
     lo, hi = min(xs), max(xs)
     return spec.format(lo) if lo == hi else f"{spec.format(lo)}–{spec.format(hi)}"
 
 
-def provenance(sets: List[dict], algos: List[str]) -> List[str]:
+def provenance(sets: list[dict], algos: list[str]) -> list[str]:
     """Per algorithm: results measured in this run and results from the cache, with
     when (UTC) and under what 1-minute load average they were measured."""
-    lines = ["| algorithm | measured in this run: results (1-min load) | from the cache: results, measured (UTC), 1-min load |",
+    lines = ["| algorithm | measured in this run: results (1-min load) "
+             "| from the cache: results, measured (UTC), 1-min load |",
              "|---|---|---|"]
     for a in algos:
         rs = [r for s in sets for r in s["recs"].get(a, [])]

@@ -2,14 +2,13 @@
 from __future__ import annotations
 
 from collections import Counter
-from typing import List
 
 from . import model
 
 
-def check_plan(m: model.Mission, p: model.Plan) -> List[str]:
+def check_plan(m: model.Mission, p: model.Plan) -> list[str]:
     """Returns the list of violations of SPEC 1 and 3 (empty when the plan is right)."""
-    v: List[str] = []
+    v: list[str] = []
     tmap = m.target_by_id()
     if p.mission != m.name:
         v.append(f"mission: plan is for {p.mission!r}, mission is {m.name!r}")
@@ -31,7 +30,7 @@ def check_plan(m: model.Mission, p: model.Plan) -> List[str]:
             v.append(f"routes: not in mission order (expected uav ids {want}, got {got})")
 
     uav_by_id = {u.id: u for u in m.uavs}
-    served: Counter = Counter()
+    served: Counter[int] = Counter()
     stranded_listed = list(p.stranded)
     for uid, n in Counter(stranded_listed).items():
         if n > 1:
@@ -71,8 +70,8 @@ def check_plan(m: model.Mission, p: model.Plan) -> List[str]:
         for tid, n in Counter(r.targets).items():
             if n > 1:
                 v.append(f"{w}: serves target {tid} {n} times (needs distinct UAVs)")
-        for t in set(t.id for t in ts):
-            served[t] += 1
+        for tid in {t.id for t in ts}:
+            served[tid] += 1
         if bad_id:
             continue
         if ts:

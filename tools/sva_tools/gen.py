@@ -3,10 +3,10 @@ from __future__ import annotations
 
 import math
 import random
-from typing import Dict, List, Optional, Sequence, Tuple
+from collections.abc import Sequence
+from typing import Any
 
-from . import io
-from . import model
+from . import io, model
 
 RATIOS = {"low": (0.0, 0.3), "mid": (0.3, 0.7), "high": (0.7, 1.0)}
 
@@ -16,11 +16,11 @@ def in_category(ratio: float, category: str) -> bool:
     return lo <= ratio < hi or (category == "high" and ratio <= 1.0 and ratio >= lo)
 
 
-def generate(targets: int, uavs: int, *, width=(20, 40), ratio: str = "any",
-             max_coord: int = 20, need=(2, 2), fuel: int = 150, hover: int = 0,
+def generate(targets: int, uavs: int, *, width: tuple[int, int] = (20, 40), ratio: str = "any",
+             max_coord: int = 20, need: tuple[int, int] = (2, 2), fuel: int = 150, hover: int = 0,
              ticks_per_cell: int = 1, overlap_percent: int = 70,
-             depot: Optional[Tuple[int, int]] = None, seed: int = 0, index: int = 0,
-             name: Optional[str] = None) -> model.Mission:
+             depot: tuple[int, int] | None = None, seed: int = 0, index: int = 0,
+             name: str | None = None) -> model.Mission:
     """One mission. Deterministic in (all parameters, seed, index)."""
     if targets < 0 or uavs < 0 or max_coord < 0 or width[0] < 1:
         raise ValueError("targets, uavs and max_coord must be >= 0 and width >= 1")
@@ -70,7 +70,7 @@ EVENT_KINDS = ("uav_lost", "uav_back", "fuel", "target_added", "target_cancelled
 KINDS = EVENT_KINDS + ("position",)
 
 
-def kinds_error(kinds: Sequence[str]) -> Optional[str]:
+def kinds_error(kinds: Sequence[str]) -> str | None:
     """Why `kinds` is not a list of event kinds gen can draw (None: it is)."""
     allowed = ", ".join(KINDS)
     if not kinds:
@@ -85,13 +85,14 @@ def kinds_error(kinds: Sequence[str]) -> Optional[str]:
     return None
 
 
-def _target_json(t: model.Target) -> dict:
+def _target_json(t: model.Target) -> dict[str, Any]:
     return {"id": t.id, "x": t.x, "y": t.y, "start": t.start, "end": t.end, "need": t.need}
 
 
 def generate_events(m: model.Mission, count: int, *, kinds: Sequence[str] = EVENT_KINDS,
-                    max_coord: int = 20, width=(20, 40), need=(2, 2), seed: int = 0,
-                    index: int = 0) -> Tuple[model.Mission, List[dict]]:
+                    max_coord: int = 20, width: tuple[int, int] = (20, 40), need: tuple[int, int] = (2, 2),
+                    seed: int = 0,
+                    index: int = 0) -> tuple[model.Mission, list[dict[str, Any]]]:
     """`count` events at random ticks in [1, the mission's last window end), drawn from
     `kinds`, valid when applied in order (SPEC 5.3): a UAV is lost only while in
     service and comes back only after it was lost (at a later tick); fuel readings go to
@@ -123,7 +124,7 @@ def generate_events(m: model.Mission, count: int, *, kinds: Sequence[str] = EVEN
     full_fuel = max([u.fuel for u in m.uavs] + [2 * far])
     used = {m.depot}
 
-    def fresh_cell() -> Tuple[int, int]:
+    def fresh_cell() -> tuple[int, int]:
         for _ in range(10000):
             c = (rng.randint(0, max_coord), rng.randint(0, max_coord))
             if c not in used:
@@ -131,7 +132,7 @@ def generate_events(m: model.Mission, count: int, *, kinds: Sequence[str] = EVEN
                 return c
         raise ValueError(f"no free cell left on the {max_coord + 1}-cell-wide grid")
 
-    targets: List[model.Target] = []
+    targets: list[model.Target] = []
     for t in m.targets:
         x, y = (t.x, t.y) if (t.x, t.y) not in used else fresh_cell()
         used.add((x, y))
@@ -145,18 +146,19 @@ def generate_events(m: model.Mission, count: int, *, kinds: Sequence[str] = EVEN
     # known fuel. Kept for every kind but read only by position reports, so the draws of
     # the other kinds do not depend on it.
     fix = {u.id: ((u.x, u.y), u.ready_at, u.fuel) for u in m.uavs}
-    lost_at: Dict[int, int] = {}
+    lost_at: dict[int, int] = {}
     current = {t.id: t for t in targets}
     cancelled = set()
     next_id = max([t.id for t in targets] + [0]) + 1
     need_hi = max(1, min(need[1], len(m.uavs)))
     need_lo = min(need[0], need_hi)
 
-    def window(at: int) -> Tuple[int, int]:
+    def window(at: int) -> tuple[int, int]:
         start = at + rng.randint(max(1, lead // 2), lead + width[1])
         return start, start + rng.randint(width[0], width[1])
 
-    def position(known, at: int, open_targets: List[model.Target]) -> Tuple[Tuple[int, int], int]:
+    def position(known: tuple[tuple[int, int], int, int], at: int,
+                 open_targets: list[model.Target]) -> tuple[tuple[int, int], int]:
         """A cell the UAV could be on at `at` and a fuel reading there (see above)."""
         (fx, fy), since, fuel = known
         reach = min(max(0, at - since) // m.ticks_per_cell, 2 * max_coord)
@@ -171,7 +173,7 @@ def generate_events(m: model.Mission, count: int, *, kinds: Sequence[str] = EVEN
         cell = rng.choice(stations) if stations and rng.random() < 0.5 else rng.choice(cells)
         return cell, rng.randint(far, max(far, fuel - dist(*cell)))
 
-    events: List[dict] = []
+    events: list[dict[str, Any]] = []
     for at in times:
         up = [u for u, ok in in_service.items() if ok]
         back = [u for u, t in lost_at.items() if t < at]
@@ -229,16 +231,16 @@ def generate_events(m: model.Mission, count: int, *, kinds: Sequence[str] = EVEN
     return m, events
 
 
-def generate_scenario(targets: int, uavs: int, events: int, *, kinds=EVENT_KINDS,
-                      change_penalty: Optional[int] = None, seed: int = 0, index: int = 0,
-                      **kw) -> dict:
+def generate_scenario(targets: int, uavs: int, events: int, *, kinds: Sequence[str] = EVENT_KINDS,
+                      change_penalty: int | None = None, seed: int = 0, index: int = 0,
+                      **kw: Any) -> dict[str, Any]:
     """A live-mission scenario: generate()'s mission with generate_events()' events."""
     m = generate(targets, uavs, seed=seed, index=index, **kw)
     m, evs = generate_events(m, events, kinds=kinds, max_coord=kw.get("max_coord", 20),
                              width=kw.get("width", (20, 40)), need=kw.get("need", (2, 2)),
                              seed=seed, index=index)
     io.mission_from_json(m.to_json())
-    doc = {"mission": m.to_json(), "events": evs}
+    doc: dict[str, Any] = {"mission": m.to_json(), "events": evs}
     if change_penalty is not None:
         doc["change_penalty"] = change_penalty
     return doc

@@ -5,11 +5,9 @@ import json
 import math
 from decimal import Decimal
 from fractions import Fraction
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Optional
 
-from . import check, io, schema
-from . import frame
-from . import model
+from . import check, frame, io, model, schema
 
 # GeoJSON coordinates are written to 1e-7 degree (about 1 cm), the frame's resolution.
 COORD_DIGITS = 7
@@ -19,11 +17,11 @@ DEFAULT_ALT_M = 30.0
 DEFAULT_UAVS = 1
 
 
-def _fail(message: str, path: str) -> io.InputError:
+def _fail(message: str, path: str | None) -> io.InputError:
     return io.InputError(message, path)
 
 
-def checked_frame(doc: Dict[str, Any]) -> frame.Frame:
+def checked_frame(doc: dict[str, Any]) -> frame.Frame:
     """The frame of the command line, by the mission's own rules (named as options)."""
     err = schema.first_error({"name": "x", "depot": {"x": 0, "y": 0}, "uavs": [], "targets": [],
                               "frame": doc}, "mission")
@@ -36,7 +34,7 @@ def checked_frame(doc: Dict[str, Any]) -> frame.Frame:
     return frame.Frame.from_json(doc)
 
 
-def _position(pos: Any, where: str, path: str) -> Tuple[float, float]:
+def _position(pos: Any, where: str, path: str) -> tuple[float, float]:
     """(lat, lon) of a GeoJSON position [lon, lat(, height)]."""
     if (not isinstance(pos, list) or not 2 <= len(pos) <= 3
             or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in pos)):
@@ -50,14 +48,14 @@ def _position(pos: Any, where: str, path: str) -> Tuple[float, float]:
     return float(lat), float(lon)
 
 
-def _enu(fr: frame.Frame, lat: float, lon: float, where: str, path: str) -> Tuple[float, float]:
+def _enu(fr: frame.Frame, lat: float, lon: float, where: str, path: str) -> tuple[float, float]:
     try:
         return fr.geodetic_to_enu(lat, lon)
     except frame.FrameError as e:
         raise _fail(f"{where}: {e}", path) from None
 
 
-def _polygon_centroid(fr: frame.Frame, rings: Any, where: str, path: str) -> Tuple[float, float]:
+def _polygon_centroid(fr: frame.Frame, rings: Any, where: str, path: str) -> tuple[float, float]:
     """The centroid (east, north) of a GeoJSON Polygon's area in the tangent plane."""
     from shapely.geometry import Polygon
     from shapely.validation import explain_validity
@@ -82,7 +80,7 @@ def _polygon_centroid(fr: frame.Frame, rings: Any, where: str, path: str) -> Tup
     return c.x, c.y
 
 
-def to_cell(fr: frame.Frame, east: float, north: float, where: str, path: str) -> Tuple[int, int]:
+def to_cell(fr: frame.Frame, east: float, north: float, where: str, path: str | None) -> tuple[int, int]:
     x, y = frame.snap(east / fr.cell_m), frame.snap(north / fr.cell_m)
     for axis, v, metres in (("east", x, east), ("north", y, north)):
         if not model.SVA_COORD_MIN <= v <= model.SVA_COORD_MAX:
@@ -106,7 +104,7 @@ def _instant(fr: frame.Frame, value: Any, where: str, path: str) -> Fraction:
     return fr.seconds_to_ticks(exact)
 
 
-def _window(fr: frame.Frame, props: Dict[str, Any], where: str, label: str, path: str) -> Tuple[int, int]:
+def _window(fr: frame.Frame, props: dict[str, Any], where: str, label: str, path: str) -> tuple[int, int]:
     for key in ("start", "end"):
         if key not in props:
             raise _fail(f"{where}: missing key {json.dumps(key)}", path)
@@ -125,7 +123,7 @@ def _window(fr: frame.Frame, props: Dict[str, Any], where: str, label: str, path
     return s_tick, e_tick
 
 
-def _int_prop(props: Dict[str, Any], key: str, lo: int, hi: int, hi_name: str, where: str,
+def _int_prop(props: dict[str, Any], key: str, lo: int, hi: int, hi_name: str, where: str,
               path: str) -> int:
     v = props[key]
     if isinstance(v, bool) or not isinstance(v, int):
@@ -137,7 +135,7 @@ def _int_prop(props: Dict[str, Any], key: str, lo: int, hi: int, hi_name: str, w
     return v
 
 
-def _features(doc: Any, path: str) -> List[Any]:
+def _features(doc: Any, path: str) -> list[Any]:
     if not isinstance(doc, dict):
         raise _fail(f"geojson: must be an object, got {schema.json_type(doc)}", path)
     crs = doc.get("crs")
@@ -160,10 +158,10 @@ def _features(doc: Any, path: str) -> List[Any]:
 
 
 def mission_from_geojson(doc: Any, path: str, fr: frame.Frame, name: str, uavs: int, fuel: int,
-                         ticks_per_cell: int) -> Dict[str, Any]:
+                         ticks_per_cell: int) -> dict[str, Any]:
     """The mission (a SPEC section 3 document with its frame) of a GeoJSON of targets."""
-    targets: List[Dict[str, Any]] = []
-    ids: Dict[int, int] = {}
+    targets: list[dict[str, Any]] = []
+    ids: dict[int, int] = {}
     feats = _features(doc, path)
     for i, feat in enumerate(feats):
         where = f"features[{i}]" if doc.get("type") == "FeatureCollection" else "feature"
@@ -205,36 +203,39 @@ def mission_from_geojson(doc: Any, path: str, fr: frame.Frame, name: str, uavs: 
 
 # --- geo plan -----------------------------------------------------------------------
 
-def mission_frame(doc: Dict[str, Any], path: str) -> frame.Frame:
+def mission_frame(doc: dict[str, Any], path: str) -> frame.Frame:
     if "frame" not in doc:
         raise _fail("mission: missing key \"frame\" (the geo commands need the mission's frame)", path)
     return frame.Frame.from_json(doc["frame"])
 
 
-def _lon_lat(fr: frame.Frame, x: int, y: int) -> List[float]:
+def _lon_lat(fr: frame.Frame, x: int, y: int) -> list[float]:
     lat, lon = fr.cell_to_geodetic(x, y)
     return [round(lon, COORD_DIGITS), round(lat, COORD_DIGITS)]
 
 
-Timing = Tuple[List[Tuple[int, int]], List[int], List[Optional[int]]]
+Timing = tuple[list[tuple[int, int]], list[int], list[Optional[int]]]
 
 
-def route_timing(m: model.Mission, uav: model.Uav, targets: List[model.Target]) -> Timing:
+def route_timing(m: model.Mission, uav: model.Uav, targets: list[model.Target]) -> Timing:
     """The cells of a route (its start, its targets, the depot) and the tick the UAV
     reaches and leaves each (SPEC section 12.2's flight: it leaves as soon as it may,
     waits at a target for its window and leaves at its end; None: it stays at the
     depot)."""
     cells = [(uav.x, uav.y)] + [(t.x, t.y) for t in targets] + [m.depot]
-    arrive, leave = [uav.ready_at], [uav.ready_at]
+    arrive: list[int] = [uav.ready_at]
+    leave: list[int | None] = [uav.ready_at]
+    left = uav.ready_at
     for k, t in enumerate(targets):
-        arrive.append(leave[-1] + model.dist_pt(cells[k], cells[k + 1]) * m.ticks_per_cell)
+        arrive.append(left + model.dist_pt(cells[k], cells[k + 1]) * m.ticks_per_cell)
         leave.append(t.end)
-    arrive.append(leave[-1] + model.dist_pt(cells[-2], cells[-1]) * m.ticks_per_cell)
+        left = t.end
+    arrive.append(left + model.dist_pt(cells[-2], cells[-1]) * m.ticks_per_cell)
     leave.append(None)
     return cells, arrive, leave
 
 
-def plan_geojson(mdoc: Dict[str, Any], pdoc: Dict[str, Any], mpath: str, ppath: str) -> Dict[str, Any]:
+def plan_geojson(mdoc: dict[str, Any], pdoc: dict[str, Any], mpath: str, ppath: str) -> dict[str, Any]:
     """The plan as a GeoJSON FeatureCollection through the mission's frame."""
     fr = mission_frame(mdoc, mpath)
     if "frame" in pdoc and frame.Frame.from_json(pdoc["frame"]) != fr:
@@ -245,10 +246,10 @@ def plan_geojson(mdoc: Dict[str, Any], pdoc: Dict[str, Any], mpath: str, ppath: 
         raise _fail(f"not a plan of this mission (SPEC section 1): {violations[0]}", ppath)
     tmap = m.target_by_id()
     stranded = set(p.stranded)
-    served: Dict[int, List[int]] = {t.id: [] for t in m.targets}
-    feats: List[Dict[str, Any]] = []
+    served: dict[int, list[int]] = {t.id: [] for t in m.targets}
+    feats: list[dict[str, Any]] = []
 
-    def utc(tick: Optional[int], where: str) -> Optional[str]:
+    def utc(tick: int | None, where: str) -> str | None:
         if tick is None:
             return None
         try:
@@ -260,7 +261,8 @@ def plan_geojson(mdoc: Dict[str, Any], pdoc: Dict[str, Any], mpath: str, ppath: 
         for tid in r.targets:
             served[tid].append(u.id)
         if u.id in stranded:
-            cells, arrive, leave = [(u.x, u.y), (u.x, u.y)], [u.ready_at, u.ready_at], [None, None]
+            stay: Timing = ([(u.x, u.y), (u.x, u.y)], [u.ready_at, u.ready_at], [None, None])
+            cells, arrive, leave = stay
         else:
             cells, arrive, leave = route_timing(m, u, [tmap[t] for t in r.targets])
         where = f"routes[uav {u.id}]"

@@ -3,31 +3,34 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from typing import Dict, List, Optional
+from typing import Any
 
-from . import io, solvers
-from . import model
+from . import io, model, solvers
 
 
 @dataclass
 class TpRecord:
     """One transportation problem, in the shape of a `--trace` line."""
-    source_uavs: List[int]
-    supply: List[int]
-    sink_targets: List[int]
-    demand: List[int]
-    cost: List[List[Optional[int]]]
-    flow: List[List[int]] = field(default_factory=list)
-    kept: List[bool] = field(default_factory=list)
+    source_uavs: list[int]
+    supply: list[int]
+    sink_targets: list[int]
+    demand: list[int]
+    cost: list[list[int | None]]
+    flow: list[list[int]] = field(default_factory=list)
+    kept: list[bool] = field(default_factory=list)
     cost_total: int = 0
     covered: int = 0
 
 
-def _groups(m: model.Mission, sinks: List[model.Target], ready: List[int], pos, free_at, fuel_left):
+Group = tuple[tuple[tuple[int, int], tuple[int, ...]], list[int]]
+
+
+def _groups(m: model.Mission, sinks: list[model.Target], ready: list[int], pos: list[tuple[int, int]],
+            free_at: list[int], fuel_left: list[int]) -> list[Group]:
     """Source groups for one problem: ready UAVs keyed by (position, reachable sinks),
     ordered by their lowest UAV id, members in id order (as the core does).
     Returns [(key, [uav indices])]."""
-    groups: Dict[tuple, List[int]] = {}
+    groups: dict[tuple[tuple[int, int], tuple[int, ...]], list[int]] = {}
     for ui in sorted(ready, key=lambda i: m.uavs[i].id):
         reach = []
         for j, t in enumerate(sinks):
@@ -42,20 +45,20 @@ def _groups(m: model.Mission, sinks: List[model.Target], ready: List[int], pos, 
     if len(out) > model.SVA_MAX_TP_SOURCES:
         # Mirrors the core's bound: keep the groups with the nearest reachable sink
         # (ties: lower UAV id), numbered in id order (DESIGN.md section 3).
-        def near(kv):
+        def near(kv: Group) -> tuple[int, int]:
             (p, reach), members = kv
             return (min(model.dist_pt(p, sinks[j]) for j in reach), m.uavs[members[0]].id)
         out = sorted(sorted(out, key=near)[:model.SVA_MAX_TP_SOURCES], key=first_id)
     return out
 
 
-def plan_ih(m: model.Mission, records: Optional[List[TpRecord]] = None) -> model.Plan:
+def plan_ih(m: model.Mission, records: list[TpRecord] | None = None) -> model.Plan:
     t0 = time.perf_counter()
     n = len(m.uavs)
     pos = [(u.x, u.y) for u in m.uavs]
     free_at = [u.ready_at for u in m.uavs]
     fuel_left = [u.fuel for u in m.uavs]
-    routes: List[List[int]] = [[] for _ in range(n)]
+    routes: list[list[int]] = [[] for _ in range(n)]
     active = [i for i, u in enumerate(m.uavs) if not model.is_stranded(m, u)]
     nproblems = 0
     ncl = 0
@@ -97,14 +100,14 @@ def plan_ih(m: model.Mission, records: Optional[List[TpRecord]] = None) -> model
 @dataclass
 class TraceVerdict:
     problems: int = 0
-    mismatches: List[str] = field(default_factory=list)   # ILP optimum != cost_total
+    mismatches: list[str] = field(default_factory=list)   # ILP optimum != cost_total
     drop_worse: int = 0        # max-cover ILP covers more sinks than the tableau kept
     drop_worse_sinks: int = 0  # how many more, summed
     with_drops: int = 0        # problems where the tableau dropped a sink
     drop_costlier: int = 0     # same number kept, but max-cover keeps a cheaper set
 
 
-def verify_record(rec: dict, verdict: TraceVerdict, where: str = "") -> None:
+def verify_record(rec: dict[str, Any], verdict: TraceVerdict, where: str = "") -> None:
     """Checks one `--trace` line: the integer LP optimum of the problem without the
     dropped sinks (equality demands, supply as upper bounds, given arcs only) equals
     cost_total; and counts whether cover-as-many-as-possible would keep more sinks."""
@@ -150,7 +153,7 @@ def verify_record(rec: dict, verdict: TraceVerdict, where: str = "") -> None:
         verdict.mismatches.append(f"{tag}: max-cover LP covers {mc.covered} < {kept} kept sinks")
 
 
-def read_trace(path: str) -> List[dict]:
+def read_trace(path: str) -> list[dict[str, Any]]:
     """The records of a `--trace` file, each checked against docs/schema/trace.schema.json
     (io.InputError naming the line otherwise)."""
     return io.load_trace(path)
@@ -162,20 +165,20 @@ class CompareVerdict:
     same: int = 0          # identical routes
     tie_first: int = 0     # plans differ and the first differing problem was a tie
     tie: int = 0           # routes differ, same covered and cost
-    differ: List[str] = field(default_factory=list)  # covered or cost differ
+    differ: list[str] = field(default_factory=list)  # covered or cost differ
     trace: TraceVerdict = field(default_factory=TraceVerdict)
 
 
 def compare_mission(m: model.Mission, verdict: CompareVerdict) -> None:
     from . import cbin
     r = cbin.plan_mission(m, "sva", trace=True)
-    if r.status != 0:
+    if r.status != 0 or r.plan is None:
         verdict.differ.append(f"{m.name}: sva plan exited {r.status}: {r.stderr.strip()}")
         return
     verdict.missions += 1
     for rec in r.trace or []:
         verify_record(rec, verdict.trace, f"{m.name}: ")
-    recs: List[TpRecord] = []
+    recs: list[TpRecord] = []
     p = plan_ih(m, recs)
     a = [(x.uav, x.targets) for x in r.plan.routes]
     b = [(x.uav, x.targets) for x in p.routes]

@@ -13,10 +13,11 @@ import json
 import math
 import os
 import sys
-from typing import Any, List, Optional
+from typing import Any, Callable, NoReturn, TypeVar
 
-from . import model
-from . import schema
+from . import model, schema
+
+_T = TypeVar("_T")
 
 
 class InputError(Exception):
@@ -24,13 +25,13 @@ class InputError(Exception):
     `path` names the file when it came from load_mission/load_plan; `where` is the
     place in it (`LINE:COLUMN` of a syntax error, `LINE` of a JSON Lines record)."""
 
-    def __init__(self, message: str, path: Optional[str] = None, where: str = ""):
+    def __init__(self, message: str, path: str | None = None, where: str = ""):
         super().__init__(message)
         self.path = path
         self.where = where
 
 
-def _no_duplicates(pairs):
+def _no_duplicates(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
     out = {}
     for k, v in pairs:
         if k in out:
@@ -51,7 +52,7 @@ class _NotFinite(Exception):
     pass
 
 
-def _constant(name: str):
+def _constant(name: str) -> NoReturn:
     # NaN and Infinity are not JSON (RFC 8259); Python's reader takes them, jansson not.
     raise _NotFinite(f"invalid token {name}")
 
@@ -168,7 +169,7 @@ def plan_from_json(doc: Any) -> model.Plan:
                   list(doc.get("stranded", [])))
 
 
-def load_trace(path: str) -> List[dict]:
+def load_trace(path: str) -> list[dict[str, Any]]:
     """The records of a JSON Lines trace (`sva plan --trace`), each checked against the
     trace schema; InputError names the line."""
     try:
@@ -191,7 +192,7 @@ def load_trace(path: str) -> List[dict]:
     return out
 
 
-def _load(path: str, parse):
+def _load(path: str, parse: Callable[[Any], _T]) -> _T:
     try:
         return parse(read_json(path))
     except InputError as e:
@@ -209,7 +210,7 @@ def load_plan(path: str) -> model.Plan:
     return _load(path, plan_from_json)
 
 
-def write_json(doc: Any, path: Optional[str]) -> None:
+def write_json(doc: Any, path: str | None) -> None:
     """Writes doc to path ('-' or None: stdout), atomically for files."""
     text = json.dumps(doc, indent=2) + "\n"
     if path in (None, "-"):

@@ -1,6 +1,7 @@
 """A plan's routes as MAVLink missions, uploaded over the MAVLink mission protocol (`sva-tools mavlink`)."""
 from __future__ import annotations
 
+import functools
 import math
 import re
 import select
@@ -8,7 +9,7 @@ import socket
 import struct
 import time
 from dataclasses import dataclass
-from typing import List, Optional, Tuple
+from typing import Any, Callable
 
 from . import io
 from .frame import Frame as GeoFrame
@@ -66,7 +67,7 @@ def _round_half_away(v: float) -> int:
     return int(math.floor(abs(v) + 0.5)) * (1 if v >= 0 else -1)
 
 
-def frame_from_json(doc: dict) -> Frame:
+def frame_from_json(doc: dict[str, Any]) -> Frame:
     """The integers of a frame that passed validation (the mission and plan schemas and
     SPEC section 4's t0 rules, sva_tools.frame), as sva_frame_t holds them."""
     f = GeoFrame.from_json(doc)
@@ -76,7 +77,8 @@ def frame_from_json(doc: dict) -> Frame:
 
 
 def _f32(v: float) -> float:
-    return struct.unpack("<f", struct.pack("<f", v))[0]
+    value: float = struct.unpack("<f", struct.pack("<f", v))[0]
+    return value
 
 
 def _f32_up(v: float) -> float:
@@ -96,7 +98,7 @@ def speed_m_s(frame: Frame, ticks_per_cell: int) -> float:
     return _f32_up(v * (1.0 + (frame.alt_cm / 100.0) / MIN_RADIUS_M))
 
 
-def cell_to_geo(frame: Frame, x: int, y: int) -> Tuple[int, int]:
+def cell_to_geo(frame: Frame, x: int, y: int) -> tuple[int, int]:
     """Cell (x, y) in 1e-7 degree: x * cell east and y * cell north of the origin in its
     local East-North-Up plane (pymap3d.enu2geodetic, WGS84)."""
     import pymap3d
@@ -106,7 +108,7 @@ def cell_to_geo(frame: Frame, x: int, y: int) -> Tuple[int, int]:
     return _round_half_away(float(lat) * 1e7), _round_half_away(float(lon) * 1e7)
 
 
-def build_items(frame: Frame, m: Mission, uav: Uav, target_ids: List[int]) -> List[Item]:
+def build_items(frame: Frame, m: Mission, uav: Uav, target_ids: list[int]) -> list[Item]:
     """The items of one UAV's route (none when it has no targets). InputError naming the
     UAV and the rule when the route cannot be carried."""
     if not target_ids:
@@ -179,7 +181,7 @@ _IFLAG_SIGNED = 0x01
 _GOOD, _BAD, _INCOMPLETE = range(3)
 
 
-def _dialect():
+def _dialect() -> Any:
     """pymavlink's MAVLink 2 common dialect (imported on first use: it is slow to load)."""
     from pymavlink.dialects.v20 import common
     return common
@@ -208,17 +210,17 @@ class Frames:
         self._held = bytearray()
         self.signed = 0  # signed frames with a good checksum, not taken
 
-    def datagram(self, data: bytes) -> list:
-        out: list = []
+    def datagram(self, data: bytes) -> list[Any]:
+        out: list[Any] = []
         self._scan(bytearray(data), out, final=True)
         return out
 
-    def stream(self, data: bytes) -> list:
-        out: list = []
+    def stream(self, data: bytes) -> list[Any]:
+        out: list[Any] = []
         self._held = self._scan(self._held + data, out, final=False)
         return out
 
-    def _scan(self, buf: bytearray, out: list, final: bool) -> bytearray:
+    def _scan(self, buf: bytearray, out: list[Any], final: bool) -> bytearray:
         i = 0
         while i < len(buf):
             if buf[i] != _STX_V2 and buf[i] != _STX_V1:
@@ -235,7 +237,7 @@ class Frames:
                 i += 1
         return buf[i:]
 
-    def _judge(self, buf: bytearray, i: int) -> Tuple[int, object, int]:
+    def _judge(self, buf: bytearray, i: int) -> tuple[int, object, int]:
         v2 = buf[i] == _STX_V2
         header = _HEADER_V2 if v2 else _HEADER_V1
         have = len(buf) - i
@@ -283,7 +285,7 @@ class Vehicle:
     port: int
     sysid: int
     family: int = 0
-    address: tuple = ()
+    address: tuple[Any, ...] = ()
 
     @property
     def endpoint(self) -> str:
@@ -303,7 +305,7 @@ class Link:
         self.error = ""          # why a TCP link is not up
         self.lost = False        # a TCP connection that was up is gone
         self.next_connect = 0.0
-        self.sock: Optional[socket.socket] = None
+        self.sock: socket.socket | None = None
         if not self.tcp:
             self.sock = socket.socket(vehicle.family, socket.SOCK_DGRAM)
             self.sock.connect(vehicle.address)
@@ -332,7 +334,7 @@ class Link:
         self.sock = sock
         return True
 
-    def _lose(self, why: str) -> list:
+    def _lose(self, why: str) -> list[Any]:
         self.close()
         self.lost, self.error = True, why
         return []
@@ -351,7 +353,7 @@ class Link:
             elif not isinstance(e, ConnectionRefusedError):
                 raise  # refused: an ICMP error of an earlier datagram (nobody listening yet)
 
-    def receive(self, wait_s: float) -> list:
+    def receive(self, wait_s: float) -> list[Any]:
         """The messages that arrive within wait_s (every good frame, any sender)."""
         if self.sock is None:
             time.sleep(wait_s)
@@ -376,8 +378,8 @@ class Link:
         self.sock = None
 
 
-def upload(vehicle: Vehicle, items: List[Item], timeout_ms: int = TIMEOUT_MS,
-           retries: int = RETRIES) -> Optional[str]:
+def upload(vehicle: Vehicle, items: list[Item], timeout_ms: int = TIMEOUT_MS,
+           retries: int = RETRIES) -> str | None:
     """The MAVLink mission protocol, sender side, with pymavlink's codec. None when
     the vehicle accepted the mission, else the reason. Only messages of the vehicle's
     system id and component 1 (MAV_COMP_ID_AUTOPILOT1), to this side's system id and
@@ -400,8 +402,9 @@ def upload(vehicle: Vehicle, items: List[Item], timeout_ms: int = TIMEOUT_MS,
                                       it.command, 1 if seq == 0 else 0, 1, it.param1, it.param2,
                                       it.param3, it.param4, it.x, it.y, it.z, 0)
 
-        resend, what = send_count, "MISSION_COUNT"
-        tries, sent = 0, set()
+        resend: Callable[[], None] = send_count
+        what = "MISSION_COUNT"
+        tries, sent = 0, set[int]()
         now = time.monotonic()
         deadline, next_hb = now + timeout, now + 1.0
         if link.up():
@@ -454,7 +457,7 @@ def upload(vehicle: Vehicle, items: List[Item], timeout_ms: int = TIMEOUT_MS,
                     seq = msg.seq
                     send_item(seq)
                     sent.add(seq)
-                    resend, what = (lambda s=seq: send_item(s)), f"MISSION_ITEM_INT {seq}"
+                    resend, what = functools.partial(send_item, seq), f"MISSION_ITEM_INT {seq}"
                     tries = 0
                     deadline = time.monotonic() + timeout
     finally:

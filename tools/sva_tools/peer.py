@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import time
-from typing import Dict, List
 
 from . import model
 
@@ -21,7 +20,7 @@ def solve_peer(m: model.Mission, solution_limit: int = SOLUTION_LIMIT,
     nv = len(vehicles)
     # node 0: depot; 1..nv: vehicle starts; then target copies
     locs = [m.depot] + [(u.x, u.y) for u in vehicles]
-    copy_target: List[model.Target] = []
+    copy_target: list[model.Target] = []
     for t in m.targets:
         for _ in range(t.need):
             copy_target.append(t)
@@ -37,13 +36,13 @@ def solve_peer(m: model.Mission, solution_limit: int = SOLUTION_LIMIT,
     routing = pywrapcp.RoutingModel(mgr)
     tpc = m.ticks_per_cell
 
-    def d(i, j):
+    def d(i: int, j: int) -> int:
         return abs(locs[i][0] - locs[j][0]) + abs(locs[i][1] - locs[j][1])
 
-    def dist_cb(a, b):
+    def dist_cb(a: int, b: int) -> int:
         return d(mgr.IndexToNode(a), mgr.IndexToNode(b))
 
-    def time_cb(a, b):
+    def time_cb(a: int, b: int) -> int:
         i, j = mgr.IndexToNode(a), mgr.IndexToNode(b)
         stay = 0
         if i >= first_copy:
@@ -51,7 +50,7 @@ def solve_peer(m: model.Mission, solution_limit: int = SOLUTION_LIMIT,
             stay = t.end - t.start
         return stay + d(i, j) * tpc
 
-    def fuel_cb(a, b):
+    def fuel_cb(a: int, b: int) -> int:
         i, j = mgr.IndexToNode(a), mgr.IndexToNode(b)
         return d(i, j) + (m.hover_fuel if i >= first_copy else 0)
 
@@ -98,7 +97,7 @@ def solve_peer(m: model.Mission, solution_limit: int = SOLUTION_LIMIT,
         sol = routing.SolveFromAssignmentWithParameters(empty, params)
         start_from = "all_dropped"
     elapsed = time.perf_counter() - t0
-    assignment: Dict[int, List[int]] = {}
+    assignment: dict[int, list[int]] = {}
     if sol is not None:
         for v, u in enumerate(vehicles):
             seq = []
@@ -112,7 +111,7 @@ def solve_peer(m: model.Mission, solution_limit: int = SOLUTION_LIMIT,
     # All or none, enforced after the search: a partly served target's copies are
     # removed (SPEC 1). Removing a visit keeps a route feasible: by the triangle
     # inequality the shortcut is no longer in distance, fuel or time.
-    count: Dict[int, int] = {}
+    count: dict[int, int] = {}
     for seq in assignment.values():
         for tid in seq:
             count[tid] = count.get(tid, 0) + 1

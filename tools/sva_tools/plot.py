@@ -1,10 +1,13 @@
 """Drawings of a mission and its plan (`sva-tools plot`)."""
 from __future__ import annotations
 
+from types import ModuleType
+from typing import Any
+
 from . import model
 
 
-def pyplot():
+def pyplot() -> ModuleType:
     """matplotlib.pyplot on the file-only Agg backend."""
     import matplotlib
     matplotlib.use("Agg")
@@ -12,12 +15,12 @@ def pyplot():
     return plt
 
 
-def draw_depot(ax, depot) -> None:
+def draw_depot(ax: Any, depot: tuple[int, int]) -> None:
     ax.plot(*depot, marker="s", color="black", markersize=12, zorder=5)
     ax.annotate("depot", depot, textcoords="offset points", xytext=(6, -12), fontsize=9)
 
 
-def draw_target(ax, t: model.Target, colour: str) -> None:
+def draw_target(ax: Any, t: model.Target, colour: str) -> None:
     """A target on the map: a circle in `colour`, labelled "T<id> n<need> [start,end]"."""
     ax.plot(t.x, t.y, "o", color=colour, markersize=10, zorder=4, alpha=0.8)
     ax.annotate(f"T{t.id} n{t.need} [{t.start},{t.end}]", (t.x, t.y),
@@ -84,9 +87,10 @@ def render(m: model.Mission, p: model.Plan, path: str) -> None:
         col = cmap(i % cmap.N)
         clock, pos = u.ready_at, (u.x, u.y)
         for tid in r.targets:
-            t = tmap.get(tid)
-            if t is None:
+            tt = tmap.get(tid)
+            if tt is None:
                 continue
+            t = tt
             fly = model.dist_pt(pos, t) * m.ticks_per_cell
             gx.broken_barh([(clock, fly)], (y - 0.15, 0.3), color=col, alpha=0.5)
             if clock + fly < t.start:

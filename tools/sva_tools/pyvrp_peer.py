@@ -38,7 +38,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
-from typing import Any, Dict, List, Tuple
+from typing import Any
 
 from .model import Mission, Plan, Target, Uav, can_start, dist_pt, is_stranded, make_plan
 
@@ -56,8 +56,8 @@ def servable(m: Mission, u: Uav, t: Target) -> bool:
 class PeerModel:
     """The PyVRP model of a need-1 mission and how to read its solutions back."""
     model: Any                                     # pyvrp.Model
-    targets: List[Target]                        # client k is targets[k]
-    groups: Dict[Tuple[int, int, int, int], List[Uav]]   # vehicle type k: list(groups)[k]
+    targets: list[Target]                        # client k is targets[k]
+    groups: dict[tuple[int, int, int, int], list[Uav]]   # vehicle type k: list(groups)[k]
 
 
 def build_model(m: Mission) -> PeerModel:
@@ -71,13 +71,13 @@ def build_model(m: Mission) -> PeerModel:
                          "PyVRP models need-1 missions only")
     vehicles = [u for u in m.uavs if not is_stranded(m, u)]
     targets = [t for t in m.targets if any(servable(m, u, t) for u in vehicles)]
-    groups: Dict[Tuple[int, int, int, int], List[Uav]] = {}
+    groups: dict[tuple[int, int, int, int], list[Uav]] = {}
     for u in vehicles:
         groups.setdefault((u.x, u.y, u.fuel, u.ready_at), []).append(u)
     model = Model()
-    points: List[Tuple[int, int]] = []
+    points: list[tuple[int, int]] = []
     locations = []
-    is_client: List[bool] = []
+    is_client: list[bool] = []
 
     def location(x: int, y: int, client: bool) -> Any:
         points.append((x, y))
@@ -87,7 +87,7 @@ def build_model(m: Mission) -> PeerModel:
         return loc
 
     home = model.add_depot(location(m.depot[0], m.depot[1], False))
-    starts: Dict[Tuple[int, int], Any] = {m.depot: home}
+    starts: dict[tuple[int, int], Any] = {m.depot: home}
     for (x, y, _, _) in groups:
         if (x, y) not in starts:
             starts[(x, y)] = model.add_depot(location(x, y, False))
@@ -144,7 +144,7 @@ def solve_pyvrp(m: Mission, time_limit: float = TIME_LIMIT, seed: int = SEED) ->
     elapsed = time.perf_counter() - t0
     groups = list(pm.groups.values())
     taken = [0] * len(groups)
-    assignment: Dict[int, List[int]] = {}
+    assignment: dict[int, list[int]] = {}
     for route in best.routes():
         k = route.vehicle_type()
         uav = groups[k][taken[k]]

@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import time
-from typing import Dict, List
+from typing import TYPE_CHECKING, Any
 
 from .model import Mission, Plan, can_follow, can_start, dist_pt, is_stranded, make_plan
 
@@ -11,8 +11,13 @@ from .model import Mission, Plan, can_follow, can_start, dist_pt, is_stranded, m
 DET_LIMIT = 10.0
 SAFETY_TIME_LIMIT = 600.0
 
+if TYPE_CHECKING:
+    from ortools.sat.python.cp_model import IntVar
 
-def _dag(m: Mission):
+    _Vars = dict[int, IntVar]
+
+
+def _dag(m: Mission) -> list[list[int]]:
     ts = m.targets
     follow = [[j for j, b in enumerate(ts) if j != i and can_follow(m, a, b)]
               for i, a in enumerate(ts)]
@@ -32,10 +37,11 @@ def solve_ref(m: Mission, time_limit: float = SAFETY_TIME_LIMIT, workers: int = 
     follow = _dag(m)
     dep = m.depot
     model = cp_model.CpModel()
-    z = [model.NewBoolVar(f"z{k}") for k in range(nt)]
-    serve: List[List] = [[] for _ in range(nt)]  # per target: x[u, t] vars
+    z = [model.new_bool_var(f"z{k}") for k in range(nt)]
+    serve: list[list[IntVar]] = [[] for _ in range(nt)]  # per target: x[u, t] vars
     cost_terms = []
-    uav_vars = []  # per uav: (first arcs {k: var}, pair arcs {(a, b): var}, x {k: var})
+    # per uav: (first arcs {k: var}, pair arcs {(a, b): var}, x {k: var}); None when stranded
+    uav_vars: list[tuple[_Vars, dict[tuple[int, int], IntVar], _Vars] | None] = []
     for ui, u in enumerate(m.uavs):
         if is_stranded(m, u):
             uav_vars.append(None)
@@ -46,37 +52,37 @@ def solve_ref(m: Mission, time_limit: float = SAFETY_TIME_LIMIT, workers: int = 
         ok = [k for k, t in enumerate(ts)
               if u.fuel >= dist_pt(u, t) + m.hover_fuel + dist_pt(t, dep)]
         okset = set(ok)
-        first = {k: model.NewBoolVar(f"f{ui}_{k}") for k in ok if can_start(m, u, ts[k])}
-        idle = model.NewBoolVar(f"idle{ui}")
+        first = {k: model.new_bool_var(f"f{ui}_{k}") for k in ok if can_start(m, u, ts[k])}
+        idle = model.new_bool_var(f"idle{ui}")
         pair = {}
         for a in ok:
             for b in follow[a]:
                 if b in okset:
-                    pair[(a, b)] = model.NewBoolVar(f"p{ui}_{a}_{b}")
-        last = {k: model.NewBoolVar(f"l{ui}_{k}") for k in ok}
-        x = {k: model.NewBoolVar(f"x{ui}_{k}") for k in ok}
-        model.AddExactlyOne(list(first.values()) + [idle])
-        inn: Dict[int, list] = {k: [] for k in ok}
-        out: Dict[int, list] = {k: [] for k in ok}
+                    pair[(a, b)] = model.new_bool_var(f"p{ui}_{a}_{b}")
+        last = {k: model.new_bool_var(f"l{ui}_{k}") for k in ok}
+        x = {k: model.new_bool_var(f"x{ui}_{k}") for k in ok}
+        model.add_exactly_one(list(first.values()) + [idle])
+        inn: dict[int, list[IntVar]] = {k: [] for k in ok}
+        out: dict[int, list[IntVar]] = {k: [] for k in ok}
         for (a, b), v in pair.items():
             out[a].append(v)
             inn[b].append(v)
         for k in ok:
             fk = [first[k]] if k in first else []
-            model.Add(sum(fk + inn[k]) == x[k])
-            model.Add(sum(out[k] + [last[k]]) == x[k])
+            model.add(sum(fk + inn[k]) == x[k])
+            model.add(sum(out[k] + [last[k]]) == x[k])
             serve[k].append(x[k])
         legs = ([(dist_pt(u, ts[k]), v) for k, v in first.items()]
                 + [(dist_pt(ts[a], ts[b]), v) for (a, b), v in pair.items()]
                 + [(dist_pt(ts[k], dep), v) for k, v in last.items()]
                 + [(home, idle)])
         dist = sum(c * v for c, v in legs if c)
-        model.Add(dist + m.hover_fuel * sum(x.values()) <= u.fuel)
+        model.add(dist + m.hover_fuel * sum(x.values()) <= u.fuel)
         cost_terms += [(c, v) for c, v in legs if c]
         uav_vars.append((first, pair, x))
     for k, t in enumerate(ts):
-        model.Add(sum(serve[k]) == t.need * z[k])
-    def make_solver(det: float, wall: float):
+        model.add(sum(serve[k]) == t.need * z[k])
+    def make_solver(det: float, wall: float) -> cp_model.CpSolver:
         sol = cp_model.CpSolver()
         sol.parameters.num_workers = workers
         sol.parameters.max_deterministic_time = det
@@ -84,44 +90,45 @@ def solve_ref(m: Mission, time_limit: float = SAFETY_TIME_LIMIT, workers: int = 
         return sol
 
     solver = make_solver(det_limit, time_limit)
-    model.Maximize(sum(z))
-    st1 = solver.Solve(model)
+    model.maximize(sum(z))
+    st1 = solver.solve(model)
     det_used = solver.deterministic_time
     feasible = st1 in (cp_model.OPTIMAL, cp_model.FEASIBLE)
     optimal1 = st1 == cp_model.OPTIMAL
-    cov_ub = int(round(solver.BestObjectiveBound())) if feasible else nt
-    assignment: Dict[int, List[int]] = {}
+    cov_ub = int(round(solver.best_objective_bound)) if feasible else nt
+    assignment: dict[int, list[int]] = {}
     lower = None
     optimal = False
     if feasible:
-        best = int(round(solver.ObjectiveValue()))
+        best = int(round(solver.objective_value))
         for k in range(nt):
-            model.AddHint(z[k], solver.Value(z[k]))
-        model.Add(sum(z) == best)
-        model.Minimize(sum(c * v for c, v in cost_terms))
+            model.add_hint(z[k], solver.value(z[k]))
+        model.add(sum(z) == best)
+        model.minimize(sum(c * v for c, v in cost_terms))
         # The second solve gets what the first left of det_limit, and at least a
         # tenth of it (deterministic either way).
         left = max(0.1 * det_limit, det_limit - det_used)
         wall_left = max(1.0, time_limit - (time.perf_counter() - t0))
         solver2 = make_solver(left, wall_left)
-        st2 = solver2.Solve(model)
+        st2 = solver2.solve(model)
         det_used += solver2.deterministic_time
         if st2 in (cp_model.OPTIMAL, cp_model.FEASIBLE):
             solver = solver2
             optimal = optimal1 and st2 == cp_model.OPTIMAL
-            lower = int(round(solver2.BestObjectiveBound()))
+            lower = int(round(solver2.best_objective_bound))
         else:
             # Keep the first solve's plan; its cost is not minimised.
             optimal = False
         for ui, u in enumerate(m.uavs):
-            if uav_vars[ui] is None:
+            vars_u = uav_vars[ui]
+            if vars_u is None:
                 continue
-            first, pair, x = uav_vars[ui]
-            cur = next((k for k, v in first.items() if solver.Value(v)), None)
+            first, pair, x = vars_u
+            cur = next((k for k, v in first.items() if solver.value(v)), None)
             seq = []
             while cur is not None:
                 seq.append(ts[cur].id)
-                cur = next((b for (a, b), v in pair.items() if a == cur and solver.Value(v)), None)
+                cur = next((b for (a, b), v in pair.items() if a == cur and solver.value(v)), None)
             assignment[u.id] = seq
     elapsed = time.perf_counter() - t0
     us = int(elapsed * 1e6)
@@ -141,7 +148,7 @@ def solve_ref(m: Mission, time_limit: float = SAFETY_TIME_LIMIT, workers: int = 
     return p
 
 
-def fuel_free_bound(m: Mission) -> dict:
+def fuel_free_bound(m: Mission) -> dict[str, Any]:
     """Min-cost flow lower bound of a complete plan, fuel ignored (see module doc)."""
     from ortools.graph.python import min_cost_flow
 

@@ -6,10 +6,9 @@ import os
 import subprocess
 import tempfile
 from dataclasses import dataclass, field
-from typing import Dict, List, Optional, Tuple
+from typing import Any, Callable
 
-from . import cbin, io
-from . import model
+from . import cbin, io, model
 
 EVENT_TYPES = ("clock", "uav_lost", "uav_back", "fuel", "target_added", "target_cancelled",
                "target_changed", "position")
@@ -33,26 +32,26 @@ class Craft:
     y: int
     fuel: int
     in_service: bool = True
-    orders: List[int] = field(default_factory=list)
-    step_to: Optional[Tuple[int, int]] = None
+    orders: list[int] = field(default_factory=list)
+    step_to: tuple[int, int] | None = None
     step_end: int = 0
-    hover: Optional[int] = None       # target id it hovers over until the window ends
+    hover: int | None = None       # target id it hovers over until the window ends
     free_at: int = 0                  # it may not leave before (the mission's ready_at)
     arrived: int = 0                  # tick it reached its current cell
-    out: List[list] = field(default_factory=list)
-    track: List[list] = field(default_factory=list)
-    visits: List[dict] = field(default_factory=list)
+    out: list[list[int | None]] = field(default_factory=list)      # [lost at, back at]
+    track: list[list[int]] = field(default_factory=list)           # [tick, x, y, fuel]
+    visits: list[dict[str, Any]] = field(default_factory=list)
     cells: int = 0
 
 
-def _target(doc: dict, where: str) -> model.Target:
+def _target(doc: dict[str, Any], where: str) -> model.Target:
     """A target in mission JSON form, through the mission parser's own checks."""
     m = io.mission_from_json({"name": where, "depot": {"x": 0, "y": 0}, "uavs": [],
                               "targets": [doc]})
     return m.targets[0]
 
 
-def parse_scenario(doc) -> Tuple[model.Mission, List[dict], Optional[int]]:
+def parse_scenario(doc: Any) -> tuple[model.Mission, list[dict[str, Any]], int | None]:
     """The mission, the events and the change penalty of a scenario document. The shape
     is checked here; whether each event may be applied is the planner's to judge."""
     if not isinstance(doc, dict):
@@ -80,20 +79,20 @@ def parse_scenario(doc) -> Tuple[model.Mission, List[dict], Optional[int]]:
     events = doc["events"]
     if not isinstance(events, list):
         raise io.InputError("events: must be a JSON array")
-    for i, e in enumerate(events):
+    for i, ev in enumerate(events):
         w = f"events[{i}]"
-        if not isinstance(e, dict):
+        if not isinstance(ev, dict):
             raise io.InputError(f"{w}: must be a JSON object")
-        if e.get("type") not in EVENT_TYPES:
+        if ev.get("type") not in EVENT_TYPES:
             raise io.InputError(f"{w}.type: must be one of {', '.join(EVENT_TYPES)}, "
-                                f"got {json.dumps(e.get('type'))}")
-        at = e.get("at")
+                                f"got {json.dumps(ev.get('type'))}")
+        at = ev.get("at")
         if not isinstance(at, int) or isinstance(at, bool) or at < 0:
             raise io.InputError(f"{w}.at: must be an integer >= 0, got {json.dumps(at)}")
     return mission, events, penalty
 
 
-def load_scenario(path: str):
+def load_scenario(path: str) -> tuple[model.Mission, list[dict[str, Any]], int | None]:
     try:
         return parse_scenario(io.read_json(path))
     except io.InputError as e:
@@ -103,8 +102,8 @@ def load_scenario(path: str):
 
 # --- the planner ---------------------------------------------------------------------
 
-def replan(mission_doc: dict, events: List[dict], now: int, algo: str,
-           timeout: float = 600) -> Tuple[dict, dict]:
+def replan(mission_doc: dict[str, Any], events: list[dict[str, Any]], now: int, algo: str,
+           timeout: float = 600) -> tuple[dict[str, Any], dict[str, Any]]:
     """`sva replan --algo ALGO --residual R LIVE.json` over the history; returns (the
     printed plan with its changes and live keys, the residual mission)."""
     exe = cbin.sva_bin()
@@ -129,16 +128,21 @@ def replan(mission_doc: dict, events: List[dict], now: int, algo: str,
 
 # --- the flight ----------------------------------------------------------------------
 
-def _toward(x: int, y: int, tx: int, ty: int) -> Tuple[int, int]:
+def _toward(x: int, y: int, tx: int, ty: int) -> tuple[int, int]:
     """The next cell from (x, y) towards (tx, ty): x first, then y."""
     if x != tx:
         return (x + (1 if tx > x else -1), y)
     return (x, y + (1 if ty > y else -1))
 
 
+# How a flight is replanned: (mission doc, events so far, now, algorithm) -> (the plan
+# with its changes and live keys, the residual mission); replan() or a node over LCM.
+Planner = Callable[[dict[str, Any], list[dict[str, Any]], int, str], tuple[dict[str, Any], dict[str, Any]]]
+
+
 class Flight:
-    def __init__(self, mission: model.Mission, events: List[dict], penalty: Optional[int],
-                 algo: str, planner=replan):
+    def __init__(self, mission: model.Mission, events: list[dict[str, Any]], penalty: int | None,
+                 algo: str, planner: Planner = replan):
         self.m = mission
         self.events = events
         self.penalty = penalty
@@ -146,14 +150,14 @@ class Flight:
         self.planner = planner
         self.crafts = [Craft(u.id, u.x, u.y, u.fuel, free_at=u.ready_at) for u in mission.uavs]
         self.by_id = {c.id: c for c in self.crafts}
-        self.targets: Dict[int, model.Target] = {t.id: t for t in mission.targets}
+        self.targets: dict[int, model.Target] = {t.id: t for t in mission.targets}
         self.order = [t.id for t in mission.targets]   # first appearance
-        self.outcome: Dict[int, str] = {}               # cancelled / lost, decided early
-        self.replans: List[dict] = []
+        self.outcome: dict[int, str] = {}               # cancelled / lost, decided early
+        self.replans: list[dict[str, Any]] = []
         self.tpc = mission.ticks_per_cell
 
     # The mission document the planner reads: the mission as at tick 0.
-    def mission_doc(self) -> dict:
+    def mission_doc(self) -> dict[str, Any]:
         doc = self.m.to_json()
         if self.penalty is not None:
             doc["change_penalty"] = self.penalty
@@ -194,7 +198,7 @@ class Flight:
             if tid in c.orders:
                 c.orders.remove(tid)
 
-    def _apply(self, e: dict, t: int) -> None:
+    def _apply(self, e: dict[str, Any], t: int) -> None:
         kind = e["type"]
         if kind == "uav_lost":
             c = self.by_id[e["uav"]]
@@ -242,7 +246,7 @@ class Flight:
         elif kind == "target_cancelled":
             self._free_target(e["target"], t, "cancelled")
 
-    def _step(self, c: Craft, t: int, dest: Tuple[int, int]) -> None:
+    def _step(self, c: Craft, t: int, dest: tuple[int, int]) -> None:
         if c.fuel < 1 or t < c.free_at:
             return  # an empty tank, or not ready yet: it stays where it is
         c.fuel -= 1
@@ -268,7 +272,7 @@ class Flight:
                 if (c.x, c.y) != self.m.depot:
                     self._step(c, t, self.m.depot)
 
-    def _replan(self, t: int, cause: str, history: List[dict], now_events: List[dict]) -> None:
+    def _replan(self, t: int, cause: str, history: list[dict[str, Any]], now_events: list[dict[str, Any]]) -> None:
         # The planner judges the events before the flight takes them: a rejected one
         # stops the flight (SimError) with nothing applied.
         out, residual = self.planner(self.mission_doc(), list(history), t, self.algo)
@@ -294,15 +298,15 @@ class Flight:
                     c.free_at = t + self.m.takeoff_ticks
                 c.orders = new
 
-    def _changes(self, residual: dict, plan: dict, now_events: List[dict],
-                 cli_changes: Optional[dict]) -> dict:
+    def _changes(self, residual: dict[str, Any], plan: dict[str, Any], now_events: list[dict[str, Any]],
+                 cli_changes: dict[str, Any] | None) -> dict[str, Any]:
         """SPEC 5.4's changed visits of this replan: (UAV, target) pairs of the residual
         mission that the plan in force had (the previous replan's plan; none for a UAV
         that came back since) and this plan drops, or that this plan adds. Recomputed
         here from consecutive plans, as the CLI's own figure describes only its last
         replan over the history."""
         if not self.replans:
-            pairs_before: set = set()
+            pairs_before: set[tuple[int, int]] = set()
         else:
             uavs = {u["id"] for u in residual.get("uavs", [])}
             targets = {t["id"] for t in residual.get("targets", [])}
@@ -328,7 +332,7 @@ class Flight:
             return False
         return (c.x, c.y) == self.m.depot or c.fuel < 1
 
-    def fly(self, max_ticks: Optional[int] = None) -> dict:
+    def fly(self, max_ticks: int | None = None) -> dict[str, Any]:
         last_event = max((e["at"] for e in self.events), default=0)
         coords = [abs(v) for t in self.m.targets for v in (t.x, t.y)]
         coords += [abs(v) for u in self.m.uavs for v in (u.x, u.y)] + [abs(v) for v in self.m.depot]
@@ -339,7 +343,7 @@ class Flight:
                 if isinstance(e.get("target"), dict):
                     ends.append(int(e["target"].get("end", 0)))
             max_ticks = max(ends + [last_event]) + 4 * extent * self.tpc + 1000
-        history: List[dict] = []
+        history: list[dict[str, Any]] = []
         pending = list(self.events)
         t = 0
         while True:
@@ -365,7 +369,7 @@ class Flight:
 
     # --- the log ---------------------------------------------------------------------
 
-    def _served_by(self, tg: model.Target) -> List[int]:
+    def _served_by(self, tg: model.Target) -> list[int]:
         """UAVs in service at the target's cell at every tick of [start, end)."""
         ids = []
         for c in self.crafts:
@@ -374,7 +378,7 @@ class Flight:
                 ids.append(c.id)
         return ids
 
-    def _log(self, end: int) -> dict:
+    def _log(self, end: int) -> dict[str, Any]:
         targets = []
         for tid in self.order:
             tg = self.targets[tid]
@@ -402,22 +406,22 @@ class Flight:
             },
         }
 
-    def scenario_doc(self) -> dict:
-        doc = {"mission": self.m.to_json(), "events": self.events}
+    def scenario_doc(self) -> dict[str, Any]:
+        doc: dict[str, Any] = {"mission": self.m.to_json(), "events": self.events}
         if self.penalty is not None:
             doc["change_penalty"] = self.penalty
         return doc
 
 
-def simulate(mission: model.Mission, events: List[dict], penalty: Optional[int] = None,
-             algo: str = "sva", planner=replan) -> dict:
+def simulate(mission: model.Mission, events: list[dict[str, Any]], penalty: int | None = None,
+             algo: str = "sva", planner: Planner = replan) -> dict[str, Any]:
     """Flies the scenario and returns the flight log (raises SimError)."""
     return Flight(mission, events, penalty, algo, planner).fly()
 
 
 # --- the timeline --------------------------------------------------------------------
 
-def event_text(e: dict) -> str:
+def event_text(e: dict[str, Any]) -> str:
     """One line for a live event (scenario JSON; a cancelled target as its id or its
     object): the timeline's and the ground view's words."""
     k = e["type"]
@@ -443,11 +447,11 @@ def event_text(e: dict) -> str:
     return "clock"
 
 
-def timeline(log: dict) -> str:
+def timeline(log: dict[str, Any]) -> str:
     """One line per replan (tick, cause, targets the planner then expects covered: done
     ones included, plan cost, changed visits, kept or not, solve time) under the events
     that caused it, and the flight's summary."""
-    by_tick: Dict[int, List[dict]] = {}
+    by_tick: dict[int, list[dict[str, Any]]] = {}
     for e in log["scenario"]["events"]:
         by_tick.setdefault(e["at"], []).append(e)
     w = max([len(r["cause"]) for r in log["replans"]] + [5])
@@ -472,8 +476,8 @@ def timeline(log: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-def simulate_via_lcm(mission: model.Mission, events: List[dict], penalty: Optional[int] = None,
-                     algo: str = "sva", kill_node: int = 0, seed: int = 0, **link) -> dict:
+def simulate_via_lcm(mission: model.Mission, events: list[dict[str, Any]], penalty: int | None = None,
+                     algo: str = "sva", kill_node: int = 0, seed: int = 0, **link: Any) -> dict[str, Any]:
     """Flies the scenario against sva_node over LCM (sva_tools.lcm.simnode; `link`: url,
     prefix, attach, timeout) from inside a network namespace; with kill_node, kills and
     restarts the node that many times at moments drawn with seed (`node_kills` in the

@@ -9,7 +9,7 @@ import sys
 import time
 import uuid
 from pathlib import Path
-from typing import Callable, Dict, List, Optional
+from typing import Any, Callable
 
 # The Dask, Parquet and schema modules are imported when a campaign runs, not when the
 # `sva-tools` parser is built for another subcommand.
@@ -30,9 +30,11 @@ class _Cluster:
     """The Dask client, connected (and the LocalCluster started) only when a task is to
     be submitted: a campaign whose results are all stored starts no cluster."""
 
-    def __init__(self, scheduler: Optional[str], workers: Optional[int], client=None):
+    def __init__(self, scheduler: str | None, workers: int | None, client=None):
         self.scheduler, self.workers = scheduler, workers
-        self.client, self.cluster, self.own = client, None, client is None
+        self.client: Any = client
+        self.cluster: Any = None  # the LocalCluster this run starts, if any
+        self.own = client is None
 
     def get(self):
         if self.client is None:
@@ -63,7 +65,7 @@ class _Cluster:
                 self.cluster.close()
 
 
-def _execute(cl: _Cluster, tasks: List[dict], store, stored: set, stats: dict, progress: bool,
+def _execute(cl: _Cluster, tasks: list[dict], store, stored: set, stats: dict, progress: bool,
              label: str, compute: bool = True) -> None:
     from distributed import as_completed
 
@@ -105,10 +107,10 @@ def _execute(cl: _Cluster, tasks: List[dict], store, stored: set, stats: dict, p
             bar.close()
 
 
-def run(spec: dict, out: str, scheduler: Optional[str] = None, workers: Optional[int] = None,
+def run(spec: dict, out: str, scheduler: str | None = None, workers: int | None = None,
         progress: bool = True, client=None, flush_rows: int = 64,
-        columns: Optional[List[str]] = None, repair: bool = False,
-        on_damaged: Optional[Callable[[Path, str], None]] = None) -> dict:
+        columns: list[str] | None = None, repair: bool = False,
+        on_damaged: Callable[[Path, str], None] | None = None) -> dict:
     """Runs the campaign; returns {"run", "tasks", "stored", "computed", "failed", "wall_s",
     "compute_s" (first submission to last result, cluster start excluded), "workers",
     "held" (tasks not computed because of damaged parts), "set_aside" ((from, to) of the
@@ -127,7 +129,7 @@ def run(spec: dict, out: str, scheduler: Optional[str] = None, workers: Optional
     first = first_tasks(spec, run_id)
     store = Store(out, run_id, flush_rows=flush_rows, on_damaged=on_damaged)
     stored = store.keys()
-    stats: Dict = {"run": run_id, "tasks": 0, "stored": 0, "computed": 0, "failed": [], "workers": 0,
+    stats: dict = {"run": run_id, "tasks": 0, "stored": 0, "computed": 0, "failed": [], "workers": 0,
                    "compute_s": 0.0, "held": 0, "set_aside": []}
     if repair and store.damaged:
         stats["set_aside"] = store.set_aside()

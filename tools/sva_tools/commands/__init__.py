@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import importlib
 import sys
-from typing import List, Optional
 
 from .. import __version__, io
 from ..text import shown
@@ -13,7 +12,7 @@ SUBCOMMANDS = ("gen", "check", "validate", "ref", "ih", "peer", "bench", "plot",
                "mavlink", "campaign", "sitl")
 
 
-def _lcm(argv: List[str]) -> int:
+def _lcm(argv: list[str]) -> int:
     # `lcm` belongs to the LCM port's helper package sva_tools.lcm; it is
     # dispatched when present and reported clearly when not.
     try:
@@ -25,7 +24,7 @@ def _lcm(argv: List[str]) -> int:
     return int(mod.main(argv))
 
 
-def main(argv: Optional[List[str]] = None) -> int:
+def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv and argv[0] == "lcm":
         return _lcm(argv[1:])

@@ -38,9 +38,9 @@ import statistics
 import sys
 import tempfile
 import time
+from typing import Any
 
-from .. import cache, cbin, gen, peer, ref
-from .. import model
+from .. import cache, cbin, gen, model, peer, ref
 from ..bench import (
     DEFAULT_ALGOS,
     DEFAULT_SCALING_ALGOS,
@@ -126,7 +126,9 @@ def run(args) -> int:
     args.t_start = t_start = time.time()
     load_start = os.getloadavg()
     utc_start = cache.measurement(load_start)["utc"]
-    size_sets, ratio_sets, scale_sets = [], [], []
+    size_sets: list[dict[str, Any]] = []
+    ratio_sets: list[dict[str, Any]] = []
+    scale_sets: list[dict[str, Any]] = []
     plan_sets = []
     if not args.no_paper:
         for n, u in SIZE_SETS:
@@ -262,6 +264,8 @@ def write_results(args, cmd, size_sets, algos, load_start, elapsed, st) -> None:
     import importlib.util
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
     spec = importlib.util.spec_from_file_location("sva_results", os.path.join(root, "tools", "bench", "results.py"))
+    if spec is None or spec.loader is None:
+        raise RuntimeError(f"cannot load {root}/tools/bench/results.py")
     results = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(results)
     report = os.path.relpath(os.path.join(args.out, "README.md"), os.path.join(results.ROOT, "docs"))

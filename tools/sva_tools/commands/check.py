@@ -31,5 +31,6 @@ def run(args) -> int:
     if v:
         return 1
     if not args.quiet:
-        print(f"{shown(args.plan)}: ok ({p.algorithm}, {p.status}, covered {p.covered}/{len(m.targets)}, cost {p.cost})")
+        print(f"{shown(args.plan)}: ok ({p.algorithm}, {p.status}, covered {p.covered}/{len(m.targets)}, "
+              f"cost {p.cost})")
     return 0

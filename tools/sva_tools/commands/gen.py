@@ -19,7 +19,6 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from typing import Optional, Tuple
 
 from .. import io
 from ..gen import EVENT_KINDS, KINDS, generate, generate_scenario, kinds_error
@@ -66,7 +65,7 @@ def run(args) -> int:
         print("sva-tools: error: gen: --events must be >= 0", file=sys.stderr)
         return 2
 
-    def one(index: int, name: Optional[str]):
+    def one(index: int, name: str | None):
         if args.events is None:
             m = generate(args.targets, args.uavs, index=index, name=name, **kw)
             return m.name, m.to_json()
@@ -92,7 +91,7 @@ def run(args) -> int:
         print(f"sva-tools: error: gen: {shown(e)}", file=sys.stderr)
         return 2
 
-def parse_range(text: str) -> Tuple[int, int]:
+def parse_range(text: str) -> tuple[int, int]:
     """'7' -> (7, 7); '5:9' -> (5, 9)."""
     try:
         if ":" in text:
@@ -107,7 +106,7 @@ def parse_range(text: str) -> Tuple[int, int]:
     return lo, hi
 
 
-def parse_kinds(text: str) -> Tuple[str, ...]:
+def parse_kinds(text: str) -> tuple[str, ...]:
     """--kinds: comma-separated kinds (argparse prefixes its errors with the option)."""
     kinds = tuple(k.strip() for k in text.split(",") if k.strip())
     err = kinds_error(kinds)

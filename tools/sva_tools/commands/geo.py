@@ -25,11 +25,9 @@ import math
 import os
 from decimal import Decimal
 from fractions import Fraction
-from typing import Any, Dict, NoReturn, Tuple
+from typing import Any, NoReturn
 
-from .. import frame
-from .. import io
-from .. import model
+from .. import frame, io, model
 from ..geo import (
     COORD_DIGITS,
     DEFAULT_ALT_M,
@@ -57,14 +55,14 @@ class _Parser(Parser):
             message = rest if rest.startswith(name + ":") else f"{name}: {rest}"
         self.exit(2, f"sva-tools: error: geo: {shown(message)}\n")
 
-    def parse_known_args(self, args=None, namespace=None):  # type: ignore[override]
+    def parse_known_args(self, args=None, namespace=None):
         namespace, extras = super().parse_known_args(args, namespace)
         if extras:
             self.error(f"unrecognized arguments: {' '.join(extras)}")
         return namespace, extras
 
 
-def _lat_lon(text: str) -> Tuple[float, float]:
+def _lat_lon(text: str) -> tuple[float, float]:
     """`LAT,LON` in degrees (a usage error otherwise)."""
     parts = text.split(",")
     try:
@@ -100,7 +98,7 @@ def _integer(text: str) -> int:
 
 # --- geo mission --------------------------------------------------------------------
 
-def _frame_doc(args) -> Dict[str, Any]:
+def _frame_doc(args) -> dict[str, Any]:
     lat, lon = args.depot
     return {"lat": lat, "lon": lon, "alt_m": args.alt_m, "cell_m": args.cell_m,
             "tick_s": args.tick_s, "t0": args.t0}
@@ -148,7 +146,7 @@ def _read(path: str) -> Any:
         raise
 
 
-def _checked(path: str, kind: str) -> Dict[str, Any]:
+def _checked(path: str, kind: str) -> dict[str, Any]:
     doc = _read(path)
     try:
         io.check(doc, kind)
@@ -179,13 +177,14 @@ def run_cell(args) -> int:
     return 0
 
 
-def _cell_arg(text: str) -> Tuple[int, int]:
+def _cell_arg(text: str) -> tuple[int, int]:
     try:
         x, y = (int(v) for v in text.split(","))
     except ValueError:
         raise argparse.ArgumentTypeError(f"must be X,Y (integers), got {text!r}") from None
     if not all(model.SVA_COORD_MIN <= v <= model.SVA_COORD_MAX for v in (x, y)):
-        raise argparse.ArgumentTypeError(f"must be cells in [{model.SVA_COORD_MIN}, {model.SVA_COORD_MAX}], got {text!r}")
+        raise argparse.ArgumentTypeError(f"must be cells in [{model.SVA_COORD_MIN}, {model.SVA_COORD_MAX}], "
+                                         f"got {text!r}")
     return x, y
 
 

@@ -18,14 +18,13 @@ import argparse
 import json
 import os
 import sys
-from typing import List
 
 from .. import io
 from ..ih import CompareVerdict, TpRecord, TraceVerdict, compare_mission, plan_ih, read_trace, verify_record
 from ..text import shown
 
 
-def _mission_paths(items: List[str]) -> List[str]:
+def _mission_paths(items: list[str]) -> list[str]:
     out = []
     for it in items:
         if os.path.isdir(it):
@@ -90,7 +89,7 @@ def run(args) -> int:
         print("sva-tools: error: ih plans one mission at a time", file=sys.stderr)
         return 2
     m = io.load_mission(args.inputs[0])
-    recs: List[TpRecord] = []
+    recs: list[TpRecord] = []
     p = plan_ih(m, recs)
     if args.trace:
         with open(args.trace, "w", encoding="utf-8") as f:

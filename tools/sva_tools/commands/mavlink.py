@@ -18,7 +18,6 @@ from __future__ import annotations
 import argparse
 import sys
 import threading
-from typing import Dict, List, Tuple
 
 from .. import io
 from ..check import check_plan
@@ -76,7 +75,7 @@ def run(args) -> int:
         print("sva-tools: error: mavlink upload: --timeout-ms must be in [1, 600000] and "
               "--retries in [0, 100]", file=sys.stderr)
         return 2
-    vehicles: Dict[int, Tuple[Vehicle, str]] = {}
+    vehicles: dict[int, tuple[Vehicle, str]] = {}
     for text in args.vehicle:
         try:
             vehicle = parse_vehicle(text)
@@ -109,8 +108,8 @@ def run(args) -> int:
         if uid not in uavs:
             return fail("mavlink upload", io.InputError(
                 f"--vehicle: UAV {uid} is not in the mission"))
-    work: List[Tuple[int, List[Item]]] = []
-    results: Dict[int, str] = {}
+    work: list[tuple[int, list[Item]]] = []
+    results: dict[int, str] = {}
     status = 0
     for uid in sorted(vehicles, key=lambda u: [x.id for x in mission.uavs].index(u)):
         try:
@@ -126,7 +125,7 @@ def run(args) -> int:
             items = [prepend_home(items[0])] + items
         work.append((uid, items))
 
-    def one(uid: int, items: List[Item]) -> None:
+    def one(uid: int, items: list[Item]) -> None:
         vehicle = vehicles[uid][0]
         try:
             why = upload(vehicle, items, args.timeout_ms, args.retries)

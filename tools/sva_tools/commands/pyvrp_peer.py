@@ -4,14 +4,13 @@ from __future__ import annotations
 
 import argparse
 import sys
-from typing import List
 
 from .. import io, pyvrp_peer
 from ..pyvrp_peer import SEED, TIME_LIMIT, solve_pyvrp
 from .common import fail
 
 
-def main(argv: List[str]) -> int:
+def main(argv: list[str]) -> int:
     ap = argparse.ArgumentParser(prog="pyvrp_peer", description=pyvrp_peer.__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("mission")

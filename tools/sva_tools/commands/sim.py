@@ -34,7 +34,6 @@ import os
 import subprocess
 import sys
 from pathlib import Path
-from typing import List
 
 from .. import cbin, io
 from ..lcm.simnode import netns_helper
@@ -74,7 +73,7 @@ def add_parser(sub) -> None:
     ap.set_defaults(func=run)
 
 
-def _argv(args) -> List[str]:
+def _argv(args) -> list[str]:
     """The command line of this run, for its re-execution inside a network namespace."""
     argv = ["sim", args.scenario, "--algo", args.algo, "--via", "lcm",
             "--timeout", str(args.timeout), "--kill-node", str(args.kill_node),
@@ -134,7 +133,7 @@ def run(args) -> int:
         simplot.render_flight(log, args.plot)
     return 0
 
-def reexec_in_netns(argv: List[str]) -> int:
+def reexec_in_netns(argv: list[str]) -> int:
     """Runs `python -m sva_tools ARGV` in a fresh network namespace (netns_run.sh) and
     returns its exit status; 2 with a clear message when that cannot be done."""
     if os.geteuid() != 0:

@@ -29,7 +29,6 @@ import signal
 import subprocess
 import sys
 from pathlib import Path
-from typing import List, Optional
 
 from .. import cbin, io
 from ..sim import load_scenario
@@ -76,7 +75,7 @@ def add_parser(sub) -> None:
     ap.set_defaults(func=run)
 
 
-def _argv(args) -> List[str]:
+def _argv(args) -> list[str]:
     argv = ["sitl", args.scenario, "--algo", args.algo, "--speedup", repr(args.speedup)]
     for opt in ("frame", "sitl", "out", "plot", "keep"):
         v = getattr(args, opt)
@@ -96,7 +95,7 @@ def _default_signals() -> None:
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
-def _netns(argv: List[str]) -> int:
+def _netns(argv: list[str]) -> int:
     """Runs `python -m sva_tools ARGV` in a network namespace of its own: the vehicles'
     TCP ports and the LCM multicast stay inside it."""
     from ..lcm import simnode
@@ -198,7 +197,7 @@ def fly(args, settings) -> int:
 
     signal.signal(signal.SIGTERM, _term)
     signal.signal(signal.SIGINT, _term)
-    flight: Optional[Flight] = None
+    flight: Flight | None = None
     try:
         flight = Flight(settings)
         flight.start()

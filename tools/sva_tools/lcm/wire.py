@@ -32,7 +32,7 @@ ALGORITHMS = ["sva", "ga", "hga", "bfa", "flow"]  # sva_algorithm_t order
 REJECT_REASONS = ["truncated", "trailing", "fingerprint", "count", "value", "invalid",
                   "planner", "too_large", "version"]  # sva_lcm_reject_t order
 
-_types = None
+_types: Any = None
 
 
 class InputError(ValueError):
@@ -103,8 +103,8 @@ def frame_message(doc: Any):
     Checked and rounded by the frame's contract (the mission schema's `frame`, t0's
     rules beyond it, sva_tools.frame's rounding), in the words of `sva validate` and
     `sva-tools validate`."""
-    from ..frame import Frame, rounded, t0_rule
     from .. import schema
+    from ..frame import Frame, rounded, t0_rule
 
     t = types()
     w = t.frame_t()

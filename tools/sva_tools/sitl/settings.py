@@ -3,7 +3,6 @@ against what a copter can fly (docs/sitl.md)."""
 from __future__ import annotations
 
 import math
-from typing import List
 
 from .. import schema
 from ..text import shown
@@ -45,7 +44,7 @@ def parse_frame(text: str) -> dict:
     return doc
 
 
-def parse_fault(text: str, uav_ids: List[int]) -> dict:
+def parse_fault(text: str, uav_ids: list[int]) -> dict:
     """One --fault KIND:UAV_ID[:T_S] value: {kind, uav, t_s (None: from the start)}."""
     parts = text.split(":")
     if len(parts) not in (2, 3):
@@ -73,8 +72,8 @@ def parse_fault(text: str, uav_ids: List[int]) -> dict:
     return {"kind": kind, "uav": uav, "t_s": t_s}
 
 
-def parse_faults(texts: List[str], uav_ids: List[int]) -> List[dict]:
-    faults: List[dict] = []
+def parse_faults(texts: list[str], uav_ids: list[int]) -> list[dict]:
+    faults: list[dict] = []
     for text in texts:
         f = parse_fault(text, uav_ids)
         if any(g["uav"] == f["uav"] for g in faults):
