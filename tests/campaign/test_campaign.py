@@ -20,10 +20,10 @@ sys.path.insert(0, str(REPO / "tools"))
 sys.path.insert(0, str(REPO / "tools" / "bench"))
 
 import campaign_report_bench  # noqa: E402  (the report row by row, as it was built before Arrow)
-import sva_tools.campaign as C  # noqa: E402
+from sva_tools.campaign import run as run_campaign  # noqa: E402
 from sva_tools.campaign import report  # noqa: E402
-from sva_tools.campaign.tasks import run_task
-from sva_tools.campaign.spec import SpecError, first_tasks, load
+from sva_tools.campaign.tasks import run_task  # noqa: E402
+from sva_tools.campaign.spec import SpecError, first_tasks, load  # noqa: E402
 from sva_tools.campaign.store import Store  # noqa: E402
 
 VENV_BIN = Path(sys.executable).parent
@@ -261,7 +261,7 @@ ref: {det_limit: 2}
 def test_live_report_with_arrow_equals_the_report_row_by_row(tmp_path, cluster):
     address, _ = cluster
     spec = load(str(write_spec(tmp_path, 2, "live.yaml", LIVE)))
-    stats = C.run(spec, str(tmp_path / "out"), scheduler=address, progress=False, columns=[])
+    stats = run_campaign(spec, str(tmp_path / "out"), scheduler=address, progress=False, columns=[])
     assert not stats["failed"] and "rows" not in stats
     gs = assert_same_report(spec, tmp_path / "out", stats["task_list"])
     assert [(g["set"], g["tool"], g["penalty"]) for g in gs] == [
@@ -316,7 +316,7 @@ def test_two_sets_of_the_same_missions_and_a_renamed_set_each_get_their_rows(tmp
 
 def test_separate_scheduler_and_workers_give_the_same_results(tmp_path, cluster, local_run, direct):
     address, workers = cluster
-    stats = C.run(load(str(write_spec(tmp_path, 2))), str(tmp_path / "out"), scheduler=address, progress=False)
+    stats = run_campaign(load(str(write_spec(tmp_path, 2))), str(tmp_path / "out"), scheduler=address, progress=False)
     assert (stats["computed"], stats["failed"], stats["workers"]) == (len(direct), [], 2)
     rows = stored_rows(tmp_path / "out")
     assert by_key(rows) == by_key(stored_rows(local_run[0])) == by_key(direct.values())
@@ -329,9 +329,9 @@ def test_resumed_and_extended_campaign_computes_nothing_twice(tmp_path, cluster)
     two (only the new ones run), then two again (nothing runs, no cluster is reached)."""
     address, _ = cluster
     out = tmp_path / "out"
-    first = C.run(load(str(write_spec(tmp_path, 1))), str(out), scheduler=address, progress=False)
+    first = run_campaign(load(str(write_spec(tmp_path, 1))), str(out), scheduler=address, progress=False)
     assert (first["tasks"], first["stored"], first["computed"], first["failed"]) == (6, 0, 6, [])
-    second = C.run(load(str(write_spec(tmp_path, 2))), str(out), scheduler=address, progress=False)
+    second = run_campaign(load(str(write_spec(tmp_path, 2))), str(out), scheduler=address, progress=False)
     assert (second["tasks"], second["stored"], second["computed"], second["failed"]) == (12, 6, 6, [])
     rows = stored_rows(out)
     runs = {}
@@ -342,7 +342,7 @@ def test_resumed_and_extended_campaign_computes_nothing_twice(tmp_path, cluster)
     assert len({r["key"] for r in rows}) == len(rows) == 12
     assert set(second["rows"]) == {r["key"] for r in rows}
     files = sorted((out / "results").iterdir())
-    third = C.run(load(str(write_spec(tmp_path, 2))), str(out), scheduler="tcp://127.0.0.1:9", progress=False)
+    third = run_campaign(load(str(write_spec(tmp_path, 2))), str(out), scheduler="tcp://127.0.0.1:9", progress=False)
     assert (third["tasks"], third["stored"], third["computed"], third["workers"]) == (12, 12, 0, 0)
     assert sorted((out / "results").iterdir()) == files
 
