@@ -82,6 +82,7 @@ def solve_ref(m: Mission, time_limit: float = SAFETY_TIME_LIMIT, workers: int = 
         uav_vars.append((first, pair, x))
     for k, t in enumerate(ts):
         model.add(sum(serve[k]) == t.need * z[k])
+
     def make_solver(det: float, wall: float) -> cp_model.CpSolver:
         sol = cp_model.CpSolver()
         sol.parameters.num_workers = workers

@@ -15,6 +15,7 @@ class Parser(argparse.ArgumentParser):
     def error(self, message: str):
         super().error(shown(message))
 
+
 def fail(path: str, err: InputError) -> int:
     where = f"{path}:{err.where}" if err.where else path
     print(f"sva-tools: error: {shown(where)}: {shown(err)}", file=sys.stderr)

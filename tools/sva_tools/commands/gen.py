@@ -91,6 +91,7 @@ def run(args) -> int:
         print(f"sva-tools: error: gen: {shown(e)}", file=sys.stderr)
         return 2
 
+
 def parse_range(text: str) -> tuple[int, int]:
     """'7' -> (7, 7); '5:9' -> (5, 9)."""
     try:

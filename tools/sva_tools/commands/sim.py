@@ -41,6 +41,7 @@ from ..sim import SimError, load_scenario, simulate, simulate_via_lcm, timeline
 
 # --- the command ---------------------------------------------------------------------
 
+
 def add_parser(sub) -> None:
     ap = sub.add_parser("sim", help="fly a live-mission scenario, steered by `sva replan`",
                         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -132,6 +133,7 @@ def run(args) -> int:
         from .. import simplot
         simplot.render_flight(log, args.plot)
     return 0
+
 
 def reexec_in_netns(argv: list[str]) -> int:
     """Runs `python -m sva_tools ARGV` in a fresh network namespace (netns_run.sh) and
