@@ -1,14 +1,18 @@
 """The paper benchmark: missions, solves, summaries, tables and figures (`sva-tools bench`)."""
 from __future__ import annotations
 
+import argparse
 import os
 import statistics
 import tempfile
 import time
 from collections import defaultdict
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from . import cache, cbin, check, ih, io, model, peer, ref
+
+if TYPE_CHECKING:
+    from tqdm import tqdm as Tqdm
 
 PY_ALGOS = ("ih", "ref", "peer")
 DEFAULT_ALGOS = "sva,ga,hga,bfa,flow,ih,ref,peer"
@@ -19,7 +23,7 @@ SCALING_SETS = [(50, 10), (100, 20), (200, 40)]
 GEN: dict[str, Any] = dict(width=(20, 40), max_coord=20, need=(2, 2), fuel=150, hover=0)
 
 
-def solver_settings(algo: str, opts) -> dict:
+def solver_settings(algo: str, opts: argparse.Namespace) -> dict[str, Any]:
     """The settings a host solver's result depends on (part of its cache key)."""
     if algo == "ref":
         return {"det_limit": opts.ref_det_limit, "workers": 1, "time_limit": opts.ref_time_limit}
@@ -29,7 +33,7 @@ def solver_settings(algo: str, opts) -> dict:
     return {}
 
 
-def _run_algo(algo: str, m: model.Mission, path: str, opts) -> dict:
+def _run_algo(algo: str, m: model.Mission, path: str, opts: argparse.Namespace) -> dict[str, Any]:
     """One planner on one mission: {'plan': Plan|None, 'us': int|None, 'error': str|None}."""
     try:
         if algo == "ih":
@@ -50,7 +54,7 @@ def _run_algo(algo: str, m: model.Mission, path: str, opts) -> dict:
     return {"plan": p, "us": us, "error": None}
 
 
-def _solve(algo: str, m: model.Mission, path: str, opts) -> dict:
+def _solve(algo: str, m: model.Mission, path: str, opts: argparse.Namespace) -> dict[str, Any]:
     """_run_algo through the cache (ih, ref, peer with --cache): the record also says
     whether it came from the cache ('cached') and when and under what load it was
     measured ('measured': utc, loadavg, cpus)."""
@@ -77,12 +81,13 @@ def _pct(xs: list[float], q: float) -> float | None:
     return xs[k]
 
 
-def new_set(label: str) -> dict:
+def new_set(label: str) -> dict[str, Any]:
     return {"label": label, "missions": [], "recs": defaultdict(list), "optima": [],
             "bounds": [], "disagree": []}
 
 
-def run_mission(s: dict, m: model.Mission, algos: list[str], opts, workdir: str) -> None:
+def run_mission(s: dict[str, Any], m: model.Mission, algos: list[str], opts: argparse.Namespace,
+                workdir: str) -> None:
     """Runs every algorithm on one mission and appends the records to set s."""
     path = os.path.join(workdir, f"{m.name}.json")
     io.write_json(m.to_json(), path)
@@ -109,7 +114,8 @@ def run_mission(s: dict, m: model.Mission, algos: list[str], opts, workdir: str)
     s["bounds"].append(ref.fuel_free_bound(m) if opts.bounds else None)
 
 
-def run_set(label: str, missions: list[model.Mission], algos: list[str], opts, bar) -> dict:
+def run_set(label: str, missions: list[model.Mission], algos: list[str], opts: argparse.Namespace,
+            bar: Tqdm[Any]) -> dict[str, Any]:
     """Runs every algorithm on every mission of one set; returns the raw records."""
     s = new_set(label)
     with tempfile.TemporaryDirectory(prefix="sva-bench-") as d:
@@ -120,7 +126,7 @@ def run_set(label: str, missions: list[model.Mission], algos: list[str], opts, b
     return s
 
 
-def log_progress(opts, s: dict, count: int) -> None:
+def log_progress(opts: argparse.Namespace, s: dict[str, Any], count: int) -> None:
     """One progress line per mission in --log FILE (the tqdm bar goes to stderr)."""
     if not getattr(opts, "log", None):
         return
@@ -133,7 +139,7 @@ def log_progress(opts, s: dict, count: int) -> None:
         f.write(line + "\n")
 
 
-def summarise(s: dict, algo: str) -> dict:
+def summarise(s: dict[str, Any], algo: str) -> dict[str, Any]:
     rs = s["recs"][algo]
     n = len(rs)
     ok = [r for r in rs if r["plan"] is not None]
@@ -183,11 +189,11 @@ def summarise(s: dict, algo: str) -> dict:
     return out
 
 
-def _fmt(v, spec="{:.1f}"):
+def _fmt(v: float | None, spec: str = "{:.1f}") -> str:
     return "–" if v is None else spec.format(v)
 
 
-def _fmt_us(v):
+def _fmt_us(v: float | None) -> str:
     if v is None:
         return "–"
     if v >= 1e6:
@@ -197,21 +203,21 @@ def _fmt_us(v):
     return f"{v:.0f} µs"
 
 
-def _cert(x: dict) -> str:
+def _cert(x: dict[str, Any]) -> str:
     """Certified gap column: 'gap % (plans with a bound > 0); optimal k/n' or '–'."""
     if not x.get("cert_n"):
         return "–"
     return f"{_fmt(x['cert_gap'])} ({x['cert_gap_n']}); optimal {x['cert_optimal']}/{x['cert_n']}"
 
 
-def _name(a: str, x: dict) -> str:
+def _name(a: str, x: dict[str, Any]) -> str:
     """Algorithm cell: marks rows whose results came from the cache (--cache)."""
     if not x.get("cached"):
         return a
     return f"{a} (cached)" if x["cached"] == x["n"] else f"{a} (cached {x['cached']}/{x['n']})"
 
 
-def table(sets: list[dict], algos: list[str], bound_mode: bool = False) -> str:
+def table(sets: list[dict[str, Any]], algos: list[str], bound_mode: bool = False) -> str:
     gap_h = "mean gap to bound % (n)" if bound_mode else "mean gap to optimum % (n)"
     lines = [f"| set | algorithm | planned | complete % | mean covered | mean cost | {gap_h} "
              "| fewer covered than optimum | certified gap % (n); proven optimal | median time | p95 time "
@@ -236,7 +242,7 @@ def table(sets: list[dict], algos: list[str], bound_mode: bool = False) -> str:
     return "\n".join(lines)
 
 
-def figure(sets: list[dict], algos: list[str], xlabel: str, path: str, title: str) -> None:
+def figure(sets: list[dict[str, Any]], algos: list[str], xlabel: str, path: str, title: str) -> None:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -267,7 +273,7 @@ def figure(sets: list[dict], algos: list[str], xlabel: str, path: str, title: st
     plt.close(fig)
 
 
-def headline(sets: list[dict], algos: list[str]) -> str:
+def headline(sets: list[dict[str, Any]], algos: list[str]) -> str:
     """Compact table: one row per set, one column per algorithm, each cell
     'complete % / mean gap to the optimum % / median time' (README headline)."""
     lines = ["| set | " + " | ".join(algos) + " |", "|---" * (len(algos) + 1) + "|"]
@@ -293,7 +299,7 @@ def _range(xs: list[float], spec: str = "{:.2f}") -> str:
     return spec.format(lo) if lo == hi else f"{spec.format(lo)}–{spec.format(hi)}"
 
 
-def provenance(sets: list[dict], algos: list[str]) -> list[str]:
+def provenance(sets: list[dict[str, Any]], algos: list[str]) -> list[str]:
     """Per algorithm: results measured in this run and results from the cache, with
     when (UTC) and under what 1-minute load average they were measured."""
     lines = ["| algorithm | measured in this run: results (1-min load) "
