@@ -1,4 +1,5 @@
-"""The paper benchmark: missions, solves, summaries, tables and figures (`sva-tools bench`)."""
+"""The paper benchmark: missions, solves, summaries, tables and figures
+(`sva-tools bench`)."""
 from __future__ import annotations
 
 import argparse

@@ -1,4 +1,5 @@
-"""Missions from a map and plans onto it, through the mission's geographic frame (`sva-tools geo`)."""
+"""Missions from a map and plans onto it, through the mission's geographic frame
+(`sva-tools geo`)."""
 from __future__ import annotations
 
 import json

@@ -1,4 +1,5 @@
-"""A plan's routes as MAVLink missions, uploaded over the MAVLink mission protocol (`sva-tools mavlink`)."""
+"""A plan's routes as MAVLink missions, uploaded over the MAVLink mission protocol
+(`sva-tools mavlink`)."""
 from __future__ import annotations
 
 import functools

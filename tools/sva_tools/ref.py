@@ -1,4 +1,5 @@
-"""The exact reference: CP-SAT on the mission's time-expanded DAG, and the fuel-free bound (`sva-tools ref`)."""
+"""The exact reference: CP-SAT on the mission's time-expanded DAG, and the fuel-free bound
+(`sva-tools ref`)."""
 from __future__ import annotations
 
 import time

@@ -1,4 +1,5 @@
-"""Validation of a mission, plan, trace, bound or cache entry against docs/schema (`sva-tools validate`)."""
+"""Validation of a mission, plan, trace, bound or cache entry against docs/schema
+(`sva-tools validate`)."""
 from __future__ import annotations
 
 from typing import Any
