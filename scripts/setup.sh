@@ -80,8 +80,12 @@ else
         cp "$(stamp_of requirements.txt)" "$venv/.requirements.sha256"
     fi
 fi
-# The host tools (tools/pyproject.toml), editable, into the venv.
-if [ ! -x "$venv/bin/sva-tools" ]; then
+# The host tools (tools/pyproject.toml), editable, into the venv; again when that file
+# changes, as its entry points are written into .venv/bin/sva-tools at install time.
+tools_stamp="$venv/.tools-pyproject.sha256"
+if [ ! -x "$venv/bin/sva-tools" ] ||
+   [ "$(cat "$tools_stamp" 2>/dev/null)" != "$(sha256sum tools/pyproject.toml | cut -d' ' -f1)" ]; then
     log "installing the host tools (tools/, editable) into .venv"
     "$venv/bin/pip" install -q --disable-pip-version-check --no-deps -e tools
+    sha256sum tools/pyproject.toml | cut -d' ' -f1 > "$tools_stamp"
 fi

@@ -19,9 +19,11 @@ REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "tools"))
 sys.path.insert(0, str(REPO / "tools" / "bench"))
 
-import campaign_report_bench as RB  # noqa: E402  (the report row by row, as it was built before Arrow)
-import sva_tools.campaign as C  # noqa: E402
-from sva_tools.campaign import report as R, spec as S, tasks as T  # noqa: E402
+import campaign_report_bench  # noqa: E402  (the report row by row, as it was built before Arrow)
+from sva_tools.campaign import run as run_campaign  # noqa: E402
+from sva_tools.campaign import report  # noqa: E402
+from sva_tools.campaign.tasks import run_task  # noqa: E402
+from sva_tools.campaign.spec import SpecError, first_tasks, load  # noqa: E402
 from sva_tools.campaign.store import Store  # noqa: E402
 
 VENV_BIN = Path(sys.executable).parent
@@ -82,8 +84,8 @@ def by_key(rows):
 def direct(tmp_path_factory):
     """Every task of the 2-mission-per-set spec, run here, one by one, without Dask."""
     d = tmp_path_factory.mktemp("direct")
-    spec = S.load(str(write_spec(d, 2)))
-    return {t["key"]: T.run_task(t) for t in S.first_tasks(spec, "direct")}
+    spec = load(str(write_spec(d, 2)))
+    return {t["key"]: run_task(t) for t in first_tasks(spec, "direct")}
 
 
 @pytest.fixture(scope="module")
@@ -175,16 +177,16 @@ def test_local_cluster_equals_the_tasks_run_directly(local_run, direct):
 def row_by_row(spec, out, tasks):
     """The records and summary groups computed the way the report did before Arrow:
     every stored row as a dict, grouped in Python by its stored set label."""
-    rows = RB.row_wise_rows(Store(str(out), "check"), tasks, spec)
-    records = RB.row_wise_metrics(spec, rows)
-    return len(rows), records, RB.row_wise_groups(spec, records)
+    rows = campaign_report_bench.row_wise_rows(Store(str(out), "check"), tasks, spec)
+    records = campaign_report_bench.row_wise_metrics(spec, rows)
+    return len(rows), records, campaign_report_bench.row_wise_groups(spec, records)
 
 
 def assert_same_report(spec, out, tasks):
     """The report built with pyarrow has the row-by-row report's records, in the same
     order, and the same groups (counts, sums, the gap and time lists the plots draw)."""
     old_stored, old_records, old_groups = row_by_row(spec, out, tasks)
-    records, gs, stored = R.build(spec, Store(str(out), "check"), tasks)
+    records, gs, stored = report.build(spec, Store(str(out), "check"), tasks)
     assert stored == old_stored
     assert records.column_names == list(old_records[0])
     assert records.to_pylist() == old_records
@@ -194,21 +196,21 @@ def assert_same_report(spec, out, tasks):
 
 def test_report_with_arrow_equals_the_report_row_by_row(local_run):
     out, stdout = local_run
-    spec = S.load(str(write_spec(out.parent, 2)))
-    gs = assert_same_report(spec, out, S.first_tasks(spec, "check"))
+    spec = load(str(write_spec(out.parent, 2)))
+    gs = assert_same_report(spec, out, first_tasks(spec, "check"))
     assert [(g["set"], g["tool"]) for g in gs] == [(s, t) for s in ("5x2", "8x3") for t in ("flow", "sva", "ref")]
     assert all(g["gaps"] or g["tool"] == "ref" for g in gs) and all(g["times"] for g in gs)
     stats = {"tasks": 12, "stored": 0, "computed": 12, "failed": [], "wall_s": 0.0}
-    assert R.summary(spec, stats, gs).splitlines()[1:] == [ln for ln in stdout.splitlines() if ln.startswith("|")]
-    figures = R.figures(spec, gs)  # the report's plots, drawn from the groups row by row: the same PNGs
-    assert len(figures) == 3 and figures == R.figures(spec, row_by_row(spec, out, S.first_tasks(spec, "check"))[2])
+    assert report.summary(spec, stats, gs).splitlines()[1:] == [ln for ln in stdout.splitlines() if ln.startswith("|")]
+    figures = report.figures(spec, gs)  # the report's plots, drawn from the groups row by row: the same PNGs
+    assert len(figures) == 3 and figures == report.figures(spec, row_by_row(spec, out, first_tasks(spec, "check"))[2])
 
 
 def test_report_with_arrow_equals_the_report_row_by_row_on_a_large_store(tmp_path):
     """A synthetic store (tools/bench/campaign_report_bench.py): 4 sets, three planners,
     ref on two sets, errors, coverage below ref's."""
-    spec = RB.synthetic_spec(4, ["flow", "sva", "hga"], 150)
-    tasks = RB.synthetic_store(str(tmp_path), spec, flush_rows=200, seed=3)
+    spec = campaign_report_bench.synthetic_spec(4, ["flow", "sva", "hga"], 150)
+    tasks = campaign_report_bench.synthetic_store(str(tmp_path), spec, flush_rows=200, seed=3)
     gs = assert_same_report(spec, tmp_path, tasks)
     assert len(gs) == 2 * 4 + 2 * 3
     assert sum(g["errors"] for g in gs) > 0 and sum(g["below"] for g in gs) > 0
@@ -218,21 +220,21 @@ def test_report_with_arrow_equals_the_report_row_by_row_on_a_large_store(tmp_pat
 def test_rows_stored_under_another_label_are_grouped_by_this_runs_sets(tmp_path):
     """Rows first stored by another set (or an older name of a set) are counted under the
     set of this run's task: the report equals that of a store with this run's labels."""
-    spec = RB.synthetic_spec(3, ["flow", "sva"], 40)
-    tasks = RB.synthetic_store(str(tmp_path / "own"), spec, seed=5)
-    shared = RB.synthetic_store(str(tmp_path / "shared"), spec, seed=5,
+    spec = campaign_report_bench.synthetic_spec(3, ["flow", "sva"], 40)
+    tasks = campaign_report_bench.synthetic_store(str(tmp_path / "own"), spec, seed=5)
+    shared = campaign_report_bench.synthetic_store(str(tmp_path / "shared"), spec, seed=5,
                                 shared={"set1_40x8": "set0_25x5", "set2_100x20": "old_name"})
     assert [t["key"] for t in shared] == [t["key"] for t in tasks]
-    mine = R.build(spec, Store(str(tmp_path / "own"), "check"), tasks)[1]
-    assert R.build(spec, Store(str(tmp_path / "shared"), "check"), shared)[1] == mine
+    mine = report.build(spec, Store(str(tmp_path / "own"), "check"), tasks)[1]
+    assert report.build(spec, Store(str(tmp_path / "shared"), "check"), shared)[1] == mine
     assert [g["n"] for g in mine] == [40] * 8
 
 
 def test_a_key_stored_twice_is_read_once_from_the_first_file(tmp_path):
     """Two clients on one folder may store one key twice: reading keeps the row of the
     first part file in name order."""
-    spec = RB.synthetic_spec(2, ["flow"], 3)
-    RB.synthetic_store(str(tmp_path), spec, flush_rows=2, seed=1)  # part-bench-*
+    spec = campaign_report_bench.synthetic_spec(2, ["flow"], 3)
+    campaign_report_bench.synthetic_store(str(tmp_path), spec, flush_rows=2, seed=1)  # part-bench-*
     rows = stored_rows(tmp_path)
     later = Store(str(tmp_path), "zz")  # part-zz-*: after part-bench-*
     for r in (rows[3], rows[0]):
@@ -258,8 +260,8 @@ ref: {det_limit: 2}
 
 def test_live_report_with_arrow_equals_the_report_row_by_row(tmp_path, cluster):
     address, _ = cluster
-    spec = S.load(str(write_spec(tmp_path, 2, "live.yaml", LIVE)))
-    stats = C.run(spec, str(tmp_path / "out"), scheduler=address, progress=False, columns=[])
+    spec = load(str(write_spec(tmp_path, 2, "live.yaml", LIVE)))
+    stats = run_campaign(spec, str(tmp_path / "out"), scheduler=address, progress=False, columns=[])
     assert not stats["failed"] and "rows" not in stats
     gs = assert_same_report(spec, tmp_path / "out", stats["task_list"])
     assert [(g["set"], g["tool"], g["penalty"]) for g in gs] == [
@@ -314,7 +316,7 @@ def test_two_sets_of_the_same_missions_and_a_renamed_set_each_get_their_rows(tmp
 
 def test_separate_scheduler_and_workers_give_the_same_results(tmp_path, cluster, local_run, direct):
     address, workers = cluster
-    stats = C.run(S.load(str(write_spec(tmp_path, 2))), str(tmp_path / "out"), scheduler=address, progress=False)
+    stats = run_campaign(load(str(write_spec(tmp_path, 2))), str(tmp_path / "out"), scheduler=address, progress=False)
     assert (stats["computed"], stats["failed"], stats["workers"]) == (len(direct), [], 2)
     rows = stored_rows(tmp_path / "out")
     assert by_key(rows) == by_key(stored_rows(local_run[0])) == by_key(direct.values())
@@ -327,9 +329,9 @@ def test_resumed_and_extended_campaign_computes_nothing_twice(tmp_path, cluster)
     two (only the new ones run), then two again (nothing runs, no cluster is reached)."""
     address, _ = cluster
     out = tmp_path / "out"
-    first = C.run(S.load(str(write_spec(tmp_path, 1))), str(out), scheduler=address, progress=False)
+    first = run_campaign(load(str(write_spec(tmp_path, 1))), str(out), scheduler=address, progress=False)
     assert (first["tasks"], first["stored"], first["computed"], first["failed"]) == (6, 0, 6, [])
-    second = C.run(S.load(str(write_spec(tmp_path, 2))), str(out), scheduler=address, progress=False)
+    second = run_campaign(load(str(write_spec(tmp_path, 2))), str(out), scheduler=address, progress=False)
     assert (second["tasks"], second["stored"], second["computed"], second["failed"]) == (12, 6, 6, [])
     rows = stored_rows(out)
     runs = {}
@@ -340,7 +342,7 @@ def test_resumed_and_extended_campaign_computes_nothing_twice(tmp_path, cluster)
     assert len({r["key"] for r in rows}) == len(rows) == 12
     assert set(second["rows"]) == {r["key"] for r in rows}
     files = sorted((out / "results").iterdir())
-    third = C.run(S.load(str(write_spec(tmp_path, 2))), str(out), scheduler="tcp://127.0.0.1:9", progress=False)
+    third = run_campaign(load(str(write_spec(tmp_path, 2))), str(out), scheduler="tcp://127.0.0.1:9", progress=False)
     assert (third["tasks"], third["stored"], third["computed"], third["workers"]) == (12, 12, 0, 0)
     assert sorted((out / "results").iterdir()) == files
 
@@ -428,8 +430,8 @@ def test_worker_killed_mid_campaign_loses_no_result(tmp_path, cluster, direct):
 ])
 def test_bad_spec_is_refused_naming_the_field(tmp_path, text, message):
     p = write_spec(tmp_path, 2, text=text)
-    with pytest.raises(S.SpecError) as e:
-        S.load(str(p))
+    with pytest.raises(SpecError) as e:
+        load(str(p))
     assert message in str(e.value)
 
 
@@ -445,9 +447,9 @@ def test_cli_refuses_a_bad_spec_before_running_anything(tmp_path):
 def test_worker_of_another_build_refuses_the_task(tmp_path):
     """A task keyed with another version (here: another C CLI binary) is refused, not
     stored under a key its result does not belong to."""
-    spec = S.load(str(write_spec(tmp_path, 1)))
-    task = next(t for t in S.first_tasks(spec, "direct") if t["tool"] == "flow")
-    assert T.run_task(task)["covered"] is not None
+    spec = load(str(write_spec(tmp_path, 1)))
+    task = next(t for t in first_tasks(spec, "direct") if t["tool"] == "flow")
+    assert run_task(task)["covered"] is not None
     other = dict(task, version=dict(task["version"], sva="0" * 64))
     with pytest.raises(RuntimeError, match="differs from the client's"):
-        T.run_task(other)
+        run_task(other)

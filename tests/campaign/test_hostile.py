@@ -28,7 +28,7 @@ import pytest
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "tools"))
 
-from sva_tools.campaign import spec as S  # noqa: E402
+from sva_tools.campaign.spec import SpecError, first_tasks, load, parse, schema, validate  # noqa: E402
 
 ENV = dict(os.environ, PYTHONPATH=str(REPO / "tools") + os.pathsep + os.environ.get("PYTHONPATH", ""))
 SVA_BIN = os.environ.get("SVA_BIN", str(REPO / "build" / "bin" / "sva"))
@@ -126,8 +126,8 @@ def test_hostile_spec_is_refused_within_a_second_and_200_mb(tmp_path, name):
 
 def refused(text):
     """The SpecError message of a spec's text or bytes."""
-    with pytest.raises(S.SpecError) as e:
-        S.validate(S.parse(text.encode("utf-8") if isinstance(text, str) else text))
+    with pytest.raises(SpecError) as e:
+        validate(parse(text.encode("utf-8") if isinstance(text, str) else text))
     return str(e.value)
 
 
@@ -212,19 +212,19 @@ def core_limits():
 
 def test_schema_bounds_are_the_cores():
     limits = core_limits()
-    sets = S.schema()["$defs"]["set"]["properties"]
+    sets = schema()["$defs"]["set"]["properties"]
     assert sets["targets"]["maximum"] == limits["SVA_MAX_TARGETS"] and sets["targets"]["x-sva-maximum-name"] == \
         "SVA_MAX_TARGETS"
     assert sets["uavs"]["maximum"] == limits["SVA_MAX_UAVS"]
-    assert S.schema()["$defs"]["need"]["oneOf"][0]["maximum"] == limits["SVA_MAX_UAVS"]
+    assert schema()["$defs"]["need"]["oneOf"][0]["maximum"] == limits["SVA_MAX_UAVS"]
 
 
 def test_a_set_at_the_cores_bounds_is_accepted_and_its_mission_taken_by_the_core(tmp_path):
     limits = core_limits()
     t, u = limits["SVA_MAX_TARGETS"], limits["SVA_MAX_UAVS"]
-    spec = S.validate(S.parse(BASE.replace("targets: 5, uavs: 2", f"targets: {t}, uavs: {u}")
+    spec = validate(parse(BASE.replace("targets: 5, uavs: 2", f"targets: {t}, uavs: {u}")
                               .replace("need: 1", f"need: [1, {u}]").encode()))
-    task = S.first_tasks(spec, "bounds")[0]
+    task = first_tasks(spec, "bounds")[0]
     (tmp_path / "m.json").write_text(task["mission"])
     r = subprocess.run([SVA_BIN, "validate", str(tmp_path / "m.json")], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
@@ -256,7 +256,7 @@ def test_a_set_at_the_cores_bounds_is_accepted_and_its_mission_taken_by_the_core
 def test_sizes_the_core_refuses_and_absurd_totals_are_refused_with_the_field(old, new, message):
     text = BASE.replace(old, new)
     if message is None:  # 256 targets x 10,001 missions: one past the generated-targets limit
-        assert S.validate(S.parse(text.replace("count: 1\n", "count: 10000\n").encode()))["count"] == 10000
+        assert validate(parse(text.replace("count: 1\n", "count: 10000\n").encode()))["count"] == 10000
         text = text.replace("count: 1\n", "count: 10001\n")
         message = ("spec: must generate at most 2560000 targets in all (each set's targets x count x "
                    "seeds.count, summed), got 2560256")
@@ -293,10 +293,10 @@ def test_a_mission_gen_cannot_make_is_refused_naming_the_set(monkeypatch, tmp_pa
     def cannot(*args, **kw):
         raise ValueError("no free cell left on the 4-cell-wide grid")
 
-    spec = S.validate(S.parse(BASE.encode()))
+    spec = validate(parse(BASE.encode()))
     monkeypatch.setattr(gen, "generate", cannot)
-    with pytest.raises(S.SpecError) as e:
-        S.first_tasks(spec, "x")
+    with pytest.raises(SpecError) as e:
+        first_tasks(spec, "x")
     assert str(e.value) == ("sets[0]: must be settings gen can make missions from, got for seed 1, mission 0: "
                             "no free cell left on the 4-cell-wide grid")
 
@@ -397,8 +397,8 @@ if __name__ == "__main__":
             for _ in range(5):  # the refusal itself, in this process (imports done)
                 t0 = time.perf_counter()
                 try:
-                    S.load(str(path))
-                except S.SpecError:
+                    load(str(path))
+                except SpecError:
                     best = min(best, time.perf_counter() - t0)
             print(f"| {name} | {path.stat().st_size:,} | `{message.split(', got')[0]}` | {m['wall_s']:.2f} s, "
                   f"{m['cpu_s']:.2f} s, {m['rss_mb']:.0f} MB | {best * 1000:.1f} ms |")

@@ -12,7 +12,7 @@ import pytest
 from test_cli import assert_one_error_line, check_plan, mission, run
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
-from sva_tools import frame as F  # noqa: E402  (the frame's contract)
+from sva_tools.frame import Frame  # noqa: E402  (the frame's contract)
 from sva_tools import schema  # noqa: E402
 
 pytestmark = pytest.mark.sanitize  # cheap: also run against the ASan/UBSan build
@@ -122,7 +122,7 @@ def test_the_echo_is_what_the_python_tools_make(tmp_path, case):
     frame = {**TIES[case], "t0": T0S[case]}
     doc, path = framed(tmp_path, frame)
     plan = json.loads(run(["plan", str(path)]).stdout)
-    assert plan["frame"] == F.Frame.from_json(frame).to_json()
+    assert plan["frame"] == Frame.from_json(frame).to_json()
 
 
 @pytest.mark.parametrize("frame, message", [

@@ -4,7 +4,8 @@ from pathlib import Path
 
 import pytest
 
-from sva_tools.lcm import cli, wire
+from sva_tools.commands import lcm as lcm_command
+from sva_tools.lcm import wire
 
 REPO = Path(__file__).resolve().parents[2]
 # A bundled mission with a mid-mission fleet state (UAVs away from the depot, ready times).
@@ -90,15 +91,15 @@ def test_plan_document_and_diag_text():
 
 
 def test_cli_errors_without_network(tmp_path, capsys):
-    assert cli.main(["send", str(tmp_path / "missing.json")]) == 2
+    assert lcm_command.main(["send", str(tmp_path / "missing.json")]) == 2
     assert "missing.json" in capsys.readouterr().err
-    assert cli.main(["bogus"]) == 2
-    assert cli.main(["--help"]) == 0
+    assert lcm_command.main(["bogus"]) == 2
+    assert lcm_command.main(["--help"]) == 0
 
 
 def test_sva_tools_wrapper_dispatches_lcm(tmp_path):
     """`tools/sva-tools lcm ...` (the repository wrapper and the installed entry point)
-    reaches sva_tools.lcm.cli.main: its own usage, its own errors and exit codes."""
+    reaches sva_tools.commands.lcm.main: its own usage, its own errors and exit codes."""
     import subprocess
 
     wrapper = REPO / "tools" / "sva-tools"
@@ -209,8 +210,8 @@ def test_frame_errors_name_field_rule_limit(frame, message):
 def test_scenario_file_errors_without_network(tmp_path, capsys):
     bad = tmp_path / "s.json"
     bad.write_text(json.dumps({"mission": small(), "events": [{"at": 1, "type": "nope"}]}))
-    assert cli.main(["scenario", str(bad), "--timeout", "0.1"]) == 2
+    assert lcm_command.main(["scenario", str(bad), "--timeout", "0.1"]) == 2
     assert "events[0].type: must be one of" in capsys.readouterr().err
     bad.write_text(json.dumps({"mission": small(), "events": [], "extra": 1}))
-    assert cli.main(["scenario", str(bad)]) == 2
+    assert lcm_command.main(["scenario", str(bad)]) == 2
     assert "extra: unknown key" in capsys.readouterr().err

@@ -17,13 +17,14 @@ from pathlib import Path
 import pytest
 
 if not os.environ.get("SVA_LCM_NETNS"):
-    pytest.skip("run through tests/lcm/netns_run.sh (multicast only in a private netns)",
+    pytest.skip("run through tools/netns/netns_run.sh (multicast only in a private netns)",
                 allow_module_level=True)
 
 import lcm  # noqa: E402
 
 from sva_tools import check, io as sio  # noqa: E402
-from sva_tools.lcm import cli, wire  # noqa: E402
+from sva_tools.commands import lcm as lcm_command  # noqa: E402
+from sva_tools.lcm import wire  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[2]
 MISSIONS = REPO / "fixtures" / "missions"
@@ -175,7 +176,7 @@ def test_every_fixture_over_lcm(algo, tmp_path, capsys):
     try:
         for i, mission in enumerate(sorted(MISSIONS.glob("*.json"))):
             out = tmp_path / f"{mission.stem}.json"
-            rc = cli.main(["send", str(mission), "--url", URL, "--prefix", n.prefix,
+            rc = lcm_command.main(["send", str(mission), "--url", URL, "--prefix", n.prefix,
                            "--timeout", "5", "--revision", str(100 + i), "-o", str(out)])
             err = capsys.readouterr().err
             golden = GOLDEN / algo / mission.name

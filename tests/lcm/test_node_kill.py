@@ -1,5 +1,5 @@
 """Crash safety of sva_node end to end (docs/lcm.md, "Crash safety"), in a network
-namespace made for this run (tests/lcm/netns_run.sh): real processes, real multicast,
+namespace made for this run (tools/netns/netns_run.sh): real processes, real multicast,
 the journal on disk.
 
 - `sva-tools sim --via lcm --kill-node 3 --seed S` on bundled scenarios: the node is
@@ -25,7 +25,7 @@ from pathlib import Path
 import pytest
 
 if not os.environ.get("SVA_LCM_NETNS"):
-    pytest.skip("run through tests/lcm/netns_run.sh (multicast only in a private netns)",
+    pytest.skip("run through tools/netns/netns_run.sh (multicast only in a private netns)",
                 allow_module_level=True)
 
 import lcm  # noqa: E402

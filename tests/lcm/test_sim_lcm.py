@@ -1,6 +1,6 @@
 """`sva-tools sim --via lcm`: the simulator flies a bundled scenario against a real
 sva_node over LCM multicast. Every run here happens in a network namespace the tool
-creates for itself (tests/lcm/netns_run.sh), or, for --attach, in one this test makes.
+creates for itself (tools/netns/netns_run.sh), or, for --attach, in one this test makes.
 The flight logs are judged by the independent checker (tests/tools/flight_checker.py)
 and compared with the in-process run (`sva replan` through the CLI)."""
 import json
@@ -19,7 +19,7 @@ sys.path.insert(0, str(REPO / "tests" / "tools"))
 from flight_checker import check_flight  # noqa: E402
 
 SCENARIOS = REPO / "fixtures" / "scenarios"
-NETNS_RUN = REPO / "tests" / "lcm" / "netns_run.sh"
+NETNS_RUN = REPO / "tools" / "netns" / "netns_run.sh"
 
 if os.geteuid() != 0:
     pytest.skip("sim --via lcm makes a network namespace: needs root", allow_module_level=True)

@@ -1,5 +1,5 @@
 """sva_mavlink_bridge driven through LCM inside a private network namespace
-(tests/lcm/netns_run.sh): fleet, mission (with its frame) and plan messages go in as
+(tools/netns/netns_run.sh): fleet, mission (with its frame) and plan messages go in as
 sva_node sends them (the build's lcm-gen Python types), missions go out to MAVSDK
 vehicles (and pymavlink ones that refuse) over UDP on loopback. A replan that changes
 one UAV's route uploads to that vehicle only (a cancelled target not yet due is a change;
@@ -16,14 +16,14 @@ import time
 import pytest
 
 if not os.environ.get("SVA_LCM_NETNS"):
-    pytest.skip("run through tests/lcm/netns_run.sh (multicast only in a private netns)",
+    pytest.skip("run through tools/netns/netns_run.sh (multicast only in a private netns)",
                 allow_module_level=True)
 
 sys.path.insert(0, os.environ["SVA_LCM_PYTHON_TYPES"])
 import lcm  # noqa: E402
 import sva_lcm  # noqa: E402
 
-import mavcheck as C  # noqa: E402
+import mavcheck  # noqa: E402
 from test_items import FRAME_MIDNIGHT  # noqa: E402
 from test_upload import FOUR, as_tuples, judge, pymavlink_items  # noqa: E402
 from vehicles import MavsdkVehicle, PymavlinkVehicle, free_udp_port  # noqa: E402
@@ -71,7 +71,7 @@ def mission_msg(mission, revision=1, with_frame=True):
         g.id, g.x, g.y, g.start_ticks, g.end_ticks, g.need = (t["id"], t["x"], t["y"], t["start"],
                                                               t["end"], t["need"])
     if with_frame and "frame" in mission:
-        fi = C.frame_ints(mission["frame"])
+        fi = mavcheck.frame_ints(mission["frame"])
         fr = m.frame
         fr.present = 1
         fr.lat_e7, fr.lon_e7, fr.alt_cm = fi["lat_e7"], fi["lon_e7"], fi["alt_cm"]
@@ -166,7 +166,7 @@ def done_lines(plan_id, n):
 
 
 def test_a_replan_uploads_to_the_changed_vehicle_only(lc, tmp_path):
-    plan = C.plan_mission(TWO, tmp_path)
+    plan = mavcheck.plan_mission(TWO, tmp_path)
     assert all(len(r["targets"]) == 1 for r in plan["routes"])
     pa, pb = free_udp_port(), free_udp_port()
     va, vb = MavsdkVehicle(pa, 1), MavsdkVehicle(pb, 2)
@@ -178,13 +178,13 @@ def test_a_replan_uploads_to_the_changed_vehicle_only(lc, tmp_path):
         for r in plan["routes"]:
             got = vehicles[r["uav"]].wait_missions(1)
             assert len(got) == 1 and got[0][0] == 1
-            problems = C.check_route(as_tuples(got[0][1]), TWO, TWO["frame"], r["uav"], r["targets"])
+            problems = mavcheck.check_route(as_tuples(got[0][1]), TWO, TWO["frame"], r["uav"], r["targets"])
             assert problems == [], "\n".join(problems)
 
         # the replan: target 3 added; the residual mission carries no frame (the
         # bridge keeps the mission's)
         residual = dict(TWO, targets=TWO["targets"] + [ADDED])
-        plan2 = C.plan_mission(dict(residual, name="two_replan"), tmp_path)
+        plan2 = mavcheck.plan_mission(dict(residual, name="two_replan"), tmp_path)
         changed = [r for r in plan2["routes"] if ADDED["id"] in r["targets"]]
         assert len(changed) == 1
         changed_uav = changed[0]["uav"]
@@ -208,7 +208,7 @@ def test_a_replan_uploads_to_the_changed_vehicle_only(lc, tmp_path):
                 f"unchanged, not uploaded") in lines
         got = vehicles[changed_uav].wait_missions(2)
         assert len(got) == 2 and got[1][0] == 1
-        problems = C.check_route(as_tuples(got[1][1]), residual, TWO["frame"], changed_uav,
+        problems = mavcheck.check_route(as_tuples(got[1][1]), residual, TWO["frame"], changed_uav,
                                  after[changed_uav])
         assert problems == [], "\n".join(problems)
         time.sleep(1.0)
@@ -221,7 +221,7 @@ def test_a_replan_uploads_to_the_changed_vehicle_only(lc, tmp_path):
         fleet3 = dict(TWO, uavs=[dict(u, x=at[u["id"]]["x"], y=at[u["id"]]["y"], ready_at=30)
                                  for u in TWO["uavs"]])
         residual3 = dict(fleet3, name="two_at_25", targets=[ADDED])
-        plan3 = C.plan_mission(residual3, tmp_path)
+        plan3 = mavcheck.plan_mission(residual3, tmp_path)
         assert {r["uav"]: r["targets"] for r in plan3["routes"]} == {changed_uav: [3], other_uav: []}
         rp3 = sva_lcm.replan_t()
         rp3.version = rp3.VERSION
@@ -247,7 +247,7 @@ def test_messages_of_another_version_are_refused_with_a_line_each(lc, tmp_path):
     """A fleet, mission, plan or replan (or a message inside a replan) whose `version` is
     not its type's VERSION is ignored with one line naming both (docs/flight-stack.md
     "Wire versions"); a refused plan also drops the one held back."""
-    plan = C.plan_mission(TWO, tmp_path)
+    plan = mavcheck.plan_mission(TWO, tmp_path)
     pa = free_udp_port()
     va = MavsdkVehicle(pa, 1)
     bridge = Bridge({1: f"udp:127.0.0.1:{pa}:1"})
@@ -297,7 +297,7 @@ def test_messages_of_another_version_are_refused_with_a_line_each(lc, tmp_path):
 
 
 def test_a_plan_without_a_frame_is_an_error_per_vehicle(lc, tmp_path):
-    plan = C.plan_mission(TWO, tmp_path)
+    plan = mavcheck.plan_mission(TWO, tmp_path)
     pa = free_udp_port()
     va = MavsdkVehicle(pa, 1)
     bridge = Bridge({1: f"udp:127.0.0.1:{pa}:1", 2: "udp:127.0.0.1:9:2"})
@@ -316,7 +316,7 @@ def test_a_plan_without_a_frame_is_an_error_per_vehicle(lc, tmp_path):
 
 
 def test_failing_vehicles_are_reported_and_the_others_uploaded(lc, tmp_path):
-    plan = C.plan_mission(FOUR, tmp_path)
+    plan = mavcheck.plan_mission(FOUR, tmp_path)
     rs = [r for r in plan["routes"] if r["targets"]]
     assert len(rs) == 4
     good_port, deny_port, small_port, silent_port = (free_udp_port() for _ in range(4))
@@ -342,7 +342,7 @@ def test_failing_vehicles_are_reported_and_the_others_uploaded(lc, tmp_path):
         assert line(rs[3], "error: MISSION_ACK: the vehicle refused the mission: "
                            "MAV_MISSION_NO_SPACE (4)") in lines
         got = good.wait_missions(1)
-        problems = C.check_route(as_tuples(got[0][1]), FOUR, FOUR["frame"], rs[0]["uav"],
+        problems = mavcheck.check_route(as_tuples(got[0][1]), FOUR, FOUR["frame"], rs[0]["uav"],
                                  rs[0]["targets"])
         assert problems == [], "\n".join(problems)
         assert len(deny.items) == 1 and small.items == []
@@ -354,7 +354,7 @@ def test_failing_vehicles_are_reported_and_the_others_uploaded(lc, tmp_path):
 
 
 def test_ardupilot_home_item(lc, tmp_path):
-    plan = C.plan_mission(TWO, tmp_path)
+    plan = mavcheck.plan_mission(TWO, tmp_path)
     r = next(r for r in plan["routes"] if r["uav"] == 1)
     pa = free_udp_port()
     va = MavsdkVehicle(pa, 1)
@@ -374,7 +374,7 @@ def test_a_cancelled_first_target_uploads_the_shorter_mission_to_its_vehicle_onl
     the new route [3] is the end of the mission UAV 1 has, but target 1 was not served, so
     the shorter mission is uploaded; UAV 2's route is unchanged."""
     three = dict(TWO, name="three", targets=TWO["targets"] + [ADDED])
-    plan = C.plan_mission(three, tmp_path)
+    plan = mavcheck.plan_mission(three, tmp_path)
     routes = {r["uav"]: r["targets"] for r in plan["routes"]}
     assert routes == {1: [1, ADDED["id"]], 2: [2]}, routes
     pa, pb = free_udp_port(), free_udp_port()
@@ -406,7 +406,7 @@ def test_a_cancelled_first_target_uploads_the_shorter_mission_to_its_vehicle_onl
         assert f"plan 2: uav 2 (udp:127.0.0.1:{pb}): route unchanged, not uploaded" in lines
         got = va.wait_missions(2)
         assert len(got) == 2 and got[1][0] == 1
-        problems = C.check_route(as_tuples(got[1][1]), residual, TWO["frame"], 1, [ADDED["id"]])
+        problems = mavcheck.check_route(as_tuples(got[1][1]), residual, TWO["frame"], 1, [ADDED["id"]])
         assert problems == [], "\n".join(problems)
         time.sleep(1.0)
         assert len(vb.missions) == 1  # it got nothing new
@@ -420,7 +420,7 @@ def test_a_refused_upload_is_tried_again_and_lands(lc, tmp_path):
     """A vehicle that answers the first MISSION_COUNT with MAV_MISSION_NO_SPACE (as a
     freshly booted ArduPilot does) and takes the second: one retry line, after the default
     5 tries again and 2000 ms, then the whole mission, judged item by item."""
-    plan = C.plan_mission(TWO, tmp_path)
+    plan = mavcheck.plan_mission(TWO, tmp_path)
     r = next(r for r in plan["routes"] if r["uav"] == 1)
     pa = free_udp_port()
     va = PymavlinkVehicle(pa, 1, refuse_first=1)
@@ -437,7 +437,7 @@ def test_a_refused_upload_is_tried_again_and_lands(lc, tmp_path):
                         f"refused the mission: MAV_MISSION_NO_SPACE ({MAV_MISSION_NO_SPACE})",
                         f"plan 21: {link}: uploaded {n} items"], mine
         assert va.counts == [n, n] and len(va.items) == 1
-        problems = C.check_route(pymavlink_items(va.items[0]), TWO, TWO["frame"], 1, r["targets"])
+        problems = mavcheck.check_route(pymavlink_items(va.items[0]), TWO, TWO["frame"], 1, r["targets"])
         assert problems == [], "\n".join(problems)
     finally:
         bridge.stop()
@@ -447,7 +447,7 @@ def test_a_refused_upload_is_tried_again_and_lands(lc, tmp_path):
 def test_a_vehicle_that_always_refuses_gets_n_retries_and_holds_up_no_other(lc, tmp_path):
     """--upload-retries 2: the refused mission is sent again after 2000 ms and 4000 ms,
     then the error line; the other vehicle's upload is done long before."""
-    plan = C.plan_mission(TWO, tmp_path)
+    plan = mavcheck.plan_mission(TWO, tmp_path)
     r = {r["uav"]: r for r in plan["routes"]}
     pa, pb = free_udp_port(), free_udp_port()
     refuser = PymavlinkVehicle(pa, 1, max_items=1)
@@ -484,10 +484,10 @@ def test_a_vehicle_that_always_refuses_gets_n_retries_and_holds_up_no_other(lc, 
 def test_a_newer_plan_replaces_the_retry_pending(lc, tmp_path):
     """A plan for the vehicle that arrives while a refused upload waits for its retry is
     uploaded instead; the older mission is not sent again."""
-    plan = C.plan_mission(TWO, tmp_path)
+    plan = mavcheck.plan_mission(TWO, tmp_path)
     moved = dict(TWO, name="two_moved",
                  targets=[dict(t, x=8) if t["id"] == 1 else t for t in TWO["targets"]])
-    plan2 = C.plan_mission(moved, tmp_path)
+    plan2 = mavcheck.plan_mission(moved, tmp_path)
     r2 = next(r for r in plan2["routes"] if r["uav"] == 1)
     assert r2["targets"] == [1]
     pa = free_udp_port()
@@ -506,7 +506,7 @@ def test_a_newer_plan_replaces_the_retry_pending(lc, tmp_path):
         bridge.wait_for(lambda ls: f"plan 24: {link}: uploaded {n} items" in ls, 10)
         time.sleep(3.0)  # past the retry's 2000 ms
         assert va.counts == [n, n] and len(va.items) == 1, va.counts
-        problems = C.check_route(pymavlink_items(va.items[0]), moved, TWO["frame"], 1,
+        problems = mavcheck.check_route(pymavlink_items(va.items[0]), moved, TWO["frame"], 1,
                                  r2["targets"])
         assert problems == [], "\n".join(problems)
         refused = (f"MISSION_ACK: the vehicle refused the mission: MAV_MISSION_NO_SPACE "

@@ -1,5 +1,5 @@
 """sva_mavlink_bridge's reports, driven through LCM inside a private network namespace
-(tests/lcm/netns_run.sh), with a pymavlink vehicle stand-in (standin.py) served over TCP.
+(tools/netns/netns_run.sh), with a pymavlink vehicle stand-in (standin.py) served over TCP.
 
 The bridge uploads the plan over TCP and, while it holds a plan, publishes one report_t
 per heard vehicle and period on SVA_REPORT: the cell of the vehicle's position, the tick
@@ -18,21 +18,21 @@ import time
 import pytest
 
 if not os.environ.get("SVA_LCM_NETNS"):
-    pytest.skip("run through tests/lcm/netns_run.sh (multicast only in a private netns)",
+    pytest.skip("run through tools/netns/netns_run.sh (multicast only in a private netns)",
                 allow_module_level=True)
 
 sys.path.insert(0, os.environ["SVA_LCM_PYTHON_TYPES"])
 import lcm  # noqa: E402
 import sva_lcm  # noqa: E402
 
-import mavcheck as C  # noqa: E402
+import mavcheck  # noqa: E402
 from standin import StandIn, free_tcp_port  # noqa: E402
 from test_bridge import TWO, URL, Bridge, done_lines, fleet_msg, mission_msg, plan_msg  # noqa: E402
 from test_tcp import STREAMS  # noqa: E402
 from test_upload import pymavlink_items  # noqa: E402
 
 FRAME = TWO["frame"]
-FI = C.frame_ints(FRAME)
+FI = mavcheck.frame_ints(FRAME)
 PERIOD_S = 0.3
 
 
@@ -69,15 +69,15 @@ class Reports:
 def check_ticks(vehicle, reports):
     for t, r in reports:
         with vehicle.lock:
-            sent = [C.tick_of(FRAME, g) for ts, g in vehicle.positions if t - 0.7 <= ts <= t]
+            sent = [mavcheck.tick_of(FRAME, g) for ts, g in vehicle.positions if t - 0.7 <= ts <= t]
         assert r.at_ticks in sent, (r.at_ticks, sent)
 
 
 def test_reports_follow_the_vehicle_and_its_link(tmp_path):
-    plan = C.plan_mission(TWO, tmp_path)
+    plan = mavcheck.plan_mission(TWO, tmp_path)
     route1 = next(r for r in plan["routes"] if r["uav"] == 1)
     pa, pb = free_tcp_port(), free_tcp_port()  # nobody ever listens on pb
-    lat, lon = C.position_e7(FRAME, 3.3, -2.2)
+    lat, lon = mavcheck.position_e7(FRAME, 3.3, -2.2)
     a = StandIn("tcp", pa, 1, lat_e7=lat, lon_e7=lon, gps_at_boot_ms=FI["t0_ms"] + 1_000_000,
                 rate=10.0, system_time_every_s=2.0, battery=73, mission_current=4, reached=3)
     reports = Reports()
@@ -103,7 +103,7 @@ def test_reports_follow_the_vehicle_and_its_link(tmp_path):
         assert (f"plan 1: uav 2 (tcp:127.0.0.1:{pb}): error: timeout: no answer to MISSION_COUNT "
                 f"after 3 tries of 300 ms; tcp:127.0.0.1:{pb} not connected: Connection refused") in lines
         assert len(a.missions) == 1
-        problems = C.check_route(pymavlink_items(a.missions[0]), TWO, FRAME, 1, route1["targets"])
+        problems = mavcheck.check_route(pymavlink_items(a.missions[0]), TWO, FRAME, 1, route1["targets"])
         assert problems == [], "\n".join(problems)
 
         # (b) reports in mission terms, from the vehicle's clock
@@ -112,7 +112,7 @@ def test_reports_follow_the_vehicle_and_its_link(tmp_path):
         got = reports.between(start, time.monotonic())
         assert got and all(r.uav_id == 1 for _, r in got), "uav 2 was never heard"
         assert 4 <= len(got) <= 9, len(got)
-        cell = C.cell_of(FRAME, lat, lon)
+        cell = mavcheck.cell_of(FRAME, lat, lon)
         assert cell == (3, -2)
         for _, r in got:
             assert (r.version, r.health, r.x, r.y, r.fuel, r.mission_seq, r.reached_seq) == \
@@ -136,7 +136,7 @@ def test_reports_follow_the_vehicle_and_its_link(tmp_path):
 
         # a restarted vehicle (a new boot, elsewhere, battery from BATTERY_STATUS) takes
         # the reconnection: streams requested again, OK reports of the new boot
-        lat_b, lon_b = C.position_e7(FRAME, -1.0, 4.0)
+        lat_b, lon_b = mavcheck.position_e7(FRAME, -1.0, 4.0)
         b = StandIn("tcp", pa, 1, lat_e7=lat_b, lon_e7=lon_b,
                     gps_at_boot_ms=FI["t0_ms"] + 2_000_000, battery=-1, battery_status=40)
         back = time.monotonic()
@@ -181,11 +181,11 @@ def test_a_refused_upload_or_a_restart_withholds_the_vehicle_until_it_is_back(tm
     on, and gets no upload, until its link drops and it is heard again; a vehicle whose
     link drops (a restart: a new boot) is reported LOST at least once and is back when
     heard again, and the next plan uploads to it afresh even when its route is the same."""
-    plan = C.plan_mission(TWO, tmp_path)
+    plan = mavcheck.plan_mission(TWO, tmp_path)
     route1 = next(r for r in plan["routes"] if r["uav"] == 1)
     n = 3 + 2 * len(route1["targets"])
     pa, pb = free_tcp_port(), free_tcp_port()
-    lat, lon = C.position_e7(FRAME, 3.3, -2.2)
+    lat, lon = mavcheck.position_e7(FRAME, 3.3, -2.2)
 
     def vehicle(boot_s, **kw):
         return StandIn("tcp", pa, 1, lat_e7=lat, lon_e7=lon,

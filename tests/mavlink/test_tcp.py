@@ -16,14 +16,14 @@ import time
 import pytest
 from pymavlink.dialects.v20 import common as mavlink2
 
-import mavcheck as C
+import mavcheck
 from standin import StandIn, free_tcp_port, stray_patterns
 from test_items import CASES, FRAME_MIDNIGHT
 from test_upload import pymavlink_items
 from vehicles import free_udp_port
 
 TOOL = os.environ["SVA_MAVLINK_TOOL"]
-FI = C.frame_ints(FRAME_MIDNIGHT)
+FI = mavcheck.frame_ints(FRAME_MIDNIGHT)
 # The streams the library asks for and their intervals (us).
 STREAMS = {mavlink2.MAVLINK_MSG_ID_GLOBAL_POSITION_INT: 200_000.0,
            mavlink2.MAVLINK_MSG_ID_SYSTEM_TIME: 1_000_000.0,
@@ -134,13 +134,13 @@ def results_of(lines):
 
 def a_route(tmp_path):
     mission = CASES[0]
-    plan = C.plan_mission(mission, tmp_path)
+    plan = mavcheck.plan_mission(mission, tmp_path)
     r = [r for r in plan["routes"] if r["targets"]][0]
     return mission, plan, r
 
 
 def standin(transport, port, **kw):
-    lat, lon = C.position_e7(FRAME_MIDNIGHT, 3.3, -2.2)
+    lat, lon = mavcheck.position_e7(FRAME_MIDNIGHT, 3.3, -2.2)
     kw.setdefault("gps_at_boot_ms", FI["t0_ms"] + 1_000_000)
     return StandIn(transport, port, kw.pop("sysid", 1), lat_e7=lat, lon_e7=lon, **kw)
 
@@ -155,14 +155,14 @@ def test_an_upload_works_with_stray_bytes_before_every_reply(transport, strays, 
     port = free_tcp_port() if transport == "tcp" else free_udp_port()
     v = standin(transport, port, sysid=5, strays=strays)
     try:
-        text = C.tool_input(mission, mission["frame"], plan, {r["uav"]: f"{transport}:127.0.0.1:{port}:5"})
+        text = mavcheck.tool_input(mission, mission["frame"], plan, {r["uav"]: f"{transport}:127.0.0.1:{port}:5"})
         lines, rc, err = tool_lines(text)
         n = 3 + 2 * len(r["targets"])
         assert rc == 0, err
         assert results_of(lines)[r["uav"]] == f"ok {n}"
         assert v.counts == [n] and v.item_seqs == list(range(n))
         assert len(v.missions) == 1
-        problems = C.check_route(pymavlink_items(v.missions[0]), mission, mission["frame"],
+        problems = mavcheck.check_route(pymavlink_items(v.missions[0]), mission, mission["frame"],
                                  r["uav"], r["targets"])
         assert problems == [], "\n".join(problems)
     finally:
@@ -174,7 +174,7 @@ def test_an_upload_fails_with_a_clear_error_when_the_tcp_link_drops(tmp_path):
     port = free_tcp_port()
     v = standin("tcp", port, drop_after_items=2)
     try:
-        text = C.tool_input(mission, mission["frame"], plan, {r["uav"]: f"tcp:127.0.0.1:{port}"})
+        text = mavcheck.tool_input(mission, mission["frame"], plan, {r["uav"]: f"tcp:127.0.0.1:{port}"})
         lines, rc, err = tool_lines(text)
         assert rc == 1, err
         assert results_of(lines)[r["uav"]] == (
@@ -189,7 +189,7 @@ def test_an_upload_waits_for_a_late_tcp_vehicle_and_names_a_missing_one(tmp_path
     mission, plan, r = a_route(tmp_path)
     late, missing = free_tcp_port(), free_tcp_port()
     uavs = [x["uav"] for x in plan["routes"] if x["targets"]][:2]
-    text = C.tool_input(mission, mission["frame"], plan,
+    text = mavcheck.tool_input(mission, mission["frame"], plan,
                         {uavs[0]: f"tcp:127.0.0.1:{late}", uavs[1]: f"tcp:127.0.0.1:{missing}"},
                         timeout="1000 2")
     box = {}
@@ -229,7 +229,7 @@ def test_telemetry_streams_are_requested_and_reports_use_the_vehicle_clock():
     no battery figure, is reported with fuel and sequence numbers unknown."""
     port, port2 = free_tcp_port(), free_udp_port()
     v = standin("tcp", port, rate=10.0, system_time_every_s=2.0, mission_current=4, reached=3)
-    lat2, lon2 = C.position_e7(FRAME_MIDNIGHT, -7.45, 0.6)
+    lat2, lon2 = mavcheck.position_e7(FRAME_MIDNIGHT, -7.45, 0.6)
     v2 = StandIn("udp", port2, 2, lat_e7=lat2, lon_e7=lon2, gps_at_boot_ms=FI["t0_ms"] + 3_600_000,
                  battery=-1)
     text = "\n".join([frame_line(), "reportcfg 1500 500", f"vehicle 1=tcp:127.0.0.1:{port}",
@@ -245,7 +245,7 @@ def test_telemetry_streams_are_requested_and_reports_use_the_vehicle_clock():
         lines, rc, err = tool_lines(text)
         assert rc == 0, err
         assert v.requested() == STREAMS and v2.requested() == STREAMS
-        want_cell = C.cell_of(FRAME_MIDNIGHT, v.lat_e7, v.lon_e7)
+        want_cell = mavcheck.cell_of(FRAME_MIDNIGHT, v.lat_e7, v.lon_e7)
         assert want_cell == (3, -2)
         reps = [x for x in reports_of(lines) if x[1] == 0]
         assert len(reps) >= 15, [x for _, x in lines]
@@ -253,7 +253,7 @@ def test_telemetry_streams_are_requested_and_reports_use_the_vehicle_clock():
             assert (r["x"], r["y"]) == want_cell, line
             assert (r["fuel"], r["mission_seq"], r["reached_seq"]) == (365, 4, 3), line
             with v.lock:
-                sent = [C.tick_of(FRAME_MIDNIGHT, g) for ts, g in v.positions if t - 0.7 <= ts <= t]
+                sent = [mavcheck.tick_of(FRAME_MIDNIGHT, g) for ts, g in v.positions if t - 0.7 <= ts <= t]
             assert r["at_ticks"] in sent, (line, sent)
         health = [r["health"] for _, _, r, _ in reps]
         first_lost = health.index(1)
@@ -300,7 +300,7 @@ def test_a_tcp_link_reconnects_to_a_restarted_vehicle():
     time.sleep(1.5)
     a.close()
     time.sleep(1.0)
-    lat, lon = C.position_e7(FRAME_MIDNIGHT, -1.0, 4.0)
+    lat, lon = mavcheck.position_e7(FRAME_MIDNIGHT, -1.0, 4.0)
     b = StandIn("tcp", port, 1, lat_e7=lat, lon_e7=lon, gps_at_boot_ms=FI["t0_ms"] + 2_000_000)
     b_started = time.monotonic()
     try:

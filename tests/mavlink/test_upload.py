@@ -15,7 +15,7 @@ import time
 
 import pytest
 
-import mavcheck as C
+import mavcheck
 from standin import free_tcp_port
 from vehicles import MavsdkVehicle, PymavlinkVehicle, RawVehicle, free_udp_port
 from test_items import CASES, FRAME_MIDNIGHT, with_frame
@@ -68,16 +68,16 @@ def judge(mission, frame, route, got, home=False):
     items = as_tuples(items)
     if home:  # ArduPilot's item 0: a waypoint where the take-off is, altitude 0
         assert (items[0][0], items[0][6], items[0][7], items[0][8]) == \
-            (C.NAV_WAYPOINT, items[1][6], items[1][7], 0.0)
+            (mavcheck.NAV_WAYPOINT, items[1][6], items[1][7], 0.0)
         items = items[1:]
-    problems = C.check_route(items, mission, frame, route["uav"], route["targets"])
+    problems = mavcheck.check_route(items, mission, frame, route["uav"], route["targets"])
     assert problems == [], "\n".join(problems)
 
 
 @pytest.mark.parametrize("frame_in", ["mission", "plan", "ardupilot"])
 def test_host_tool_uploads_to_mavsdk_vehicles(frame_in, tmp_path, vehicles):
     mission = CASES[0]
-    plan = C.plan_mission(mission, tmp_path)
+    plan = mavcheck.plan_mission(mission, tmp_path)
     if frame_in == "plan":
         # the plan's frame wins over the mission's
         plan = dict(plan, frame=mission["frame"])
@@ -101,11 +101,11 @@ def test_host_tool_uploads_to_mavsdk_vehicles(frame_in, tmp_path, vehicles):
 
 @pytest.mark.parametrize("mission", CASES, ids=lambda m: m["name"])
 def test_c_library_uploads_to_mavsdk_vehicles(mission, tmp_path, vehicles):
-    plan = C.plan_mission(mission, tmp_path)
+    plan = mavcheck.plan_mission(mission, tmp_path)
     rs = [r for r in plan["routes"] if r["targets"]][:3]
     ports = {r["uav"]: vehicles("mavsdk", 1 + k) for k, r in enumerate(rs)}
     specs = {u: f"udp:127.0.0.1:{port}:{1 + k}" for k, (u, (port, _)) in enumerate(ports.items())}
-    items, results, rc, err = C.run_tool(C.tool_input(mission, mission["frame"], plan, specs))
+    items, results, rc, err = mavcheck.run_tool(mavcheck.tool_input(mission, mission["frame"], plan, specs))
     assert rc == 0, err
     for r in rs:
         assert results[r["uav"]] == f"ok {3 + 2 * len(r['targets'])}"
@@ -118,7 +118,7 @@ def test_c_library_uploads_to_mavsdk_vehicles(mission, tmp_path, vehicles):
 
 def test_host_tool_refuses_a_plan_without_a_frame(tmp_path):
     mission = with_frame("rand_7_2", FRAME_MIDNIGHT)
-    plan = C.plan_mission(mission, tmp_path)
+    plan = mavcheck.plan_mission(mission, tmp_path)
     bare = {k: v for k, v in mission.items() if k != "frame"}
     plan_path = write(tmp_path, "plan.json", plan)
     p = sva_tools(plan_path, "--mission", write(tmp_path, "m.json", bare),
@@ -132,7 +132,7 @@ def test_host_tool_refuses_a_plan_without_a_frame(tmp_path):
 
 def test_host_tool_names_a_bad_frame_field(tmp_path):
     mission = with_frame("rand_7_2", dict(FRAME_MIDNIGHT, cell_m=0.05))
-    plan = C.plan_mission(mission, tmp_path)
+    plan = mavcheck.plan_mission(mission, tmp_path)
     mpath = write(tmp_path, "m.json", mission)
     p = sva_tools(write(tmp_path, "plan.json", plan), "--mission", mpath,
                   "--vehicle", "1=udp:127.0.0.1:9")
@@ -151,7 +151,7 @@ def failing_fleet(tmp_path, vehicles):
     """Four routed UAVs: a MAVSDK vehicle that accepts, one port nobody answers on, a
     pymavlink vehicle that refuses (MAV_MISSION_DENIED), one whose limit is 3 items."""
     mission = FOUR
-    plan = C.plan_mission(mission, tmp_path)
+    plan = mavcheck.plan_mission(mission, tmp_path)
     rs = routed(plan, 4)
     good_port, good = vehicles("mavsdk", 1)
     deny_port, deny = vehicles("pymavlink", 3, final=MAV_MISSION_DENIED)
@@ -188,7 +188,7 @@ def test_host_tool_reports_each_failing_vehicle_and_uploads_the_others(tmp_path,
 
 def test_c_library_reports_each_failing_vehicle_and_uploads_the_others(tmp_path, vehicles):
     mission, plan, rs, specs, good, deny, small = failing_fleet(tmp_path, vehicles)
-    _, results, rc, err = C.run_tool(C.tool_input(mission, mission["frame"], plan, specs,
+    _, results, rc, err = mavcheck.run_tool(mavcheck.tool_input(mission, mission["frame"], plan, specs,
                                                   timeout="300 2"))
     assert rc == 1, err
     assert results[rs[0]["uav"]] == f"ok {3 + 2 * len(rs[0]['targets'])}"
@@ -213,23 +213,23 @@ def test_c_library_answers_a_fussy_vehicle(tmp_path, vehicles):
     """A lost MISSION_COUNT (resent after the timeout), MISSION_REQUEST instead of
     MISSION_REQUEST_INT, items asked for backwards and twice each."""
     mission = CASES[0]
-    plan = C.plan_mission(mission, tmp_path)
+    plan = mavcheck.plan_mission(mission, tmp_path)
     r = routed(plan, 1)[0]
     port, v = vehicles("pymavlink", 5, fussy=True)
-    _, results, rc, err = C.run_tool(C.tool_input(mission, mission["frame"], plan,
+    _, results, rc, err = mavcheck.run_tool(mavcheck.tool_input(mission, mission["frame"], plan,
                                                   {r["uav"]: f"udp:127.0.0.1:{port}:5"},
                                                   timeout="300 2"))
     assert rc == 0, err
     assert results[r["uav"]] == f"ok {3 + 2 * len(r['targets'])}"
     assert len(v.counts) == 2 and len(v.items) == 1
-    problems = C.check_route(pymavlink_items(v.items[0]), mission, mission["frame"], r["uav"],
+    problems = mavcheck.check_route(pymavlink_items(v.items[0]), mission, mission["frame"], r["uav"],
                              r["targets"])
     assert problems == [], "\n".join(problems)
 
 
 def test_host_tool_answers_a_fussy_vehicle(tmp_path, vehicles):
     mission = CASES[0]
-    plan = C.plan_mission(mission, tmp_path)
+    plan = mavcheck.plan_mission(mission, tmp_path)
     r = routed(plan, 1)[0]
     port, v = vehicles("pymavlink", 5, fussy=True)
     p = sva_tools(write(tmp_path, "plan.json", plan), "--mission",
@@ -237,7 +237,7 @@ def test_host_tool_answers_a_fussy_vehicle(tmp_path, vehicles):
                   f"{r['uav']}=udp:127.0.0.1:{port}:5", *FAST)
     assert p.returncode == 0, p.stderr + p.stdout
     assert len(v.counts) == 2 and len(v.items) == 1
-    problems = C.check_route(pymavlink_items(v.items[0]), mission, mission["frame"], r["uav"],
+    problems = mavcheck.check_route(pymavlink_items(v.items[0]), mission, mission["frame"], r["uav"],
                              r["targets"])
     assert problems == [], "\n".join(problems)
 
@@ -274,7 +274,7 @@ def bad_bytes():
 
 def one_route(tmp_path):
     mission = CASES[0]
-    plan = C.plan_mission(mission, tmp_path)
+    plan = mavcheck.plan_mission(mission, tmp_path)
     r = routed(plan, 1)[0]
     return mission, r, [write(tmp_path, "plan.json", plan), "--mission",
                         write(tmp_path, "m.json", mission)]
@@ -297,7 +297,7 @@ def test_host_tool_finds_every_answer_behind_stray_bytes(name, stray, placement,
     assert p.stdout == f"uav {r['uav']}: {spec}: uploaded {n} items\n"
     assert v.answers == n + 1  # every request and the ACK came behind stray bytes
     assert v.counts == [n] and v.item_seqs == list(range(n)), f"seed {SEED}"
-    problems = C.check_route(pymavlink_items(v.items[0]), mission, mission["frame"], r["uav"],
+    problems = mavcheck.check_route(pymavlink_items(v.items[0]), mission, mission["frame"], r["uav"],
                              r["targets"])
     assert problems == [], "\n".join(problems)
 
@@ -342,7 +342,7 @@ def test_host_tool_ignores_a_refusal_from_another_system_or_component(sysid, com
     n = 3 + 2 * len(r["targets"])
     assert p.returncode == 0, p.stderr + p.stdout
     assert p.stdout == f"uav {r['uav']}: udp:127.0.0.1:{port}:3: uploaded {n} items\n"
-    problems = C.check_route(pymavlink_items(v.items[0]), mission, mission["frame"], r["uav"],
+    problems = mavcheck.check_route(pymavlink_items(v.items[0]), mission, mission["frame"], r["uav"],
                              r["targets"])
     assert problems == [], "\n".join(problems)
 
@@ -379,7 +379,7 @@ def test_host_tool_waits_for_a_tcp_vehicle_that_listens_late(tmp_path, vehicles)
     assert p.returncode == 0, err + out
     assert out == f"uav {r['uav']}: tcp:127.0.0.1:{port}: uploaded {n} items\n"
     assert v.counts == [n]
-    problems = C.check_route(pymavlink_items(v.items[0]), mission, mission["frame"], r["uav"],
+    problems = mavcheck.check_route(pymavlink_items(v.items[0]), mission, mission["frame"], r["uav"],
                              r["targets"])
     assert problems == [], "\n".join(problems)
 

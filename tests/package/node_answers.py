@@ -19,7 +19,7 @@ PREFIX = "PKG_"
 
 def main() -> int:
     if not os.environ.get("SVA_LCM_NETNS"):
-        print("node_answers: run me through tests/lcm/netns_run.sh", file=sys.stderr)
+        print("node_answers: run me through tools/netns/netns_run.sh", file=sys.stderr)
         return 1
     node = sys.argv[1]
     seen = []

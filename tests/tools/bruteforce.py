@@ -3,7 +3,7 @@ targets for every UAV, all combinations; the lexicographic best (max covered, th
 min cost) among plans that never half-serve a target."""
 import itertools
 
-from sva_tools import model as M
+from sva_tools import model
 
 
 def sequences(m, u):
@@ -11,7 +11,7 @@ def sequences(m, u):
     out = [()]
     for k in range(1, len(ts) + 1):
         for perm in itertools.permutations(ts, k):
-            if M.route_feasible(m, u, list(perm)):
+            if model.route_feasible(m, u, list(perm)):
                 out.append(perm)
     return out
 
@@ -20,7 +20,7 @@ def optimum(m):
     """(covered, cost) of the SPEC 1 optimum."""
     per_uav = []
     for u in m.uavs:
-        if M.is_stranded(m, u):
+        if model.is_stranded(m, u):
             per_uav.append([None])
         else:
             per_uav.append(sequences(m, u))
@@ -33,7 +33,7 @@ def optimum(m):
                 continue
             for t in seq:
                 served[t.id] += 1
-            cost += M.route_distance(m, u, list(seq))
+            cost += model.route_distance(m, u, list(seq))
         if any(0 < served[t.id] != t.need for t in m.targets):
             continue
         covered = sum(1 for t in m.targets if served[t.id] == t.need)

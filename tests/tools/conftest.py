@@ -10,13 +10,13 @@ import pytest
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "tools"))
 
-from sva_tools import io, model as M  # noqa: E402
+from sva_tools import io, model  # noqa: E402
 
 
 def mission(uavs, targets, name="t", depot=(0, 0), tpc=1, hover=0, overlap=70):
     """Mission from compact tuples: uavs (id, x, y, fuel[, ready_at]), targets
     (id, x, y, start, end, need)."""
-    return M.Mission(name, depot, [M.Uav(*u) for u in uavs], [M.Target(*t) for t in targets],
+    return model.Mission(name, depot, [model.Uav(*u) for u in uavs], [model.Target(*t) for t in targets],
                      tpc, hover, overlap)
 
 

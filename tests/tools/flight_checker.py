@@ -39,7 +39,7 @@ from __future__ import annotations
 
 from typing import Dict, List, Optional, Set, Tuple
 
-from sva_tools import check as C
+from sva_tools import check
 from sva_tools import io
 
 
@@ -333,7 +333,7 @@ def check_flight(log: dict) -> List[str]:
             v.append(f"replans[{k}] (tick {r['at']}): not a valid mission or plan: {e}")
             prev = None
             continue
-        for msg in C.check_plan(m, p):
+        for msg in check.check_plan(m, p):
             v.append(f"replans[{k}] (tick {r['at']}): sva-tools check: {msg}")
         if prev is not None:
             backs = {e["uav"] for e in events

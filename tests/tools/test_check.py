@@ -4,7 +4,7 @@ import copy
 import pytest
 from conftest import mission, sva_tools, write
 
-from sva_tools import check, model as M
+from sva_tools import check, model
 
 # Depot (0,0). UAV 1, 2 at the depot; UAV 3 at (4,0) (not at the depot).
 BASE = mission(
@@ -16,7 +16,7 @@ BASE = mission(
 
 
 def good_plan():
-    return M.make_plan(BASE, "hand", {1: [1, 2], 2: [1], 3: []})
+    return model.make_plan(BASE, "hand", {1: [1, 2], 2: [1], 3: []})
 
 
 def test_good_plan_passes():
@@ -43,34 +43,34 @@ def expect(violations, text):
 
 def test_first_leg_late():
     m = mission([(1, 0, 0, 100)], [(1, 9, 0, 8, 20, 1)])
-    expect(check.check_plan(m, M.make_plan(m, "x", {1: [1]})), "after its start 8")
+    expect(check.check_plan(m, model.make_plan(m, "x", {1: [1]})), "after its start 8")
 
 
 def test_ready_at_counts():
     m = mission([(1, 0, 0, 100, 6)], [(1, 5, 0, 10, 20, 1)])
-    assert check.check_plan(m, M.make_plan(m, "x", {1: []})) == []
-    expect(check.check_plan(m, M.make_plan(m, "x", {1: [1]})), "ready_at 6")
+    assert check.check_plan(m, model.make_plan(m, "x", {1: []})) == []
+    expect(check.check_plan(m, model.make_plan(m, "x", {1: [1]})), "ready_at 6")
 
 
 def test_ticks_per_cell_counts():
     m = mission([(1, 0, 0, 100)], [(1, 5, 0, 8, 20, 1)], tpc=2)
-    expect(check.check_plan(m, M.make_plan(m, "x", {1: [1]})), "reaches target 1 at tick 10")
+    expect(check.check_plan(m, model.make_plan(m, "x", {1: [1]})), "reaches target 1 at tick 10")
 
 
 def test_leg_between_targets_late():
     m = mission([(1, 0, 0, 100)], [(1, 5, 0, 10, 20, 1), (2, 5, 9, 25, 30, 1)])
-    expect(check.check_plan(m, M.make_plan(m, "x", {1: [1, 2]})), "leaves target 1")
+    expect(check.check_plan(m, model.make_plan(m, "x", {1: [1, 2]})), "leaves target 1")
 
 
 def test_fuel_with_return_leg():
     # 5 out + 5 back = 10 > fuel 9, although the outbound leg alone fits.
     m = mission([(1, 0, 0, 9)], [(1, 5, 0, 10, 20, 1)])
-    expect(check.check_plan(m, M.make_plan(m, "x", {1: [1]})), "route needs 10 fuel")
+    expect(check.check_plan(m, model.make_plan(m, "x", {1: [1]})), "route needs 10 fuel")
 
 
 def test_fuel_with_hover():
     m = mission([(1, 0, 0, 10)], [(1, 5, 0, 10, 20, 1)], hover=1)
-    expect(check.check_plan(m, M.make_plan(m, "x", {1: [1]})), "route needs 11 fuel")
+    expect(check.check_plan(m, model.make_plan(m, "x", {1: [1]})), "route needs 11 fuel")
 
 
 def test_same_uav_twice_on_one_target():
@@ -80,12 +80,12 @@ def test_same_uav_twice_on_one_target():
 
 def test_more_uavs_than_need():
     m = mission([(1, 0, 0, 100), (2, 0, 0, 100)], [(1, 5, 0, 10, 20, 1)])
-    expect(check.check_plan(m, M.make_plan(m, "x", {1: [1], 2: [1]})), "needs exactly 1")
+    expect(check.check_plan(m, model.make_plan(m, "x", {1: [1], 2: [1]})), "needs exactly 1")
 
 
 def test_uav_sent_to_uncovered_target():
     m = mission([(1, 0, 0, 100)], [(1, 5, 0, 10, 20, 2)])
-    expect(check.check_plan(m, M.make_plan(m, "x", {1: [1]})), "sent to a target left uncovered")
+    expect(check.check_plan(m, model.make_plan(m, "x", {1: [1]})), "sent to a target left uncovered")
 
 
 def test_covered_count():
@@ -144,26 +144,26 @@ STRANDED = mission([(1, 0, 0, 100), (2, 10, 10, 15)], [(1, 5, 0, 10, 20, 1)])
 
 
 def test_stranded_uav_passes_when_reported():
-    p = M.make_plan(STRANDED, "x", {1: [1]})
+    p = model.make_plan(STRANDED, "x", {1: [1]})
     assert p.stranded == [2] and p.routes[1].distance == 0
     assert check.check_plan(STRANDED, p) == []
 
 
 def test_stranded_uav_not_listed():
-    p = M.make_plan(STRANDED, "x", {1: [1]})
+    p = model.make_plan(STRANDED, "x", {1: [1]})
     p.stranded = []
     expect(check.check_plan(STRANDED, p), "must be listed in stranded")
 
 
 def test_stranded_uav_with_a_route():
-    p = M.make_plan(STRANDED, "x", {1: [1]})
+    p = model.make_plan(STRANDED, "x", {1: [1]})
     p.routes[1].distance = 20
     p.routes[1].fuel_used = 20
     expect(check.check_plan(STRANDED, p), "route must be empty")
 
 
 def test_listed_stranded_but_can_return():
-    p = M.make_plan(STRANDED, "x", {1: [1]})
+    p = model.make_plan(STRANDED, "x", {1: [1]})
     p.stranded = [1, 2]
     expect(check.check_plan(STRANDED, p), "uav 1: listed in stranded")
 

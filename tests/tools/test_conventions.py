@@ -159,9 +159,9 @@ def test_sva_can_node_help_names_algo():
 ])
 @pytest.mark.parametrize("option", ["-o", "--out", "--output"])
 def test_sva_tools_lcm_takes_out(subcommand, args, option):
-    from sva_tools.lcm import cli
+    from sva_tools.commands import lcm
 
-    parsed = cli._parser().parse_args([subcommand, *args, option, "file.out"])
+    parsed = lcm._parser().parse_args([subcommand, *args, option, "file.out"])
     assert parsed.out == "file.out"
 
 

@@ -4,7 +4,7 @@ import json
 import pytest
 from conftest import sva_tools
 
-from sva_tools import gen, io, model as M
+from sva_tools import gen, io, model
 
 
 def test_deterministic(tmp_path):
@@ -24,7 +24,7 @@ def test_parameters_honoured():
                and 1 <= t.need <= 3 for t in m.targets)
     assert m.hover_fuel == 2 and m.ticks_per_cell == 2
     # every target is reachable from the depot by its start
-    assert all(M.dist_pt(m.depot, t) * 2 <= t.start for t in m.targets)
+    assert all(model.dist_pt(m.depot, t) * 2 <= t.start for t in m.targets)
 
 
 @pytest.mark.parametrize("ratio", ["low", "mid", "high"])
@@ -32,7 +32,7 @@ def test_categories(ratio):
     lo, hi = gen.RATIOS[ratio]
     for i in range(15):
         m = gen.generate(10, 5, ratio=ratio, seed=5, index=i)
-        r = M.intersection_ratio(m)
+        r = model.intersection_ratio(m)
         assert lo <= r <= hi and (r < hi or ratio == "high"), (ratio, r)
 
 
@@ -46,12 +46,11 @@ def test_count_writes_directory(tmp_path):
 def test_lcm_dispatch(monkeypatch):
     import sys
     import types
-    from sva_tools import cli
-    fake = types.ModuleType("sva_tools.lcm.cli")
+    from sva_tools import commands
+    fake = types.ModuleType("sva_tools.commands.lcm")
     seen = []
     fake.main = lambda argv: seen.append(argv) or 7
-    monkeypatch.setitem(sys.modules, "sva_tools.lcm", types.ModuleType("sva_tools.lcm"))
-    monkeypatch.setitem(sys.modules, "sva_tools.lcm.cli", fake)
-    assert cli.main(["lcm", "serve", "--x"]) == 7 and seen == [["serve", "--x"]]
-    monkeypatch.setitem(sys.modules, "sva_tools.lcm.cli", None)  # import fails
-    assert cli.main(["lcm"]) == 2
+    monkeypatch.setitem(sys.modules, "sva_tools.commands.lcm", fake)
+    assert commands.main(["lcm", "serve", "--x"]) == 7 and seen == [["serve", "--x"]]
+    monkeypatch.setitem(sys.modules, "sva_tools.commands.lcm", None)  # import fails
+    assert commands.main(["lcm"]) == 2

@@ -13,8 +13,8 @@ import pytest
 from conftest import REPO, sva_tools
 from geographiclib.geodesic import Geodesic
 
-from sva_tools import cli, io, schema
-from sva_tools import frame as F
+from sva_tools import commands, io, schema
+from sva_tools import frame
 
 GEO = REPO / "fixtures" / "geo"
 TARGETS = GEO / "zurich_targets.geojson"
@@ -43,7 +43,7 @@ def tools(capsys):
     def run(*args):
         capsys.readouterr()
         try:
-            rc = cli.main([str(a) for a in args])
+            rc = commands.main([str(a) for a in args])
         except SystemExit as e:  # argparse: usage errors, --help
             rc = e.code
         out = capsys.readouterr()
@@ -52,7 +52,7 @@ def tools(capsys):
 
 
 def _frame(lat=47.3655, lon=8.5461, cell_m=50, tick_s=1, t0="2026-06-01T08:00:00Z", alt_m=40):
-    return F.Frame.from_json({"lat": lat, "lon": lon, "alt_m": alt_m, "cell_m": cell_m,
+    return frame.Frame.from_json({"lat": lat, "lon": lon, "alt_m": alt_m, "cell_m": cell_m,
                               "tick_s": tick_s, "t0": t0})
 
 
@@ -82,7 +82,7 @@ def test_a_kilometre_east_and_north_by_an_independent_geodesic(origin, cell_m):
         assert abs(along - 1000) < cell_m / 2 and abs(across) < cell_m / 2, (along, across)
         assert abs(along - 1000) < 0.01 and abs(across) < 0.01  # the plane and the geodesic agree to 1 cm at 1 km
         want = [0, 0]
-        want[axis] = F.snap(1000 / cell_m)
+        want[axis] = frame.snap(1000 / cell_m)
         assert list(fr.geodetic_to_cell(g["lat2"], g["lon2"])) == want
 
 
@@ -108,7 +108,7 @@ def test_cell_distances_match_the_geodesic_near_the_origin():
 
 
 def test_snapping_rounds_half_away_from_zero():
-    assert [F.snap(v) for v in (0.5, -0.5, 1.5, -1.5, 0.49999, -0.49999, 2.5000001)] == \
+    assert [frame.snap(v) for v in (0.5, -0.5, 1.5, -1.5, 0.49999, -0.49999, 2.5000001)] == \
         [1, -1, 2, -2, 0, 0, 3]
     fr = _frame(cell_m=50)
     for east, want in ((24.99, 0), (25.01, 1), (-25.01, -1), (-24.99, 0), (74.9, 1), (75.1, 2)):
@@ -118,18 +118,18 @@ def test_snapping_rounds_half_away_from_zero():
 
 def test_far_side_of_the_earth_is_refused():
     fr = _frame(10, 20)
-    with pytest.raises(F.FrameError, match="far side of the Earth"):
+    with pytest.raises(frame.FrameError, match="far side of the Earth"):
         fr.geodetic_to_enu(-10, -160)
 
 
 # --- the frame: numbers and times ---------------------------------------------------
 
 def test_values_round_half_away_from_zero_at_their_resolution():
-    fr = F.Frame.from_json({"lat": 47.12345675, "lon": -8.12345675, "alt_m": 0.005,
+    fr = frame.Frame.from_json({"lat": 47.12345675, "lon": -8.12345675, "alt_m": 0.005,
                             "cell_m": 12.345, "tick_s": 0.0015, "t0": "2026-06-01T08:00:00.0005Z"})
     assert (fr.lat, fr.lon, fr.alt_m, fr.cell_m, fr.tick_ms) == (47.1234568, -8.1234568, 0.01, 12.35, 2)
     assert fr.to_json()["t0"] == "2026-06-01T08:00:00.001Z"
-    below = F.Frame.from_json({"lat": 47.12345674, "lon": -8.12345674, "alt_m": 0.0049,
+    below = frame.Frame.from_json({"lat": 47.12345674, "lon": -8.12345674, "alt_m": 0.0049,
                                "cell_m": 12.344, "tick_s": 0.0014, "t0": "2026-06-01T08:00:00.00049+00:00"})
     assert (below.lat, below.lon, below.alt_m, below.cell_m, below.tick_ms) == \
         (47.1234567, -8.1234567, 0.0, 12.34, 1)
@@ -148,7 +148,7 @@ def test_ticks_are_exact_utc_instants():
         assert abs(got.timestamp() - want) < 1e-6
         assert fr.utc_to_ticks(fr.tick_to_utc(tick)) == tick
     late = _frame(tick_s=3600, t0="9999-01-01T00:00:00Z")
-    with pytest.raises(F.FrameError, match="beyond 9999-12-31T23:59:59.999Z"):
+    with pytest.raises(frame.FrameError, match="beyond 9999-12-31T23:59:59.999Z"):
         late.tick_to_utc(10_000)
 
 
@@ -162,15 +162,15 @@ def test_ticks_are_exact_utc_instants():
     ("2026-06-01T08:00:00+05:60", "must have a UTC offset within"),
 ])
 def test_bad_date_times_name_their_rule(text, rule):
-    with pytest.raises(F.FrameError, match=rule):
-        F.parse_utc(text)
+    with pytest.raises(frame.FrameError, match=rule):
+        frame.parse_utc(text)
 
 
 def test_offsets_and_fractions_are_exact():
-    assert F.parse_utc("1970-01-01T00:00:00Z") == 0
-    assert F.parse_utc("1970-01-01T01:00:00+01:00") == 0
-    assert F.parse_utc("1969-12-31T23:00:00-01:00") == 0
-    assert F.parse_utc("2000-01-01T00:00:00.123456789Z") == 946684800 + Fraction(123456789, 10**9)
+    assert frame.parse_utc("1970-01-01T00:00:00Z") == 0
+    assert frame.parse_utc("1970-01-01T01:00:00+01:00") == 0
+    assert frame.parse_utc("1969-12-31T23:00:00-01:00") == 0
+    assert frame.parse_utc("2000-01-01T00:00:00.123456789Z") == 946684800 + Fraction(123456789, 10**9)
 
 
 # --- the schemas --------------------------------------------------------------------
@@ -236,7 +236,7 @@ def test_the_bundled_mission_is_what_geo_mission_makes():
     assert r.returncode == 0, r.stderr
     assert r.stdout == MISSION.read_text()
     doc = json.loads(r.stdout)
-    fr = F.Frame.from_json(doc["frame"])
+    fr = frame.Frame.from_json(doc["frame"])
     targets = json.loads(TARGETS.read_text())["features"]
     assert doc["depot"] == {"x": 0, "y": 0} and (fr.lat, fr.lon) == (47.3655, 8.5461)
     assert [t["id"] for t in doc["targets"]] == [1, 2, 3, 4, 5]  # the fourth is numbered
@@ -532,7 +532,7 @@ def test_sva_plan_echoes_the_missions_frame(zurich_plan, sva_bin, tmp_path):
 
 def test_the_plan_on_the_map_reads_back_as_the_plan(zurich_plan):
     mission, plan, gj, _ = zurich_plan
-    fr = F.Frame.from_json(mission["frame"])
+    fr = frame.Frame.from_json(mission["frame"])
     targets = {t["id"]: t for t in mission["targets"]}
     uavs = {u["id"]: u for u in mission["uavs"]}
     assert gj["type"] == "FeatureCollection"

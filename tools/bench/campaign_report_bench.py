@@ -36,8 +36,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 sys.path.insert(0, os.path.join(ROOT, "tools"))
 
 from sva_tools.campaign import report  # noqa: E402
-from sva_tools.campaign import spec as S  # noqa: E402
-from sva_tools.campaign import tasks as T  # noqa: E402
+from sva_tools.campaign.spec import set_label, validate  # noqa: E402
+from sva_tools.campaign.tasks import ROW_FIELDS, mission_hash, residual_for_ref, sha256  # noqa: E402
 from sva_tools.campaign.store import Store  # noqa: E402
 
 SIZES = ((25, 5), (40, 8), (100, 20), (200, 32))
@@ -45,7 +45,7 @@ SIZES = ((25, 5), (40, 8), (100, 20), (200, 32))
 
 def synthetic_spec(sets: int, algos, count: int, ref_max: int = 40) -> dict:
     """sets mission sets of 25 to 200 targets; ref on those of at most ref_max targets."""
-    return S.validate({"name": "report_bench", "kind": "plan", "count": count, "algorithms": list(algos),
+    return validate({"name": "report_bench", "kind": "plan", "count": count, "algorithms": list(algos),
                        "sets": [{"targets": SIZES[i % len(SIZES)][0], "uavs": SIZES[i % len(SIZES)][1],
                                  "label": f"set{i}_{SIZES[i % len(SIZES)][0]}x{SIZES[i % len(SIZES)][1]}"}
                                 for i in range(sets)],
@@ -62,9 +62,9 @@ def synthetic_store(out: str, spec: dict, flush_rows: int = 64, seed: int = 1, s
     tasks = []
     shared = shared or {}
     for s in spec["sets"]:
-        label = S.set_label(s)
+        label = set_label(s)
         for i in range(s.get("count", spec["count"])):
-            mh = T.sha256(f"{label}/{i}")
+            mh = sha256(f"{label}/{i}")
             mission = json.dumps({"name": f"m{i}", "targets": [[rnd.randrange(20), rnd.randrange(20)]
                                                                for _ in range(s["targets"] // 4)]})
             ref_cov = rnd.randint(s["targets"] // 2, s["targets"])
@@ -72,8 +72,8 @@ def synthetic_store(out: str, spec: dict, flush_rows: int = 64, seed: int = 1, s
             tools = list(spec["algorithms"]) + (["ref"] if s["targets"] <= spec["ref"]["max_targets"] else [])
             for tool in tools:
                 task = "ref" if tool == "ref" else "plan"
-                key = T.sha256(f"{task}/{tool}/{mh}")
-                row = {k: None for k in T.ROW_FIELDS}
+                key = sha256(f"{task}/{tool}/{mh}")
+                row = {k: None for k in ROW_FIELDS}
                 row.update(key=key, campaign=spec["name"], run="bench", task=task, tool=tool,
                            set=shared.get(label, label), targets=s["targets"], uavs=s["uavs"], seed=1, index=i,
                            mission_hash=mh, mission_name=f"m{i}", version="{}", settings="{}", mission=mission,
@@ -99,7 +99,7 @@ def row_wise_rows(store: Store, tasks, spec: dict) -> dict:
     import pyarrow as pa
     import pyarrow.parquet as pq
     from sva_tools.campaign.store import SCHEMA
-    keep = [c for c in T.ROW_FIELDS if c != "mission" and (c != "result" or spec["kind"] == "live")]
+    keep = [c for c in ROW_FIELDS if c != "mission" and (c != "result" or spec["kind"] == "live")]
     t = pa.concat_tables([pq.read_table(p, columns=keep, schema=SCHEMA) for p in store.files()])
     keys, seen, first = t.column("key").to_pylist(), set(), []
     for i, k in enumerate(keys):  # the first of each key, in file order
@@ -136,7 +136,7 @@ def row_wise_metrics(spec: dict, rows: dict) -> list:
         for rp in log["replans"]:
             if not rp["mission"]["targets"]:
                 continue
-            q = refs.get(T.mission_hash(T.residual_for_ref(rp["mission"])))
+            q = refs.get(mission_hash(residual_for_ref(rp["mission"])))
             if q is None:
                 continue
             judged += 1
@@ -162,7 +162,7 @@ def nearest_rank(values, p):
 
 def row_wise_groups(spec: dict, records: list) -> list:
     """The summary rows per set and tool (and change_penalty for live)."""
-    order = [S.set_label(s) for s in spec["sets"]]
+    order = [set_label(s) for s in spec["sets"]]
     tools = list(spec["algorithms"]) + ["ref"]
     live = spec["kind"] == "live"
     by = {}

@@ -54,8 +54,8 @@ def campaign_spec(tag, targets, uavs, count, gen_args):
     """The campaign of this set: the first COUNT missions of `sva-tools gen --seed 7 GEN_ARGS`,
     flow (with FLOW_WORK, FLOW_REPEAT) and ref (REF_DET, one worker) on each."""
     sys.path.insert(0, os.path.join(ROOT, "tools"))
-    from sva_tools import gen
-    from sva_tools.text import Parser
+    from sva_tools.commands import gen
+    from sva_tools.commands.common import Parser
     sub = Parser(prog="flow_vs_ref.py").add_subparsers()
     gen.add_parser(sub)
     a = sub.choices["gen"].parse_args(gen_args)

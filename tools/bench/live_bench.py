@@ -23,7 +23,7 @@ Goals: flow covers as many targets as ref on at least 99 % of the residual missi
 flow at 25 x 5 replans in p50 < 1 ms and p99 < 10 ms.
 
 --node measures the node instead (root: the bench re-runs itself in a network namespace
-made with tests/lcm/netns_run.sh): every scenario is flown in process (a campaign task,
+made with tools/netns/netns_run.sh): every scenario is flown in process (a campaign task,
 as above) and again with `sva-tools sim --via lcm`'s planner, a real sva_node per flight
 over LCM multicast, in the bench's process (cached under --work/<set>/logs/); ref is not
 run. Its table gives per algorithm and penalty: flights whose coverage equals the in-process flight's, the replan round trip (event_t published to
@@ -55,7 +55,7 @@ sys.path.insert(0, os.path.join(ROOT, "tools"))
 
 import sva_tools.campaign as campaign  # noqa: E402
 from sva_tools import sim  # noqa: E402
-from sva_tools.campaign import spec as cspec, tasks as T  # noqa: E402
+from sva_tools.campaign import spec as cspec, tasks  # noqa: E402
 
 GOAL_EQUAL = 99.0       # % of residual missions where flow covers as many targets as ref
 GOAL_P50_MS = 1.0       # flow at 25 x 5
@@ -89,8 +89,8 @@ def percentile(sorted_values, p):
 def campaign_spec(sets, algos, penalties, args):
     """One campaign for every set: its scenarios flown with each algorithm and penalty, ref
     on the replans' residual missions of the set's first ref_count scenarios."""
-    from sva_tools import gen
-    from sva_tools.text import Parser
+    from sva_tools.commands import gen
+    from sva_tools.commands.common import Parser
     sub = Parser(prog="live_bench.py --gen").add_subparsers()
     gen.add_parser(sub)
     a = sub.choices["gen"].parse_args(args.gen)
@@ -338,7 +338,7 @@ def main(argv):
             for ls in logs.values():
                 for r in ls[i]["replans"]:
                     if r["mission"]["targets"]:
-                        q = by_hash[T.mission_hash(T.residual_for_ref(r["mission"]))]
+                        q = by_hash[tasks.mission_hash(tasks.residual_for_ref(r["mission"]))]
                         if q["error"]:
                             sys.exit(f"live_bench: ref on a residual mission: {q['error']}")
                         refs[ref_key(r["mission"])] = json.loads(q["result"])

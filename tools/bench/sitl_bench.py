@@ -38,10 +38,10 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
 
-from sva_tools import frame as F  # noqa: E402
+from sva_tools import frame  # noqa: E402
 from sva_tools.lcm.simnode import percentile  # noqa: E402
 from sva_tools.sitl import judge  # noqa: E402
-from sva_tools.sitl.cli import DEFAULT_FRAME, parse_frame  # noqa: E402
+from sva_tools.sitl.settings import DEFAULT_FRAME, parse_frame  # noqa: E402
 from sva_tools.sitl.flight import takeoff_allowance_s  # noqa: E402
 
 _FRAME = parse_frame(DEFAULT_FRAME)
@@ -107,7 +107,7 @@ def crossing(t, d, r, after):
 
 
 def leg_figures(log, legs):
-    geo = F.Frame.from_json(log["sitl"]["frame"])
+    geo = frame.Frame.from_json(log["sitl"]["frame"])
     tick_ms = geo.tick_ms
     r = log["sitl"]["radius_m"]
     tel = {u["id"]: u["telemetry"] for u in log["uavs"]}

@@ -26,17 +26,16 @@ import os
 import tempfile
 from importlib import metadata
 from pathlib import Path
-from typing import Any, Dict, Optional
+from typing import Any
 
-from . import __version__, io, schema
-from . import model as M
+from . import __version__, io, model, schema
 
 CACHED_SOLVERS = ("ih", "ref", "peer")
 _SOURCES = {"ih": ("ih.py", "solvers.py", "model.py"),
             "ref": ("ref.py", "model.py"),
             "peer": ("peer.py", "model.py")}
 _PKG = Path(__file__).resolve().parent
-_code: Dict[str, str] = {}
+_code: dict[str, str] = {}
 
 
 def canonical(doc: Any) -> str:
@@ -47,7 +46,7 @@ def sha256(text: str) -> str:
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
-def mission_hash(m: M.Mission) -> str:
+def mission_hash(m: model.Mission) -> str:
     return sha256(canonical(m.to_json()))
 
 
@@ -62,7 +61,7 @@ def code_hash(solver: str) -> str:
     return _code[solver]
 
 
-def version(solver: str) -> dict:
+def version(solver: str) -> dict[str, Any]:
     try:
         ortools = metadata.version("ortools")
     except metadata.PackageNotFoundError:  # pragma: no cover - ortools is pinned
@@ -70,7 +69,7 @@ def version(solver: str) -> dict:
     return {"sva_tools": __version__, "ortools": ortools, "code": code_hash(solver)}
 
 
-def key_fields(m: M.Mission, solver: str, settings: dict) -> dict:
+def key_fields(m: model.Mission, solver: str, settings: dict[str, Any]) -> dict[str, Any]:
     if solver not in CACHED_SOLVERS:
         raise ValueError(f"solver {solver!r} is not cached (only {', '.join(CACHED_SOLVERS)})")
     return {"mission": mission_hash(m), "solver": solver,
@@ -83,10 +82,11 @@ class Cache:
         self.hits = 0
         self.misses = 0
 
-    def path(self, fields: dict) -> Path:
-        return self.root / fields["solver"] / f"{sha256(canonical(fields))}.json"
+    def path(self, fields: dict[str, Any]) -> Path:
+        solver: str = fields["solver"]
+        return self.root / solver / f"{sha256(canonical(fields))}.json"
 
-    def get(self, m: M.Mission, solver: str, settings: dict) -> Optional[dict]:
+    def get(self, m: model.Mission, solver: str, settings: dict[str, Any]) -> dict[str, Any] | None:
         """The stored entry {"result": {...}, "measured": {...}} or None on a miss.
         result: {"plan": Plan|None, "us": int|None, "error": str|None}."""
         fields = key_fields(m, solver, settings)
@@ -113,8 +113,8 @@ class Cache:
         return {"result": {"plan": plan, "us": res.get("us"), "error": res.get("error")},
                 "measured": doc.get("measured", {})}
 
-    def put(self, m: M.Mission, solver: str, settings: dict, result: dict,
-            measured: dict) -> Path:
+    def put(self, m: model.Mission, solver: str, settings: dict[str, Any], result: dict[str, Any],
+            measured: dict[str, Any]) -> Path:
         fields = key_fields(m, solver, settings)
         p = self.path(fields)
         p.parent.mkdir(parents=True, exist_ok=True)
@@ -136,7 +136,7 @@ class Cache:
         return p
 
 
-def measurement(load: Optional[tuple] = None) -> dict:
+def measurement(load: tuple[float, float, float] | None = None) -> dict[str, Any]:
     """When and under what load a result is measured (stored with it)."""
     la = load if load is not None else os.getloadavg()
     return {"utc": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),

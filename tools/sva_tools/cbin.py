@@ -7,10 +7,9 @@ import subprocess
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
-from typing import List, Optional
+from typing import Any
 
-from . import io
-from . import model as M
+from . import io, model
 
 C_ALGORITHMS = ("sva", "ga", "hga", "bfa", "flow")
 REPO = Path(__file__).resolve().parents[2]
@@ -32,10 +31,10 @@ def sva_bin() -> Path:
 @dataclass
 class CResult:
     status: int               # exit status of `sva plan`
-    plan: Optional[M.Plan]    # when status is 0
-    raw: Optional[dict]
+    plan: model.Plan | None    # when status is 0
+    raw: dict[str, Any] | None
     stderr: str
-    trace: Optional[List[dict]] = None
+    trace: list[dict[str, Any]] | None = None
 
 
 def plan(mission_path: str, algo: str, trace: bool = False, timeout: float = 600) -> CResult:
@@ -68,10 +67,10 @@ def plan(mission_path: str, algo: str, trace: bool = False, timeout: float = 600
 _PROBE_MISSION = {"name": "probe", "depot": {"x": 0, "y": 0},
                   "uavs": [{"id": 1, "x": 0, "y": 0, "fuel": 10}],
                   "targets": [{"id": 1, "x": 1, "y": 1, "start": 5, "end": 6, "need": 1}]}
-_known: dict = {}
+_known: dict[str, str | None] = {}
 
 
-def algorithm_available(algo: str) -> Optional[str]:
+def algorithm_available(algo: str) -> str | None:
     """None when `sva plan --algo ALGO` plans (a one-target probe mission), else the
     CLI's answer (e.g. an algorithm this build of the C CLI does not know yet)."""
     if algo not in _known:
@@ -85,7 +84,7 @@ def algorithm_available(algo: str) -> Optional[str]:
     return _known[algo]
 
 
-def plan_mission(m: M.Mission, algo: str, trace: bool = False, timeout: float = 600) -> CResult:
+def plan_mission(m: model.Mission, algo: str, trace: bool = False, timeout: float = 600) -> CResult:
     with tempfile.TemporaryDirectory(prefix="sva-m-") as d:
         path = os.path.join(d, "mission.json")
         io.write_json(m.to_json(), path)

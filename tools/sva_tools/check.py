@@ -1,23 +1,14 @@
-"""`sva-tools check MISSION PLAN`: an independent SPEC section 1 validator.
-
-Recomputes every figure of the plan from the mission (nothing comes from the C code)
-and reports one message per violation. Exit 0: feasible and every figure right;
-1: violations (one line each on stdout); 2: a file is not a valid SPEC 3 document.
-"""
+"""The independent SPEC checker of a plan against its mission (`sva-tools check`)."""
 from __future__ import annotations
 
-import argparse
 from collections import Counter
-from typing import List
 
-from . import io
-from . import model as M
-from .text import shown
+from . import model
 
 
-def check_plan(m: M.Mission, p: M.Plan) -> List[str]:
+def check_plan(m: model.Mission, p: model.Plan) -> list[str]:
     """Returns the list of violations of SPEC 1 and 3 (empty when the plan is right)."""
-    v: List[str] = []
+    v: list[str] = []
     tmap = m.target_by_id()
     if p.mission != m.name:
         v.append(f"mission: plan is for {p.mission!r}, mission is {m.name!r}")
@@ -39,7 +30,7 @@ def check_plan(m: M.Mission, p: M.Plan) -> List[str]:
             v.append(f"routes: not in mission order (expected uav ids {want}, got {got})")
 
     uav_by_id = {u.id: u for u in m.uavs}
-    served: Counter = Counter()
+    served: Counter[int] = Counter()
     stranded_listed = list(p.stranded)
     for uid, n in Counter(stranded_listed).items():
         if n > 1:
@@ -54,11 +45,11 @@ def check_plan(m: M.Mission, p: M.Plan) -> List[str]:
             continue
         seen_route.add(r.uav)
         w = f"uav {u.id}"
-        cant_return = M.is_stranded(m, u)
+        cant_return = model.is_stranded(m, u)
         if cant_return:
             if u.id not in stranded_set:
                 v.append(f"{w}: fuel {u.fuel} cannot bring it home "
-                         f"({M.dist_pt(u, m.depot)} cells), so it must be listed in stranded")
+                         f"({model.dist_pt(u, m.depot)} cells), so it must be listed in stranded")
             if r.targets or r.distance != 0 or r.fuel_used != 0:
                 v.append(f"{w}: stranded, so its route must be empty with distance 0 and "
                          f"fuel_used 0 (got {len(r.targets)} targets, distance {r.distance}, "
@@ -66,7 +57,7 @@ def check_plan(m: M.Mission, p: M.Plan) -> List[str]:
             continue
         if u.id in stranded_set:
             v.append(f"{w}: listed in stranded but its fuel {u.fuel} brings it home "
-                     f"({M.dist_pt(u, m.depot)} cells)")
+                     f"({model.dist_pt(u, m.depot)} cells)")
         ts = []
         bad_id = False
         for tid in r.targets:
@@ -79,22 +70,22 @@ def check_plan(m: M.Mission, p: M.Plan) -> List[str]:
         for tid, n in Counter(r.targets).items():
             if n > 1:
                 v.append(f"{w}: serves target {tid} {n} times (needs distinct UAVs)")
-        for t in set(t.id for t in ts):
-            served[t] += 1
+        for tid in {t.id for t in ts}:
+            served[tid] += 1
         if bad_id:
             continue
         if ts:
             t0 = ts[0]
-            arrive = u.ready_at + M.dist_pt(u, t0) * m.ticks_per_cell
+            arrive = u.ready_at + model.dist_pt(u, t0) * m.ticks_per_cell
             if arrive > t0.start:
                 v.append(f"{w}: reaches target {t0.id} at tick {arrive}, after its start {t0.start}"
-                         f" (ready_at {u.ready_at}, {M.dist_pt(u, t0)} cells)")
+                         f" (ready_at {u.ready_at}, {model.dist_pt(u, t0)} cells)")
             for a, b in zip(ts, ts[1:]):
-                arrive = a.end + M.dist_pt(a, b) * m.ticks_per_cell
+                arrive = a.end + model.dist_pt(a, b) * m.ticks_per_cell
                 if arrive > b.start:
                     v.append(f"{w}: leaves target {a.id} at its end {a.end} and reaches target "
                              f"{b.id} at tick {arrive}, after its start {b.start}")
-        dist = M.route_distance(m, u, ts)
+        dist = model.route_distance(m, u, ts)
         fuel = dist + m.hover_fuel * len(ts)
         if r.distance != dist:
             v.append(f"{w}: distance is {r.distance}, recomputed {dist}")
@@ -128,25 +119,3 @@ def check_plan(m: M.Mission, p: M.Plan) -> List[str]:
     if p.cost != cost:
         v.append(f"cost: is {p.cost}, sum of route distances is {cost}")
     return v
-
-
-def add_parser(sub) -> None:
-    ap = sub.add_parser("check", help="validate a plan against SPEC section 1",
-                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("mission")
-    ap.add_argument("plan")
-    ap.add_argument("-q", "--quiet", action="store_true", help="print nothing when the plan is right")
-    ap.set_defaults(func=run)
-
-
-def run(args) -> int:
-    m = io.load_mission(args.mission)
-    p = io.load_plan(args.plan)
-    v = check_plan(m, p)
-    for msg in v:
-        print(f"{shown(args.plan)}: {shown(msg)}")
-    if v:
-        return 1
-    if not args.quiet:
-        print(f"{shown(args.plan)}: ok ({p.algorithm}, {p.status}, covered {p.covered}/{len(m.targets)}, cost {p.cost})")
-    return 0

@@ -24,7 +24,7 @@ import re
 from dataclasses import dataclass
 from decimal import ROUND_HALF_UP, Decimal
 from fractions import Fraction
-from typing import Any, Dict, Tuple, Union
+from typing import Any
 
 KEYS = ("lat", "lon", "alt_m", "cell_m", "tick_s", "t0")
 # Resolution of each number of the frame (t0's is T0_RESOLUTION_MS).
@@ -103,7 +103,7 @@ def format_utc(ms: int) -> str:
     return f"{date.isoformat()}T{sec // 3600:02d}:{sec // 60 % 60:02d}:{sec % 60:02d}.{milli:03d}Z"
 
 
-def rounded(value: Union[int, float], key: str) -> Decimal:
+def rounded(value: int | float, key: str) -> Decimal:
     """A frame number at its key's resolution, half away from zero (SPEC section 3)."""
     d = Decimal(value) if isinstance(value, int) else Decimal(repr(float(value)))
     return d.quantize(RESOLUTION[key], rounding=ROUND_HALF_UP)
@@ -114,7 +114,7 @@ def snap(v: float) -> int:
     return int(Decimal(v).quantize(Decimal(1), rounding=ROUND_HALF_UP))
 
 
-def _pymap3d():
+def _pymap3d() -> Any:
     import pymap3d
     return pymap3d
 
@@ -131,30 +131,30 @@ class Frame:
     t0_ms: int
 
     @staticmethod
-    def from_json(doc: Dict[str, Any]) -> "Frame":
+    def from_json(doc: dict[str, Any]) -> Frame:
         """The frame of a mission or plan that passed validation (schema.first_error)."""
         return Frame(float(rounded(doc["lat"], "lat")), float(rounded(doc["lon"], "lon")),
                      float(rounded(doc["alt_m"], "alt_m")), float(rounded(doc["cell_m"], "cell_m")),
                      int(rounded(doc["tick_s"], "tick_s") * 1000),
                      _ms_half_away(parse_utc(doc["t0"])))
 
-    def to_json(self) -> Dict[str, Any]:
+    def to_json(self) -> dict[str, Any]:
         """The frame as written: numbers at their resolution, t0 in UTC with milliseconds."""
         return {"lat": self.lat, "lon": self.lon, "alt_m": self.alt_m, "cell_m": self.cell_m,
                 "tick_s": self.tick_ms / 1000, "t0": format_utc(self.t0_ms)}
 
     # --- space -----------------------------------------------------------------------
 
-    def enu_to_geodetic(self, east: float, north: float) -> Tuple[float, float]:
+    def enu_to_geodetic(self, east: float, north: float) -> tuple[float, float]:
         """(lat, lon) of the tangent-plane point `east`, `north` metres from the origin."""
         lat, lon, _h = _pymap3d().enu2geodetic(east, north, 0.0, self.lat, self.lon, 0.0)
         return float(lat), float(lon)
 
-    def cell_to_geodetic(self, x: int, y: int) -> Tuple[float, float]:
+    def cell_to_geodetic(self, x: int, y: int) -> tuple[float, float]:
         """(lat, lon) of cell (x, y)."""
         return self.enu_to_geodetic(x * self.cell_m, y * self.cell_m)
 
-    def geodetic_to_enu(self, lat: float, lon: float) -> Tuple[float, float]:
+    def geodetic_to_enu(self, lat: float, lon: float) -> tuple[float, float]:
         """(east, north) of the tangent-plane point whose latitude and longitude are
         (lat, lon): where the ellipsoid normal through (lat, lon) meets the plane. This is
         the exact inverse of enu_to_geodetic (which drops the plane point's height)."""
@@ -167,7 +167,7 @@ class Frame:
         h = -float(u0) / du
         return float(e0 + h * (e1 - e0)), float(n0 + h * (n1 - n0))
 
-    def geodetic_to_cell(self, lat: float, lon: float) -> Tuple[int, int]:
+    def geodetic_to_cell(self, lat: float, lon: float) -> tuple[int, int]:
         """The cell whose point is nearest (lat, lon): east and north in cells, each
         rounded half away from zero."""
         east, north = self.geodetic_to_enu(lat, lon)

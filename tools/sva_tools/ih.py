@@ -1,93 +1,77 @@
-"""`sva-tools ih`: the paper's intlinprog heuristic (IH, section 4.5).
-
-The `sva` pipeline of SPEC 2 run in Python (clustering, ready UAVs, source groups,
-commit and advance), with every transportation problem solved by an integer LP
-(HiGHS): first as many of the cluster's targets covered in full as possible, then
-least cost. Source groups are UAVs at one position that can serve the same set of
-sinks (the C core's grouping: UAVs at one position may differ in fuel and ready time).
-
-  ih MISSION [-o PLAN]             plan a mission ("algorithm": "ih")
-  ih --verify-trace FILE...        re-solve every problem `sva plan --trace` wrote
-  ih --compare MISSION|DIR...      run `sva plan --algo sva --trace` and this IH on
-                                   each mission: traced optima, drop rule, whole plans
-Exit 0 when every check passes, 1 when one fails, 2 on bad input.
-"""
+"""IH, the SVA pipeline with an integer LP, and the checks of its traces (`sva-tools ih`)."""
 from __future__ import annotations
 
-import argparse
-import json
-import os
-import sys
 import time
 from dataclasses import dataclass, field
-from typing import Dict, List, Optional, Tuple
+from typing import Any
 
-from . import io
-from . import model as M
-from . import solvers
-from .text import shown
+from . import io, model, solvers
 
 
 @dataclass
 class TpRecord:
     """One transportation problem, in the shape of a `--trace` line."""
-    source_uavs: List[int]
-    supply: List[int]
-    sink_targets: List[int]
-    demand: List[int]
-    cost: List[List[Optional[int]]]
-    flow: List[List[int]] = field(default_factory=list)
-    kept: List[bool] = field(default_factory=list)
+    source_uavs: list[int]
+    supply: list[int]
+    sink_targets: list[int]
+    demand: list[int]
+    cost: list[list[int | None]]
+    flow: list[list[int]] = field(default_factory=list)
+    kept: list[bool] = field(default_factory=list)
     cost_total: int = 0
     covered: int = 0
 
 
-def _groups(m: M.Mission, sinks: List[M.Target], ready: List[int], pos, free_at, fuel_left):
+Group = tuple[tuple[tuple[int, int], tuple[int, ...]], list[int]]
+
+
+def _groups(m: model.Mission, sinks: list[model.Target], ready: list[int], pos: list[tuple[int, int]],
+            free_at: list[int], fuel_left: list[int]) -> list[Group]:
     """Source groups for one problem: ready UAVs keyed by (position, reachable sinks),
     ordered by their lowest UAV id, members in id order (as the core does).
     Returns [(key, [uav indices])]."""
-    groups: Dict[tuple, List[int]] = {}
+    groups: dict[tuple[tuple[int, int], tuple[int, ...]], list[int]] = {}
     for ui in sorted(ready, key=lambda i: m.uavs[i].id):
         reach = []
         for j, t in enumerate(sinks):
-            d = M.dist_pt(pos[ui], t)
+            d = model.dist_pt(pos[ui], t)
             if (free_at[ui] + d * m.ticks_per_cell <= t.start
-                    and fuel_left[ui] >= d + m.hover_fuel + M.dist_pt(t, m.depot)):
+                    and fuel_left[ui] >= d + m.hover_fuel + model.dist_pt(t, m.depot)):
                 reach.append(j)
         if reach:
             groups.setdefault((pos[ui], tuple(reach)), []).append(ui)
     first_id = lambda kv: m.uavs[kv[1][0]].id  # noqa: E731
     out = sorted(groups.items(), key=first_id)
-    if len(out) > M.SVA_MAX_TP_SOURCES:
+    if len(out) > model.SVA_MAX_TP_SOURCES:
         # Mirrors the core's bound: keep the groups with the nearest reachable sink
         # (ties: lower UAV id), numbered in id order (DESIGN.md section 3).
-        def near(kv):
+        def near(kv: Group) -> tuple[int, int]:
             (p, reach), members = kv
-            return (min(M.dist_pt(p, sinks[j]) for j in reach), m.uavs[members[0]].id)
-        out = sorted(sorted(out, key=near)[:M.SVA_MAX_TP_SOURCES], key=first_id)
+            return (min(model.dist_pt(p, sinks[j]) for j in reach), m.uavs[members[0]].id)
+        out = sorted(sorted(out, key=near)[:model.SVA_MAX_TP_SOURCES], key=first_id)
     return out
 
 
-def plan_ih(m: M.Mission, records: Optional[List[TpRecord]] = None) -> M.Plan:
+def plan_ih(m: model.Mission, records: list[TpRecord] | None = None) -> model.Plan:
     t0 = time.perf_counter()
     n = len(m.uavs)
     pos = [(u.x, u.y) for u in m.uavs]
     free_at = [u.ready_at for u in m.uavs]
     fuel_left = [u.fuel for u in m.uavs]
-    routes: List[List[int]] = [[] for _ in range(n)]
-    active = [i for i, u in enumerate(m.uavs) if not M.is_stranded(m, u)]
+    routes: list[list[int]] = [[] for _ in range(n)]
+    active = [i for i, u in enumerate(m.uavs) if not model.is_stranded(m, u)]
     nproblems = 0
     ncl = 0
-    for cl in M.clusters(m):
+    for cl in model.clusters(m):
         ncl += 1
-        for c0 in range(0, len(cl), M.SVA_MAX_TP_SINKS):
-            sinks = cl[c0:c0 + M.SVA_MAX_TP_SINKS]
+        for c0 in range(0, len(cl), model.SVA_MAX_TP_SINKS):
+            sinks = cl[c0:c0 + model.SVA_MAX_TP_SINKS]
             groups = _groups(m, sinks, active, pos, free_at, fuel_left)
             if not groups:
                 continue
             supply = [len(g) for _, g in groups]
             demand = [t.need for t in sinks]
-            cost = [[M.dist_pt(p, t) if j in reach else None for j, t in enumerate(sinks)]
+            cost = [[model.dist_pt(p, t) if j in reach else None for j, t in enumerate(sinks)]
                     for (p, reach), _ in groups]
             sol = solvers.solve_max_cover(supply, demand, cost)
             nproblems += 1
@@ -101,13 +85,13 @@ def plan_ih(m: M.Mission, records: Optional[List[TpRecord]] = None) -> M.Plan:
                 for j, t in enumerate(sinks):
                     for _ in range(sol.flow[gi][j]):
                         ui = next(it)
-                        d = M.dist_pt(pos[ui], t)
+                        d = model.dist_pt(pos[ui], t)
                         routes[ui].append(t.id)
                         fuel_left[ui] -= d + m.hover_fuel
                         pos[ui] = (t.x, t.y)
                         free_at[ui] = t.end
     us = (time.perf_counter() - t0) * 1e6
-    return M.make_plan(m, "ih", {m.uavs[i].id: routes[i] for i in range(n)},
+    return model.make_plan(m, "ih", {m.uavs[i].id: routes[i] for i in range(n)},
                        {"solve_us": int(us), "clusters": ncl, "transport_problems": nproblems})
 
 
@@ -116,14 +100,14 @@ def plan_ih(m: M.Mission, records: Optional[List[TpRecord]] = None) -> M.Plan:
 @dataclass
 class TraceVerdict:
     problems: int = 0
-    mismatches: List[str] = field(default_factory=list)   # ILP optimum != cost_total
+    mismatches: list[str] = field(default_factory=list)   # ILP optimum != cost_total
     drop_worse: int = 0        # max-cover ILP covers more sinks than the tableau kept
     drop_worse_sinks: int = 0  # how many more, summed
     with_drops: int = 0        # problems where the tableau dropped a sink
     drop_costlier: int = 0     # same number kept, but max-cover keeps a cheaper set
 
 
-def verify_record(rec: dict, verdict: TraceVerdict, where: str = "") -> None:
+def verify_record(rec: dict[str, Any], verdict: TraceVerdict, where: str = "") -> None:
     """Checks one `--trace` line: the integer LP optimum of the problem without the
     dropped sinks (equality demands, supply as upper bounds, given arcs only) equals
     cost_total; and counts whether cover-as-many-as-possible would keep more sinks."""
@@ -169,7 +153,7 @@ def verify_record(rec: dict, verdict: TraceVerdict, where: str = "") -> None:
         verdict.mismatches.append(f"{tag}: max-cover LP covers {mc.covered} < {kept} kept sinks")
 
 
-def read_trace(path: str) -> List[dict]:
+def read_trace(path: str) -> list[dict[str, Any]]:
     """The records of a `--trace` file, each checked against docs/schema/trace.schema.json
     (io.InputError naming the line otherwise)."""
     return io.load_trace(path)
@@ -181,20 +165,20 @@ class CompareVerdict:
     same: int = 0          # identical routes
     tie_first: int = 0     # plans differ and the first differing problem was a tie
     tie: int = 0           # routes differ, same covered and cost
-    differ: List[str] = field(default_factory=list)  # covered or cost differ
+    differ: list[str] = field(default_factory=list)  # covered or cost differ
     trace: TraceVerdict = field(default_factory=TraceVerdict)
 
 
-def compare_mission(m: M.Mission, verdict: CompareVerdict) -> None:
+def compare_mission(m: model.Mission, verdict: CompareVerdict) -> None:
     from . import cbin
     r = cbin.plan_mission(m, "sva", trace=True)
-    if r.status != 0:
+    if r.status != 0 or r.plan is None:
         verdict.differ.append(f"{m.name}: sva plan exited {r.status}: {r.stderr.strip()}")
         return
     verdict.missions += 1
     for rec in r.trace or []:
         verify_record(rec, verdict.trace, f"{m.name}: ")
-    recs: List[TpRecord] = []
+    recs: list[TpRecord] = []
     p = plan_ih(m, recs)
     a = [(x.uav, x.targets) for x in r.plan.routes]
     b = [(x.uav, x.targets) for x in p.routes]
@@ -224,82 +208,3 @@ def compare_mission(m: M.Mission, verdict: CompareVerdict) -> None:
     else:
         verdict.differ.append(f"{m.name}: sva covered {r.plan.covered} cost {r.plan.cost}, "
                               f"ih covered {p.covered} cost {p.cost}; first divergence: {cause}")
-
-
-def _mission_paths(items: List[str]) -> List[str]:
-    out = []
-    for it in items:
-        if os.path.isdir(it):
-            out += sorted(os.path.join(it, f) for f in os.listdir(it) if f.endswith(".json"))
-        else:
-            out.append(it)
-    return out
-
-
-def add_parser(sub) -> None:
-    ap = sub.add_parser("ih", help="intlinprog heuristic: SVA pipeline with an integer LP",
-                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("inputs", nargs="+", metavar="MISSION|TRACE")
-    mode = ap.add_mutually_exclusive_group()
-    mode.add_argument("--verify-trace", action="store_true",
-                      help="inputs are --trace files of `sva plan`")
-    mode.add_argument("--compare", action="store_true",
-                      help="inputs are missions or directories: compare with the C sva")
-    ap.add_argument("-o", "--out", default="-", help="plan output (default stdout)")
-    ap.add_argument("--trace", help="also write IH's problems as JSON Lines")
-    ap.set_defaults(func=run)
-
-
-def _print_trace_verdict(v: TraceVerdict) -> None:
-    for msg in v.mismatches:
-        print(f"MISMATCH {msg}")
-    print(f"problems checked: {v.problems}; integer LP optimum == tableau cost_total: "
-          f"{v.problems - len(v.mismatches)}/{v.problems}")
-    print(f"problems with dropped sinks: {v.with_drops}; where cover-as-many-as-possible "
-          f"keeps more sinks than the tableau's drop rule: {v.drop_worse} "
-          f"({v.drop_worse_sinks} sinks in all); where it keeps as many sinks but a cheaper "
-          f"set: {v.drop_costlier}")
-
-
-def run(args) -> int:
-    if args.verify_trace:
-        v = TraceVerdict()
-        for path in args.inputs:
-            for rec in read_trace(path):
-                verify_record(rec, v, f"{path}: ")
-        _print_trace_verdict(v)
-        return 1 if v.mismatches else 0
-    if args.compare:
-        from . import cbin
-        cv = CompareVerdict()
-        for path in _mission_paths(args.inputs):
-            m = io.load_mission(path)
-            try:
-                compare_mission(m, cv)
-            except cbin.CliMissing as e:
-                print(f"sva-tools: error: {shown(e)}", file=sys.stderr)
-                return 2
-        _print_trace_verdict(cv.trace)
-        print(f"missions: {cv.missions}; identical plans: {cv.same}; differ with the same "
-              f"covered and cost: {cv.tie}; differ in covered or cost: {len(cv.differ)}; "
-              f"differing plans whose first differing problem was a tie (same problem, "
-              f"other flow of equal cost): {cv.tie_first}/{cv.missions - cv.same}")
-        for msg in cv.differ:
-            print(f"DIFFER {msg}")
-        return 1 if cv.trace.mismatches else 0
-    if len(args.inputs) != 1:
-        print("sva-tools: error: ih plans one mission at a time", file=sys.stderr)
-        return 2
-    m = io.load_mission(args.inputs[0])
-    recs: List[TpRecord] = []
-    p = plan_ih(m, recs)
-    if args.trace:
-        with open(args.trace, "w", encoding="utf-8") as f:
-            for r in recs:
-                f.write(json.dumps({"algorithm": "ih", "source_uavs": r.source_uavs,
-                                    "supply": r.supply, "sink_targets": r.sink_targets,
-                                    "demand": r.demand, "dropped": [not k for k in r.kept],
-                                    "cost": r.cost, "flow": r.flow, "cost_total": r.cost_total,
-                                    "covered": r.covered, "pivots": 0}) + "\n")
-    io.write_json(p.to_json(), args.out)
-    return 0

@@ -13,11 +13,11 @@ import json
 import math
 import os
 import sys
-from typing import Any, Dict, List, Optional
+from typing import Any, Callable, NoReturn, TypeVar
 
-from . import model as M
-from . import schema
-from .text import shown
+from . import model, schema
+
+_T = TypeVar("_T")
 
 
 class InputError(Exception):
@@ -25,13 +25,13 @@ class InputError(Exception):
     `path` names the file when it came from load_mission/load_plan; `where` is the
     place in it (`LINE:COLUMN` of a syntax error, `LINE` of a JSON Lines record)."""
 
-    def __init__(self, message: str, path: Optional[str] = None, where: str = ""):
+    def __init__(self, message: str, path: str | None = None, where: str = ""):
         super().__init__(message)
         self.path = path
         self.where = where
 
 
-def _no_duplicates(pairs):
+def _no_duplicates(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
     out = {}
     for k, v in pairs:
         if k in out:
@@ -52,7 +52,7 @@ class _NotFinite(Exception):
     pass
 
 
-def _constant(name: str):
+def _constant(name: str) -> NoReturn:
     # NaN and Infinity are not JSON (RFC 8259); Python's reader takes them, jansson not.
     raise _NotFinite(f"invalid token {name}")
 
@@ -145,31 +145,31 @@ def check(doc: Any, kind: str) -> None:
         raise InputError(message)
 
 
-def mission_from_json(doc: Any) -> M.Mission:
+def mission_from_json(doc: Any) -> model.Mission:
     """Validates a SPEC 3 mission (the schema, every SPEC 4 rule, default-profile bounds)."""
     check(doc, "mission")
-    uavs = [M.Uav(u["id"], u["x"], u["y"], u["fuel"], u.get("ready_at", 0)) for u in doc["uavs"]]
-    targets = [M.Target(t["id"], t["x"], t["y"], t["start"], t["end"], t["need"])
+    uavs = [model.Uav(u["id"], u["x"], u["y"], u["fuel"], u.get("ready_at", 0)) for u in doc["uavs"]]
+    targets = [model.Target(t["id"], t["x"], t["y"], t["start"], t["end"], t["need"])
                for t in doc["targets"]]
-    return M.Mission(doc["name"], (doc["depot"]["x"], doc["depot"]["y"]), uavs, targets,
-                     doc.get("ticks_per_cell", M.DEFAULT_TICKS_PER_CELL),
-                     doc.get("hover_fuel", M.DEFAULT_HOVER_FUEL),
-                     doc.get("overlap_percent", M.DEFAULT_OVERLAP_PERCENT),
+    return model.Mission(doc["name"], (doc["depot"]["x"], doc["depot"]["y"]), uavs, targets,
+                     doc.get("ticks_per_cell", model.DEFAULT_TICKS_PER_CELL),
+                     doc.get("hover_fuel", model.DEFAULT_HOVER_FUEL),
+                     doc.get("overlap_percent", model.DEFAULT_OVERLAP_PERCENT),
                      doc.get("change_penalty", 0), doc.get("takeoff_ticks", 0))
 
 
-def plan_from_json(doc: Any) -> M.Plan:
+def plan_from_json(doc: Any) -> model.Plan:
     """Validates a SPEC 3 plan against its schema (keys, types, ranges; not its figures:
     that is the checker's job)."""
     check(doc, "plan")
-    routes = [M.Route(r["uav"], list(r["targets"]), r["distance"], r["fuel_used"])
+    routes = [model.Route(r["uav"], list(r["targets"]), r["distance"], r["fuel_used"])
               for r in doc["routes"]]
-    return M.Plan(doc["mission"], doc["algorithm"], doc["status"], doc["covered"],
+    return model.Plan(doc["mission"], doc["algorithm"], doc["status"], doc["covered"],
                   list(doc["uncovered"]), doc["cost"], routes, doc.get("stats"),
                   list(doc.get("stranded", [])))
 
 
-def load_trace(path: str) -> List[dict]:
+def load_trace(path: str) -> list[dict[str, Any]]:
     """The records of a JSON Lines trace (`sva plan --trace`), each checked against the
     trace schema; InputError names the line."""
     try:
@@ -192,7 +192,7 @@ def load_trace(path: str) -> List[dict]:
     return out
 
 
-def _load(path: str, parse):
+def _load(path: str, parse: Callable[[Any], _T]) -> _T:
     try:
         return parse(read_json(path))
     except InputError as e:
@@ -200,17 +200,17 @@ def _load(path: str, parse):
         raise
 
 
-def load_mission(path: str) -> M.Mission:
+def load_mission(path: str) -> model.Mission:
     """The mission in `path`; InputError (with .path) on any SPEC 3/4 breach. The
     `sva-tools` entry point turns an uncaught one into the SPEC 4 message, exit 2."""
     return _load(path, mission_from_json)
 
 
-def load_plan(path: str) -> M.Plan:
+def load_plan(path: str) -> model.Plan:
     return _load(path, plan_from_json)
 
 
-def write_json(doc: Any, path: Optional[str]) -> None:
+def write_json(doc: Any, path: str | None) -> None:
     """Writes doc to path ('-' or None: stdout), atomically for files."""
     text = json.dumps(doc, indent=2) + "\n"
     if path in (None, "-"):
@@ -262,9 +262,3 @@ def wrong_kind(doc: Any, expected: str, taker: str) -> None:
     kind = kind_of(doc, expected)
     if kind and kind != expected:
         raise InputError(f"this is {KIND_TEXT[kind]}; {taker}")
-
-
-def fail(path: str, err: InputError) -> int:
-    where = f"{path}:{err.where}" if err.where else path
-    print(f"sva-tools: error: {shown(where)}: {shown(err)}", file=sys.stderr)
-    return 2

@@ -1,36 +1,20 @@
-"""`sva-tools mavlink upload PLAN.json --mission MISSION.json --vehicle UAV_ID=udp|tcp:HOST:PORT[:SYSID]`:
-a plan's routes as MAVLink missions, uploaded to the vehicles (docs/mavlink.md).
-
-Per UAV with a vehicle: MAV_CMD_NAV_TAKEOFF at its start cell, MAV_CMD_DO_CHANGE_SPEED
-to the plan's ground speed, per target a MAV_CMD_NAV_WAYPOINT at the target cell
-(MAV_FRAME_GLOBAL_RELATIVE_ALT_INT, the frame's alt_m) and a MAV_CMD_NAV_DELAY until the
-UTC time of day of the window's end, then MAV_CMD_NAV_RETURN_TO_LAUNCH. The frame comes
-from the plan's `frame` when it has one, else from the mission's. Each vehicle gets the
-MAVLink mission protocol (MISSION_COUNT, MISSION_REQUEST_INT -> MISSION_ITEM_INT,
-MISSION_ACK) with pymavlink's codec, all vehicles at once, over UDP (datagrams from the
-vehicle's address and port only) or TCP; only the vehicle's autopilot (its system id,
-component 1) is heard, and stray or broken bytes lose no good frame. One line per
-vehicle tells how it went. Exit 0 when every upload was accepted, 1 when one failed, 2
-on bad input (files, frame, command line, a route the items cannot carry).
-"""
+"""A plan's routes as MAVLink missions, uploaded over the MAVLink mission protocol
+(`sva-tools mavlink`)."""
 from __future__ import annotations
 
-import argparse
+import functools
 import math
 import re
 import select
 import socket
 import struct
-import sys
-import threading
 import time
 from dataclasses import dataclass
-from typing import Dict, List, Optional, Tuple
+from typing import Any, Callable
 
-from . import frame as F
 from . import io
-from . import model as M
-from .check import check_plan
+from .frame import Frame as GeoFrame
+from .model import SVA_MAX_ID, Mission, Uav
 from .text import shown
 
 # MAVLink common.xml values (pymavlink.dialects.v20.common has the same names).
@@ -84,17 +68,18 @@ def _round_half_away(v: float) -> int:
     return int(math.floor(abs(v) + 0.5)) * (1 if v >= 0 else -1)
 
 
-def frame_from_json(doc: dict) -> Frame:
+def frame_from_json(doc: dict[str, Any]) -> Frame:
     """The integers of a frame that passed validation (the mission and plan schemas and
     SPEC section 4's t0 rules, sva_tools.frame), as sva_frame_t holds them."""
-    f = F.Frame.from_json(doc)
+    f = GeoFrame.from_json(doc)
     return Frame(_round_half_away(f.lat * 1e7), _round_half_away(f.lon * 1e7),
                  _round_half_away(f.alt_m * 100), _round_half_away(f.cell_m * 100), f.tick_ms,
                  f.t0_ms)
 
 
 def _f32(v: float) -> float:
-    return struct.unpack("<f", struct.pack("<f", v))[0]
+    value: float = struct.unpack("<f", struct.pack("<f", v))[0]
+    return value
 
 
 def _f32_up(v: float) -> float:
@@ -114,7 +99,7 @@ def speed_m_s(frame: Frame, ticks_per_cell: int) -> float:
     return _f32_up(v * (1.0 + (frame.alt_cm / 100.0) / MIN_RADIUS_M))
 
 
-def cell_to_geo(frame: Frame, x: int, y: int) -> Tuple[int, int]:
+def cell_to_geo(frame: Frame, x: int, y: int) -> tuple[int, int]:
     """Cell (x, y) in 1e-7 degree: x * cell east and y * cell north of the origin in its
     local East-North-Up plane (pymap3d.enu2geodetic, WGS84)."""
     import pymap3d
@@ -124,7 +109,7 @@ def cell_to_geo(frame: Frame, x: int, y: int) -> Tuple[int, int]:
     return _round_half_away(float(lat) * 1e7), _round_half_away(float(lon) * 1e7)
 
 
-def build_items(frame: Frame, m: M.Mission, uav: M.Uav, target_ids: List[int]) -> List[Item]:
+def build_items(frame: Frame, m: Mission, uav: Uav, target_ids: list[int]) -> list[Item]:
     """The items of one UAV's route (none when it has no targets). InputError naming the
     UAV and the rule when the route cannot be carried."""
     if not target_ids:
@@ -197,7 +182,7 @@ _IFLAG_SIGNED = 0x01
 _GOOD, _BAD, _INCOMPLETE = range(3)
 
 
-def _dialect():
+def _dialect() -> Any:
     """pymavlink's MAVLink 2 common dialect (imported on first use: it is slow to load)."""
     from pymavlink.dialects.v20 import common
     return common
@@ -226,17 +211,17 @@ class Frames:
         self._held = bytearray()
         self.signed = 0  # signed frames with a good checksum, not taken
 
-    def datagram(self, data: bytes) -> list:
-        out: list = []
+    def datagram(self, data: bytes) -> list[Any]:
+        out: list[Any] = []
         self._scan(bytearray(data), out, final=True)
         return out
 
-    def stream(self, data: bytes) -> list:
-        out: list = []
+    def stream(self, data: bytes) -> list[Any]:
+        out: list[Any] = []
         self._held = self._scan(self._held + data, out, final=False)
         return out
 
-    def _scan(self, buf: bytearray, out: list, final: bool) -> bytearray:
+    def _scan(self, buf: bytearray, out: list[Any], final: bool) -> bytearray:
         i = 0
         while i < len(buf):
             if buf[i] != _STX_V2 and buf[i] != _STX_V1:
@@ -253,7 +238,7 @@ class Frames:
                 i += 1
         return buf[i:]
 
-    def _judge(self, buf: bytearray, i: int) -> Tuple[int, object, int]:
+    def _judge(self, buf: bytearray, i: int) -> tuple[int, object, int]:
         v2 = buf[i] == _STX_V2
         header = _HEADER_V2 if v2 else _HEADER_V1
         have = len(buf) - i
@@ -301,7 +286,7 @@ class Vehicle:
     port: int
     sysid: int
     family: int = 0
-    address: tuple = ()
+    address: tuple[Any, ...] = ()
 
     @property
     def endpoint(self) -> str:
@@ -321,7 +306,7 @@ class Link:
         self.error = ""          # why a TCP link is not up
         self.lost = False        # a TCP connection that was up is gone
         self.next_connect = 0.0
-        self.sock: Optional[socket.socket] = None
+        self.sock: socket.socket | None = None
         if not self.tcp:
             self.sock = socket.socket(vehicle.family, socket.SOCK_DGRAM)
             self.sock.connect(vehicle.address)
@@ -350,7 +335,7 @@ class Link:
         self.sock = sock
         return True
 
-    def _lose(self, why: str) -> list:
+    def _lose(self, why: str) -> list[Any]:
         self.close()
         self.lost, self.error = True, why
         return []
@@ -369,7 +354,7 @@ class Link:
             elif not isinstance(e, ConnectionRefusedError):
                 raise  # refused: an ICMP error of an earlier datagram (nobody listening yet)
 
-    def receive(self, wait_s: float) -> list:
+    def receive(self, wait_s: float) -> list[Any]:
         """The messages that arrive within wait_s (every good frame, any sender)."""
         if self.sock is None:
             time.sleep(wait_s)
@@ -394,8 +379,8 @@ class Link:
         self.sock = None
 
 
-def upload(vehicle: Vehicle, items: List[Item], timeout_ms: int = TIMEOUT_MS,
-           retries: int = RETRIES) -> Optional[str]:
+def upload(vehicle: Vehicle, items: list[Item], timeout_ms: int = TIMEOUT_MS,
+           retries: int = RETRIES) -> str | None:
     """The MAVLink mission protocol, sender side, with pymavlink's codec. None when
     the vehicle accepted the mission, else the reason. Only messages of the vehicle's
     system id and component 1 (MAV_COMP_ID_AUTOPILOT1), to this side's system id and
@@ -418,8 +403,9 @@ def upload(vehicle: Vehicle, items: List[Item], timeout_ms: int = TIMEOUT_MS,
                                       it.command, 1 if seq == 0 else 0, 1, it.param1, it.param2,
                                       it.param3, it.param4, it.x, it.y, it.z, 0)
 
-        resend, what = send_count, "MISSION_COUNT"
-        tries, sent = 0, set()
+        resend: Callable[[], None] = send_count
+        what = "MISSION_COUNT"
+        tries, sent = 0, set[int]()
         now = time.monotonic()
         deadline, next_hb = now + timeout, now + 1.0
         if link.up():
@@ -472,7 +458,7 @@ def upload(vehicle: Vehicle, items: List[Item], timeout_ms: int = TIMEOUT_MS,
                     seq = msg.seq
                     send_item(seq)
                     sent.add(seq)
-                    resend, what = (lambda s=seq: send_item(s)), f"MISSION_ITEM_INT {seq}"
+                    resend, what = functools.partial(send_item, seq), f"MISSION_ITEM_INT {seq}"
                     tries = 0
                     deadline = time.monotonic() + timeout
     finally:
@@ -485,10 +471,10 @@ _VEHICLE = re.compile(r"^([1-9][0-9]{0,9})=(udp|tcp):([^:]+):([0-9]{1,5})(?::([0
 def parse_vehicle(text: str) -> Vehicle:
     """A --vehicle value (its address not resolved yet)."""
     m = _VEHICLE.match(text)
-    if not m or int(m.group(1)) > M.SVA_MAX_ID or not 1 <= int(m.group(4)) <= 65535 or \
+    if not m or int(m.group(1)) > SVA_MAX_ID or not 1 <= int(m.group(4)) <= 65535 or \
             (m.group(5) is not None and not 1 <= int(m.group(5)) <= 255):
         raise io.InputError(f"--vehicle: must be UAV_ID=udp:HOST:PORT[:SYSID] or "
-                            f"UAV_ID=tcp:HOST:PORT[:SYSID] (UAV_ID in [1, {M.SVA_MAX_ID}], PORT in "
+                            f"UAV_ID=tcp:HOST:PORT[:SYSID] (UAV_ID in [1, {SVA_MAX_ID}], PORT in "
                             f"[1, 65535], SYSID in [1, 255]), got \"{shown(text)[:60]}\"")
     return Vehicle(int(m.group(1)), m.group(2), m.group(3), int(m.group(4)), int(m.group(5) or 1))
 
@@ -503,114 +489,3 @@ def resolve(vehicle: Vehicle) -> Vehicle:
                             f"resolve: {shown(getattr(e, 'strerror', None) or e)}") from None
     return Vehicle(vehicle.uav, vehicle.transport, vehicle.host, vehicle.port, vehicle.sysid,
                    family, address)
-
-
-def _load(path: str, kind: str):
-    """The mission or plan in path, validated with its frame (SPEC sections 3 and 4),
-    and its frame object (None when it has none)."""
-    try:
-        doc = io.read_json(path)
-        parsed = io.mission_from_json(doc) if kind == "mission" else io.plan_from_json(doc)
-    except io.InputError as e:
-        e.path = path
-        raise
-    return parsed, doc.get("frame")
-
-
-def add_parser(sub) -> None:
-    ap = sub.add_parser("mavlink", help="upload a plan's routes as MAVLink missions",
-                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    msub = ap.add_subparsers(dest="mavlink_command", metavar="COMMAND")
-    msub.required = True
-    up = msub.add_parser("upload", help="upload the routes to the vehicles (MAVLink over UDP or TCP)")
-    up.add_argument("plan", metavar="PLAN.json")
-    up.add_argument("--mission", required=True, metavar="MISSION.json")
-    up.add_argument("--vehicle", action="append", required=True,
-                    metavar="UAV_ID=udp|tcp:HOST:PORT[:SYSID]",
-                    help="a UAV's vehicle: UDP to its address and port (only datagrams from "
-                    "there are read), or a TCP connection; SYSID its system id (default 1)")
-    up.add_argument("--timeout-ms", type=int, default=TIMEOUT_MS,
-                    help=f"wait per message before resending (default {TIMEOUT_MS})")
-    up.add_argument("--ardupilot", action="store_true",
-                    help="put a home item 0 first (ArduPilot overwrites item 0 with home)")
-    up.add_argument("--retries", type=int, default=RETRIES,
-                    help=f"resends of one message before giving up (default {RETRIES})")
-    up.set_defaults(func=run)
-
-
-def run(args) -> int:
-    if not 1 <= args.timeout_ms <= 600_000 or not 0 <= args.retries <= 100:
-        print("sva-tools: error: mavlink upload: --timeout-ms must be in [1, 600000] and "
-              "--retries in [0, 100]", file=sys.stderr)
-        return 2
-    vehicles: Dict[int, Tuple[Vehicle, str]] = {}
-    for text in args.vehicle:
-        try:
-            vehicle = parse_vehicle(text)
-        except io.InputError as e:
-            return io.fail("mavlink upload", e)
-        if vehicle.uav in vehicles:
-            return io.fail("mavlink upload",
-                           io.InputError(f"--vehicle: UAV {vehicle.uav} given twice"))
-        vehicles[vehicle.uav] = (vehicle, text.split("=", 1)[1])
-    for uid, (vehicle, text) in vehicles.items():
-        try:
-            vehicles[uid] = (resolve(vehicle), text)
-        except io.InputError as e:
-            return io.fail("mavlink upload", e)
-    mission, mframe = _load(args.mission, "mission")
-    plan, pframe = _load(args.plan, "plan")
-    where = pframe if pframe is not None else mframe
-    if where is None:
-        return io.fail(args.plan, io.InputError(
-            "frame: missing: neither the plan nor the mission has a \"frame\" (lat, lon, alt_m, "
-            "cell_m, tick_s, t0): cells and ticks cannot be placed on the Earth"))
-    frame = frame_from_json(where)
-    problems = check_plan(mission, plan)
-    if problems:
-        return io.fail(args.plan, io.InputError(f"plan: does not fit {shown(args.mission)}: "
-                                                f"{problems[0]}"))
-    uavs = {u.id: u for u in mission.uavs}
-    routes = {r.uav: r.targets for r in plan.routes}
-    for uid in vehicles:
-        if uid not in uavs:
-            return io.fail("mavlink upload", io.InputError(
-                f"--vehicle: UAV {uid} is not in the mission"))
-    work: List[Tuple[int, List[Item]]] = []
-    results: Dict[int, str] = {}
-    status = 0
-    for uid in sorted(vehicles, key=lambda u: [x.id for x in mission.uavs].index(u)):
-        try:
-            items = build_items(frame, mission, uavs[uid], routes.get(uid, []))
-        except io.InputError as e:
-            results[uid] = f"error: {e}"
-            status = 1
-            continue
-        if not items:
-            results[uid] = "nothing to upload: the plan gives it no targets"
-            continue
-        if args.ardupilot:
-            items = [prepend_home(items[0])] + items
-        work.append((uid, items))
-
-    def one(uid: int, items: List[Item]) -> None:
-        vehicle = vehicles[uid][0]
-        try:
-            why = upload(vehicle, items, args.timeout_ms, args.retries)
-        except OSError as e:
-            why = f"{vehicle.transport}: {e.strerror or e}"
-        except Exception as e:  # noqa: BLE001 -- one vehicle's fault must not stop the others
-            why = f"{type(e).__name__}: {shown(e)}"
-        results[uid] = f"uploaded {len(items)} items" if why is None else f"error: {why}"
-
-    threads = [threading.Thread(target=one, args=w) for w in work]
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
-    for uid in vehicles:
-        line = results[uid]
-        if line.startswith("error"):
-            status = 1
-        print(f"uav {uid}: {shown(vehicles[uid][1])}: {shown(line)}")
-    return status

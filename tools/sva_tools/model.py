@@ -5,8 +5,9 @@ checker, the reference solver, IH and the generator all build on these functions
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Dict, List, Optional, Sequence, Tuple
+from typing import Any
 
 # Bounds of the core's default profile (core/include/sva/sva_config.h). The host tools
 # reject what the default build of the C CLI rejects, naming the same limit.
@@ -50,19 +51,19 @@ class Target:
 @dataclass
 class Mission:
     name: str
-    depot: Tuple[int, int]
-    uavs: List[Uav]
-    targets: List[Target]
+    depot: tuple[int, int]
+    uavs: list[Uav]
+    targets: list[Target]
     ticks_per_cell: int = DEFAULT_TICKS_PER_CELL
     hover_fuel: int = DEFAULT_HOVER_FUEL
     overlap_percent: int = DEFAULT_OVERLAP_PERCENT
     change_penalty: int = 0   # live missions only (SPEC 12.4); written when not 0
     takeoff_ticks: int = 0    # live missions only (SPEC 12.2); written when not 0
 
-    def target_by_id(self) -> Dict[int, Target]:
+    def target_by_id(self) -> dict[int, Target]:
         return {t.id: t for t in self.targets}
 
-    def to_json(self) -> dict:
+    def to_json(self) -> dict[str, Any]:
         out = {
             "name": self.name,
             "depot": {"x": self.depot[0], "y": self.depot[1]},
@@ -84,7 +85,7 @@ class Mission:
 @dataclass
 class Route:
     uav: int
-    targets: List[int]
+    targets: list[int]
     distance: int
     fuel_used: int
 
@@ -95,13 +96,13 @@ class Plan:
     algorithm: str
     status: str
     covered: int
-    uncovered: List[int]
+    uncovered: list[int]
     cost: int
-    routes: List[Route]
-    stats: Optional[dict] = None
-    stranded: List[int] = field(default_factory=list)
+    routes: list[Route]
+    stats: dict[str, Any] | None = None
+    stranded: list[int] = field(default_factory=list)
 
-    def to_json(self) -> dict:
+    def to_json(self) -> dict[str, Any]:
         out = {
             "mission": self.mission,
             "algorithm": self.algorithm,
@@ -125,7 +126,7 @@ def manhattan(ax: int, ay: int, bx: int, by: int) -> int:
     return abs(ax - bx) + abs(ay - by)
 
 
-def dist_pt(a, b) -> int:
+def dist_pt(a: Uav | Target | tuple[int, int], b: Uav | Target | tuple[int, int]) -> int:
     """Manhattan distance between two objects with x and y (or (x, y) tuples)."""
     ax, ay = (a if isinstance(a, tuple) else (a.x, a.y))
     bx, by = (b if isinstance(b, tuple) else (b.x, b.y))
@@ -172,20 +173,20 @@ def route_feasible(m: Mission, u: Uav, targets: Sequence[Target]) -> bool:
     return route_fuel(m, u, targets) <= u.fuel
 
 
-def window_overlap(a: Target, b: Target) -> Tuple[int, int]:
+def window_overlap(a: Target, b: Target) -> tuple[int, int]:
     """SPEC 2's overlap measure: (|A n B|, min(|A|, |B|)), with |[s, e]| = e - s."""
     inter = max(0, min(a.end, b.end) - max(a.start, b.start))
     return inter, min(a.end - a.start, b.end - b.start)
 
 
-def sorted_targets(m: Mission) -> List[Target]:
+def sorted_targets(m: Mission) -> list[Target]:
     return sorted(m.targets, key=lambda t: (t.start, t.end, t.id))
 
 
-def clusters(m: Mission) -> List[List[Target]]:
+def clusters(m: Mission) -> list[list[Target]]:
     """SPEC 2 clustering: sort by (start, end, id); join the current cluster iff
     100 * |A n B| >= overlap_percent * min(|A|, |B|) with its last member."""
-    out: List[List[Target]] = []
+    out: list[list[Target]] = []
     for t in sorted_targets(m):
         if out:
             inter, shorter = window_overlap(out[-1][-1], t)
@@ -209,14 +210,14 @@ def intersection_ratio(m: Mission) -> float:
     return sum(vals) / len(vals)
 
 
-def make_plan(m: Mission, algorithm: str, assignment: Dict[int, List[int]],
-              stats: Optional[dict] = None) -> Plan:
+def make_plan(m: Mission, algorithm: str, assignment: dict[int, list[int]],
+              stats: dict[str, Any] | None = None) -> Plan:
     """Builds a SPEC 3 plan from {uav id: [target ids in visit order]}; counts, cost,
     stranded list and uncovered list are derived here (SPEC 1 rules)."""
     tmap = m.target_by_id()
-    served: Dict[int, int] = {t.id: 0 for t in m.targets}
-    routes: List[Route] = []
-    stranded: List[int] = []
+    served: dict[int, int] = {t.id: 0 for t in m.targets}
+    routes: list[Route] = []
+    stranded: list[int] = []
     for u in m.uavs:
         ids = list(assignment.get(u.id, []))
         if is_stranded(m, u):

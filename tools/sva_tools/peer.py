@@ -1,58 +1,26 @@
-"""`sva-tools peer MISSION`: the general-purpose alternative, OR-tools' routing solver.
-
-Model (docs/tools.md): one vehicle per UAV that can get home (start node at its
-position, end node at the depot); each target t becomes t.need copies, nodes with
-the time cumul fixed to t.start (arrive by the start, wait allowed) and a transit of
-(t.end - t.start) + travel out of them, so every copy is synchronised at t.start and
-no UAV can take two copies of one target. Fuel is a dimension with per-vehicle
-capacity (the UAV's fuel): transit = leg distance + hover_fuel out of a copy. The
-copies of a target form one disjunction (max cardinality need, penalty paid once when
-not all are served: partial service only adds cost), and the penalty exceeds any
-possible cost, so coverage comes first. Arc cost = distance. All or none is then
-enforced on the solution: copies of a target served only in part are removed (always
-feasible: a shortcut is no longer in distance, fuel or time; stats.repaired_targets
-counts them). The hard form (a constraint keeping a target's copies all active or all
-inactive, --hard-all-or-none) is available but makes the routing heuristics fail to
-find any first solution on most missions of 25 targets (measured: docs/tools.md).
-
-Search limits are fixed so runs repeat: first solution PATH_CHEAPEST_ARC (starting
-from the all-dropped solution when that heuristic finds nothing), then greedy descent
-(local search until no neighbour improves: a local optimum) capped at --solution-limit
-solutions (default 100). Neither depends on the clock or on machine load. The
-routing library has no iteration or branch limit in its search parameters, only
-solution_limit and two wall-clock limits: time_limit and lns_time_limit, which bounds
-the completion search of the CP-based LNS operators (path, full path, TSP, inactive
-LNS); those operators are switched off here (they are off by default too), so
-lns_time_limit plays no part. Guided local search was tried and dropped: it never
-stops on its own, so only a wall-clock limit ends it, and that is not repeatable.
---time-limit (default 300 s) is a safety net only; stats.stopped_by says what ended
-the search: local_optimum, solution_limit, time_limit (not repeatable) or no_solution.
-"""
+"""The OR-tools routing peer (`sva-tools peer`)."""
 from __future__ import annotations
 
-import argparse
 import time
-from typing import Dict, List
 
-from . import io
-from . import model as M
+from . import model
 
 SOLUTION_LIMIT = 100
 SAFETY_TIME_LIMIT = 300.0
 
 
-def solve_peer(m: M.Mission, solution_limit: int = SOLUTION_LIMIT,
+def solve_peer(m: model.Mission, solution_limit: int = SOLUTION_LIMIT,
                time_limit: float = SAFETY_TIME_LIMIT,
-               hard_all_or_none: bool = False) -> M.Plan:
+               hard_all_or_none: bool = False) -> model.Plan:
     from ortools.constraint_solver import pywrapcp, routing_enums_pb2
     from ortools.util import optional_boolean_pb2
 
     t0 = time.perf_counter()
-    vehicles = [u for u in m.uavs if not M.is_stranded(m, u)]
+    vehicles = [u for u in m.uavs if not model.is_stranded(m, u)]
     nv = len(vehicles)
     # node 0: depot; 1..nv: vehicle starts; then target copies
     locs = [m.depot] + [(u.x, u.y) for u in vehicles]
-    copy_target: List[M.Target] = []
+    copy_target: list[model.Target] = []
     for t in m.targets:
         for _ in range(t.need):
             copy_target.append(t)
@@ -60,7 +28,7 @@ def solve_peer(m: M.Mission, solution_limit: int = SOLUTION_LIMIT,
     first_copy = 1 + nv
     nn = len(locs)
     if nv == 0 or not copy_target:
-        return M.make_plan(m, "peer", {}, {"solve_us": int((time.perf_counter() - t0) * 1e6),
+        return model.make_plan(m, "peer", {}, {"solve_us": int((time.perf_counter() - t0) * 1e6),
                                            "solution_limit": solution_limit, "stopped_by": "trivial"})
     starts = list(range(1, nv + 1))
     ends = [0] * nv
@@ -68,13 +36,13 @@ def solve_peer(m: M.Mission, solution_limit: int = SOLUTION_LIMIT,
     routing = pywrapcp.RoutingModel(mgr)
     tpc = m.ticks_per_cell
 
-    def d(i, j):
+    def d(i: int, j: int) -> int:
         return abs(locs[i][0] - locs[j][0]) + abs(locs[i][1] - locs[j][1])
 
-    def dist_cb(a, b):
+    def dist_cb(a: int, b: int) -> int:
         return d(mgr.IndexToNode(a), mgr.IndexToNode(b))
 
-    def time_cb(a, b):
+    def time_cb(a: int, b: int) -> int:
         i, j = mgr.IndexToNode(a), mgr.IndexToNode(b)
         stay = 0
         if i >= first_copy:
@@ -82,7 +50,7 @@ def solve_peer(m: M.Mission, solution_limit: int = SOLUTION_LIMIT,
             stay = t.end - t.start
         return stay + d(i, j) * tpc
 
-    def fuel_cb(a, b):
+    def fuel_cb(a: int, b: int) -> int:
         i, j = mgr.IndexToNode(a), mgr.IndexToNode(b)
         return d(i, j) + (m.hover_fuel if i >= first_copy else 0)
 
@@ -91,7 +59,7 @@ def solve_peer(m: M.Mission, solution_limit: int = SOLUTION_LIMIT,
     fuel_i = routing.RegisterTransitCallback(fuel_cb)
     routing.SetArcCostEvaluatorOfAllVehicles(dist_i)
     horizon = max([t.end for t in m.targets] + [u.ready_at for u in vehicles]) \
-        + 2 * (M.SVA_COORD_MAX - M.SVA_COORD_MIN) * tpc + 1
+        + 2 * (model.SVA_COORD_MAX - model.SVA_COORD_MIN) * tpc + 1
     routing.AddDimension(time_i, horizon, horizon, False, "time")
     tdim = routing.GetDimensionOrDie("time")
     routing.AddDimensionWithVehicleCapacity(fuel_i, 0, [u.fuel for u in vehicles], True, "fuel")
@@ -129,7 +97,7 @@ def solve_peer(m: M.Mission, solution_limit: int = SOLUTION_LIMIT,
         sol = routing.SolveFromAssignmentWithParameters(empty, params)
         start_from = "all_dropped"
     elapsed = time.perf_counter() - t0
-    assignment: Dict[int, List[int]] = {}
+    assignment: dict[int, list[int]] = {}
     if sol is not None:
         for v, u in enumerate(vehicles):
             seq = []
@@ -143,7 +111,7 @@ def solve_peer(m: M.Mission, solution_limit: int = SOLUTION_LIMIT,
     # All or none, enforced after the search: a partly served target's copies are
     # removed (SPEC 1). Removing a visit keeps a route feasible: by the triangle
     # inequality the shortcut is no longer in distance, fuel or time.
-    count: Dict[int, int] = {}
+    count: dict[int, int] = {}
     for seq in assignment.values():
         for tid in seq:
             count[tid] = count.get(tid, 0) + 1
@@ -164,26 +132,4 @@ def solve_peer(m: M.Mission, solution_limit: int = SOLUTION_LIMIT,
     stats = {"solve_us": int(elapsed * 1e6), "solution_limit": solution_limit,
              "start": start_from, "stopped_by": stopped,
              "found": sol is not None, "repaired_targets": len(partial)}
-    return M.make_plan(m, "peer", assignment, stats)
-
-
-def add_parser(sub) -> None:
-    ap = sub.add_parser("peer", help="OR-tools routing solver with synchronised copies",
-                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("mission")
-    ap.add_argument("--solution-limit", type=int, default=SOLUTION_LIMIT,
-                    help=f"stop the greedy descent after this many solutions (default {SOLUTION_LIMIT})")
-    ap.add_argument("--time-limit", type=float, default=SAFETY_TIME_LIMIT,
-                    help=f"wall-clock safety net in seconds (default {SAFETY_TIME_LIMIT:g}); "
-                         f"stats.stopped_by is time_limit when it ended the search")
-    ap.add_argument("--hard-all-or-none", action="store_true",
-                    help="constrain each target's copies to be all active or all inactive")
-    ap.add_argument("-o", "--out", default="-")
-    ap.set_defaults(func=run)
-
-
-def run(args) -> int:
-    m = io.load_mission(args.mission)
-    p = solve_peer(m, args.solution_limit, args.time_limit, args.hard_all_or_none)
-    io.write_json(p.to_json(), args.out)
-    return 0
+    return model.make_plan(m, "peer", assignment, stats)

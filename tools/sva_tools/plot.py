@@ -1,24 +1,13 @@
-"""`sva-tools plot MISSION PLAN [-o PNG]`: the plan as a picture.
-
-Left: the grid map with the depot (black square), every target (circle: green when
-covered, red when not; label "T<id> n<need> [start,end]") and each UAV's route (one
-colour per UAV, from its position through its targets to the depot). Right: a Gantt
-chart, one row per UAV (flight legs leaving as early as possible, waiting hatched,
-serving solid) under one row per target window.
-
-A plan that is not a plan of the mission (`sva-tools check` finds a violation) is
-refused with the first violation, one line, exit status 2.
-"""
+"""Drawings of a mission and its plan (`sva-tools plot`)."""
 from __future__ import annotations
 
-import argparse
+from types import ModuleType
+from typing import Any
 
-from . import check, io
-from . import model as M
-from .text import shown
+from . import model
 
 
-def pyplot():
+def pyplot() -> ModuleType:
     """matplotlib.pyplot on the file-only Agg backend."""
     import matplotlib
     matplotlib.use("Agg")
@@ -26,19 +15,19 @@ def pyplot():
     return plt
 
 
-def draw_depot(ax, depot) -> None:
+def draw_depot(ax: Any, depot: tuple[int, int]) -> None:
     ax.plot(*depot, marker="s", color="black", markersize=12, zorder=5)
     ax.annotate("depot", depot, textcoords="offset points", xytext=(6, -12), fontsize=9)
 
 
-def draw_target(ax, t: M.Target, colour: str) -> None:
+def draw_target(ax: Any, t: model.Target, colour: str) -> None:
     """A target on the map: a circle in `colour`, labelled "T<id> n<need> [start,end]"."""
     ax.plot(t.x, t.y, "o", color=colour, markersize=10, zorder=4, alpha=0.8)
     ax.annotate(f"T{t.id} n{t.need} [{t.start},{t.end}]", (t.x, t.y),
                 textcoords="offset points", xytext=(6, 6), fontsize=8)
 
 
-def render(m: M.Mission, p: M.Plan, path: str) -> None:
+def render(m: model.Mission, p: model.Plan, path: str) -> None:
     plt = pyplot()
 
     tmap = m.target_by_id()
@@ -79,7 +68,7 @@ def render(m: M.Mission, p: M.Plan, path: str) -> None:
                  f"cost {p.cost}")
 
     # --- Gantt
-    ts = M.sorted_targets(m)
+    ts = model.sorted_targets(m)
     rows = []
     for t in ts:
         rows.append(f"T{t.id} (n{t.need})")
@@ -98,10 +87,11 @@ def render(m: M.Mission, p: M.Plan, path: str) -> None:
         col = cmap(i % cmap.N)
         clock, pos = u.ready_at, (u.x, u.y)
         for tid in r.targets:
-            t = tmap.get(tid)
-            if t is None:
+            tt = tmap.get(tid)
+            if tt is None:
                 continue
-            fly = M.dist_pt(pos, t) * m.ticks_per_cell
+            t = tt
+            fly = model.dist_pt(pos, t) * m.ticks_per_cell
             gx.broken_barh([(clock, fly)], (y - 0.15, 0.3), color=col, alpha=0.5)
             if clock + fly < t.start:
                 gx.broken_barh([(clock + fly, t.start - clock - fly)], (y - 0.25, 0.5),
@@ -111,7 +101,7 @@ def render(m: M.Mission, p: M.Plan, path: str) -> None:
                     color="white")
             clock, pos = t.end, (t.x, t.y)
         if r.targets or pos != m.depot:
-            home = M.dist_pt(pos, m.depot) * m.ticks_per_cell
+            home = model.dist_pt(pos, m.depot) * m.ticks_per_cell
             gx.broken_barh([(clock, home)], (y - 0.15, 0.3), color=col, alpha=0.5)
     gx.set_yticks(range(len(rows)))
     gx.set_yticklabels(rows, fontsize=8)
@@ -124,25 +114,3 @@ def render(m: M.Mission, p: M.Plan, path: str) -> None:
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
-
-
-def add_parser(sub) -> None:
-    ap = sub.add_parser("plot", help="PNG of a plan: map and Gantt chart",
-                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("mission")
-    ap.add_argument("plan")
-    ap.add_argument("-o", "--out", help="PNG path (default: PLAN with .png)")
-    ap.set_defaults(func=run)
-
-
-def run(args) -> int:
-    m = io.load_mission(args.mission)
-    p = io.load_plan(args.plan)
-    violations = check.check_plan(m, p)
-    if violations:
-        raise io.InputError(f"not a plan of this mission (SPEC section 1): {violations[0]}",
-                            args.plan)
-    out = args.out or (args.plan[:-5] if args.plan.endswith(".json") else args.plan) + ".png"
-    render(m, p, out)
-    print(shown(out))
-    return 0

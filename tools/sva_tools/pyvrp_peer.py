@@ -1,6 +1,6 @@
 """PyVRP (0.14) as a peer: a prize-collecting VRP with time windows, need-1 missions only.
 
-Usage: python -m sva_tools.pyvrp_peer MISSION [--time-limit S] [--seed N] [-o PLAN]
+Usage: python -m sva_tools.commands.pyvrp_peer MISSION [--time-limit S] [--seed N] [-o PLAN]
 
 Model (SPEC 1, modelled as exactly as a plain VRP allows):
 - One optional client per target with prize P = (sum of the UAVs' fuel) + hover_fuel + 1.
@@ -36,34 +36,31 @@ refuses it and the failure is counted, never hidden).
 """
 from __future__ import annotations
 
-import argparse
-import sys
 import time
 from dataclasses import dataclass
-from typing import Any, Dict, List, Tuple
+from typing import Any
 
-from . import io
-from . import model as M
+from .model import Mission, Plan, Target, Uav, can_start, dist_pt, is_stranded, make_plan
 
 TIME_LIMIT = 1.0
 SEED = 1
 
 
-def servable(m: M.Mission, u: M.Uav, t: M.Target) -> bool:
+def servable(m: Mission, u: Uav, t: Target) -> bool:
     """u can reach t by its start and come home with its fuel (t as the only target)."""
-    return (M.can_start(m, u, t)
-            and M.dist_pt(u, t) + m.hover_fuel + M.dist_pt(t, m.depot) <= u.fuel)
+    return (can_start(m, u, t)
+            and dist_pt(u, t) + m.hover_fuel + dist_pt(t, m.depot) <= u.fuel)
 
 
 @dataclass
 class PeerModel:
     """The PyVRP model of a need-1 mission and how to read its solutions back."""
     model: Any                                     # pyvrp.Model
-    targets: List[M.Target]                        # client k is targets[k]
-    groups: Dict[Tuple[int, int, int, int], List[M.Uav]]   # vehicle type k: list(groups)[k]
+    targets: list[Target]                        # client k is targets[k]
+    groups: dict[tuple[int, int, int, int], list[Uav]]   # vehicle type k: list(groups)[k]
 
 
-def build_model(m: M.Mission) -> PeerModel:
+def build_model(m: Mission) -> PeerModel:
     """The model of the module's docstring. Raises ValueError when a target needs more
     than one UAV."""
     from pyvrp import Model
@@ -72,15 +69,15 @@ def build_model(m: M.Mission) -> PeerModel:
     if big:
         raise ValueError(f"pyvrp peer: targets {big[:5]} need more than one UAV; "
                          "PyVRP models need-1 missions only")
-    vehicles = [u for u in m.uavs if not M.is_stranded(m, u)]
+    vehicles = [u for u in m.uavs if not is_stranded(m, u)]
     targets = [t for t in m.targets if any(servable(m, u, t) for u in vehicles)]
-    groups: Dict[Tuple[int, int, int, int], List[M.Uav]] = {}
+    groups: dict[tuple[int, int, int, int], list[Uav]] = {}
     for u in vehicles:
         groups.setdefault((u.x, u.y, u.fuel, u.ready_at), []).append(u)
     model = Model()
-    points: List[Tuple[int, int]] = []
+    points: list[tuple[int, int]] = []
     locations = []
-    is_client: List[bool] = []
+    is_client: list[bool] = []
 
     def location(x: int, y: int, client: bool) -> Any:
         points.append((x, y))
@@ -90,7 +87,7 @@ def build_model(m: M.Mission) -> PeerModel:
         return loc
 
     home = model.add_depot(location(m.depot[0], m.depot[1], False))
-    starts: Dict[Tuple[int, int], Any] = {m.depot: home}
+    starts: dict[tuple[int, int], Any] = {m.depot: home}
     for (x, y, _, _) in groups:
         if (x, y) not in starts:
             starts[(x, y)] = model.add_depot(location(x, y, False))
@@ -100,7 +97,7 @@ def build_model(m: M.Mission) -> PeerModel:
         # the objective the plan's cost less a constant (the fleet's ways home).
         model.add_vehicle_type(num_available=len(uavs), start_depot=starts[(x, y)],
                                end_depot=home, tw_early=ready, max_distance=fuel,
-                               fixed_cost=-M.dist_pt((x, y), m.depot),
+                               fixed_cost=-dist_pt((x, y), m.depot),
                                unit_distance_cost=1, unit_duration_cost=0)
     prize = sum(u.fuel for u in vehicles) + m.hover_fuel + 1
     for t in targets:
@@ -110,13 +107,13 @@ def build_model(m: M.Mission) -> PeerModel:
     for i, a in enumerate(locations):
         for j, b in enumerate(locations):
             if i != j:
-                d = M.dist_pt(points[i], points[j])
+                d = dist_pt(points[i], points[j])
                 model.add_edge(a, b, distance=d + (m.hover_fuel if is_client[j] else 0),
                                duration=d * tpc)
     return PeerModel(model, targets, groups)
 
 
-def solution_of(pm: PeerModel, plan: M.Plan) -> Any:
+def solution_of(pm: PeerModel, plan: Plan) -> Any:
     """The pyvrp.Solution of a project plan (every served target must be a client of the
     model): the model check, an optimal plan must be feasible in the model."""
     from pyvrp import Route, Solution
@@ -129,7 +126,7 @@ def solution_of(pm: PeerModel, plan: M.Plan) -> Any:
     return Solution(data, routes)
 
 
-def solve_pyvrp(m: M.Mission, time_limit: float = TIME_LIMIT, seed: int = SEED) -> M.Plan:
+def solve_pyvrp(m: Mission, time_limit: float = TIME_LIMIT, seed: int = SEED) -> Plan:
     """PyVRP's best plan within time_limit seconds (wall clock). Raises ValueError when a
     target needs more than one UAV."""
     from pyvrp.stop import MaxRuntime
@@ -139,7 +136,7 @@ def solve_pyvrp(m: M.Mission, time_limit: float = TIME_LIMIT, seed: int = SEED) 
     base = {"time_limit_s": time_limit, "seed": seed,
             "left_out_targets": len(m.targets) - len(pm.targets)}
     if not pm.groups or not pm.targets:
-        return M.make_plan(m, "pyvrp", {}, dict(base, solve_us=int((time.perf_counter() - t0) * 1e6),
+        return make_plan(m, "pyvrp", {}, dict(base, solve_us=int((time.perf_counter() - t0) * 1e6),
                                                feasible=True, stopped_by="trivial"))
     result = pm.model.solve(stop=MaxRuntime(time_limit), seed=seed, display=False,
                             collect_stats=False)
@@ -147,7 +144,7 @@ def solve_pyvrp(m: M.Mission, time_limit: float = TIME_LIMIT, seed: int = SEED) 
     elapsed = time.perf_counter() - t0
     groups = list(pm.groups.values())
     taken = [0] * len(groups)
-    assignment: Dict[int, List[int]] = {}
+    assignment: dict[int, list[int]] = {}
     for route in best.routes():
         k = route.vehicle_type()
         uav = groups[k][taken[k]]
@@ -157,30 +154,4 @@ def solve_pyvrp(m: M.Mission, time_limit: float = TIME_LIMIT, seed: int = SEED) 
     stats = dict(base, solve_us=int(elapsed * 1e6), feasible=bool(best.is_feasible()),
                  objective=int(result.cost()) if best.is_feasible() else None,
                  iterations=int(result.num_iterations), stopped_by="time_limit")
-    return M.make_plan(m, "pyvrp", assignment, stats)
-
-
-def main(argv: List[str]) -> int:
-    ap = argparse.ArgumentParser(prog="pyvrp_peer", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("mission")
-    ap.add_argument("--time-limit", type=float, default=TIME_LIMIT,
-                    help=f"wall-clock search limit in seconds (default {TIME_LIMIT:g})")
-    ap.add_argument("--seed", type=int, default=SEED, help=f"PyVRP's seed (default {SEED})")
-    ap.add_argument("-o", "--out", default="-")
-    args = ap.parse_args(argv)
-    try:
-        mission = io.load_mission(args.mission)
-    except io.InputError as e:
-        return io.fail(args.mission, e)
-    try:
-        plan = solve_pyvrp(mission, args.time_limit, args.seed)
-    except ValueError as e:
-        print(f"pyvrp_peer: error: {e}", file=sys.stderr)
-        return 2
-    io.write_json(plan.to_json(), args.out)
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))
+    return make_plan(m, "pyvrp", assignment, stats)

@@ -17,14 +17,18 @@ from __future__ import annotations
 
 import functools
 import json
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, Dict, List, Optional, Tuple
+from typing import TYPE_CHECKING, Any
 
 from jsonschema import Draft202012Validator, validators
 from referencing import Registry, Resource
 
-from . import frame as F
-from . import model as M
+from .frame import ISO_RULE, t0_rule
+from .model import SVA_MAX_TARGETS, SVA_MAX_UAVS
+
+if TYPE_CHECKING:
+    from typing import TypeGuard
 
 # The repository's docs/schema; an installed package carries a copy (schema_files/).
 SCHEMA_DIR = Path(__file__).resolve().parents[2] / "docs" / "schema"
@@ -48,17 +52,18 @@ _AFTER_FIELDS = 1000  # rules over a whole list element come after its fields
 _SHAPE, _VALUE = 0, 1
 
 
-def _is_int(_checker, value: Any) -> bool:
+def _is_int(_checker: Any, value: Any) -> bool:
     return isinstance(value, int) and not isinstance(value, bool)
 
 
-_Validator = validators.extend(
+# types-jsonschema leaves validators.extend unannotated
+_Validator = validators.extend(  # type: ignore[no-untyped-call]
     Draft202012Validator,
     type_checker=Draft202012Validator.TYPE_CHECKER.redefine("integer", _is_int))
 
 
-@functools.lru_cache(maxsize=None)
-def schemas() -> Dict[str, dict]:
+@functools.cache
+def schemas() -> dict[str, dict[str, Any]]:
     """Every schema of docs/schema by kind."""
     out = {}
     for kind in KINDS:
@@ -67,13 +72,13 @@ def schemas() -> Dict[str, dict]:
     return out
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _registry() -> Registry:
     return Registry().with_resources(
         (s["$id"], Resource.from_contents(s)) for s in schemas().values())
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def validator(kind: str, definition: str = "") -> Draft202012Validator:
     """The validator of a kind's schema, or of one of its $defs (e.g. plan's cli_stats:
     the stats exactly as `sva plan` writes them)."""
@@ -84,7 +89,8 @@ def validator(kind: str, definition: str = "") -> Draft202012Validator:
         if definition not in s.get("$defs", {}):
             raise ValueError(f"{kind} schema has no definition {definition!r}")
         s = {"$ref": f"{s['$id']}#/$defs/{definition}"}
-    return _Validator(s, registry=_registry())
+    checker: Draft202012Validator = _Validator(s, registry=_registry())
+    return checker
 
 
 def version() -> int:
@@ -109,7 +115,7 @@ def json_type(value: Any) -> str:
     return "null"
 
 
-def field_path(root: str, parts) -> str:
+def field_path(root: str, parts: Sequence[str | int]) -> str:
     """`targets[1].need` from ["targets", 1, "need"]; the root's name when empty."""
     out = ""
     for p in parts:
@@ -117,20 +123,24 @@ def field_path(root: str, parts) -> str:
     return out or root
 
 
-def _position(parts) -> Tuple:
+def _position(parts: Sequence[str | int]) -> Position:
     return tuple((p, "") if isinstance(p, int) else (_KEY_RANK.get(p, len(_KEY_RANK)), p)
                  for p in parts)
 
 
+# Where an error is: per path part, (index, "") or (key rank, key).
+Position = tuple[tuple[int, str], ...]
 # One candidate error: (phase, position, order at that position, message).
-Found = Tuple[int, Tuple, int, str]
+Found = tuple[int, Position, int, str]
 
 
 def _article(type_name: str) -> str:
     return "an" if type_name[0] in "aeiou" else "a"
 
 
-def _described(err, root: str, prefix: Tuple = ()) -> Optional[Found]:
+def _described(err: Any, root: str, prefix: tuple[str | int, ...] = ()) -> Found | None:
+    # err: a jsonschema ValidationError; Any, as its stub types each field as possibly unset
+    # while the validator has set every one it reports.
     kw, sch, v = err.validator, err.schema, err.instance
     parts = list(prefix) + list(err.absolute_path)
     where = field_path(root, parts)
@@ -164,7 +174,7 @@ def _described(err, root: str, prefix: Tuple = ()) -> Optional[Found]:
     if kw == "const":
         return (_VALUE, pos, 0, f"{where}: must be {json.dumps(err.validator_value)}, got {json.dumps(v)}")
     if kw == "uniqueItems":
-        first: Dict[str, int] = {}
+        first: dict[str, int] = {}
         for j, item in enumerate(v):
             key = json.dumps(item, sort_keys=True)
             if key in first:
@@ -180,33 +190,33 @@ def _described(err, root: str, prefix: Tuple = ()) -> Optional[Found]:
         # "null or X": report why the value is not an X.
         inner = [_described(e, root, prefix) for e in err.context if e.validator != "type"
                  or e.validator_value != "null"]
-        inner = [f for f in inner if f is not None]
-        if inner:
-            return min(inner, key=lambda f: f[:3])
+        candidates = [f for f in inner if f is not None]
+        if candidates:
+            return min(candidates, key=lambda f: f[:3])
         return (_SHAPE, pos, 2, f"{where}: must be null or {_article(_first_type(err))} "
                                 f"{_first_type(err)}, got {json_type(v)}")
     if rule == "utc-time" and kw == "pattern":
-        return (_VALUE, pos, 0, f"{where}: {F.ISO_RULE}, got {json.dumps(v)}")
+        return (_VALUE, pos, 0, f"{where}: {ISO_RULE}, got {json.dumps(v)}")
     if kw == "pattern":
         return (_VALUE, pos, 0, f"{where}: must match {err.validator_value}, got {json.dumps(v)}")
     return (_VALUE, pos, 0, f"{where}: {err.message}")
 
 
-def _first_type(err) -> str:
+def _first_type(err: Any) -> str:
     for e in err.context:
         if e.validator == "type" and e.validator_value != "null":
             return e.validator_value if isinstance(e.validator_value, str) else e.validator_value[0]
     return "value"
 
 
-def _ints(*values) -> bool:
-    return all(_is_int(None, v) for v in values)
+def _int(value: Any) -> TypeGuard[int]:
+    return _is_int(None, value)
 
 
-def _duplicate_ids(items, list_name: str, found: List[Found]) -> None:
-    first: Dict[int, int] = {}
+def _duplicate_ids(items: list[Any], list_name: str, found: list[Found]) -> None:
+    first: dict[int, int] = {}
     for i, item in enumerate(items):
-        if not isinstance(item, dict) or not _ints(item.get("id")):
+        if not isinstance(item, dict) or not _int(item.get("id")):
             continue
         uid = item["id"]
         if uid in first:
@@ -216,24 +226,24 @@ def _duplicate_ids(items, list_name: str, found: List[Found]) -> None:
             first[uid] = i
 
 
-def _frame_rules(doc: Any, found: List[Found]) -> None:
+def _frame_rules(doc: Any, found: list[Found]) -> None:
     """The frame's t0 (SPEC section 3): a date of the calendar, within the range (its
     form is the schema's pattern, which Python's `$` lets end in a newline)."""
     frame = doc.get("frame")
     if not isinstance(frame, dict) or not isinstance(frame.get("t0"), str):
         return
-    rule = F.t0_rule(frame["t0"])
+    rule = t0_rule(frame["t0"])
     if rule:
         found.append((_VALUE, _position(["frame", "t0"]), 0,
                       f"frame.t0: {rule}, got {json.dumps(frame['t0'])}"))
 
 
-def _plan_rules(doc: Any, found: List[Found]) -> None:
+def _plan_rules(doc: Any, found: list[Found]) -> None:
     if isinstance(doc, dict):
         _frame_rules(doc, found)
 
 
-def _mission_rules(doc: Any, found: List[Found]) -> None:
+def _mission_rules(doc: Any, found: list[Found]) -> None:
     """SPEC section 4 rules a schema cannot express; the default profile's bounds."""
     if not isinstance(doc, dict):
         return
@@ -243,8 +253,8 @@ def _mission_rules(doc: Any, found: List[Found]) -> None:
     if isinstance(name, str) and len(name) <= limit < len(name.encode("utf-8")):
         found.append((_SHAPE, _position(["name"]), 3, f"name: must be a non-empty string of at "
                                                       f"most {limit} bytes, got {len(name.encode('utf-8'))}"))
-    for key, bound, bound_name in (("uavs", M.SVA_MAX_UAVS, "SVA_MAX_UAVS"),
-                                   ("targets", M.SVA_MAX_TARGETS, "SVA_MAX_TARGETS")):
+    for key, bound, bound_name in (("uavs", SVA_MAX_UAVS, "SVA_MAX_UAVS"),
+                                   ("targets", SVA_MAX_TARGETS, "SVA_MAX_TARGETS")):
         items = doc.get(key)
         if isinstance(items, list) and len(items) > bound:
             found.append((_SHAPE, _position([key]), 3,
@@ -257,21 +267,21 @@ def _mission_rules(doc: Any, found: List[Found]) -> None:
             if not isinstance(t, dict):
                 continue
             need = t.get("need")
-            if _ints(need) and need > M.SVA_MAX_UAVS:
+            if _int(need) and need > SVA_MAX_UAVS:
                 found.append((_VALUE, _position(["targets", i, "need"]), 1,
-                              f"targets[{i}].need: must be <= SVA_MAX_UAVS ({M.SVA_MAX_UAVS}), got {need}"))
+                              f"targets[{i}].need: must be <= SVA_MAX_UAVS ({SVA_MAX_UAVS}), got {need}"))
             start, end = t.get("start"), t.get("end")
-            if _ints(start, end) and end <= start:
+            if _int(start) and _int(end) and end <= start:
                 found.append((_VALUE, _position(["targets", i]) + ((_AFTER_FIELDS, ""),), 0,
                               f"targets[{i}].end: must be > start ({start}), got {end}"))
         _duplicate_ids(targets, "targets", found)
 
 
-def _trace_rules(doc: Any, found: List[Found]) -> None:
+def _trace_rules(doc: Any, found: list[Found]) -> None:
     """A trace record's lists line up: one entry per source, one per sink."""
     if not isinstance(doc, dict):
         return
-    lists = {k: doc.get(k) for k in ("source_uavs", "supply", "sink_targets", "demand",
+    lists: dict[str, Any] = {k: doc.get(k) for k in ("source_uavs", "supply", "sink_targets", "demand",
                                      "dropped", "cost", "flow")}
     if not all(isinstance(v, list) for v in lists.values()):
         return
@@ -298,7 +308,7 @@ def _trace_rules(doc: Any, found: List[Found]) -> None:
 _RULES = {"mission": _mission_rules, "plan": _plan_rules, "trace": _trace_rules}
 
 
-def errors(doc: Any, kind: str, definition: str = "", root: str = "") -> List[str]:
+def errors(doc: Any, kind: str, definition: str = "", root: str = "") -> list[str]:
     """Every error of doc as a `kind` file (or as that schema's $defs `definition`,
     named `root` in messages), the CLI's first one first."""
     root = root or ROOT_NAMES[kind]
@@ -308,14 +318,14 @@ def errors(doc: Any, kind: str, definition: str = "", root: str = "") -> List[st
     if kind in _RULES and not definition:
         _RULES[kind](doc, found)
     found.sort(key=lambda f: f[:3])
-    out: List[str] = []
+    out: list[str] = []
     for f in found:
         if f[3] not in out:
             out.append(f[3])
     return out
 
 
-def first_error(doc: Any, kind: str) -> Optional[str]:
+def first_error(doc: Any, kind: str) -> str | None:
     """The message of the first error of doc as a `kind` file, or None when it is valid."""
     errs = errors(doc, kind)
     return errs[0] if errs else None

@@ -1,46 +1,14 @@
-"""`sva-tools sim SCENARIO.json [--algo A] [--out LOG.json] [--plot FILE.png]`: a live
-mission flown tick by tick as ground truth, steered by the on-board planner.
-
-The scenario is `{"mission": MISSION, "events": [EVENT, ...], "change_penalty": N}`
-(the last optional). This module flies its own physics (SPEC section 12.2): a UAV flies
-each leg x first, then y, one cell per ticks_per_cell ticks, paying 1 fuel when a cell's
-step starts; it waits at a target until its start, pays hover_fuel at the start and
-leaves at the end; arriving after a start it does not stop; a step in progress is
-finished before new orders; with no orders it flies home. A lost UAV vanishes at its
-event and reappears on uav_back. A position event puts a UAV in service on its cell
-with its fuel (blown off course), a step in progress dropped; off its target's cell
-during a visit, it breaks the visit as a loss there would.
-
-At tick 0 (cause "start") and at every tick with events (after applying them) it runs
-the C CLI's `sva replan` over the whole history (mission, events so far, now) and gives
-every UAV in service the new plan's route as its orders. With `--via lcm` the planner
-is a real sva_node over LCM instead (sva_tools.lcm.simnode, in a network namespace of
-its own; root); `--kill-node N` then kills it N times with SIGKILL at seeded moments
-(`--seed`) and starts it again on its journal (`--state-dir`): it must resume by itself,
-and the flight log lists the kills (`node_kills`). It stops when every UAV in
-service is home with no orders (or out of fuel) and no window or event is left. The
-flight log (docs/live.md) is JSON: tracks, visits, every target's outcome, every
-replan with its residual mission and plan, and a summary.
-
-Order of work within tick t: steps ending at t complete and visits ending at t end;
-UAVs standing at their next target at its start begin to hover (hover_fuel paid); the
-events at t are applied and the planner replans; then every free UAV takes its next
-step (its fuel paid). A track entry [t, x, y, fuel] is the state after all of that.
-"""
+"""The live-mission simulator: scenarios flown with replans (`sva-tools sim`)."""
 from __future__ import annotations
 
-import argparse
 import json
 import os
 import subprocess
-import sys
 import tempfile
 from dataclasses import dataclass, field
-from typing import Dict, List, Optional, Tuple
+from typing import Any, Callable
 
-from . import cbin
-from . import io
-from . import model as M
+from . import cbin, io, model
 
 EVENT_TYPES = ("clock", "uav_lost", "uav_back", "fuel", "target_added", "target_cancelled",
                "target_changed", "position")
@@ -64,26 +32,26 @@ class Craft:
     y: int
     fuel: int
     in_service: bool = True
-    orders: List[int] = field(default_factory=list)
-    step_to: Optional[Tuple[int, int]] = None
+    orders: list[int] = field(default_factory=list)
+    step_to: tuple[int, int] | None = None
     step_end: int = 0
-    hover: Optional[int] = None       # target id it hovers over until the window ends
+    hover: int | None = None       # target id it hovers over until the window ends
     free_at: int = 0                  # it may not leave before (the mission's ready_at)
     arrived: int = 0                  # tick it reached its current cell
-    out: List[list] = field(default_factory=list)
-    track: List[list] = field(default_factory=list)
-    visits: List[dict] = field(default_factory=list)
+    out: list[list[int | None]] = field(default_factory=list)      # [lost at, back at]
+    track: list[list[int]] = field(default_factory=list)           # [tick, x, y, fuel]
+    visits: list[dict[str, Any]] = field(default_factory=list)
     cells: int = 0
 
 
-def _target(doc: dict, where: str) -> M.Target:
+def _target(doc: dict[str, Any], where: str) -> model.Target:
     """A target in mission JSON form, through the mission parser's own checks."""
     m = io.mission_from_json({"name": where, "depot": {"x": 0, "y": 0}, "uavs": [],
                               "targets": [doc]})
     return m.targets[0]
 
 
-def parse_scenario(doc) -> Tuple[M.Mission, List[dict], Optional[int]]:
+def parse_scenario(doc: Any) -> tuple[model.Mission, list[dict[str, Any]], int | None]:
     """The mission, the events and the change penalty of a scenario document. The shape
     is checked here; whether each event may be applied is the planner's to judge."""
     if not isinstance(doc, dict):
@@ -111,20 +79,20 @@ def parse_scenario(doc) -> Tuple[M.Mission, List[dict], Optional[int]]:
     events = doc["events"]
     if not isinstance(events, list):
         raise io.InputError("events: must be a JSON array")
-    for i, e in enumerate(events):
+    for i, ev in enumerate(events):
         w = f"events[{i}]"
-        if not isinstance(e, dict):
+        if not isinstance(ev, dict):
             raise io.InputError(f"{w}: must be a JSON object")
-        if e.get("type") not in EVENT_TYPES:
+        if ev.get("type") not in EVENT_TYPES:
             raise io.InputError(f"{w}.type: must be one of {', '.join(EVENT_TYPES)}, "
-                                f"got {json.dumps(e.get('type'))}")
-        at = e.get("at")
+                                f"got {json.dumps(ev.get('type'))}")
+        at = ev.get("at")
         if not isinstance(at, int) or isinstance(at, bool) or at < 0:
             raise io.InputError(f"{w}.at: must be an integer >= 0, got {json.dumps(at)}")
     return mission, events, penalty
 
 
-def load_scenario(path: str):
+def load_scenario(path: str) -> tuple[model.Mission, list[dict[str, Any]], int | None]:
     try:
         return parse_scenario(io.read_json(path))
     except io.InputError as e:
@@ -134,8 +102,8 @@ def load_scenario(path: str):
 
 # --- the planner ---------------------------------------------------------------------
 
-def replan(mission_doc: dict, events: List[dict], now: int, algo: str,
-           timeout: float = 600) -> Tuple[dict, dict]:
+def replan(mission_doc: dict[str, Any], events: list[dict[str, Any]], now: int, algo: str,
+           timeout: float = 600) -> tuple[dict[str, Any], dict[str, Any]]:
     """`sva replan --algo ALGO --residual R LIVE.json` over the history; returns (the
     printed plan with its changes and live keys, the residual mission)."""
     exe = cbin.sva_bin()
@@ -160,16 +128,21 @@ def replan(mission_doc: dict, events: List[dict], now: int, algo: str,
 
 # --- the flight ----------------------------------------------------------------------
 
-def _toward(x: int, y: int, tx: int, ty: int) -> Tuple[int, int]:
+def _toward(x: int, y: int, tx: int, ty: int) -> tuple[int, int]:
     """The next cell from (x, y) towards (tx, ty): x first, then y."""
     if x != tx:
         return (x + (1 if tx > x else -1), y)
     return (x, y + (1 if ty > y else -1))
 
 
+# How a flight is replanned: (mission doc, events so far, now, algorithm) -> (the plan
+# with its changes and live keys, the residual mission); replan() or a node over LCM.
+Planner = Callable[[dict[str, Any], list[dict[str, Any]], int, str], tuple[dict[str, Any], dict[str, Any]]]
+
+
 class Flight:
-    def __init__(self, mission: M.Mission, events: List[dict], penalty: Optional[int],
-                 algo: str, planner=replan):
+    def __init__(self, mission: model.Mission, events: list[dict[str, Any]], penalty: int | None,
+                 algo: str, planner: Planner = replan):
         self.m = mission
         self.events = events
         self.penalty = penalty
@@ -177,14 +150,14 @@ class Flight:
         self.planner = planner
         self.crafts = [Craft(u.id, u.x, u.y, u.fuel, free_at=u.ready_at) for u in mission.uavs]
         self.by_id = {c.id: c for c in self.crafts}
-        self.targets: Dict[int, M.Target] = {t.id: t for t in mission.targets}
+        self.targets: dict[int, model.Target] = {t.id: t for t in mission.targets}
         self.order = [t.id for t in mission.targets]   # first appearance
-        self.outcome: Dict[int, str] = {}               # cancelled / lost, decided early
-        self.replans: List[dict] = []
+        self.outcome: dict[int, str] = {}               # cancelled / lost, decided early
+        self.replans: list[dict[str, Any]] = []
         self.tpc = mission.ticks_per_cell
 
     # The mission document the planner reads: the mission as at tick 0.
-    def mission_doc(self) -> dict:
+    def mission_doc(self) -> dict[str, Any]:
         doc = self.m.to_json()
         if self.penalty is not None:
             doc["change_penalty"] = self.penalty
@@ -225,7 +198,7 @@ class Flight:
             if tid in c.orders:
                 c.orders.remove(tid)
 
-    def _apply(self, e: dict, t: int) -> None:
+    def _apply(self, e: dict[str, Any], t: int) -> None:
         kind = e["type"]
         if kind == "uav_lost":
             c = self.by_id[e["uav"]]
@@ -273,7 +246,7 @@ class Flight:
         elif kind == "target_cancelled":
             self._free_target(e["target"], t, "cancelled")
 
-    def _step(self, c: Craft, t: int, dest: Tuple[int, int]) -> None:
+    def _step(self, c: Craft, t: int, dest: tuple[int, int]) -> None:
         if c.fuel < 1 or t < c.free_at:
             return  # an empty tank, or not ready yet: it stays where it is
         c.fuel -= 1
@@ -299,7 +272,7 @@ class Flight:
                 if (c.x, c.y) != self.m.depot:
                     self._step(c, t, self.m.depot)
 
-    def _replan(self, t: int, cause: str, history: List[dict], now_events: List[dict]) -> None:
+    def _replan(self, t: int, cause: str, history: list[dict[str, Any]], now_events: list[dict[str, Any]]) -> None:
         # The planner judges the events before the flight takes them: a rejected one
         # stops the flight (SimError) with nothing applied.
         out, residual = self.planner(self.mission_doc(), list(history), t, self.algo)
@@ -325,15 +298,15 @@ class Flight:
                     c.free_at = t + self.m.takeoff_ticks
                 c.orders = new
 
-    def _changes(self, residual: dict, plan: dict, now_events: List[dict],
-                 cli_changes: Optional[dict]) -> dict:
+    def _changes(self, residual: dict[str, Any], plan: dict[str, Any], now_events: list[dict[str, Any]],
+                 cli_changes: dict[str, Any] | None) -> dict[str, Any]:
         """SPEC 5.4's changed visits of this replan: (UAV, target) pairs of the residual
         mission that the plan in force had (the previous replan's plan; none for a UAV
         that came back since) and this plan drops, or that this plan adds. Recomputed
         here from consecutive plans, as the CLI's own figure describes only its last
         replan over the history."""
         if not self.replans:
-            pairs_before: set = set()
+            pairs_before: set[tuple[int, int]] = set()
         else:
             uavs = {u["id"] for u in residual.get("uavs", [])}
             targets = {t["id"] for t in residual.get("targets", [])}
@@ -359,7 +332,7 @@ class Flight:
             return False
         return (c.x, c.y) == self.m.depot or c.fuel < 1
 
-    def fly(self, max_ticks: Optional[int] = None) -> dict:
+    def fly(self, max_ticks: int | None = None) -> dict[str, Any]:
         last_event = max((e["at"] for e in self.events), default=0)
         coords = [abs(v) for t in self.m.targets for v in (t.x, t.y)]
         coords += [abs(v) for u in self.m.uavs for v in (u.x, u.y)] + [abs(v) for v in self.m.depot]
@@ -370,7 +343,7 @@ class Flight:
                 if isinstance(e.get("target"), dict):
                     ends.append(int(e["target"].get("end", 0)))
             max_ticks = max(ends + [last_event]) + 4 * extent * self.tpc + 1000
-        history: List[dict] = []
+        history: list[dict[str, Any]] = []
         pending = list(self.events)
         t = 0
         while True:
@@ -396,7 +369,7 @@ class Flight:
 
     # --- the log ---------------------------------------------------------------------
 
-    def _served_by(self, tg: M.Target) -> List[int]:
+    def _served_by(self, tg: model.Target) -> list[int]:
         """UAVs in service at the target's cell at every tick of [start, end)."""
         ids = []
         for c in self.crafts:
@@ -405,7 +378,7 @@ class Flight:
                 ids.append(c.id)
         return ids
 
-    def _log(self, end: int) -> dict:
+    def _log(self, end: int) -> dict[str, Any]:
         targets = []
         for tid in self.order:
             tg = self.targets[tid]
@@ -433,22 +406,22 @@ class Flight:
             },
         }
 
-    def scenario_doc(self) -> dict:
-        doc = {"mission": self.m.to_json(), "events": self.events}
+    def scenario_doc(self) -> dict[str, Any]:
+        doc: dict[str, Any] = {"mission": self.m.to_json(), "events": self.events}
         if self.penalty is not None:
             doc["change_penalty"] = self.penalty
         return doc
 
 
-def simulate(mission: M.Mission, events: List[dict], penalty: Optional[int] = None,
-             algo: str = "sva", planner=replan) -> dict:
+def simulate(mission: model.Mission, events: list[dict[str, Any]], penalty: int | None = None,
+             algo: str = "sva", planner: Planner = replan) -> dict[str, Any]:
     """Flies the scenario and returns the flight log (raises SimError)."""
     return Flight(mission, events, penalty, algo, planner).fly()
 
 
 # --- the timeline --------------------------------------------------------------------
 
-def event_text(e: dict) -> str:
+def event_text(e: dict[str, Any]) -> str:
     """One line for a live event (scenario JSON; a cancelled target as its id or its
     object): the timeline's and the ground view's words."""
     k = e["type"]
@@ -474,11 +447,11 @@ def event_text(e: dict) -> str:
     return "clock"
 
 
-def timeline(log: dict) -> str:
+def timeline(log: dict[str, Any]) -> str:
     """One line per replan (tick, cause, targets the planner then expects covered: done
     ones included, plan cost, changed visits, kept or not, solve time) under the events
     that caused it, and the flight's summary."""
-    by_tick: Dict[int, List[dict]] = {}
+    by_tick: dict[int, list[dict[str, Any]]] = {}
     for e in log["scenario"]["events"]:
         by_tick.setdefault(e["at"], []).append(e)
     w = max([len(r["cause"]) for r in log["replans"]] + [5])
@@ -503,57 +476,8 @@ def timeline(log: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-# --- the command ---------------------------------------------------------------------
-
-def add_parser(sub) -> None:
-    ap = sub.add_parser("sim", help="fly a live-mission scenario, steered by `sva replan`",
-                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("scenario", help="SCENARIO.json: {mission, events, change_penalty}")
-    ap.add_argument("--algo", default="sva", choices=list(cbin.C_ALGORITHMS),
-                    help="the on-board planner's algorithm (default sva)")
-    ap.add_argument("--out", help="flight log JSON (default: stdout, or none with --timeline)")
-    ap.add_argument("--timeline", action="store_true",
-                    help="print a timeline of events and replans on stdout instead of the log")
-    ap.add_argument("--plot", metavar="FILE.png", help="also draw the flight (map and Gantt)")
-    ap.add_argument("--via", choices=["cli", "lcm"], default="cli",
-                    help="how the planner is reached: cli (`sva replan`, default) or lcm (a "
-                         "real sva_node over LCM multicast, in a network namespace made for "
-                         "the run; needs root)")
-    ap.add_argument("--attach", action="store_true",
-                    help="--via lcm: use the sva_node already running (started with the same "
-                         "--algorithm and --change-penalty) instead of starting one, and no "
-                         "namespace of its own")
-    ap.add_argument("--url", default=None,
-                    help="--via lcm: LCM provider (default udpm://239.255.76.67:7667?ttl=0)")
-    ap.add_argument("--prefix", default=None, help="--via lcm: channel prefix (default SVA_)")
-    ap.add_argument("--timeout", type=float, default=10.0,
-                    help="--via lcm: seconds to wait for each answer of the node (default 10)")
-    ap.add_argument("--kill-node", type=int, default=0, metavar="N",
-                    help="--via lcm: SIGKILL the node N times at seeded moments of the flight and "
-                         "start it again on its journal (sva_node --state-dir, a temporary folder "
-                         "of the run's own); it must resume by itself (default 0)")
-    ap.add_argument("--seed", type=int, default=0,
-                    help="--kill-node: the seed of the moments (default 0)")
-    ap.set_defaults(func=run)
-
-
-def _argv(args) -> List[str]:
-    """The command line of this run, for its re-execution inside a network namespace."""
-    argv = ["sim", args.scenario, "--algo", args.algo, "--via", "lcm",
-            "--timeout", str(args.timeout), "--kill-node", str(args.kill_node),
-            "--seed", str(args.seed)]
-    for opt in ("out", "plot", "url", "prefix"):
-        if getattr(args, opt) is not None:
-            argv += [f"--{opt}", getattr(args, opt)]
-    if args.timeline:
-        argv.append("--timeline")
-    if args.attach:
-        argv.append("--attach")
-    return argv
-
-
-def simulate_via_lcm(mission: M.Mission, events: List[dict], penalty: Optional[int] = None,
-                     algo: str = "sva", kill_node: int = 0, seed: int = 0, **link) -> dict:
+def simulate_via_lcm(mission: model.Mission, events: list[dict[str, Any]], penalty: int | None = None,
+                     algo: str = "sva", kill_node: int = 0, seed: int = 0, **link: Any) -> dict[str, Any]:
     """Flies the scenario against sva_node over LCM (sva_tools.lcm.simnode; `link`: url,
     prefix, attach, timeout) from inside a network namespace; with kill_node, kills and
     restarts the node that many times at moments drawn with seed (`node_kills` in the
@@ -571,49 +495,3 @@ def simulate_via_lcm(mission: M.Mission, events: List[dict], penalty: Optional[i
     if kill_node > 0:
         log["node_kills"] = node.kills
     return log
-
-
-def _fly_via_lcm(args, mission, events, penalty) -> dict:
-    kw = {k: getattr(args, k) for k in ("url", "prefix") if getattr(args, k) is not None}
-    return simulate_via_lcm(mission, events, penalty, args.algo, kill_node=args.kill_node,
-                            seed=args.seed, attach=args.attach, timeout=args.timeout, **kw)
-
-
-def run(args) -> int:
-    if args.via == "cli" and (args.attach or args.url or args.prefix):
-        print("sva-tools: error: sim: --attach, --url and --prefix need --via lcm",
-              file=sys.stderr)
-        return 2
-    if args.kill_node and (args.via != "lcm" or args.attach or args.kill_node < 0):
-        print("sva-tools: error: sim: --kill-node: needs --via lcm and a node of the run's own "
-              f"(not --attach), and a count >= 0, got {args.kill_node}", file=sys.stderr)
-        return 2
-    if args.via == "lcm" and not args.attach and not os.environ.get("SVA_LCM_NETNS"):
-        load_scenario(args.scenario)  # a bad scenario is reported before any namespace
-        from .lcm import simnode
-        return simnode.reexec_in_netns(_argv(args))
-    mission, events, penalty = load_scenario(args.scenario)
-    try:
-        if args.via == "lcm":
-            from .lcm import simnode
-            try:
-                log = _fly_via_lcm(args, mission, events, penalty)
-            except simnode.NodeError as e:
-                print(f"sva-tools: error: {args.scenario}: --via lcm: {e}", file=sys.stderr)
-                return e.status
-        else:
-            log = simulate(mission, events, penalty, args.algo)
-    except cbin.CliMissing as e:
-        print(f"sva-tools: error: sim: {e}", file=sys.stderr)
-        return 2
-    except SimError as e:
-        print(f"sva-tools: error: {args.scenario}: {e}", file=sys.stderr)
-        return e.status
-    if args.timeline:
-        sys.stdout.write(timeline(log))
-    if args.out or not args.timeline:
-        io.write_json(log, args.out or "-")
-    if args.plot:
-        from . import simplot
-        simplot.render_flight(log, args.plot)
-    return 0

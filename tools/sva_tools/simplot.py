@@ -9,29 +9,28 @@ with events and a replan marker row on top (labelled with its cause).
 """
 from __future__ import annotations
 
-from typing import Dict
+from typing import Any
 
-from . import model as M
-from . import plot
+from . import model, plot
 
 OUTCOME_COLOUR = {"covered": "tab:green", "uncovered": "tab:red", "cancelled": "tab:gray",
                   "lost": "tab:purple"}
 
 
-def final_targets(log: dict) -> Dict[int, M.Target]:
+def final_targets(log: dict[str, Any]) -> dict[int, model.Target]:
     """Every target of the scenario as it finally stood (added and changed ones too)."""
     sc = log["scenario"]
     out = {}
     for t in sc["mission"]["targets"]:
-        out[t["id"]] = M.Target(t["id"], t["x"], t["y"], t["start"], t["end"], t["need"])
+        out[t["id"]] = model.Target(t["id"], t["x"], t["y"], t["start"], t["end"], t["need"])
     for e in sc["events"]:
         if e["type"] in ("target_added", "target_changed"):
             t = e["target"]
-            out[t["id"]] = M.Target(t["id"], t["x"], t["y"], t["start"], t["end"], t["need"])
+            out[t["id"]] = model.Target(t["id"], t["x"], t["y"], t["start"], t["end"], t["need"])
     return out
 
 
-def render_flight(log: dict, path: str) -> None:
+def render_flight(log: dict[str, Any], path: str) -> None:
     plt = plot.pyplot()
     sc = log["scenario"]
     mission = sc["mission"]
@@ -53,7 +52,7 @@ def render_flight(log: dict, path: str) -> None:
         col = cmap(i % cmap.N)
         off = (i - len(uavs) / 2) * 0.06
         # One line per stretch in service (a loss breaks the track).
-        seg: list = []
+        seg: list[tuple[float, float]] = []
         segs = [seg]
         last = None
         for t, x, y, _f in u["track"]:

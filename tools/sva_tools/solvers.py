@@ -10,26 +10,34 @@ every solve runs with zero MIP gap so the optimum is exact.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import List, Optional, Sequence
-
+from typing import Optional
 
 Cost = Sequence[Sequence[Optional[int]]]
+# A constraint lo <= sum(val * x[col]) <= hi (None: no bound on that side).
+Row = tuple[Optional[float], Optional[float], list[tuple[int, float]]]
 
 
 @dataclass
 class TpSolution:
     covered: int              # sinks whose demand is met in full
     cost: int                 # sum of cost * flow
-    flow: List[List[int]]     # [source][sink]
-    kept: List[bool]          # sink met in full (True) or left out (False)
+    flow: list[list[int]]     # [source][sink]
+    kept: list[bool]          # sink met in full (True) or left out (False)
 
 
-def _arcs(cost: Cost):
+def _arcs(cost: Cost) -> list[tuple[int, int]]:
     return [(i, j) for i, row in enumerate(cost) for j, c in enumerate(row) if c is not None]
 
 
-def _milp(ncols, col_cost, lb, ub, integer, rows, sense_max=False):
+def _arc_costs(cost: Cost, arcs: list[tuple[int, int]]) -> list[int]:
+    """The cost of each arc (every arc has one: _arcs keeps only those)."""
+    return [c for c in (cost[i][j] for i, j in arcs) if c is not None]
+
+
+def _milp(ncols: int, col_cost: Sequence[float], lb: Sequence[int], ub: Sequence[int], integer: bool,
+          rows: list[Row], sense_max: bool = False) -> list[int] | None:
     """rows: list of (lo, hi, [(col, val), ...]), None for no bound. Returns the column
     values of an optimum, or None when infeasible."""
     from ortools.linear_solver import pywraplp
@@ -61,23 +69,24 @@ def _milp(ncols, col_cost, lb, ub, integer, rows, sense_max=False):
     return [int(round(v.solution_value())) for v in x]
 
 
-def solve_exact(supply: Sequence[int], demand: Sequence[int], cost: Cost) -> Optional[TpSolution]:
+def solve_exact(supply: Sequence[int], demand: Sequence[int], cost: Cost) -> TpSolution | None:
     """Least cost with every sink's demand met exactly (flow <= supply per source), only
     the given arcs. None when infeasible."""
     arcs = _arcs(cost)
-    rows = []
+    rows: list[Row] = []
     for i, s in enumerate(supply):
         rows.append((None, s, [(k, 1.0) for k, (a, _) in enumerate(arcs) if a == i]))
     for j, d in enumerate(demand):
         rows.append((d, d, [(k, 1.0) for k, (_, b) in enumerate(arcs) if b == j]))
     ub = [min(supply[i], demand[j]) for i, j in arcs]
-    x = _milp(len(arcs), [cost[i][j] for i, j in arcs], [0] * len(arcs), ub, True, rows)
+    costs = _arc_costs(cost, arcs)
+    x = _milp(len(arcs), costs, [0] * len(arcs), ub, True, rows)
     if x is None:
         return None
     flow = [[0] * len(demand) for _ in supply]
     for k, (i, j) in enumerate(arcs):
         flow[i][j] = x[k]
-    total = sum(cost[i][j] * x[k] for k, (i, j) in enumerate(arcs))
+    total = sum(c * x[k] for k, c in enumerate(costs))
     return TpSolution(len(demand), total, flow, [True] * len(demand))
 
 
@@ -89,8 +98,8 @@ def solve_max_cover(supply: Sequence[int], demand: Sequence[int], cost: Cost) ->
     na, nk = len(arcs), len(demand)
     ncols = na + nk  # arcs, then y_j in {0, 1}
 
-    def rows(extra):
-        r = []
+    def rows(extra: list[Row]) -> list[Row]:
+        r: list[Row] = []
         for i, s in enumerate(supply):
             r.append((None, s, [(k, 1.0) for k, (a, _) in enumerate(arcs) if a == i]))
         for j, d in enumerate(demand):
@@ -104,12 +113,13 @@ def solve_max_cover(supply: Sequence[int], demand: Sequence[int], cost: Cost) ->
     if x is None:  # cannot happen: all zero is feasible
         raise RuntimeError("max-cover integer LP failed")
     best = sum(x[na:])
-    x = _milp(ncols, [cost[i][j] for i, j in arcs] + [0] * nk, lb, ub, True,
+    costs = _arc_costs(cost, arcs)
+    x = _milp(ncols, costs + [0] * nk, lb, ub, True,
               rows([(best, best, [(na + j, 1.0) for j in range(nk)])]))
     if x is None:
         raise RuntimeError("min-cost integer LP failed at fixed coverage")
     flow = [[0] * nk for _ in supply]
     for k, (i, j) in enumerate(arcs):
         flow[i][j] = x[k]
-    total = sum(cost[i][j] * x[k] for k, (i, j) in enumerate(arcs))
+    total = sum(c * x[k] for k, c in enumerate(costs))
     return TpSolution(best, total, flow, [bool(v) for v in x[na:]])

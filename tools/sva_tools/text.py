@@ -10,8 +10,6 @@ UTF-8 byte. Escaping the result again changes nothing.
 """
 from __future__ import annotations
 
-import argparse
-
 _SHORT = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}
 
 
@@ -28,11 +26,3 @@ def shown(text: object) -> str:
         else:
             out.append(ch)
     return "".join(out)
-
-
-class Parser(argparse.ArgumentParser):
-    """argparse's parser whose usage errors (which quote the offending argument) are
-    printed escaped; subparsers inherit it."""
-
-    def error(self, message: str):
-        super().error(shown(message))

@@ -1,24 +1,7 @@
-"""`sva-tools campaign SPEC.yaml`: a regression campaign on a Dask cluster (docs/campaigns.md).
-
-The spec (YAML) names generator settings, how many missions or live scenarios, the
-algorithms and whether the exact reference (ref) solves them. Every task (one planner
-on one mission, ref on one mission, one flight of a live scenario) runs on a Dask
-worker: an embedded LocalCluster by default (--workers N processes, one thread each),
-or the cluster of --scheduler tcp://HOST:PORT. Results go to OUT/results/*.parquet,
-keyed by the mission's content hash, the tool, its settings and its version: a task
-already stored is not submitted again, so an interrupted or extended campaign resumes
-where it stopped. Then OUT/metrics.parquet (coverage, cost, gap to ref, solve time per
-planner result) and OUT/report.html (tables and plots, self-contained).
-A damaged part file (empty, truncated, not Parquet, another schema) is named in a
-warning and skipped; while one is there nothing is computed (its tasks are not known
-apart from new ones) and the summary and report show what is readable; --repair moves
-it to OUT/damaged/ and computes every task without a readable result.
-Exit status: 0 when every task has a stored result, 1 when some failed or damaged parts
-left tasks without one, 2 on a bad spec or option, or a scheduler that cannot be reached.
-"""
+"""Regression campaigns on a Dask cluster: tasks, their stored results, metrics and the
+report (`sva-tools campaign`, docs/campaigns.md)."""
 from __future__ import annotations
 
-import argparse
 import datetime
 import json
 import os
@@ -26,9 +9,7 @@ import sys
 import time
 import uuid
 from pathlib import Path
-from typing import Callable, Dict, List, Optional
-
-from ..text import shown
+from typing import Any, Callable
 
 # The Dask, Parquet and schema modules are imported when a campaign runs, not when the
 # `sva-tools` parser is built for another subcommand.
@@ -49,9 +30,11 @@ class _Cluster:
     """The Dask client, connected (and the LocalCluster started) only when a task is to
     be submitted: a campaign whose results are all stored starts no cluster."""
 
-    def __init__(self, scheduler: Optional[str], workers: Optional[int], client=None):
+    def __init__(self, scheduler: str | None, workers: int | None, client=None):
         self.scheduler, self.workers = scheduler, workers
-        self.client, self.cluster, self.own = client, None, client is None
+        self.client: Any = client
+        self.cluster: Any = None  # the LocalCluster this run starts, if any
+        self.own = client is None
 
     def get(self):
         if self.client is None:
@@ -82,9 +65,10 @@ class _Cluster:
                 self.cluster.close()
 
 
-def _execute(cl: _Cluster, tasks: List[dict], store, stored: set, stats: dict, progress: bool,
+def _execute(cl: _Cluster, tasks: list[dict], store, stored: set, stats: dict, progress: bool,
              label: str, compute: bool = True) -> None:
     from distributed import as_completed
+
     from .tasks import run_task
     new = [t for t in tasks if t["key"] not in stored]
     todo = list({t["key"]: t for t in new}.values())  # a mission two sets share runs once
@@ -123,10 +107,10 @@ def _execute(cl: _Cluster, tasks: List[dict], store, stored: set, stats: dict, p
             bar.close()
 
 
-def run(spec: dict, out: str, scheduler: Optional[str] = None, workers: Optional[int] = None,
+def run(spec: dict, out: str, scheduler: str | None = None, workers: int | None = None,
         progress: bool = True, client=None, flush_rows: int = 64,
-        columns: Optional[List[str]] = None, repair: bool = False,
-        on_damaged: Optional[Callable[[Path, str], None]] = None) -> dict:
+        columns: list[str] | None = None, repair: bool = False,
+        on_damaged: Callable[[Path, str], None] | None = None) -> dict:
     """Runs the campaign; returns {"run", "tasks", "stored", "computed", "failed", "wall_s",
     "compute_s" (first submission to last result, cluster start excluded), "workers",
     "held" (tasks not computed because of damaged parts), "set_aside" ((from, to) of the
@@ -138,14 +122,14 @@ def run(spec: dict, out: str, scheduler: Optional[str] = None, workers: Optional
     a new one), unless repair: then the damaged parts are set aside (Store.set_aside) and
     every task without a readable result is computed. Raises spec.SpecError, before
     anything is written, when gen cannot make the spec's missions."""
-    from . import spec as S
+    from .spec import first_tasks, ref_tasks
     from .store import Store
     run_id = new_run_id()
     t0 = time.perf_counter()
-    first = S.first_tasks(spec, run_id)
+    first = first_tasks(spec, run_id)
     store = Store(out, run_id, flush_rows=flush_rows, on_damaged=on_damaged)
     stored = store.keys()
-    stats: Dict = {"run": run_id, "tasks": 0, "stored": 0, "computed": 0, "failed": [], "workers": 0,
+    stats: dict = {"run": run_id, "tasks": 0, "stored": 0, "computed": 0, "failed": [], "workers": 0,
                    "compute_s": 0.0, "held": 0, "set_aside": []}
     if repair and store.damaged:
         stats["set_aside"] = store.set_aside()
@@ -158,7 +142,7 @@ def run(spec: dict, out: str, scheduler: Optional[str] = None, workers: Optional
             flights = [t for t in first if t["task"] == "fly"]
             rows = store.rows(t["key"] for t in flights)
             logs = {k: json.loads(r["result"]) for k, r in rows.items() if r["result"]}
-            refs = S.ref_tasks(spec, run_id, flights, logs)
+            refs = ref_tasks(spec, run_id, flights, logs)
             _execute(cl, refs, store, stored, stats, progress, spec["name"] + " ref", compute)
             all_tasks += refs
         stats["wall_s"] = time.perf_counter() - t0
@@ -169,86 +153,3 @@ def run(spec: dict, out: str, scheduler: Optional[str] = None, workers: Optional
     stats["task_list"] = all_tasks
     stats["store"] = store
     return stats
-
-
-def add_parser(sub) -> None:
-    ap = sub.add_parser("campaign", help="regression campaign on a Dask cluster (docs/campaigns.md)",
-                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("spec", help="campaign spec, YAML (docs/campaigns.md)")
-    ap.add_argument("--scheduler", metavar="tcp://HOST:PORT",
-                    help="a running Dask scheduler (default: an embedded LocalCluster)")
-    ap.add_argument("--workers", type=int, metavar="N",
-                    help="LocalCluster worker processes (default 2 or the CPU count if lower)")
-    ap.add_argument("--out", metavar="DIR", help="result folder (default build/campaigns/NAME)")
-    ap.add_argument("--flush-rows", type=int, default=64, metavar="N",
-                    help="results per Parquet file (default 64; also written every 2 s): at most "
-                         "this many finished results are lost when the client dies")
-    ap.add_argument("--no-progress", action="store_true", help="no progress bar")
-    ap.add_argument("--no-report", action="store_true", help="skip OUT/report.html")
-    ap.add_argument("--repair", action="store_true",
-                    help="move damaged part files (named in warnings) to OUT/damaged/ and compute their tasks again")
-    ap.set_defaults(func=main)
-
-
-def _warn(message: str) -> None:
-    print(f"sva-tools: warning: campaign: {shown(message)}", file=sys.stderr)
-
-
-def _damaged(path: Path, reason: str) -> None:
-    _warn(f"{path}: damaged part ({reason}), skipped; --repair moves it to damaged/ and computes its tasks again")
-
-
-def main(args) -> int:
-    from . import report, spec as S
-    if args.workers is not None and args.workers < 1:
-        print("sva-tools: error: campaign: --workers: must be >= 1, got "
-              f"{args.workers}", file=sys.stderr)
-        return 2
-    if args.workers is not None and args.scheduler:
-        print("sva-tools: error: campaign: --workers is for the embedded LocalCluster; "
-              "with --scheduler the cluster's own workers run the tasks", file=sys.stderr)
-        return 2
-    if args.flush_rows < 1:
-        print(f"sva-tools: error: campaign: --flush-rows: must be >= 1, got {args.flush_rows}", file=sys.stderr)
-        return 2
-    try:
-        spec = S.load(args.spec)
-    except S.SpecError as e:
-        print(f"sva-tools: error: campaign: {shown(args.spec)}: {shown(e)}", file=sys.stderr)
-        return 2
-    campaigns = os.path.join(REPO, "build", "campaigns")
-    out = args.out or os.path.join(campaigns, spec["name"])
-    if not args.out and os.path.dirname(os.path.normpath(out)) != campaigns:  # the schema's name rule, kept
-        print(f"sva-tools: error: campaign: {shown(args.spec)}: name: must name a folder in {shown(campaigns)}, "
-              f"got {shown(S.shown_value(spec['name']))}", file=sys.stderr)
-        return 2
-    try:
-        stats = run(spec, out, args.scheduler, args.workers, progress=not args.no_progress,
-                    flush_rows=args.flush_rows, columns=[], repair=args.repair, on_damaged=_damaged)
-    except S.SpecError as e:
-        print(f"sva-tools: error: campaign: {shown(args.spec)}: {shown(e)}", file=sys.stderr)
-        return 2
-    except CampaignError as e:
-        print(f"sva-tools: error: campaign: {shown(e)}", file=sys.stderr)
-        return 2
-    store = stats["store"]
-    for old, new in stats["set_aside"]:
-        _warn(f"{old}: moved to {new}; its tasks were computed again")
-    # The figures need neither the missions nor (kind plan) the plans: the report reads
-    # only the columns it needs, as one Arrow table, and groups this run's tasks.
-    records, gs, stored = report.build(spec, store, stats["task_list"])
-    report.write_metrics(records, out)
-    print(report.summary(spec, stats, gs))
-    if not args.no_report:
-        path = report.write_html(spec, stats, gs, out, stored)
-        print(f"report: {path}")
-    for f in stats["failed"][:10]:
-        print(f"failed: {shown(f)}", file=sys.stderr)
-    damaged = bool(store.damaged)
-    if damaged and args.repair:  # found only when the report read more columns than the keys
-        for old, new in store.set_aside():
-            _warn(f"{old}: moved to {new}; run again to compute its tasks")
-    elif damaged:
-        _warn(f"{len(store.damaged)} damaged part file(s) in {store.dir} skipped, {stats['held']} task(s) "
-              "not computed; run again with --repair")
-    return 1 if stats["failed"] or stats["held"] or damaged else 0

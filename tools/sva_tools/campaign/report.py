@@ -10,13 +10,12 @@ import json
 import math
 import os
 import statistics
-from typing import Dict, List
 
-from . import spec as S
-from . import tasks as T
+from .spec import missions, set_label
+from .tasks import mission_hash, residual_for_ref
 
 
-def percentile(values: List[float], p: float):
+def percentile(values: list[float], p: float):
     """Nearest-rank percentile (None for no values)."""
     if not values:
         return None
@@ -33,7 +32,7 @@ STORED = ("key", "task", "tool", "targets", "uavs", "penalty", "mission_hash", "
           "cost", "optimal", "solve_us", "wall_s", "error")
 
 
-def stored_columns(spec: dict) -> List[str]:
+def stored_columns(spec: dict) -> list[str]:
     """The columns of the store that metrics() reads."""
     return list(STORED) + (["replan_us", "result"] if spec["kind"] == "live" else [])
 
@@ -42,7 +41,7 @@ def _gap(cost, ref_cost):
     return 100.0 * (cost - ref_cost) / ref_cost if ref_cost else None
 
 
-def _this_run(table, tasks: List[dict]):
+def _this_run(table, tasks: list[dict]):
     """One row per task of this run whose key is stored: the stored figures under this
     run's set label, seed and index; and the stored ref results of this run's tasks
     without an error. A stored row is keyed by content, so its own set
@@ -75,7 +74,7 @@ def _ok(t):
     return pc.invert(pc.fill_null(pc.not_equal(t["error"], ""), False))
 
 
-def metrics(spec: dict, table, tasks: List[dict]):
+def metrics(spec: dict, table, tasks: list[dict]):
     """A pyarrow table, one record per task of this run with a stored row (table: the
     store's rows, stored_columns() at least; tasks: this run's task list).
     kind plan: one record per planner or ref result with the ref result of the same
@@ -116,7 +115,7 @@ def _live(t, refs):
     t = t.filter(pc.equal(t["task"], "fly"))
     by_hash = {h: (c, k) for h, c, k in zip(refs["mission_hash"].to_pylist(), refs["covered"].to_pylist(),
                                             refs["cost"].to_pylist())}
-    cols: Dict[str, list] = {c: [] for c in ("replans", "judged", "as_many", "gap_mean", "gap_max", "gaps",
+    cols: dict[str, list] = {c: [] for c in ("replans", "judged", "as_many", "gap_mean", "gap_max", "gaps",
                                              "changes", "later", "p50_us", "p99_us", "replan_us")}
     for result, times in zip(t["result"].to_pylist(), t["replan_us"].to_pylist()):
         log = json.loads(result) if result else {"replans": []}
@@ -124,7 +123,7 @@ def _live(t, refs):
         for rp in log["replans"]:
             if not rp["mission"]["targets"]:
                 continue
-            q = by_hash.get(T.mission_hash(T.residual_for_ref(rp["mission"])))
+            q = by_hash.get(mission_hash(residual_for_ref(rp["mission"])))
             if q is None:
                 continue
             judged += 1
@@ -146,7 +145,7 @@ def _live(t, refs):
     return pa.table(out)
 
 
-def build(spec: dict, store, tasks: List[dict]):
+def build(spec: dict, store, tasks: list[dict]):
     """(metrics(), groups(), how many stored rows the tasks have) from a Store, reading
     only stored_columns()."""
     import pyarrow as pa
@@ -169,7 +168,7 @@ def write_metrics(records, out: str) -> str:
     return path
 
 
-def groups(spec: dict, records) -> List[dict]:
+def groups(spec: dict, records) -> list[dict]:
     """The summary rows: per set and tool (and change_penalty for live). records: the
     table metrics() returns (sorted by set, tool and penalty, so a group is a run of
     consecutive records); its figures are computed with pyarrow, group by group."""
@@ -179,11 +178,11 @@ def groups(spec: dict, records) -> List[dict]:
     keys = ["set", "tool"] + (["penalty"] if live else [])
     n = len(records)
     change = pa.array([False] * max(n - 1, 0), pa.bool_())
-    for k in keys:  # where a record's group differs from the one before it
-        c = records[k]
+    for key in keys:  # where a record's group differs from the one before it
+        c = records[key]
         change = pc.or_(change, pc.fill_null(pc.not_equal(c.slice(1), c.slice(0, max(n - 1, 0))), False))
     bounds = ([0] if n else []) + [i + 1 for i in pc.indices_nonzero(change).to_pylist()] + [n]
-    order = [S.set_label(s) for s in spec["sets"]]
+    order = [set_label(s) for s in spec["sets"]]
     tools = list(spec["algorithms"]) + ["ref"]
     out = []
     for a, b in zip(bounds, bounds[1:]):
@@ -191,8 +190,8 @@ def groups(spec: dict, records) -> List[dict]:
         k = tuple(r[c][0].as_py() for c in keys)
         rs = r.filter(_ok(r))
 
-        def total(col):
-            return pc.sum(rs[col]).as_py() or 0
+        def total(col, rows=rs):
+            return pc.sum(rows[col]).as_py() or 0
 
         g = {"set": k[0], "tool": k[1], "penalty": k[2] if live else None, "n": len(r),
              "errors": len(r) - len(rs), "covered": total("covered"), "coverable": total("coverable")}
@@ -215,7 +214,7 @@ def groups(spec: dict, records) -> List[dict]:
     return [g for *_, g in sorted(out, key=lambda x: x[:3])]
 
 
-def _rank(values: List, p: float):
+def _rank(values: list, p: float):
     """percentile() through numpy's sort (the same nearest rank)."""
     if not values:
         return None
@@ -236,7 +235,7 @@ def _gaps(g):
     return "–" if g["gap_mean"] is None else f"mean {g['gap_mean']:.3f} %, largest {g['gap_max']:.2f} %"
 
 
-def table(spec: dict, gs: List[dict]) -> List[List[str]]:
+def table(spec: dict, gs: list[dict]) -> list[list[str]]:
     """Header and rows of the summary table (text cells)."""
     if spec["kind"] == "plan":
         rows = [["set", "algorithm", "missions", "covered / targets", "coverage vs ref (equal, below, above)",
@@ -258,15 +257,15 @@ def table(spec: dict, gs: List[dict]) -> List[List[str]]:
     return rows
 
 
-def markdown(rows: List[List[str]]) -> str:
+def markdown(rows: list[list[str]]) -> str:
     lines = ["| " + " | ".join(rows[0]) + " |", "|" + "---|" * len(rows[0])]
     return "\n".join(lines + ["| " + " | ".join(r) + " |" for r in rows[1:]])
 
 
-def summary(spec: dict, stats: dict, gs: List[dict]) -> str:
+def summary(spec: dict, stats: dict, gs: list[dict]) -> str:
     """The printed summary: one line of counts and times, and the table of groups()."""
     units = "missions" if spec["kind"] == "plan" else "scenarios"
-    n = S.missions(spec)
+    n = missions(spec)
     wall = stats.get("wall_s") or 0.0
     head = (f"campaign {spec['name']}: {stats['tasks']} tasks for {n} {units}; {stats['stored']} already stored, "
             f"{stats['computed']} computed, {len(stats['failed'])} failed; "
@@ -282,7 +281,7 @@ def _png(fig) -> str:
     return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
 
 
-def figures(spec: dict, gs: List[dict]) -> List[tuple]:
+def figures(spec: dict, gs: list[dict]) -> list[tuple]:
     """(title, data URI) of the coverage, gap and latency plots."""
     import matplotlib
     matplotlib.use("Agg")
@@ -316,7 +315,7 @@ def figures(spec: dict, gs: List[dict]) -> List[tuple]:
     return out
 
 
-def write_html(spec: dict, stats: dict, gs: List[dict], out: str, stored: int) -> str:
+def write_html(spec: dict, stats: dict, gs: list[dict], out: str, stored: int) -> str:
     """OUT/report.html from groups(); stored: how many stored rows this spec's tasks have."""
     rows = table(spec, gs)
     e = html.escape

@@ -22,13 +22,13 @@ import math
 import os
 import re
 from pathlib import Path
-from typing import Any, Dict, List, Optional
+from typing import Any
 
 from jsonschema import Draft202012Validator, validators
 
 from .. import gen
 from ..schema import field_path, json_type
-from . import tasks as T
+from . import tasks
 
 SCHEMA = Path(__file__).resolve().parent / "spec.schema.json"
 DEFAULT_REF = {"det_limit": 10.0, "time_limit": 600.0, "max_targets": 40}
@@ -39,7 +39,7 @@ class SpecError(ValueError):
     pass
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def schema() -> dict:
     with open(SCHEMA, encoding="utf-8") as f:
         return json.load(f)
@@ -91,7 +91,8 @@ def _message(err) -> str:
     where = field_path("spec", list(err.absolute_path))
     kw, v, sch = err.validator, err.instance, err.schema if isinstance(err.schema, dict) else {}
     if kw == "type":
-        return f"{where}: must be {' or '.join(err.validator_value) if isinstance(err.validator_value, list) else err.validator_value}, got {json_type(v)}"
+        want = err.validator_value
+        return f"{where}: must be {' or '.join(want) if isinstance(want, list) else want}, got {json_type(v)}"
     if kw in ("oneOf", "anyOf"):
         kinds = sorted({e.validator_value for e in top.context if e.validator == "type"})
         return f"{where}: must be {' or '.join(map(str, kinds))}, got {json_type(v)}"
@@ -119,9 +120,9 @@ def _message(err) -> str:
     return f"{where}: {err.message}"
 
 
-def _first_not_finite(doc: Any) -> Optional[tuple]:
+def _first_not_finite(doc: Any) -> tuple | None:
     """(path, value) of the first NaN or infinity in document order, else None."""
-    todo: List[tuple] = [((), doc)]
+    todo: list[tuple] = [((), doc)]
     while todo:
         parts, v = todo.pop()
         if isinstance(v, float) and not math.isfinite(v):
@@ -232,10 +233,10 @@ def _loader_class():
 
         def __init__(self, text: str):
             super().__init__(text)
-            self.where: List[Any] = []
+            self.where: list[Any] = []
             self.depth = 0
             self.nodes = 0
-            self.keys: Dict[int, Dict[str, Any]] = {}
+            self.keys: dict[int, dict[str, Any]] = {}
 
         def refuse(self, rule: str, got: str, parts=None):
             raise _Refused(list(self.where) if parts is None else parts, rule, got)
@@ -302,7 +303,7 @@ def _loader_class():
     return SpecLoader
 
 
-def parse(data: bytes, size: Optional[int] = None) -> Any:
+def parse(data: bytes, size: int | None = None) -> Any:
     """A spec document from the file's bytes (size: the file's, when more than data
     holds); SpecError names the first breach of the loader's limits and rules."""
     import yaml
@@ -383,14 +384,14 @@ def _base(spec: dict, run: str, s: dict, seed: int, index: int) -> dict:
 
 
 def _task(base: dict, task: str, tool: str, mission_doc: dict, settings: dict,
-          penalty: Optional[int] = None, coverable: Optional[int] = None) -> dict:
-    version = T.tool_version(task)
-    mh = T.mission_hash(mission_doc)
+          penalty: int | None = None, coverable: int | None = None) -> dict:
+    version = tasks.tool_version(task)
+    mh = tasks.mission_hash(mission_doc)
     key_settings = dict(settings, penalty=penalty) if task == "fly" else settings
     t = dict(base, task=task, tool=tool, settings=settings, version=version, mission_hash=mh,
              mission_name=(mission_doc.get("mission") or mission_doc).get("name"),
-             mission=T.canonical(mission_doc), coverable=coverable,
-             key=T.task_key(task, tool, mh, key_settings, version))
+             mission=tasks.canonical(mission_doc), coverable=coverable,
+             key=tasks.task_key(task, tool, mh, key_settings, version))
     if penalty is not None:
         t["penalty"] = penalty
     return t
@@ -415,7 +416,7 @@ def _generated(n: int, seed: int, index: int, make):
                         f"mission {index}: {e}") from None
 
 
-def first_tasks(spec: dict, run: str) -> List[dict]:
+def first_tasks(spec: dict, run: str) -> list[dict]:
     """Every task the spec names before any result is known: for kind plan, each
     mission's planner and ref tasks; for kind live, each scenario's flights (their
     replans' ref tasks follow from the flight logs: ref_tasks)."""
@@ -427,8 +428,8 @@ def first_tasks(spec: dict, run: str) -> List[dict]:
             for i in range(s.get("count", spec["count"])):
                 base = _base(spec, run, s, seed, i)
                 if spec["kind"] == "plan":
-                    doc = _generated(n, seed, i, lambda: gen.generate(s["targets"], s["uavs"], seed=seed, index=i,
-                                                                      **kw).to_json())
+                    doc = _generated(n, seed, i, functools.partial(gen.generate, s["targets"], s["uavs"],
+                                                                   seed=seed, index=i, **kw)).to_json()
                     settings = plan_settings(spec)
                     for algo in spec["algorithms"]:
                         out.append(_task(base, "plan", algo, doc, settings if algo == "flow" else {},
@@ -436,16 +437,16 @@ def first_tasks(spec: dict, run: str) -> List[dict]:
                     if spec["ref"] and s["targets"] <= spec["ref"]["max_targets"]:
                         out.append(_task(base, "ref", "ref", doc, ref_settings(spec), coverable=s["targets"]))
                 else:
-                    doc = _generated(n, seed, i, lambda: gen.generate_scenario(
-                        s["targets"], s["uavs"], s.get("events", DEFAULT_EVENTS), seed=seed, index=i,
-                        name=f"live_{i:04d}", **kw))
+                    doc = _generated(n, seed, i, functools.partial(
+                        gen.generate_scenario, s["targets"], s["uavs"], s.get("events", DEFAULT_EVENTS),
+                        seed=seed, index=i, name=f"live_{i:04d}", **kw))
                     for algo in spec["algorithms"]:
                         for pen in spec["penalties"]:
                             out.append(_task(base, "fly", algo, doc, {}, penalty=pen))
     return out
 
 
-def ref_tasks(spec: dict, run: str, flights: List[dict], logs: Dict[str, dict]) -> List[dict]:
+def ref_tasks(spec: dict, run: str, flights: list[dict], logs: dict[str, dict]) -> list[dict]:
     """ref on the residual missions (with a target) of the replans of each set's first
     ref_count scenarios (default: all) per seed, once per distinct residual mission."""
     if not spec["ref"]:
@@ -456,7 +457,7 @@ def ref_tasks(spec: dict, run: str, flights: List[dict], logs: Dict[str, dict]) 
         s = by_set[f["set"]]
         if f["index"] >= s.get("ref_count", s.get("count", spec["count"])) or f["key"] not in logs:
             continue
-        for doc in T.residuals(logs[f["key"]]):
+        for doc in tasks.residuals(logs[f["key"]]):
             if len(doc["targets"]) > spec["ref"]["max_targets"]:
                 continue
             t = _task(_base(spec, run, s, f["seed"], f["index"]), "ref", "ref", doc, ref_settings(spec),

@@ -16,9 +16,10 @@ from __future__ import annotations
 
 import os
 import time
+from collections.abc import Iterable
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
-from typing import Callable, Dict, Iterable, List, Optional, Tuple
+from typing import Callable
 
 import numpy as np
 import pyarrow as pa
@@ -45,7 +46,7 @@ class Damaged(Exception):
     """Why a part file cannot be used (str: the reason, one line)."""
 
 
-def _schema_error(found: pa.Schema) -> Optional[str]:
+def _schema_error(found: pa.Schema) -> str | None:
     """Why a part's schema is not the store's, else None."""
     for field in SCHEMA:
         i = found.get_field_index(field.name)
@@ -78,29 +79,29 @@ def read_part(path: Path, schema: pa.Schema, check_schema: bool = True) -> pa.Ta
 
 class Store:
     def __init__(self, out: str, run: str, flush_rows: int = 64, flush_s: float = 2.0,
-                 on_damaged: Optional[Callable[[Path, str], None]] = None):
+                 on_damaged: Callable[[Path, str], None] | None = None):
         self.dir = Path(out) / "results"
         self.dir.mkdir(parents=True, exist_ok=True)
         self.run = run
         self.flush_rows, self.flush_s = flush_rows, flush_s
-        self.pending: List[dict] = []
+        self.pending: list[dict] = []
         self.seq = 0
         self.last = time.monotonic()
         self.written = 0
-        self.damaged: Dict[Path, str] = {}  # part file -> reason, in the order found
+        self.damaged: dict[Path, str] = {}  # part file -> reason, in the order found
         self.on_damaged = on_damaged
         self.schema_ok: set = set()  # part files whose schema was checked (a fifth of a read's cost)
 
-    def files(self) -> List[Path]:
+    def files(self) -> list[Path]:
         """The part files, damaged ones included, in name order."""
         return sorted(self.dir.glob("part-*.parquet"))
 
-    def table(self, columns: Optional[List[str]] = None) -> pa.Table:
+    def table(self, columns: list[str] | None = None) -> pa.Table:
         """Every stored row (the first of each key), files in name order; a damaged
         file is recorded, reported once and skipped."""
         schema = SCHEMA if columns is None else pa.schema([SCHEMA.field(c) for c in columns])
 
-        def read(path) -> Tuple[Optional[pa.Table], str]:
+        def read(path) -> tuple[pa.Table | None, str]:
             try:
                 t = read_part(path, schema, path not in self.schema_ok)
                 self.schema_ok.add(path)
@@ -129,7 +130,7 @@ class Store:
             "key", use_threads=False).aggregate([("i", "min")])["i_min"]
         return t.take(first.take(pc.sort_indices(first)))
 
-    def set_aside(self) -> List[Tuple[Path, Path]]:
+    def set_aside(self) -> list[tuple[Path, Path]]:
         """Moves the damaged part files to OUT/damaged/ (kept for a look, out of every
         read); returns (from, to) of each. Their tasks are no longer stored: the next
         submission computes them again."""
@@ -148,7 +149,7 @@ class Store:
     def keys(self) -> set:
         return set(self.table(["key"]).column("key").to_pylist())
 
-    def rows(self, keys: Optional[Iterable[str]] = None, columns: Optional[List[str]] = None) -> Dict[str, dict]:
+    def rows(self, keys: Iterable[str] | None = None, columns: list[str] | None = None) -> dict[str, dict]:
         """key -> row (only the given columns, key always included)."""
         t = self.table(None if columns is None else ["key"] + [c for c in columns if c != "key"])
         wanted = set(keys) if keys is not None else None

@@ -16,12 +16,12 @@ import os
 import socket
 import time
 from pathlib import Path
-from typing import Any, Dict, List
+from typing import Any
 
 from .. import __version__
 
 _PKG = Path(__file__).resolve().parents[1]
-_hashes: Dict[str, str] = {}
+_hashes: dict[str, str] = {}
 
 # Columns of a stored row, in order (docs/campaigns.md, "Parquet layout").
 ROW_FIELDS = ("key", "campaign", "run", "task", "tool", "set", "targets", "uavs", "seed", "index",
@@ -82,6 +82,7 @@ def _plan_figures(plan: dict) -> dict:
 def _run_plan(task: dict) -> dict:
     import subprocess
     import tempfile
+
     from .. import cbin
     s = task["settings"]
     cmd = [str(cbin.sva_bin()), "plan", "--algo", task["tool"]]
@@ -144,7 +145,7 @@ def run_task(task: dict) -> dict:
         worker = get_worker().address
     except (ImportError, ValueError):
         worker = "direct"
-    row = {k: None for k in ROW_FIELDS}
+    row: dict[str, Any] = {k: None for k in ROW_FIELDS}
     row.update({k: task.get(k) for k in ("key", "campaign", "run", "task", "tool", "set", "targets",
                                         "uavs", "seed", "index", "penalty", "mission_hash",
                                         "mission_name", "mission")})
@@ -168,6 +169,6 @@ def residual_for_ref(mission: dict) -> dict:
     return doc
 
 
-def residuals(log: dict) -> List[dict]:
+def residuals(log: dict) -> list[dict]:
     """The residual missions of a flight log's replans that have a target."""
     return [residual_for_ref(r["mission"]) for r in log["replans"] if r["mission"]["targets"]]

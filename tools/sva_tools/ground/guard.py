@@ -19,7 +19,8 @@ import hmac
 import ipaddress
 import sys
 import time
-from typing import Any, Dict, Iterable, Optional, Set, Tuple
+from collections.abc import Iterable
+from typing import Any
 from urllib.parse import parse_qs, urlsplit
 
 from ..text import shown
@@ -51,8 +52,8 @@ class RefusalLog:
     line per window counting the rest."""
 
     def __init__(self) -> None:
-        self.total: Dict[str, int] = {}
-        self._window: Dict[str, Tuple[float, int, int]] = {}  # kind: start, lines, held
+        self.total: dict[str, int] = {}
+        self._window: dict[str, tuple[float, int, int]] = {}  # kind: start, lines, held
 
     def refused(self, kind: str, text: str) -> None:
         self.total[kind] = self.total.get(kind, 0) + 1
@@ -81,7 +82,7 @@ class RefusalLog:
             log_line(f"refused: {held} more ({kind}) in the last {BURST_WINDOW_S:g} s")
 
 
-def _host_port(netloc: str, default_port: int) -> Optional[Tuple[str, int]]:
+def _host_port(netloc: str, default_port: int) -> tuple[str, int] | None:
     try:
         parts = urlsplit("//" + netloc)
         name, port = parts.hostname, parts.port
@@ -95,11 +96,11 @@ def _host_port(netloc: str, default_port: int) -> Optional[Tuple[str, int]]:
 class Access:
     """The Host, Origin and token rules for one served address."""
 
-    def __init__(self, host: str, allow_hosts: Iterable[str], token: Optional[str]):
-        self.names: Set[str] = set(LOOPBACK_NAMES)
+    def __init__(self, host: str, allow_hosts: Iterable[str], token: str | None):
+        self.names: set[str] = set(LOOPBACK_NAMES)
         if host not in WILDCARDS:
             self.names.add(host.strip("[]").lower())
-        self.extra: Set[Tuple[str, Optional[int]]] = set()
+        self.extra: set[tuple[str, int | None]] = set()
         for entry in allow_hosts:
             hp = _host_port(entry, -1)
             if hp is None:
@@ -113,7 +114,7 @@ class Access:
             return True
         return (name, port) in self.extra
 
-    def refusal(self, headers: Any, query: str, path: str) -> Optional[str]:
+    def refusal(self, headers: Any, query: str, path: str) -> str | None:
         """Why a request may not be served, or None."""
         host = headers.get("Host", "")
         hp = _host_port(host, 80)
@@ -147,8 +148,8 @@ class ConnectionGate:
         self.max_connections = max_connections
         self.handshake_timeout_s = handshake_timeout_s
         self.refusals = refusals
-        self.live: Dict[Any, Tuple[Any, float]] = {}  # handler: transport, accepted at
-        self.requested: Set[Any] = set()     # handlers that received a complete request
+        self.live: dict[Any, tuple[Any, float]] = {}  # handler: transport, accepted at
+        self.requested: set[Any] = set()     # handlers that received a complete request
         self.peak = 0
 
     def install(self, server: Any) -> None:
@@ -168,7 +169,7 @@ class ConnectionGate:
             self.live[handler] = (transport, asyncio.get_running_loop().time())
             self.peak = max(self.peak, len(self.live))
 
-        def connection_lost(handler: Any, exc: Optional[BaseException] = None) -> None:
+        def connection_lost(handler: Any, exc: BaseException | None = None) -> None:
             entry = self.live.pop(handler, None)
             if entry is not None and handler not in self.requested:
                 transport, since = entry

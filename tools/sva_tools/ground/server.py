@@ -25,7 +25,7 @@ import re
 import signal
 import time
 from pathlib import Path
-from typing import Callable, Deque, Optional, Set
+from typing import Callable
 
 from aiohttp import WSMsgType, web
 
@@ -47,7 +47,7 @@ class Client:
         self.ws = ws
         self.request = request
         self.peer = peer(request.transport)
-        self.frames: Deque[str] = collections.deque(maxlen=queue)
+        self.frames: collections.deque[str] = collections.deque(maxlen=queue)
         self.ready = asyncio.Event()
         self.sent = 0
         self.dropped = 0
@@ -68,14 +68,14 @@ class Client:
 
 class Server:
     def __init__(self, ground: Ground, limits: Limits = Limits(),
-                 access: Optional[Access] = None):
+                 access: Access | None = None):
         self.ground = ground
         self.limits = limits
         self.access = access if access is not None else Access("127.0.0.1", (), None)
         self.refusals = RefusalLog()
         self.gate = ConnectionGate(limits.max_connections, limits.handshake_timeout_s,
                                    self.refusals)
-        self.clients: Set[Client] = set()
+        self.clients: set[Client] = set()
         self.sent_version = -1
         self._frame_version = -1
         self._frame_text = ""
@@ -217,7 +217,7 @@ def lcm_log_source(ground: Ground, path: str, speed: float):
     log = lcm.EventLog(path, "r")
 
     async def play():
-        first_log: Optional[int] = None
+        first_log: int | None = None
         first_wall = time.monotonic()
         for n, ev in enumerate(log):
             if first_log is None:
@@ -257,7 +257,7 @@ def _task(play):
 
 
 def serve(ground: Ground, host: str, port: int, source, ready=None,
-          limits: Limits = Limits(), access: Optional[Access] = None) -> None:
+          limits: Limits = Limits(), access: Access | None = None) -> None:
     """Serves until SIGINT or SIGTERM. `ready(port)` once listening (port: the bound one).
     OSError if the address cannot be bound."""
     asyncio.run(_serve(Server(ground, limits, access or Access(host, (), None)), host, port,

@@ -17,7 +17,7 @@ while it was waiting and no plan covered it.
 from __future__ import annotations
 
 import time
-from typing import Any, Dict, List, Optional
+from typing import Any
 
 from ..lcm import wire
 from ..sim import event_text
@@ -50,33 +50,36 @@ def check_frame(frame: Any, where: str = "frame") -> dict:
     if frame is None:
         raise FrameError(f"{prefix}frame: must be an object, got null")
     try:
-        return wire.frame_document(wire.frame_message(frame))
+        doc = wire.frame_document(wire.frame_message(frame))
     except wire.InputError as e:
         raise FrameError(prefix + str(e)) from None
+    if doc is None:  # cannot happen: the frame is there
+        raise FrameError(f"{prefix}frame: must be an object")
+    return doc
 
 
 class Ground:
-    def __init__(self, prefix: str = "SVA_", frame: Optional[dict] = None, source: str = "lcm"):
+    def __init__(self, prefix: str = "SVA_", frame: dict | None = None, source: str = "lcm"):
         self.prefix = prefix
         self.source = source
         self.version = 0           # bumps on every change (the server pushes when it moves)
         self.frame = frame
         self.given_frame = frame   # --frame (or a flight log's); a mission_t's frame wins
-        self.mission: Optional[dict] = None
+        self.mission: dict | None = None
         self.now = 0
-        self.uavs: Dict[int, dict] = {}
-        self.targets: Dict[int, dict] = {}
-        self.plan: Optional[dict] = None
-        self.replans: List[dict] = []
+        self.uavs: dict[int, dict] = {}
+        self.targets: dict[int, dict] = {}
+        self.plan: dict | None = None
+        self.replans: list[dict] = []
         self.replans_summary = _no_replans()
         self.forgotten = {"targets": 0, "uavs": 0}
-        self.log: List[dict] = []
-        self.node: Dict[str, Any] = {"status": None, "replans_answered": 0, "refused": 0,
+        self.log: list[dict] = []
+        self.node: dict[str, Any] = {"status": None, "replans_answered": 0, "refused": 0,
                                      "last_solve_us": None, "plans": 0}
-        self.warnings = {"count": 0, "recent": []}
-        self.counts: Dict[str, int] = {}
-        self.events_seen: Dict[int, dict] = {}
-        self.end: Optional[int] = None
+        self.warnings: dict[str, Any] = {"count": 0, "recent": []}
+        self.counts: dict[str, int] = {}
+        self.events_seen: dict[int, dict] = {}
+        self.end: int | None = None
 
     # --- bookkeeping ------------------------------------------------------------------
 
@@ -340,9 +343,9 @@ class Ground:
             if c is not None:
                 c.update(lost=False, x=ev["x"], y=ev["y"], fuel=ev["fuel"])
         elif kind == "target_cancelled":
-            tg = self.targets.get(ev["target"]["id"])
-            if tg is not None:
-                tg["state"] = "cancelled"
+            cancelled = self.targets.get(ev["target"]["id"])
+            if cancelled is not None:
+                cancelled["state"] = "cancelled"
         elif kind in ("target_added", "target_changed"):
             g = ev["target"]
             old = self.targets.get(g["id"], {})
@@ -412,7 +415,7 @@ def flight_at(g: Ground, log: dict, t: int) -> None:
         elif e["type"] == "target_cancelled":
             cancelled.add(e["target"])
     outcome = {x["id"]: x for x in log["targets"]}
-    hover = {}
+    hover: dict[int, Any] = {}
     for u in log["uavs"]:
         for v in u["visits"]:
             hover.setdefault(v["target"], []).append((u["id"], v))

@@ -9,7 +9,7 @@ each replan_t. The last replan_t of the tick is the plan the UAVs fly. Every mes
 round trip (publish to answer, monotonic clock) and the node's solve time are kept.
 
 Where the node runs: `run_via_lcm` enters a network namespace made for the run
-(tests/lcm/netns_run.sh, root only) unless it is already inside one (SVA_LCM_NETNS),
+(tools/netns/netns_run.sh, root only) unless it is already inside one (SVA_LCM_NETNS),
 and there starts sva_node (SVA_NODE, else build/bin/sva_node) with the algorithm and
 the scenario's change_penalty, or, with `attach`, uses the node already running there.
 
@@ -29,11 +29,11 @@ import re
 import shutil
 import signal
 import subprocess
-import sys
 import tempfile
 import time
+from collections.abc import Sequence
 from pathlib import Path
-from typing import List, Optional, Tuple
+from typing import Any
 
 from . import wire
 
@@ -61,10 +61,10 @@ def node_bin() -> Path:
 
 def netns_helper() -> Path:
     env = os.environ.get("SVA_NETNS_RUN")
-    return Path(env) if env else REPO / "tests" / "lcm" / "netns_run.sh"
+    return Path(env) if env else REPO / "tools" / "netns" / "netns_run.sh"
 
 
-def percentile(values: List[float], q: float) -> Optional[float]:
+def percentile(values: Sequence[float], q: float) -> float | None:
     """Nearest-rank percentile (q in [0, 100]) of values; None for none."""
     if not values:
         return None
@@ -73,14 +73,14 @@ def percentile(values: List[float], q: float) -> Optional[float]:
     return s[int(k) - 1]
 
 
-def flight_messages(events: List[dict]) -> int:
+def flight_messages(events: list[dict]) -> int:
     """The messages a flight sends the node: the fleet and mission (one answer, the
     plan), then one event_t per event, and a clock event_t at tick 0 when no event is
     at tick 0 (sim.Flight replans at tick 0 and at every tick with events)."""
     return 1 + len(events) + (0 if any(e.get("at") == 0 for e in events) else 1)
 
 
-def kill_plan(events: List[dict], kills: int, seed: int) -> List[Tuple[int, float]]:
+def kill_plan(events: list[dict], kills: int, seed: int) -> list[tuple[int, float]]:
     """`kills` seeded moments to kill the node: (after_message, delay in seconds), the
     message drawn from 1 .. messages - 1 (after the plan, before the last event; the same
     message may come twice: a node killed again right after it resumed), sorted."""
@@ -97,22 +97,22 @@ RESUMED = re.compile(r"resumed from .*: (\d+) records replayed, (?:revision (\d+
 class NodePlanner:
     """sim.Flight's planner, answered by sva_node over LCM (see the module docstring)."""
 
-    def __init__(self, algo: str, penalty: Optional[int], url: str = DEFAULT_URL,
+    def __init__(self, algo: str, penalty: int | None, url: str = DEFAULT_URL,
                  prefix: str = DEFAULT_PREFIX, attach: bool = False, timeout: float = 10.0,
-                 kills: Optional[List[Tuple[int, float]]] = None, takeoff: int = 0):
+                 kills: list[tuple[int, float]] | None = None, takeoff: int = 0):
         import lcm  # the venv's lcm==1.5.3
 
         self.algo, self.penalty = algo, penalty or 0
         self.takeoff = takeoff  # the mission's takeoff_ticks: a node option (not on the wire)
         self.url, self.prefix, self.attach, self.timeout = url, prefix, attach, timeout
-        self.proc: Optional[subprocess.Popen] = None
+        self.proc: subprocess.Popen | None = None
         self.kill_at = list(kills or [])
         if self.kill_at and attach:
             raise NodeError("--kill-node: the node must be the run's own (not --attach)", 2)
         self.state_dir = tempfile.mkdtemp(prefix="sva-sim-state-") if self.kill_at else None
-        self.kills: List[dict] = []
+        self.kills: list[dict] = []
         self.answered = 0    # messages answered (the plan, then each replan)
-        self.last: Tuple[int, int, int] = (-1, 0, 0)  # plan id, revision, now of the last answer
+        self.last: tuple[int, int, int] = (-1, 0, 0)  # plan id, revision, now of the last answer
         self.t = wire.types()
         self.lc = lcm.LCM(url)
         self.subs: list = []
@@ -124,7 +124,7 @@ class NodePlanner:
         self.sent = 0        # history events published
         self.messages = 0    # event_t published
         self.name = "mission"
-        self.round_trips: List[int] = []
+        self.round_trips: list[int] = []
         esc = prefix.replace("\\", "\\\\")
         t = self.t
 
@@ -272,7 +272,7 @@ class NodePlanner:
         return {"channel": "PLAN", "plan_id": p.plan_id, "solve_us": p.solve_us,
                 "round_trip_us": rt}
 
-    def _send(self, event: dict, now: int, is_event: bool) -> Tuple[dict, object]:
+    def _send(self, event: dict, now: int, is_event: bool) -> tuple[dict, Any]:
         seq = self.seq0 + self.messages
         self.messages += 1
         where = f"events[{self.sent}]." if is_event else "clock."
@@ -300,13 +300,13 @@ class NodePlanner:
                 "plan_id": r.plan.plan_id if doc["accepted"] else None, "round_trip_us": rt}
         return info, (doc, r)
 
-    def __call__(self, mission_doc: dict, history: List[dict], now: int, algo: str):
+    def __call__(self, mission_doc: dict, history: list[dict], now: int, algo: str):
         messages = []
         if not self.plans:
             messages.append(self._start(mission_doc))
         new = history[self.sent:]
         todo = new if new else [{"at": now, "type": "clock"}]
-        last = None
+        last: tuple[dict, Any] | None = None
         for e in todo:
             info, (doc, r) = self._send(e, now, bool(new))
             messages.append(info)
@@ -322,6 +322,8 @@ class NodePlanner:
             if new:
                 self.sent += 1
             last = (doc, r)
+        if last is None:  # cannot happen: there is always a message to send
+            raise NodeError("no message was sent to the node", 2)
         doc, r = last
         out = doc["plan"]
         ch = doc["changes"]
@@ -340,31 +342,6 @@ class NodePlanner:
                 "restarts": len(self.kills), "messages": len(rts),
                 "round_trip_us": {"p50": percentile(rts, 50), "p99": percentile(rts, 99),
                                   "max": max(rts) if rts else None}}
-
-
-def reexec_in_netns(argv: List[str]) -> int:
-    """Runs `python -m sva_tools ARGV` in a fresh network namespace (netns_run.sh) and
-    returns its exit status; 2 with a clear message when that cannot be done."""
-    if os.geteuid() != 0:
-        print("sva-tools: error: sim --via lcm: needs root to create the network namespace "
-              "the node and the simulator talk in (ip netns); run it as root, or inside a "
-              "namespace made for it (SVA_LCM_NETNS set, as tests/lcm/netns_run.sh does)",
-              file=sys.stderr)
-        return 2
-    helper = netns_helper()
-    if not os.access(helper, os.X_OK):
-        print(f"sva-tools: error: sim --via lcm: the network namespace helper {helper} is "
-              "missing (point SVA_NETNS_RUN at tests/lcm/netns_run.sh)", file=sys.stderr)
-        return 2
-    env = dict(os.environ)
-    tools = str(Path(__file__).resolve().parents[2])
-    env["PYTHONPATH"] = tools + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
-    rc = subprocess.run([str(helper), sys.executable, "-m", "sva_tools", *argv], env=env).returncode
-    if rc == 77:
-        print("sva-tools: error: sim --via lcm: could not create a network namespace "
-              "(ip netns: needs root and iproute2)", file=sys.stderr)
-        return 2
-    return rc
 
 
 def comparable_flight(log: dict) -> dict:

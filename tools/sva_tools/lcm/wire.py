@@ -32,7 +32,7 @@ ALGORITHMS = ["sva", "ga", "hga", "bfa", "flow"]  # sva_algorithm_t order
 REJECT_REASONS = ["truncated", "trailing", "fingerprint", "count", "value", "invalid",
                   "planner", "too_large", "version"]  # sva_lcm_reject_t order
 
-_types = None
+_types: Any = None
 
 
 class InputError(ValueError):
@@ -103,8 +103,8 @@ def frame_message(doc: Any):
     Checked and rounded by the frame's contract (the mission schema's `frame`, t0's
     rules beyond it, sva_tools.frame's rounding), in the words of `sva validate` and
     `sva-tools validate`."""
-    from .. import frame as F
     from .. import schema
+    from ..frame import Frame, rounded, t0_rule
 
     t = types()
     w = t.frame_t()
@@ -113,15 +113,15 @@ def frame_message(doc: Any):
     errs = schema.errors(doc, "mission", "frame", "frame")
     if errs:
         raise InputError(errs[0])
-    rule = F.t0_rule(doc["t0"])
+    rule = t0_rule(doc["t0"])
     if rule:
         raise InputError(f"frame.t0: {rule}, got {json.dumps(doc['t0'])}")
-    fr = F.Frame.from_json(doc)
+    fr = Frame.from_json(doc)
     w.present = 1
-    w.lat_e7 = int(F.rounded(doc["lat"], "lat").scaleb(7))
-    w.lon_e7 = int(F.rounded(doc["lon"], "lon").scaleb(7))
-    w.alt_cm = int(F.rounded(doc["alt_m"], "alt_m").scaleb(2))
-    w.cell_cm = int(F.rounded(doc["cell_m"], "cell_m").scaleb(2))
+    w.lat_e7 = int(rounded(doc["lat"], "lat").scaleb(7))
+    w.lon_e7 = int(rounded(doc["lon"], "lon").scaleb(7))
+    w.alt_cm = int(rounded(doc["alt_m"], "alt_m").scaleb(2))
+    w.cell_cm = int(rounded(doc["cell_m"], "cell_m").scaleb(2))
     w.tick_ms = fr.tick_ms
     w.t0_ms = fr.t0_ms
     return w

@@ -8,10 +8,19 @@ from __future__ import annotations
 
 import math
 import time
-from typing import List, Optional
+from typing import Any
 
-from .vehicle import (COPTER_AUTO, COPTER_GUIDED, EKF_POS_HORIZ_ABS, MAV_MODE_FLAG_SAFETY_ARMED,
-                      STREAMS_US, Clock, Link, MissionReader, Process)
+from .vehicle import (
+    COPTER_AUTO,
+    COPTER_GUIDED,
+    EKF_POS_HORIZ_ABS,
+    MAV_MODE_FLAG_SAFETY_ARMED,
+    STREAMS_US,
+    Clock,
+    Link,
+    MissionReader,
+    Process,
+)
 
 MAV_CMD_NAV_DELAY = 93
 MAV_CMD_NAV_RETURN_TO_LAUNCH = 20
@@ -34,8 +43,8 @@ class Spell:
         self.streams_due = 0.0
         self.gps_fix = 0
         self.ekf_ok = False
-        self.ready_utc_ms: Optional[float] = None
-        self.ready_host: Optional[float] = None
+        self.ready_utc_ms: float | None = None
+        self.ready_host: float | None = None
 
 
 class Craft:
@@ -44,35 +53,35 @@ class Craft:
         self.instance = index
         self.sysid = index + 1
         self.speedup = speedup
-        self.spell: Optional[Spell] = None
-        self.spells: List[dict] = []
+        self.spell: Spell | None = None
+        self.spells: list[dict] = []
         self.in_service = False
-        self.out: List[list] = []
-        self.telemetry: List[list] = []        # [utc_ms, lat, lon, rel_alt_m]
+        self.out: list[list] = []
+        self.telemetry: list[list] = []        # [utc_ms, lat, lon, rel_alt_m]
         self.armed = False
-        self.mode: Optional[int] = None
-        self.current: Optional[int] = None
-        self.currents: List[list] = []         # [utc_ms, seq]
-        self.reached: List[list] = []          # [utc_ms, seq]
-        self.uploads: List[dict] = []          # bridge lines for this UAV
+        self.mode: int | None = None
+        self.current: int | None = None
+        self.currents: list[list] = []         # [utc_ms, seq]
+        self.reached: list[list] = []          # [utc_ms, seq]
+        self.uploads: list[dict] = []          # bridge lines for this UAV
         self.mission_version = 0               # accepted uploads (bridge) this spell
         self.start_wanted = False              # a mission uploaded and not started yet
-        self.pause_until: Optional[float] = None   # GUIDED until this UTC ms (a hold's end)
-        self.pause_item: Optional[tuple] = None     # the hold item paused, and its waypoint
-        self.pauses: List[dict] = []
-        self.start_asked_host: Optional[float] = None
+        self.pause_until: float | None = None   # GUIDED until this UTC ms (a hold's end)
+        self.pause_item: tuple | None = None     # the hold item paused, and its waypoint
+        self.pauses: list[dict] = []
+        self.start_asked_host: float | None = None
         self.start_seen = False                # item 1..3 began since the start was asked
-        self.current_command: Optional[int] = None
-        self.current_item: Optional[object] = None
-        self.current_wp: Optional[object] = None
-        self.items: List[object] = []          # the mission it holds (read back)
-        self.missions: List[dict] = []         # every read-back: {utc_ms, items}
-        self.holds: List[dict] = []
-        self.starts: List[dict] = []           # {utc_ms, version, was_armed, mode, started_utc_ms}
+        self.current_command: int | None = None
+        self.current_item: Any = None  # pymavlink messages (untyped)
+        self.current_wp: Any = None
+        self.items: list[Any] = []          # the mission it holds (read back)
+        self.missions: list[dict] = []         # every read-back: {utc_ms, items}
+        self.holds: list[dict] = []
+        self.starts: list[dict] = []           # {utc_ms, version, was_armed, mode, started_utc_ms}
         self.reenter_auto = False              # a start from the ground in AUTO: leave AUTO first
-        self.texts: List[list] = []
+        self.texts: list[list] = []
         self.next_try = 0.0
-        self.unexpected_exit: Optional[str] = None
+        self.unexpected_exit: str | None = None
 
     # --- spells ----------------------------------------------------------------------
 
@@ -99,10 +108,10 @@ class Craft:
         self.spell = None
 
     @property
-    def clock(self) -> Optional[Clock]:
+    def clock(self) -> Clock | None:
         return self.spell.clock if self.spell is not None else None
 
-    def utc_ms(self) -> Optional[float]:
+    def utc_ms(self) -> float | None:
         return self.spell.clock.utc_ms() if self.spell is not None else None
 
     def not_ready_because(self) -> str:
@@ -220,7 +229,7 @@ class Craft:
             # elsewhere before that window began) is cut, not ended by the clock
             self._hold_ended(ended, ended_wp, now, cut=self.start_asked_host is not None)
 
-    def _hold_ended(self, item, wp, now: Optional[float], cut: bool = False) -> None:
+    def _hold_ended(self, item, wp, now: float | None, cut: bool = False) -> None:
         hold = {"seq": item.seq, "ended_utc_ms": now, "until_tod_s": _tod_s(item), "cut": cut}
         if wp is not None:
             hold["wp"] = (wp.x / 1e7, wp.y / 1e7)
@@ -228,7 +237,7 @@ class Craft:
 
     # --- missions and arming -----------------------------------------------------------
 
-    def on_upload(self, line: dict, utc_ms: Optional[float], busy_until: Optional[float]) -> None:
+    def on_upload(self, line: dict, utc_ms: float | None, busy_until: float | None) -> None:
         """A bridge line about this UAV. After an accepted upload the operator starts the
         new mission from its first item: ArduPilot would go on with the new mission's
         item at the index it was flying (it restarts that command when its mission
@@ -343,7 +352,7 @@ def tod_instant_ms(tod_s: int, near_ms: float) -> float:
                      key=lambda c: abs(c - near_ms)))
 
 
-def _num(v: float) -> Optional[float]:
+def _num(v: float) -> float | None:
     return None if v != v else round(float(v), 7)  # NaN (the vehicle's choice): null
 
 

@@ -25,6 +25,7 @@ the vehicle's process at its time and starts a fresh one where it is, on the gro
 """
 from __future__ import annotations
 
+import functools
 import math
 import select
 import shutil
@@ -33,15 +34,18 @@ import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Dict, List, Optional
+from typing import TYPE_CHECKING, Any
 
-from .. import frame as F
-from .. import model as M
+from ..frame import Frame, format_utc
+from ..model import Mission
 from . import judge, record
 from .craft import Craft
 from .ground import Ground, GroundError
 from .relay import UPLOAD_FAULTS, Relay
 from .vehicle import Process, SitlError, write_extra_parameters
+
+if TYPE_CHECKING:
+    from tqdm import tqdm as Tqdm
 
 BOOT_ALLOWANCE_S = 90        # vehicle seconds from launch to a ready vehicle (measured: ~41)
 READY_TIMEOUT_WALL_S = 120   # host seconds to wait for every vehicle to be ready
@@ -65,9 +69,9 @@ def takeoff_allowance_s(alt_m: float) -> int:
 @dataclass
 class Settings:
     scenario_path: str
-    mission: M.Mission
-    events: List[dict]
-    penalty: Optional[int]
+    mission: Mission
+    events: list[dict]
+    penalty: int | None
     frame: dict                 # lat, lon, alt_m, cell_m, tick_s, and t0 (None: choose it)
     algo: str
     speedup: float
@@ -76,7 +80,7 @@ class Settings:
     url: str
     prefix: str
     progress: bool = True
-    faults: List[dict] = field(default_factory=list)   # {kind, uav, t_s} (cli.parse_fault)
+    faults: list[dict] = field(default_factory=list)   # {kind, uav, t_s} (cli.parse_fault)
 
 
 class Flight:
@@ -84,48 +88,48 @@ class Flight:
         self.s = s
         self.tmp = Path(tempfile.mkdtemp(prefix="sva-sitl-"))
         f = s.frame
-        self.geo = F.Frame.from_json({**f, "t0": f.get("t0") or "1970-01-01T00:00:00Z"})
-        self.t0_ms: Optional[int] = self.geo.t0_ms if f.get("t0") else None
+        self.geo = Frame.from_json({**f, "t0": f.get("t0") or "1970-01-01T00:00:00Z"})
+        self.t0_ms: int | None = self.geo.t0_ms if f.get("t0") else None
         self.tick_ms = self.geo.tick_ms
         self.allowance_s = takeoff_allowance_s(self.geo.alt_m)
-        self.crafts: List[Craft] = [Craft(u.id, k, s.speedup) for k, u in enumerate(s.mission.uavs)]
-        self.by_id: Dict[int, Craft] = {c.id: c for c in self.crafts}
-        self.ground: Optional[Ground] = None
+        self.crafts: list[Craft] = [Craft(u.id, k, s.speedup) for k, u in enumerate(s.mission.uavs)]
+        self.by_id: dict[int, Craft] = {c.id: c for c in self.crafts}
+        self.ground: Ground | None = None
         self.defaults = f"{s.defaults},{write_extra_parameters(self.tmp)}"
         self.pending = [dict(e, index=i) for i, e in enumerate(s.events)]
-        self.flown_events: List[dict] = []
-        self.awaiting: Dict[int, dict] = {}      # event seq -> its record
-        self.replans: List[dict] = []
+        self.flown_events: list[dict] = []
+        self.awaiting: dict[int, dict] = {}      # event seq -> its record
+        self.replans: list[dict] = []
         self.replans_seen = 0
         # plan_id -> (residual ready_at per UAV, the replan's now): the bridge's lines name
         # the plan they upload
-        self.residual_ready: Dict[str, tuple] = {}
-        self.held_lines: List[tuple] = []
+        self.residual_ready: dict[str, tuple] = {}
+        self.held_lines: list[tuple] = []
         self.plans_seen = 0
         self.node_now = 0
-        self.bridge_log: List[list] = []
+        self.bridge_log: list[list] = []
         self.name = s.mission.name
-        self.start_doc: Optional[dict] = None
-        self.clock_spread_ms: Optional[float] = None
+        self.start_doc: dict | None = None
+        self.clock_spread_ms: float | None = None
         self.ended_by = "the end of the mission"
-        self.bar = None
+        self.bar: Tqdm[Any] | None = None  # the progress bar while flying
         self.wall0 = time.monotonic()
         self.wall_s = 0.0
-        self.end_utc_ms: Optional[float] = None
-        self.bridge_cmd: List[str] = []
+        self.end_utc_ms: float | None = None
+        self.bridge_cmd: list[str] = []
         self.frame_doc: dict = {}
         self.mission_doc: dict = {}
         self.closed = False
-        self._last_fleet: Optional[tuple] = None
+        self._last_fleet: tuple | None = None
         # --fault: a relay per vehicle with an upload fault; reboots due at their time
-        self.relays: Dict[int, Relay] = {}
+        self.relays: dict[int, Relay] = {}
         self.reboots = [dict(f) for f in s.faults if f["kind"] == "reboot"]
-        self.fault_log: List[dict] = []
+        self.fault_log: list[dict] = []
         self.faulty = {f["uav"] for f in s.faults}
 
     # --- clocks ----------------------------------------------------------------------
 
-    def fleet_utc_ms(self) -> Optional[float]:
+    def fleet_utc_ms(self) -> float | None:
         """The fleet's clock: the median of the clocks of the vehicles in service."""
         clocks = sorted(c for c in (k.utc_ms() for k in self.crafts if k.in_service and k.ready)
                         if c is not None)
@@ -138,7 +142,20 @@ class Flight:
         self._last_fleet = (now, time.monotonic())
         return now
 
-    def tick_of(self, utc_ms: Optional[float]) -> Optional[float]:
+    @property
+    def _gnd(self) -> Ground:
+        """The ground side (node, bridge, LCM), there from launch() on."""
+        if self.ground is None:
+            raise GroundError("the flight has not been launched", 2)
+        return self.ground
+
+    def _t0(self) -> int:
+        """t0 on the vehicles' clock (the mission's, else chosen at launch)."""
+        if self.t0_ms is None:
+            raise GroundError("the flight has no t0 before launch", 2)
+        return self.t0_ms
+
+    def tick_of(self, utc_ms: float | None) -> float | None:
         if utc_ms is None or self.t0_ms is None:
             return None
         return (utc_ms - self.t0_ms) / self.tick_ms
@@ -146,7 +163,7 @@ class Flight:
     # --- start -----------------------------------------------------------------------
 
     def _launch(self, c: Craft, cell, start_time_s: int, launched_utc_ms: float,
-                home: Optional[tuple] = None) -> None:
+                home: tuple | None = None) -> None:
         home = home or self.geo.cell_to_geodetic(*cell)
         folder = self.tmp / f"uav{c.id}-{len(c.spells)}"
         p = Process(self.s.sitl, self.defaults, folder, c.instance, c.sysid, home,
@@ -175,7 +192,7 @@ class Flight:
         s = self.s
         self.ground = Ground(self.tmp, s.algo, s.penalty or 0, s.url, s.prefix,
                              s.mission.takeoff_ticks)
-        self.ground.start_node()
+        self._gnd.start_node()
         if self.t0_ms is not None:
             base = self.t0_ms // 1000 - BOOT_ALLOWANCE_S - self.allowance_s
         else:
@@ -190,16 +207,16 @@ class Flight:
             if f["kind"] in UPLOAD_FAULTS:
                 c = self.by_id[f["uav"]]
                 self.relays[c.id] = Relay(f["kind"], c.id, c.instance, c.sysid, self.fleet_utc_ms,
-                                          lambda f=f: self._fault_at(f))
+                                          functools.partial(self._fault_at, f))
                 self.relays[c.id].record["t_s"] = f["t_s"]
-        self.bridge_cmd = self.ground.start_bridge(
+        self.bridge_cmd = self._gnd.start_bridge(
             [(c.id, self.relays[c.id].port if c.id in self.relays else 5760 + 10 * c.instance,
               c.sysid) for c in self.crafts], report_ms, lost_ms, CRUISE_M_S)
         self._say(f"booting {len(self.crafts)} vehicles")
         end = time.monotonic() + READY_TIMEOUT_WALL_S
         while not all(c.ready for c in self.crafts):
             self._pump(0.05)
-            self.ground.check_alive()
+            self._gnd.check_alive()
             for c in self.crafts:
                 if c.unexpected_exit is not None:
                     raise SitlError(f"uav {c.id}: arducopter exited: {c.unexpected_exit}")
@@ -208,24 +225,26 @@ class Flight:
                                  for c in self.crafts if not c.ready)
                 raise SitlError(f"not ready within {READY_TIMEOUT_WALL_S} s of launch: {late}")
         # every clock at one host instant
-        clocks = [c.utc_ms() for c in self.crafts]
+        clocks = [t for t in (c.utc_ms() for c in self.crafts) if t is not None]
+        if len(clocks) < len(self.crafts):
+            raise SitlError("a vehicle that reported ready has no clock")
         self.clock_spread_ms = max(clocks) - min(clocks)
         if self.t0_ms is None:
             self.t0_ms = int(math.ceil((max(clocks) + self.allowance_s * 1000.0) / 1000.0)) * 1000
         frame_doc = dict(self.s.frame)
-        frame_doc["t0"] = F.format_utc(self.t0_ms)
+        frame_doc["t0"] = format_utc(self.t0_ms)
         self.frame_doc = frame_doc
         doc = s.mission.to_json()
         doc["frame"] = frame_doc
         self.mission_doc = doc
-        if not self.ground.wait(lambda: self.ground.statuses > 0, 10):
+        if not self._gnd.wait(lambda: self._gnd.statuses > 0, 10):
             raise GroundError("no status from sva_node within 10 s", 3)
-        self.name = self.ground.publish_mission(doc)
+        self.name = self._gnd.publish_mission(doc)
         self._say("planning")
         end = time.monotonic() + PLAN_TIMEOUT_S
         while self.start_doc is None:
             self._pump(0.05)
-            self.ground.check_alive()
+            self._gnd.check_alive()
             if time.monotonic() > end:
                 raise GroundError(f"no plan from sva_node within {PLAN_TIMEOUT_S} s", 3)
 
@@ -240,7 +259,7 @@ class Flight:
     def _take_ground(self) -> None:
         from ..lcm import wire
 
-        g = self.ground
+        g = self._gnd
         # The bridge's lines first, then LCM: the replan a line is about was multicast to
         # this process and the bridge at once, so it is taken before the line.
         lines = g.bridge_lines()
@@ -326,7 +345,7 @@ class Flight:
 
     # --- faults (--fault) -------------------------------------------------------------
 
-    def _fault_at(self, f: dict) -> Optional[float]:
+    def _fault_at(self, f: dict) -> float | None:
         """The fleet-clock instant (UTC ms) a fault arms at: None (from the start) for an
         upload fault without T_S; infinity while t0 is not known."""
         if f["t_s"] is None and f["kind"] in UPLOAD_FAULTS:
@@ -407,7 +426,7 @@ class Flight:
                 rec["skipped"] = "in service"
         else:
             rec["event"] = {k: v for k, v in e.items() if k != "index"}
-            self._publish(rec, max(e["at"], self.node_now, self.ground.report_now))
+            self._publish(rec, max(e["at"], self.node_now, self._gnd.report_now))
         self.flown_events.append(rec)
 
     def _publish(self, rec: dict, at: int) -> None:
@@ -417,7 +436,7 @@ class Flight:
         if "seq" in rec:
             rec["retries"] = rec.get("retries", 0) + 1
         rec["published_at"] = at
-        seq = self.ground.publish_event(ev)
+        seq = self._gnd.publish_event(ev)
         rec["seq"] = seq
         rec["host"] = time.monotonic()
         self.awaiting[seq] = rec
@@ -435,19 +454,19 @@ class Flight:
         last_end = self._last_end()
         extent = max([abs(v) for t in self.s.mission.targets for v in (t.x, t.y)] + [1])
         limit_tick = last_end + 4 * extent * self.s.mission.ticks_per_cell + 60
-        self.bar = tqdm(total=last_end, unit="tick", file=sys.stderr, disable=not self.s.progress,
+        self.bar = bar = tqdm(total=last_end, unit="tick", file=sys.stderr, disable=not self.s.progress,
                         dynamic_ncols=True, bar_format="{desc}: {n:.0f}/{total} ticks |{bar}| "
                                                        "{elapsed}")
         self._say("flying")
-        linger: Optional[float] = None
+        linger: float | None = None
         try:
             while True:
                 self._pump(0.02)
-                self.ground.check_alive()
+                self._gnd.check_alive()
                 now_host = time.monotonic()
                 for c in self.crafts:
                     own = c.utc_ms()
-                    c.step(now_host, own is not None and own >= self.t0_ms - self.allowance_s * 1000)
+                    c.step(now_host, own is not None and own >= self._t0() - self.allowance_s * 1000)
                 while self.pending and self._due(self.pending[0]):
                     self._do(self.pending.pop(0))
                 for f in list(self.reboots):
@@ -462,11 +481,11 @@ class Flight:
                         del self.awaiting[seq]
                 now = self.fleet_utc_ms()
                 tick = self.tick_of(now)
-                if tick is not None:
+                if tick is not None and now is not None:
                     shown = max(0, min(last_end, int(tick)))
-                    if shown != self.bar.n:
-                        self.bar.n = shown
-                        self.bar.refresh()
+                    if shown != bar.n:
+                        bar.n = shown
+                        bar.refresh()
                     if linger is None and not self.pending and not self.awaiting and not self.held_lines and \
                             not self.reboots and \
                             tick >= last_end and all(c.finished() for c in self.crafts):
@@ -480,11 +499,11 @@ class Flight:
                     self.ended_by = "no vehicle left in service"
                     break
         finally:
-            self.bar.close()
+            bar.close()
             self.bar = None
         self.end_utc_ms = self.fleet_utc_ms()
 
-    def close(self, keep: Optional[str] = None) -> None:
+    def close(self, keep: str | None = None) -> None:
         if self.closed:
             return
         self.closed = True

@@ -16,7 +16,7 @@ import re
 import subprocess
 import time
 from pathlib import Path
-from typing import Callable, Dict, List, Optional, Tuple
+from typing import Any, Callable
 
 from ..lcm import wire
 from .vehicle import die_with_parent
@@ -53,17 +53,17 @@ class Ground:
 
         self.folder, self.algo, self.penalty, self.takeoff = folder, algo, penalty, takeoff
         self.url, self.prefix = url, prefix
-        self.node: Optional[subprocess.Popen] = None
-        self.bridge: Optional[subprocess.Popen] = None
+        self.node: subprocess.Popen | None = None
+        self.bridge: subprocess.Popen | None = None
         self._bridge_buf = b""
         self.t = wire.types()
         self.lc = lcm.LCM(url)
         self.statuses = 0
-        self.plans: List[Tuple[float, object]] = []
-        self.replans: List[Tuple[float, object]] = []   # (host monotonic, replan_t)
+        self.plans: list[tuple[float, Any]] = []
+        self.replans: list[tuple[float, object]] = []   # (host monotonic, replan_t)
         self.reports = 0                                 # report_t heard
         self.report_now = -1                             # the latest at_ticks reported
-        self.health: Dict[int, List[list]] = {}          # uav -> [[host, health], ...] on change
+        self.health: dict[int, list[list]] = {}          # uav -> [[host, health], ...] on change
         self.rev = time.time_ns() // 1000
         self.seq0 = (self.rev % 10**12) * 10**6
         self.sent = 0
@@ -110,8 +110,8 @@ class Ground:
             stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
             preexec_fn=die_with_parent, start_new_session=True)
 
-    def start_bridge(self, vehicles: List[Tuple[int, int, int]], report_ms: int,
-                     heartbeat_timeout_ms: int, cruise_m_s: float) -> List[str]:
+    def start_bridge(self, vehicles: list[tuple[int, int, int]], report_ms: int,
+                     heartbeat_timeout_ms: int, cruise_m_s: float) -> list[str]:
         """vehicles: (uav id, TCP port, system id); cruise_m_s: the speed the vehicles are
         commanded (the plan's is lower: the difference is the margin). Returns the
         command line."""
@@ -124,7 +124,10 @@ class Ground:
         self.bridge = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                                        stderr=open(self.folder / "bridge.err", "wb"),
                                        preexec_fn=die_with_parent, start_new_session=True)
-        fd = self.bridge.stdout.fileno()
+        stdout = self.bridge.stdout
+        if stdout is None:  # cannot happen: stdout=PIPE
+            raise GroundError("the bridge has no stdout pipe")
+        fd = stdout.fileno()
         fcntl.fcntl(fd, fcntl.F_SETFL, fcntl.fcntl(fd, fcntl.F_GETFL) | os.O_NONBLOCK)
         return cmd
 
@@ -155,7 +158,7 @@ class Ground:
 
     # --- traffic ---------------------------------------------------------------------
 
-    def fds(self) -> List[int]:
+    def fds(self) -> list[int]:
         out = [self.lc.fileno()]
         if self.bridge is not None and self.bridge.stdout is not None:
             out.append(self.bridge.stdout.fileno())
@@ -166,7 +169,7 @@ class Ground:
         while self.lc.handle_timeout(0) > 0:
             pass
 
-    def bridge_lines(self) -> List[str]:
+    def bridge_lines(self) -> list[str]:
         """The bridge's complete stdout lines since the last call."""
         if self.bridge is None or self.bridge.stdout is None:
             return []
@@ -179,7 +182,7 @@ class Ground:
         return [ln.decode("utf-8", "replace") for ln in lines]
 
     @staticmethod
-    def parse_bridge_line(line: str) -> Optional[Dict[str, object]]:
+    def parse_bridge_line(line: str) -> dict[str, object] | None:
         """{plan, uav, endpoint, text, items (for an accepted upload)} of a per-vehicle
         line, None for another line."""
         m = _BRIDGE_LINE.match(line)
@@ -210,7 +213,7 @@ class Ground:
         self.lc.publish(self.prefix + "MISSION", mission.encode())
         return name
 
-    def first_plan(self) -> Optional[Tuple[float, object]]:
+    def first_plan(self) -> tuple[float, Any] | None:
         for at, p in self.plans:
             if p.fleet_revision == self.rev and p.mission_revision == self.rev:
                 return at, p

@@ -21,11 +21,10 @@ there was lost while its window was open.
 from __future__ import annotations
 
 import math
-from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
-from .. import frame as F
+from .. import frame
 from ..lcm.simnode import percentile
 
 MIN_RADIUS_M = 5.0
@@ -36,7 +35,7 @@ def radius_m(cell_m: float) -> float:
     return max(cell_m / 2.0, MIN_RADIUS_M)
 
 
-def enu(geo, lat: np.ndarray, lon: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+def enu(geo, lat: np.ndarray, lon: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """East and north of positions in the frame's tangent plane (Frame.geodetic_to_enu,
     on arrays)."""
     import pymap3d
@@ -48,13 +47,13 @@ def enu(geo, lat: np.ndarray, lon: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
         np.asarray(n0) + h * (np.asarray(n1) - np.asarray(n0))
 
 
-def final_targets(scenario_targets: List[dict],
-                  events: List[dict]) -> Tuple[Dict[int, dict], Dict[int, int], List[int]]:
+def final_targets(scenario_targets: list[dict],
+                  events: list[dict]) -> tuple[dict[int, dict], dict[int, int], list[int]]:
     """Every target as it finally stood, the tick each cancelled one was cancelled at,
     and the ids in order of appearance."""
     out = {t["id"]: dict(t) for t in scenario_targets}
     order = [t["id"] for t in scenario_targets]
-    cancelled: Dict[int, int] = {}
+    cancelled: dict[int, int] = {}
     for e in events:
         if e["type"] in ("target_added", "target_changed"):
             t = e["target"]
@@ -70,7 +69,7 @@ def final_targets(scenario_targets: List[dict],
 class Track:
     """One UAV's telemetry in the frame: t (ms since t0), east, north (m), alt (m)."""
 
-    def __init__(self, geo, telemetry: List[list]):
+    def __init__(self, geo, telemetry: list[list]):
         a = np.array(telemetry, dtype=float).reshape(-1, 4)
         a = a[np.argsort(a[:, 0], kind="stable")] if len(a) else a
         self.t = a[:, 0]
@@ -80,13 +79,13 @@ class Track:
         else:
             self.e = self.n = np.zeros(0)
 
-    def stays(self, x_m: float, y_m: float, r: float) -> List[Tuple[float, float]]:
+    def stays(self, x_m: float, y_m: float, r: float) -> list[tuple[float, float]]:
         """(enter, leave) ms of every stay within r of (x_m, y_m), interpolated."""
         if len(self.t) == 0:
             return []
         d = np.hypot(self.e - x_m, self.n - y_m)
         inside = d <= r
-        out: List[Tuple[float, float]] = []
+        out: list[tuple[float, float]] = []
         k, n = 0, len(d)
         while k < n:
             if not inside[k]:
@@ -110,7 +109,7 @@ class Track:
         f = min(1.0, max(0.0, (r - da) / (db - da)))
         return float(self.t[a] + f * (self.t[b] - self.t[a]))
 
-    def cell_at(self, t_ms: float, cell_m: float) -> Optional[Tuple[int, int]]:
+    def cell_at(self, t_ms: float, cell_m: float) -> tuple[int, int] | None:
         if len(self.t) == 0:
             return None
         k = int(np.searchsorted(self.t, t_ms))
@@ -124,7 +123,7 @@ def _snap(v: float) -> int:
     return int(math.floor(abs(v) + 0.5)) * (1 if v >= 0 else -1)
 
 
-def _promised(replans: List[dict], tid: int, start: int) -> Optional[List[int]]:
+def _promised(replans: list[dict], tid: int, start: int) -> list[int] | None:
     """UAVs the plan in force at tick `start` sends to target tid (None: no plan had it)."""
     chosen = None
     for r in replans:
@@ -138,7 +137,7 @@ def _promised(replans: List[dict], tid: int, start: int) -> Optional[List[int]]:
     return [rt["uav"] for rt in chosen["plan"].get("routes", []) if tid in rt["targets"]]
 
 
-def _targets(log: dict, tracks: Dict[int, "Track"], geo, r: float) -> dict:
+def _targets(log: dict, tracks: dict[int, Track], geo, r: float) -> dict:
     """Every target's outcome and every visit (see the module docstring)."""
     tick_ms = geo.tick_ms
     sc = log["scenario"]
@@ -152,18 +151,18 @@ def _targets(log: dict, tracks: Dict[int, "Track"], geo, r: float) -> dict:
         miss it: the loss did)."""
         return any(lost <= tick and (back is None or tick < back) for lost, back in spells_out.get(uid, []))
 
-    visits: Dict[int, List[dict]] = {uid: [] for uid in tracks}
+    visits: dict[int, list[dict]] = {uid: [] for uid in tracks}
     tout = []
-    slack: List[float] = []
+    slack: list[float] = []
     late = 0
-    missed: List[List[int]] = []   # (uav, target) sent there that never stood in its window
+    missed: list[list[int]] = []   # (uav, target) sent there that never stood in its window
     for tid in order:
         t = targets[tid]
         ws, we = t["start"] * tick_ms, t["end"] * tick_ms
         x_m, y_m = t["x"] * geo.cell_m, t["y"] * geo.cell_m
         promised = _promised(replans, tid, t["start"])
         served = []
-        present_at: Dict[int, List[Tuple[float, float]]] = {}
+        present_at: dict[int, list[tuple[float, float]]] = {}
         for uid, tr in tracks.items():
             st = tr.stays(x_m, y_m, r)
             present_at[uid] = st
@@ -209,7 +208,7 @@ def _targets(log: dict, tracks: Dict[int, "Track"], geo, r: float) -> dict:
             "by_id": targets}
 
 
-def _holds(holds: List[dict], geo, targets: Dict[int, dict]) -> List[dict]:
+def _holds(holds: list[dict], geo, targets: dict[int, dict]) -> list[dict]:
     """A UAV's holds (NAV_DELAY items it ended), each with its target, the window's end
     and the error of the hold's end against it (ms, vehicle clock); `cut` holds are those
     the operator ended early by starting a new mission (the replan sent the UAV elsewhere
@@ -230,7 +229,7 @@ def _holds(holds: List[dict], geo, targets: Dict[int, dict]) -> List[dict]:
     return out
 
 
-def _losses(log: dict) -> List[dict]:
+def _losses(log: dict) -> list[dict]:
     """Per uav_lost event: vehicle ms from the kill to the node's replan of the loss and
     to the last of the bridge's uploads that followed it (and the UAVs uploaded to)."""
     out = []
@@ -266,13 +265,13 @@ def _losses(log: dict) -> List[dict]:
 def judge_log(log: dict) -> dict:
     """The flight log of a record (or of a flight log: judged again): targets, each UAV's
     track, visits and holds, the losses' latencies and the summary."""
-    geo = F.Frame.from_json(log["sitl"]["frame"])
+    geo = frame.Frame.from_json(log["sitl"]["frame"])
     tick_ms = geo.tick_ms
     r = radius_m(geo.cell_m)
     tracks = {u["id"]: Track(geo, u["telemetry"]) for u in log["uavs"]}
     j = _targets(log, tracks, geo, r)
     last = [u["telemetry"][-1][0] for u in log["uavs"] if u["telemetry"]]
-    end_ms = log.get("end_ms") if log.get("end_ms") is not None else max(last + [0])
+    end_ms = log["end_ms"] if log.get("end_ms") is not None else max(last + [0])
     end_tick = int(math.ceil(end_ms / tick_ms))
     uavs, distance, hold_err = [], 0, []
     for u in log["uavs"]:
@@ -305,7 +304,7 @@ def judge_log(log: dict) -> dict:
     return out
 
 
-def _r(v: Optional[float]) -> Optional[float]:
+def _r(v: float | None) -> float | None:
     return None if v is None else round(float(v), 3)
 
 

@@ -10,8 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import frame as F
-from .. import plot
+from .. import frame, plot
 from ..simplot import OUTCOME_COLOUR
 from . import judge
 
@@ -22,7 +21,7 @@ def _route_points(mission: dict, plan: dict, uav: int):
         return []
     by_id = {t["id"]: t for t in mission["targets"]}
     pts = [(u["x"], u["y"])]
-    route = next((r["targets"] for r in plan.get("routes", []) if r["uav"] == uav), [])
+    route: list[int] = next((r["targets"] for r in plan.get("routes", []) if r["uav"] == uav), [])
     pts += [(by_id[t]["x"], by_id[t]["y"]) for t in route if t in by_id]
     pts.append((mission["depot"]["x"], mission["depot"]["y"]))
     return pts
@@ -32,7 +31,7 @@ def render(log: dict, path: str) -> None:
     plt = plot.pyplot()
     sc = log["scenario"]
     mission = sc["mission"]
-    geo = F.Frame.from_json(log["sitl"]["frame"])
+    geo = frame.Frame.from_json(log["sitl"]["frame"])
     r_cells = log["sitl"]["radius_m"] / geo.cell_m
     targets, _cancelled, order = judge.final_targets(mission["targets"], sc["events"])
     outcome = {t["id"]: t["outcome"] for t in log["targets"]}
@@ -64,7 +63,7 @@ def render(log: dict, path: str) -> None:
         e, n = judge.enu(geo, a[:, 1], a[:, 2])
         x, y = e / geo.cell_m, n / geo.cell_m
         # one line per spell (a gap of more than a few seconds breaks it)
-        cuts = list(np.nonzero(np.diff(a[:, 0]) > 5000)[0] + 1)
+        cuts = [int(c) for c in np.nonzero(np.diff(a[:, 0]) > 5000)[0] + 1]
         for k, (s0, s1) in enumerate(zip([0] + cuts, cuts + [len(a)])):
             ax.plot(x[s0:s1], y[s0:s1], "-", color=colour[u["id"]], linewidth=1.6,
                     label=f"UAV {u['id']}" if k == 0 else None)
@@ -89,15 +88,15 @@ def render(log: dict, path: str) -> None:
                        color=OUTCOME_COLOUR.get(outcome.get(t["id"], "uncovered"), "tab:red"), alpha=0.4)
     base = len(ts)
     for i, u in enumerate(uavs):
-        y = base + i
+        row = base + i
         for v in u["visits"]:
-            gx.broken_barh([(v["arrived"], max(v["left"] - v["arrived"], 0.2))], (y - 0.35, 0.7),
+            gx.broken_barh([(v["arrived"], max(v["left"] - v["arrived"], 0.2))], (row - 0.35, 0.7),
                            color=colour[u["id"]])
-            gx.text((v["arrived"] + v["left"]) / 2, y, f"T{v['target']}", ha="center", va="center",
+            gx.text((v["arrived"] + v["left"]) / 2, row, f"T{v['target']}", ha="center", va="center",
                     fontsize=7, color="white")
         for lost, back in u["out"]:
             stop = back if back is not None else log["end_tick"]
-            gx.broken_barh([(lost, max(stop - lost, 0.5))], (y - 0.25, 0.5), facecolor="none",
+            gx.broken_barh([(lost, max(stop - lost, 0.5))], (row - 0.25, 0.5), facecolor="none",
                            edgecolor="gray", hatch="xx", linewidth=0.5)
     for rp in log["replans"]:
         gx.axvline(rp["at"], color="gray", linestyle="--", linewidth=0.6, alpha=0.5)

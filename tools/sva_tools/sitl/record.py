@@ -6,12 +6,11 @@ again (`judge.judge_log`).
 from __future__ import annotations
 
 import os
-from typing import Optional
 
 from .craft import tod_instant_ms
 
 
-def _ms(utc_ms: Optional[float], t0: int) -> Optional[int]:
+def _ms(utc_ms: float | None, t0: int) -> int | None:
     return None if utc_ms is None else round(utc_ms - t0)
 
 

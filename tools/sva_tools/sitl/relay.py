@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import select
 import socket
-from typing import Callable, Dict, List, Optional
+from typing import Callable
 
 from pymavlink.dialects.v20 import ardupilotmega as mavlink
 
@@ -43,7 +43,7 @@ class Relay:
     from the start). Serviced from the flight's loop: fds() to select on, pump() after."""
 
     def __init__(self, kind: str, uav_id: int, instance: int, sysid: int,
-                 clock: Callable[[], Optional[float]], armed_at: Callable[[], Optional[float]]):
+                 clock: Callable[[], float | None], armed_at: Callable[[], float | None]):
         self.kind, self.uav_id, self.sysid = kind, uav_id, sysid
         self.port = RELAY_BASE_PORT + 10 * instance
         self.vehicle_port = 5760 + 10 * instance
@@ -53,17 +53,17 @@ class Relay:
         self.server.bind(("127.0.0.1", self.port))
         self.server.listen(1)
         self.server.setblocking(False)
-        self.bridge: Optional[socket.socket] = None
-        self.vehicle: Optional[socket.socket] = None
+        self.bridge: socket.socket | None = None
+        self.vehicle: socket.socket | None = None
         self.rx_bridge = self._parser()
         self.rx_vehicle = self._parser()
         self.tx = mavlink.MAVLink(None)
         self.fired = False
         self.silent = False
-        self.rejecting: Optional[int] = None     # the seq to rewrite in the upload under way
-        self.record: Dict[str, object] = {"kind": kind, "uav": uav_id, "relay_port": self.port,
+        self.rejecting: int | None = None     # the seq to rewrite in the upload under way
+        self.record: dict[str, object] = {"kind": kind, "uav": uav_id, "relay_port": self.port,
                                           "connections": 0, "fired_utc_ms": None}
-        self.acks: List[dict] = []               # the vehicle's MISSION_ACKs to the bridge
+        self.acks: list[dict] = []               # the vehicle's MISSION_ACKs to the bridge
         self.dropped = {"to_vehicle": 0, "to_bridge": 0}
 
     @staticmethod
@@ -72,7 +72,7 @@ class Relay:
         p.robust_parsing = True
         return p
 
-    def fds(self) -> List[int]:
+    def fds(self) -> list[int]:
         return [s.fileno() for s in (self.server, self.bridge, self.vehicle) if s is not None]
 
     def close(self) -> None:
@@ -107,7 +107,7 @@ class Relay:
         self.record["connections"] = int(self.record["connections"]) + 1  # type: ignore[call-overload]
 
     @staticmethod
-    def _read(s: Optional[socket.socket]) -> Optional[bytes]:
+    def _read(s: socket.socket | None) -> bytes | None:
         """Bytes waiting on s (b"" when none); None when it closed."""
         if s is None:
             return b""
@@ -120,7 +120,7 @@ class Relay:
             return None
         return data if data else None
 
-    def _send(self, s: Optional[socket.socket], data: bytes) -> None:
+    def _send(self, s: socket.socket | None, data: bytes) -> None:
         if s is None or not data:
             return
         try:

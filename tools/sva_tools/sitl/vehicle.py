@@ -24,7 +24,7 @@ import socket
 import subprocess
 import time
 from pathlib import Path
-from typing import Dict, List, Optional, Tuple
+from typing import Any
 
 from pymavlink.dialects.v20 import ardupilotmega as mavlink
 
@@ -66,7 +66,7 @@ class SitlError(RuntimeError):
     """A vehicle could not be started or reached."""
 
 
-def sitl_binary(path: Optional[str] = None) -> Path:
+def sitl_binary(path: str | None = None) -> Path:
     """The arducopter binary: PATH, else $SVA_SITL, else ../shared/sitl/arducopter."""
     p = Path(path or os.environ.get("SVA_SITL") or DEFAULT_SITL)
     if not (p.is_file() and os.access(p, os.X_OK)):
@@ -92,7 +92,7 @@ class Process:
     """One arducopter process (one spell in service of one UAV)."""
 
     def __init__(self, binary: Path, defaults: str, folder: Path, instance: int, sysid: int,
-                 home: Tuple[float, float], speedup: float, start_time_s: int):
+                 home: tuple[float, float], speedup: float, start_time_s: int):
         folder.mkdir(parents=True, exist_ok=True)
         self.folder = folder
         self.instance = instance
@@ -150,8 +150,8 @@ class Link:
 
     def __init__(self, port: int, sysid: int):
         self.port, self.sysid = port, sysid
-        self.sock: Optional[socket.socket] = None
-        self.mav: Optional[mavlink.MAVLink] = None
+        self.sock: socket.socket | None = None
+        self.mav: mavlink.MAVLink | None = None
         self.closed = False
 
     def connect(self) -> bool:
@@ -176,11 +176,11 @@ class Link:
     def fileno(self) -> int:
         return self.sock.fileno() if self.sock is not None else -1
 
-    def poll(self) -> List[object]:
+    def poll(self) -> list[Any]:
         """Messages from the vehicle that are ready (none when nothing arrived)."""
         if self.sock is None:
             return []
-        out: List[object] = []
+        out: list[Any] = []
         while True:
             r, _w, _x = select.select([self.sock], [], [], 0)
             if not r:
@@ -192,7 +192,7 @@ class Link:
             if not data:
                 self.close()
                 return out
-            msgs = self.mav.parse_buffer(data) or []
+            msgs = (self.mav.parse_buffer(data) or []) if self.mav is not None else []
             out += [m for m in msgs if m.get_type() != "BAD_DATA"
                     and m.get_srcSystem() == self.sysid]
 
@@ -219,7 +219,7 @@ class Link:
         p = list(params) + [0.0] * (7 - len(params))
         return self.send("command_long", self.sysid, 1, cmd, 0, *p)
 
-    def ask_streams(self, which: List[int]) -> None:
+    def ask_streams(self, which: list[int]) -> None:
         for msgid in which:
             self.command(mavlink.MAV_CMD_SET_MESSAGE_INTERVAL, msgid, STREAMS_US[msgid])
 
@@ -246,8 +246,8 @@ class Clock:
 
     def __init__(self, speedup: float):
         self.speedup = speedup
-        self.offset_ms: Optional[float] = None   # UTC ms - boot ms
-        self.boot_ms: Optional[int] = None
+        self.offset_ms: float | None = None   # UTC ms - boot ms
+        self.boot_ms: int | None = None
         self.heard_at = 0.0                      # host monotonic of boot_ms
 
     def on_system_time(self, unix_us: int, boot_ms: int) -> None:
@@ -260,7 +260,7 @@ class Clock:
             self.boot_ms = boot_ms
             self.heard_at = time.monotonic()
 
-    def utc_ms(self, boot_ms: Optional[int] = None) -> Optional[float]:
+    def utc_ms(self, boot_ms: int | None = None) -> float | None:
         """UTC ms of a boot time (of now, extrapolated at the speedup, for None)."""
         if self.offset_ms is None or self.boot_ms is None:
             return None
@@ -274,8 +274,8 @@ class MissionReader:
     """Reads back the mission a vehicle holds (MISSION_REQUEST_LIST, then each item)."""
 
     def __init__(self):
-        self.count: Optional[int] = None
-        self.items: Dict[int, object] = {}
+        self.count: int | None = None
+        self.items: dict[int, object] = {}
         self.asked_at = 0.0
         self.active = False
 
@@ -284,7 +284,7 @@ class MissionReader:
         self.asked_at = time.monotonic()
         link.request_mission()
 
-    def on_message(self, link: Link, m) -> Optional[List[object]]:
+    def on_message(self, link: Link, m) -> list[Any] | None:
         """The items once complete, else None."""
         if not self.active:
             return None

@@ -1,23 +1,22 @@
 """`sva-tools SUBCOMMAND ...`: one entry point for every host tool (docs/tools.md)."""
 from __future__ import annotations
 
-import argparse
 import importlib
 import sys
-from typing import List, Optional
 
-from . import __version__, io
-from .text import Parser, shown
+from .. import __version__, io
+from ..text import shown
+from .common import Parser, fail
 
 SUBCOMMANDS = ("gen", "check", "validate", "ref", "ih", "peer", "bench", "plot", "sim", "ground", "geo",
                "mavlink", "campaign", "sitl")
 
 
-def _lcm(argv: List[str]) -> int:
+def _lcm(argv: list[str]) -> int:
     # `lcm` belongs to the LCM port's helper package sva_tools.lcm; it is
     # dispatched when present and reported clearly when not.
     try:
-        mod = importlib.import_module("sva_tools.lcm.cli")
+        mod = importlib.import_module("sva_tools.commands.lcm")
     except ImportError as e:
         print(f"sva-tools: error: the lcm subcommand is not available ({shown(e)}); it needs the "
               f"sva_tools.lcm package (LCM port) and the lcm Python module", file=sys.stderr)
@@ -25,7 +24,7 @@ def _lcm(argv: List[str]) -> int:
     return int(mod.main(argv))
 
 
-def main(argv: Optional[List[str]] = None) -> int:
+def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv and argv[0] == "lcm":
         return _lcm(argv[1:])
@@ -35,18 +34,15 @@ def main(argv: Optional[List[str]] = None) -> int:
     sub = ap.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
     for name in SUBCOMMANDS:
-        importlib.import_module(f"sva_tools.{name}").add_parser(sub)
+        importlib.import_module(f"sva_tools.commands.{name}").add_parser(sub)
     sub.add_parser("lcm", help="LCM port tools (sva_tools.lcm, when installed)")
     args = ap.parse_args(argv)
     try:
         return int(args.func(args))
     except io.InputError as e:  # a bad mission or plan file (SPEC 4): one line, exit 2
-        return io.fail(e.path or args.command, e)
+        return fail(e.path or args.command, e)
     except KeyboardInterrupt:
         return 130
     except BrokenPipeError:
         return 1
 
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -1,4 +1,4 @@
-"""Ground side of latency.sh: publishes the fleet once, then ROUNDS missions with a new
+"""Ground side of lcm_latency.sh: publishes the fleet once, then ROUNDS missions with a new
 revision each (so each one replans) and times mission publish -> matching plan."""
 import json
 import statistics

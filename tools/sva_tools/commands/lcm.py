@@ -11,8 +11,9 @@ import json
 import sys
 import time
 
-from . import wire
-from ..text import Parser, shown
+from ..lcm import wire
+from ..text import shown
+from .common import Parser
 
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0"
 DEFAULT_PREFIX = "SVA_"
@@ -206,11 +207,11 @@ def _scenario(args) -> int:
                      f"{wire.diag_text(plan)}", 1)
     record = {"mission": name, "plan": wire.plan_document(plan, name), "replans": []}
     refused = 0
-    for e in events:
-        lc.publish(args.prefix + "EVENT", e.encode())
-        if not wait(lambda: any(r.event_seq == e.seq for r in replans), f"replan of event {e.seq}"):
+    for ev in events:
+        lc.publish(args.prefix + "EVENT", ev.encode())
+        if not wait(lambda seq=ev.seq: any(r.event_seq == seq for r in replans), f"replan of event {ev.seq}"):
             return 3
-        r = next(r for r in replans if r.event_seq == e.seq)
+        r = next(r for r in replans if r.event_seq == ev.seq)
         try:
             answer = wire.replan_document(r, name)
         except wire.InputError as err:
@@ -221,7 +222,7 @@ def _scenario(args) -> int:
                          "mission_t does not carry it)", 2)
         if not answer["accepted"]:
             refused += 1
-            print(shown(f"sva-tools lcm scenario: events[{e.seq}] refused: {answer['error']}"),
+            print(shown(f"sva-tools lcm scenario: events[{ev.seq}] refused: {answer['error']}"),
                   file=sys.stderr)
         record["replans"].append(answer)
     text = json.dumps(record, indent=2) + "\n"

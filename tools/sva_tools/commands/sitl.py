@@ -1,143 +1,54 @@
-"""`sva-tools sitl SCENARIO.json`: the command line (docs/sitl.md)."""
+"""`sva-tools sitl SCENARIO.json [--algo A] [--speedup N] [--frame LAT,LON,ALT_M,CELL_M,TICK_S]
+[--sitl PATH] [--out LOG.json] [--plot PNG]`: a scenario flown by real autopilots.
+
+One ArduCopter SITL process per UAV of the mission (home at its start cell), sva_node
+and sva_mavlink_bridge over LCM, all in a network namespace made for the run (root).
+The node plans, the bridge uploads each route as a MAVLink mission and reports every
+vehicle's telemetry back to the node; the tool is the ground operator (it arms each
+vehicle in AUTO once it holds a mission) and makes the scenario's events real at their
+ticks on the vehicles' GPS clock: uav_lost kills a vehicle's process, uav_back starts a
+fresh one on its cell, the other events are published as a ground station would.
+
+The frame is the mission's, else --frame (default 47.3977,8.5456,30,25,6: 25 m cells,
+6 s ticks, 30 m above home; t0 chosen on the vehicles' clock). A frame whose plan speed
+cell_m / (ticks_per_cell * tick_s) exceeds 6 m/s, or whose cell is shorter in time than
+the copter needs for a one-cell leg from a hold, is refused; the vehicles are commanded
+10 m/s. Coverage is judged from
+each vehicle's telemetry: present within max(cell_m / 2, 5 m) of the target for its
+whole window. The last line: `covered C of K coverable (plan promised P); arrival slack
+p50 X s, p1 Y s; late arrivals N`. --fault KIND:UAV_ID[:T_S] (repeatable) makes a vehicle
+fail: silent-upload (its link to the bridge goes silent at an upload), reject-item (the
+vehicle refuses an upload), reboot (a fresh SITL where it is). docs/sitl.md has the
+details and measurements.
+"""
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import signal
 import subprocess
 import sys
 from pathlib import Path
-from typing import List, Optional
 
-from .. import cbin
-from .. import io
-from .. import schema
+from .. import cbin, io
 from ..sim import load_scenario
+from ..sitl.settings import (
+    DEFAULT_FRAME,
+    FRAME_KEYS,
+    MAX_FAULT_S,
+    Refused,
+    check_speed,
+    check_takeoff,
+    parse_faults,
+    parse_frame,
+)
 from ..text import shown
-
-DEFAULT_FRAME = "47.3977,8.5456,30,25,6"
-# The copter's default horizontal speed (WPNAV_SPEED 1000 cm/s; 9.7 m/s measured) and
-# the share of it a plan may use: the rest is room to catch up (docs/sitl.md).
-COPTER_SPEED_M_S = 10.0
-MAX_SPEED_SHARE = 0.6
-# A one-cell leg from a hold (the shortest the grid plans): seconds until the copter is
-# within the coverage radius (half a cell) of the next cell's point, fitted to
-# `tools/bench/sitl_bench.py --legs` at 15, 25 and 30 m cells (4.7 to 5.8 s; jerk-limited
-# acceleration and braking), plus a 0.5 s margin: ONE_CELL_BASE_S + ONE_CELL_ROOT_S *
-# sqrt(cell_m). The plan must give a cell at least that long.
-ONE_CELL_BASE_S = 3.8
-ONE_CELL_ROOT_S = 0.4
-FRAME_KEYS = ("lat", "lon", "alt_m", "cell_m", "tick_s")
-FAULT_KINDS = ("silent-upload", "reject-item", "reboot")
-MAX_FAULT_S = 86400
-
-
-class Refused(Exception):
-    """A bad command line or scenario for SITL: one line, exit 2."""
-
-
-def parse_frame(text: str) -> dict:
-    parts = text.split(",")
-    if len(parts) != 5:
-        raise Refused(f"--frame: must be LAT,LON,ALT_M,CELL_M,TICK_S, got \"{shown(text)[:60]}\"")
-    try:
-        vals = [float(p) for p in parts]
-    except ValueError:
-        raise Refused(f"--frame: must be five numbers LAT,LON,ALT_M,CELL_M,TICK_S, got "
-                      f"\"{shown(text)[:60]}\"") from None
-    doc = dict(zip(FRAME_KEYS, vals))
-    errs = schema.errors(dict(doc, t0="2000-01-01T00:00:00Z"), "mission", "frame", "frame")
-    if errs:
-        raise Refused(f"--frame: {errs[0]}")
-    return doc
-
-
-def parse_fault(text: str, uav_ids: List[int]) -> dict:
-    """One --fault KIND:UAV_ID[:T_S] value: {kind, uav, t_s (None: from the start)}."""
-    parts = text.split(":")
-    if len(parts) not in (2, 3):
-        raise Refused(f"--fault: must be KIND:UAV_ID[:T_S], got \"{shown(text)[:60]}\"")
-    kind = parts[0]
-    if kind not in FAULT_KINDS:
-        raise Refused(f"--fault: KIND must be one of {', '.join(FAULT_KINDS)}, got "
-                      f"\"{shown(kind)[:40]}\"")
-    try:
-        uav = int(parts[1])
-    except ValueError:
-        uav = None
-    if uav is None or uav not in uav_ids:
-        raise Refused(f"--fault: UAV_ID must be the id of a UAV of the mission "
-                      f"({', '.join(map(str, uav_ids))}), got \"{shown(parts[1])[:20]}\"")
-    t_s = None
-    if len(parts) == 3:
-        try:
-            t_s = float(parts[2])
-        except ValueError:
-            t_s = math.nan
-        if not (0 <= t_s <= MAX_FAULT_S):
-            raise Refused(f"--fault: T_S must be a number of seconds after t0 in [0, {MAX_FAULT_S}], "
-                          f"got \"{shown(parts[2])[:20]}\"")
-    return {"kind": kind, "uav": uav, "t_s": t_s}
-
-
-def parse_faults(texts: List[str], uav_ids: List[int]) -> List[dict]:
-    faults: List[dict] = []
-    for text in texts:
-        f = parse_fault(text, uav_ids)
-        if any(g["uav"] == f["uav"] for g in faults):
-            raise Refused(f"--fault: uav {f['uav']} has a fault already: at most one per UAV")
-        faults.append(f)
-    return faults
-
-
-def check_speed(frame: dict, ticks_per_cell: int) -> float:
-    """The plan's ground speed; Refused when the copter cannot fly it with margin."""
-    v = frame["cell_m"] / (ticks_per_cell * frame["tick_s"])
-    limit = COPTER_SPEED_M_S * MAX_SPEED_SHARE
-    if v > limit + 1e-9:
-        raise Refused(f"frame: the plan's speed cell_m / (ticks_per_cell * tick_s) = "
-                      f"{frame['cell_m']:g} / ({ticks_per_cell} * {frame['tick_s']:g}) = {v:.3g} m/s "
-                      f"must be <= {limit:g} m/s ({MAX_SPEED_SHARE:.0%} of the copter's "
-                      f"{COPTER_SPEED_M_S:g} m/s WPNAV_SPEED)")
-    one_cell_s = ticks_per_cell * frame["tick_s"]
-    need_s = one_cell_time_s(frame["cell_m"])
-    if one_cell_s < need_s - 1e-9:
-        raise Refused(f"frame: a cell takes ticks_per_cell * tick_s = {ticks_per_cell} * "
-                      f"{frame['tick_s']:g} = {one_cell_s:.3g} s in the plan, must be >= "
-                      f"{need_s:.2f} s: the copter's time from a hold into the coverage radius "
-                      f"of a target one {frame['cell_m']:g} m cell away, with margin")
-    return v
-
-
-def check_takeoff(frame: dict, mission) -> int:
-    """The ticks a copter on the ground needs before it leaves (arming and the climb to the
-    frame's altitude: flight.takeoff_allowance_s): a mission without takeoff_ticks (or 0)
-    gets them; Refused when the mission's own are fewer."""
-    from .flight import takeoff_allowance_s
-
-    allowance_s = takeoff_allowance_s(frame["alt_m"])
-    need = int(math.ceil(allowance_s / frame["tick_s"] - 1e-9))
-    if mission.takeoff_ticks == 0:
-        mission.takeoff_ticks = need
-    elif mission.takeoff_ticks < need:
-        raise Refused(f"mission.takeoff_ticks: must be >= {need} (the copter's take-off to "
-                      f"{frame['alt_m']:g} m, {allowance_s} s, in {frame['tick_s']:g} s ticks), "
-                      f"got {mission.takeoff_ticks}")
-    return mission.takeoff_ticks
-
-
-def one_cell_time_s(cell_m: float) -> float:
-    """The least plan time for one cell (see ONE_CELL_BASE_S)."""
-    return ONE_CELL_BASE_S + ONE_CELL_ROOT_S * math.sqrt(cell_m)
 
 
 def add_parser(sub) -> None:
-    from . import __doc__ as doc
-
     ap = sub.add_parser("sitl", help="fly a scenario with ArduCopter SITL vehicles, sva_node and "
                                      "the MAVLink bridge (root)",
-                        description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("scenario", help="SCENARIO.json: {mission, events, change_penalty}")
     ap.add_argument("--algo", default="sva", choices=list(cbin.C_ALGORITHMS),
                     help="the node's algorithm (default sva)")
@@ -164,7 +75,7 @@ def add_parser(sub) -> None:
     ap.set_defaults(func=run)
 
 
-def _argv(args) -> List[str]:
+def _argv(args) -> list[str]:
     argv = ["sitl", args.scenario, "--algo", args.algo, "--speedup", repr(args.speedup)]
     for opt in ("frame", "sitl", "out", "plot", "keep"):
         v = getattr(args, opt)
@@ -184,7 +95,7 @@ def _default_signals() -> None:
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
-def _netns(argv: List[str]) -> int:
+def _netns(argv: list[str]) -> int:
     """Runs `python -m sva_tools ARGV` in a network namespace of its own: the vehicles'
     TCP ports and the LCM multicast stay inside it."""
     from ..lcm import simnode
@@ -196,7 +107,7 @@ def _netns(argv: List[str]) -> int:
     helper = simnode.netns_helper()
     if not os.access(helper, os.X_OK):
         print(f"sva-tools: error: sitl: the network namespace helper {helper} is missing "
-              "(point SVA_NETNS_RUN at tests/lcm/netns_run.sh)", file=sys.stderr)
+              "(point SVA_NETNS_RUN at tools/netns/netns_run.sh)", file=sys.stderr)
         return 2
     env = dict(os.environ)
     tools = str(Path(__file__).resolve().parents[2])
@@ -228,8 +139,8 @@ def _netns(argv: List[str]) -> int:
 
 
 def _settings(args):
-    from .flight import Settings
-    from .vehicle import SitlError, sitl_binary
+    from ..sitl.flight import Settings
+    from ..sitl.vehicle import SitlError, sitl_binary
 
     mission, events, penalty = load_scenario(args.scenario)
     raw = io.read_json(args.scenario)
@@ -279,14 +190,14 @@ def _term(_signum, _frame):
 def fly(args, settings) -> int:
     import time
 
-    from .flight import Flight
-    from .ground import GroundError
-    from .judge import end_line
-    from .vehicle import SitlError
+    from ..sitl.flight import Flight
+    from ..sitl.ground import GroundError
+    from ..sitl.judge import end_line
+    from ..sitl.vehicle import SitlError
 
     signal.signal(signal.SIGTERM, _term)
     signal.signal(signal.SIGINT, _term)
-    flight: Optional[Flight] = None
+    flight: Flight | None = None
     try:
         flight = Flight(settings)
         flight.start()
@@ -306,7 +217,7 @@ def fly(args, settings) -> int:
     if args.out:
         io.write_json(log, args.out)
     if args.plot:
-        from .plot import render
+        from ..sitl.plot import render
         render(log, args.plot)
     print(end_line(log))
     return 0
