@@ -136,7 +136,7 @@ def generate_events(m: M.Mission, count: int, *, kinds: Sequence[str] = EVENT_KI
                     max_coord: int = 20, width=(20, 40), need=(2, 2), seed: int = 0,
                     index: int = 0) -> Tuple[M.Mission, List[dict]]:
     """`count` events at random ticks in [1, the mission's last window end), drawn from
-    `kinds`, valid when applied in order (SPEC 5.3): a UAV is lost only while in
+    `kinds`, valid when applied in order (SPEC 12.3): a UAV is lost only while in
     service and comes back only after it was lost (at a later tick); fuel readings go to
     UAVs in service; targets are cancelled or changed only before their window starts
     (so never done, lost or under way) and never after a cancellation; a pop-up or a
