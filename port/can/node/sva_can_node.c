@@ -46,9 +46,9 @@ static uint32_t now_ms(void)
 {
     struct timespec ts;
     if (clock_gettime(CLOCK_MONOTONIC, &ts) != 0) {
-        return 0u;
+        return 0U;
     }
-    return (uint32_t)((uint64_t)ts.tv_sec * 1000u + (uint64_t)ts.tv_nsec / 1000000u);
+    return (uint32_t)((uint64_t)ts.tv_sec * 1000U + (uint64_t)ts.tv_nsec / 1000000U);
 }
 
 // Everything the node owns: static, no heap (the live mission and planner are large).
@@ -68,12 +68,12 @@ static uint8_t send_frame(void)
     sva_can_frame_t out[SVA_CAN_MISSION_FRAME_PARTS];
     unsigned p;
     if (!g_has_frame) {
-        return 0u;
+        return 0U;
     }
     if (sva_can_frame_encode(&g_frame, g_frame_counter, out) != SVA_CAN_OK) {
         return SVA_CAN_FAULT_TX_ERRORS;
     }
-    g_frame_counter = (uint8_t)((g_frame_counter + SVA_CAN_MISSION_FRAME_PARTS) & 15u);
+    g_frame_counter = (uint8_t)((g_frame_counter + SVA_CAN_MISSION_FRAME_PARTS) & 15U);
     for (p = 0; p < SVA_CAN_MISSION_FRAME_PARTS; ++p) {
         const sva_can_status_t st = g_tp->send(g_tp->ctx, &out[p]);
         if (st != SVA_CAN_OK) {
@@ -82,7 +82,7 @@ static uint8_t send_frame(void)
             return SVA_CAN_FAULT_TX_ERRORS;
         }
     }
-    return 0u;
+    return 0U;
 }
 
 static uint32_t elapsed(uint32_t now, uint32_t then)
@@ -110,7 +110,7 @@ static int parse_u32(const char* s, const char* opt, uint32_t* out)
     unsigned long v;
     errno = 0;
     v = strtoul(s, &end, 10);
-    if ((errno != 0) || (end == s) || (*end != '\0') || (v > 0x7FFFFFFFul) || (s[0] == '-')) {
+    if ((errno != 0) || (end == s) || (*end != '\0') || (v > 0x7FFFFFFFUL) || (s[0] == '-')) {
         char shown[SHOWN_SIZE];
         fprintf(stderr,
                 "sva_can_node: error: %s: must be an integer in [0, 2147483647], got \"%s\"\n", opt,
@@ -130,11 +130,11 @@ static uint8_t send_plan(uint32_t t, int print)
     fprintf(stderr, "sva_can_node: plan %u: %s %s, covered %u of %u, %u items, %u frames\n",
             plan->plan_id, sva_algorithm_name((sva_algorithm_t)plan->algorithm),
             (plan->plan_status == SVA_CAN_PLAN_COMPLETE) ? "complete" : "partial", g_live.covered,
-            g_live.live.mission.target_count, plan->item_count, 2u * plan->item_count + 2u);
+            g_live.live.mission.target_count, plan->item_count, 2U * plan->item_count + 2U);
     if (print) {
         sva_can_plan_print(plan);
     }
-    if (send_frame() != 0u) {
+    if (send_frame() != 0U) {
         return SVA_CAN_FAULT_TX_ERRORS;
     }
     cst = sva_can_sender_start(&g_sender, plan, t);
@@ -143,7 +143,7 @@ static uint8_t send_plan(uint32_t t, int print)
                 sva_can_status_name(cst));
         return SVA_CAN_FAULT_TX_ERRORS;
     }
-    return 0u;
+    return 0U;
 }
 
 // The options that take a value (every option but --help, --version and --state-reset).
@@ -168,9 +168,9 @@ int main(int argc, char** argv)
     const char* algo_name = "sva";
     const char* algo_option = "--algo";  // as the user spelled it, for its error line
     sva_algorithm_t algo;
-    uint32_t settle_ms = 200u;
-    uint32_t exit_after_acks = 0u;
-    uint32_t max_runtime_ms = 0u;
+    uint32_t settle_ms = 200U;
+    uint32_t exit_after_acks = 0U;
+    uint32_t max_runtime_ms = 0U;
     int print = 0;
     const char* state_dir = NULL;
     bool state_reset = false;
@@ -187,14 +187,14 @@ int main(int argc, char** argv)
     uint32_t t0;
     uint32_t last_hb;
     uint32_t track_tolerance = SVA_CAN_LIVE_TRACK_TOLERANCE;
-    uint16_t active_plan_id = 0u;
-    uint8_t hb_counter = 0u;
-    uint8_t faults = 0u;
-    uint8_t covered_active = 0u;
-    uint32_t acks = 0u;
-    uint32_t rx_rejected = 0u;
+    uint16_t active_plan_id = 0U;
+    uint8_t hb_counter = 0U;
+    uint8_t faults = 0U;
+    uint8_t covered_active = 0U;
+    uint32_t acks = 0U;
+    uint32_t rx_rejected = 0U;
     int has_last_counter[3] = {0, 0, 0};
-    uint8_t last_counter[3] = {0u, 0u, 0u};
+    uint8_t last_counter[3] = {0U, 0U, 0U};
     sva_can_tx_state_t prev_state = SVA_CAN_TX_IDLE;
     int rc = 0;
 
@@ -445,32 +445,32 @@ int main(int argc, char** argv)
             hb.u.heartbeat.state = (uint8_t)((g_sender.state == SVA_CAN_TX_SENDING ||
                                               g_sender.state == SVA_CAN_TX_WAIT_ACK)
                                                  ? SVA_CAN_NODE_SENDING
-                                             : (active_plan_id != 0u) ? SVA_CAN_NODE_ACTIVE
-                                             : (faults != 0u)         ? SVA_CAN_NODE_FAULT
+                                             : (active_plan_id != 0U) ? SVA_CAN_NODE_ACTIVE
+                                             : (faults != 0U)         ? SVA_CAN_NODE_FAULT
                                                                       : SVA_CAN_NODE_IDLE);
             hb.u.heartbeat.active_plan_id = active_plan_id;
             {
                 const uint16_t in_service = sva_can_live_in_service(&g_live);
-                hb.u.heartbeat.uav_count = (uint8_t)((in_service > 255u) ? 255u : in_service);
-                hb.u.heartbeat.target_count = (uint8_t)((g_live.live.mission.target_count > 255u)
-                                                            ? 255u
+                hb.u.heartbeat.uav_count = (uint8_t)((in_service > 255U) ? 255U : in_service);
+                hb.u.heartbeat.target_count = (uint8_t)((g_live.live.mission.target_count > 255U)
+                                                            ? 255U
                                                             : g_live.live.mission.target_count);
             }
             hb.u.heartbeat.covered_count = covered_active;
             hb.u.heartbeat.faults = (uint8_t)(faults & SVA_CAN_FAULT_MASK);
             if ((sva_can_encode(&hb, &hf) == SVA_CAN_OK) && (tp.send(tp.ctx, &hf) == SVA_CAN_OK)) {
-                hb_counter = (uint8_t)((hb_counter + 1u) & 0x0Fu);
+                hb_counter = (uint8_t)((hb_counter + 1U) & 0x0FU);
             }
             faults = (uint8_t)(faults & (uint8_t)~SVA_CAN_FAULT_RX_ERRORS);  // per heartbeat period
             last_hb = t;
         }
-        if ((exit_after_acks != 0u) && (acks >= exit_after_acks)) {
+        if ((exit_after_acks != 0U) && (acks >= exit_after_acks)) {
             break;
         }
-        if ((max_runtime_ms != 0u) && (elapsed(t, t0) >= max_runtime_ms)) {
+        if ((max_runtime_ms != 0U) && (elapsed(t, t0) >= max_runtime_ms)) {
             fprintf(stderr, "sva_can_node: --max-runtime-ms %lu reached\n",
                     (unsigned long)max_runtime_ms);
-            rc = (exit_after_acks != 0u) ? 1 : 0;  // asked for ACKs that never came
+            rc = (exit_after_acks != 0U) ? 1 : 0;  // asked for ACKs that never came
             break;
         }
     }
