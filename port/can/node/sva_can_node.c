@@ -242,17 +242,21 @@ int main(int argc, char** argv)
         } else if (strcmp(a, "--state-dir") == 0) {
             state_dir = v;
         } else if (strcmp(a, "--settle-ms") == 0) {
-            if (parse_u32(v, a, &settle_ms) != 0)
+            if (parse_u32(v, a, &settle_ms) != 0) {
                 return 2;
+            }
         } else if (strcmp(a, "--track-tolerance") == 0) {
-            if (parse_u32(v, a, &track_tolerance) != 0)
+            if (parse_u32(v, a, &track_tolerance) != 0) {
                 return 2;
+            }
         } else if (strcmp(a, "--exit-after-acks") == 0) {
-            if (parse_u32(v, a, &exit_after_acks) != 0)
+            if (parse_u32(v, a, &exit_after_acks) != 0) {
                 return 2;
+            }
         } else if (strcmp(a, "--max-runtime-ms") == 0) {
-            if (parse_u32(v, a, &max_runtime_ms) != 0)
+            if (parse_u32(v, a, &max_runtime_ms) != 0) {
                 return 2;
+            }
         } else {
             fprintf(stderr, "sva_can_node: error: unknown option %s\n",
                     sva_text_escape(shown, sizeof shown, a));
