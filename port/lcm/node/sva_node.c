@@ -160,9 +160,9 @@ static bool integer_option(const char* name, const char* text, long lo, long hi,
 // The folder of --state-dir, made when missing. Returns 0, or 1 after printing why.
 static int state_dir_ready(const char* dir)
 {
-    char shown[SHOWN_SIZE];
     struct stat st;
     if ((stat(dir, &st) != 0) && ((errno != ENOENT) || (mkdir(dir, 0700) != 0))) {
+        char shown[SHOWN_SIZE];
         fprintf(stderr, "sva_node: error: --state-dir %s: %s\n",
                 sva_text_escape(shown, sizeof shown, dir), strerror(errno));
         return 1;
@@ -248,10 +248,12 @@ int main(int argc, char** argv)
         if ((strcmp(a, "-h") == 0) || (strcmp(a, "--help") == 0)) {
             usage(stdout);
             return 0;
-        } else if (strcmp(a, "--version") == 0) {
+        }
+        if (strcmp(a, "--version") == 0) {
             printf("sva_node %d.%d.%d\n", SVA_VERSION_MAJOR, SVA_VERSION_MINOR, SVA_VERSION_PATCH);
             return 0;
-        } else if (((strcmp(a, "-u") == 0) || (strcmp(a, "--url") == 0)) && has_value) {
+        }
+        if (((strcmp(a, "-u") == 0) || (strcmp(a, "--url") == 0)) && has_value) {
             url_arg = argv[++i];
         } else if (((strcmp(a, "-p") == 0) || (strcmp(a, "--prefix") == 0)) && has_value) {
             prefix = argv[++i];
