@@ -69,7 +69,7 @@ static void reboot(sva_mavlink_telemetry_t* self, int64_t now_host_ms)
 }
 
 // A vehicle with both messages may leave one unknown (-1): it does not hide the other.
-static void on_battery(sva_mavlink_telemetry_t* self, int8_t percent)
+static void on_battery(sva_mavlink_telemetry_t* self, int32_t percent)
 {
     if (percent >= 0 && percent <= PERCENT_MAX) {
         self->battery_percent = percent;
