@@ -319,7 +319,8 @@ static int64_t elapsed_us(const struct timespec* a, const struct timespec* b)
 // One sva_plan() call into g_plan; *fastest_us becomes its wall time if that is less.
 static sva_status_t timed_plan(sva_algorithm_t algorithm, sva_diag_t* diag, int64_t* fastest_us)
 {
-    struct timespec before, after;
+    struct timespec before;
+    struct timespec after;
     clock_gettime(CLOCK_MONOTONIC, &before);
     const sva_status_t status = sva_plan(&g_planner, &g_mission, algorithm, &g_plan, diag);
     clock_gettime(CLOCK_MONOTONIC, &after);
@@ -437,7 +438,7 @@ static int cmd_plan(int argc, char** argv)
         }
     }
     FILE* trace_file = NULL;
-    sva_trace_t trace;
+    sva_trace_t trace = {NULL, NULL, 0UL, false};  // attached below when --trace is given
     if (opt.trace != NULL) {
         trace_file = fopen(opt.trace, "w");
         if (trace_file == NULL) {
@@ -471,7 +472,8 @@ static sva_json_live_t g_doc;
 static sva_status_t timed_replan(sva_algorithm_t algorithm, sva_live_result_t* result,
                                  sva_diag_t* diag, int64_t* solve_us)
 {
-    struct timespec before, after;
+    struct timespec before;
+    struct timespec after;
     clock_gettime(CLOCK_MONOTONIC, &before);
     const sva_status_t status = sva_live_replan(&g_live, &g_planner, algorithm, result, diag);
     clock_gettime(CLOCK_MONOTONIC, &after);
