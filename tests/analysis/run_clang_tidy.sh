@@ -24,6 +24,8 @@ cd "$root"
 "$tidy" --version | grep -i version
 core_flags=(-std=c99 -Icore/include -Icore/src -Icore/profiles '-DSVA_CONFIG_HEADER="sva_profile_default.h"')
 host_config="$root/port/.clang-tidy"
+[ -f "$build/compile_commands.json" ] ||
+    { echo "FAIL: $build/compile_commands.json missing: configure and build first (scripts/build.sh)"; exit 1; }
 
 # The canary, under the core's configuration and under the ports' (whose exceptions
 # must not switch the planted checks off).
@@ -73,7 +75,9 @@ done
 n_host=0
 mapfile -t host < <("$python" "$here/host_sources.py" list "$root")
 for src in "${host[@]}"; do
-    mapfile -t flags < <("$python" "$here/host_sources.py" flags "$root" "$build" "$src")
+    out=$("$python" "$here/host_sources.py" flags "$root" "$build" "$src") ||
+        { echo "FAIL: no build flags for $src"; exit 1; }
+    mapfile -t flags <<<"$out"
     run "$host_config" "$src" "${flags[@]}"
     n_host=$((n_host + 1))
 done

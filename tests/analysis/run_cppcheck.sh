@@ -18,6 +18,8 @@ python=${3:-python3}
 build=$4
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 command -v cppcheck >/dev/null || { echo "cppcheck not installed (scripts/setup.sh installs it)"; exit 1; }
+[ -f "$build/compile_commands.json" ] ||
+    { echo "FAIL: $build/compile_commands.json missing: configure and build first (scripts/build.sh)"; exit 1; }
 rm -rf "$work" && mkdir -p "$work/build" "$work/canary-build" "$work/host-build"
 echo "$(cppcheck --version), MISRA C 2012 addon"
 
@@ -53,8 +55,9 @@ cppcheck "${common[@]}" --cppcheck-build-dir="$work/build" --output-file="$work/
 # not given the system headers). __linux__: the host the nodes are built for.
 mapfile -t host < <("$python" "$here/host_sources.py" list "$root")
 for src in "${host[@]}"; do
-    mapfile -t flags < <("$python" "$here/host_sources.py" flags "$root" "$build" "$src" --user-includes |
-        grep -v '^-std=')
+    out=$("$python" "$here/host_sources.py" flags "$root" "$build" "$src" --user-includes) ||
+        { echo "FAIL: no build flags for $src"; exit 1; }
+    mapfile -t flags < <(grep -v '^-std=' <<<"$out")
     cppcheck "${own[@]}" --cppcheck-build-dir="$work/host-build" --output-file="$work/host.txt" \
         -D__linux__ "${flags[@]}" "$src" >/dev/null
     sed "s|^$root/||" "$work/host.txt" >>"$work/findings.txt"

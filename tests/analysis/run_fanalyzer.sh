@@ -28,8 +28,15 @@ if "$cc" "${flags[@]}" -c "$here/canary/analyzer_canary.c" -o "$work/canary.o" >
     cat "$work/canary.txt"
     exit 1
 fi
+[ -f "$build/compile_commands.json" ] ||
+    { echo "FAIL: $build/compile_commands.json missing: configure and build first (scripts/build.sh)"; exit 1; }
 mapfile -t host < <("$python" "$here/host_sources.py" list "$root")
-mapfile -t first_flags < <("$python" "$here/host_sources.py" flags "$root" "$build" "${host[0]}")
+host_flags() {  # host_flags FILE: its build flags, one per line; the test fails without them
+    "$python" "$here/host_sources.py" flags "$root" "$build" "$1" ||
+        { echo "FAIL: no build flags for $1" >&2; return 1; }
+}
+out=$(host_flags "${host[0]}")
+mapfile -t first_flags <<<"$out"
 if "$cc" "${flags[@]}" "${first_flags[@]}" -c "$here/canary/analyzer_host_canary.c" \
         -o "$work/host_canary.o" >"$work/host_canary.txt" 2>&1 ||
         ! grep -q 'Werror=analyzer-file-leak' "$work/host_canary.txt"; then
@@ -54,7 +61,8 @@ done
 n_host=0
 for src in "${host[@]}"; do
     n_host=$((n_host + 1))
-    mapfile -t src_flags < <("$python" "$here/host_sources.py" flags "$root" "$build" "$src")
+    out=$(host_flags "$src")
+    mapfile -t src_flags <<<"$out"
     if ! "$cc" "${flags[@]}" "${src_flags[@]}" -c "$src" -o "$work/host/${src//\//_}.o"; then
         status=1
     fi
