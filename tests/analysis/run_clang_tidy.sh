@@ -48,12 +48,13 @@ done
 status=0
 findings="$work/findings.txt"
 : >"$findings.all"
+: >"$work/diagnostics.txt"
 run() {  # run CONFIG FILE FLAGS...
     local config=$1 src=$2
     shift 2
     local rc=0 out parsed
     out=$("$tidy" --quiet --config-file="$config" "$src" -- "$@" 2>&1) || rc=$?
-    grep -E ': (error|warning): ' <<<"$out" || true
+    grep -E ': (error|warning): ' <<<"$out" >>"$work/diagnostics.txt" || true
     if ! parsed=$("$python" "$here/tidy_findings.py" "$root" <<<"$out"); then
         echo "$out"
         echo "FAIL: clang-tidy output on $src not understood"
@@ -81,6 +82,7 @@ for src in "${host[@]}"; do
     run "$host_config" "$src" "${flags[@]}"
     n_host=$((n_host + 1))
 done
+sort -u "$work/diagnostics.txt"  # a header's diagnostic once, not once per file
 sort -u "$findings.all" >"$findings"
 if ! "$python" "$here/check_deviations.py" "$findings" "$root/docs/misra-deviations.md"; then
     status=1
