@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks the layout of core/ (DESIGN.md section 9, STYLE: Layout).
+"""Checks the layout of core/ (DESIGN.md sections 7 and 9).
 
 Fails on
 - a call cycle between core files: file A calls file B when an object of the built

@@ -421,7 +421,7 @@ void test_route_master_holds_only_real_routes(void)
 #endif
 }
 
-// Ruin and recreate (flow_repair.c) at the same budget: it runs, its plans pass the
+// Ruin and recreate (flow_ruin.c) at the same budget: it runs, its plans pass the
 // checks of against_brute_force, and flow's plan is optimal on most of the missions
 // it ran on. It is skipped where the coverage is proven and the plan within 1/64 of
 // its bound, and the coverage search proves coverage on many of these small missions:

@@ -3,7 +3,7 @@
 // reads each relaxation route with a cap of SVA_MAX_ROUTE_TARGETS, and a relaxation
 // route may be longer: sva_flow_route() asserted `n < cap` there, so a valid mission
 // aborted the program (untrusted input reaching an assert). Now the route is cut, as
-// flow_repair.c intends, and branching splits it.
+// flow_round.c intends, and branching splits it.
 // Every algorithm must plan such missions with routes of at most 2 targets, each plan
 // checked by the independent SPEC checker. Seeds are printed (SVA_TEST_SEED=...).
 #include <stddef.h>

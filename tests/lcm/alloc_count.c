@@ -1,4 +1,4 @@
-// Heap allocation counter for a whole process, loaded with LD_PRELOAD (test_node_alloc.py
+// Heap allocation counter for a whole process, loaded with LD_PRELOAD (test_netns.py
 // runs build/bin/sva_node under it). It replaces the malloc family, forwards to glibc's
 // allocator and counts every call in a shared file the test reads while the process runs:
 //
@@ -39,7 +39,7 @@ typedef struct {
     uint64_t caller;  // return address in the caller of the allocation function
 } sva_alloc_event_t;
 
-// Layout read by tests/lcm/test_node_alloc.py (little-endian uint64 fields, in order).
+// Layout read by tests/lcm/test_netns.py (little-endian uint64 fields, in order).
 typedef struct {
     uint64_t magic;
     uint64_t calls[K_COUNT];  // malloc, calloc, realloc, memalign family

@@ -30,7 +30,7 @@ scenario stored in the log (the mission and the events) and the SPEC text, and j
   pairs of the residual mission the previous plan had and it drops, or it adds; and
   the never-fewer rule: a replan
   covers no fewer targets than the previous plan's visits of the new residual mission
-  still could (those visits pruned by SPEC 5.4 step 2, recomputed here).
+  still could (those visits pruned by SPEC 12.4 step 2, recomputed here).
 - the end: every UAV in service is at the depot (or has no fuel) at end_tick.
 
 check_flight(log) returns the list of violations (empty: the log is right).
@@ -78,7 +78,7 @@ def uav0_ready(u0: dict) -> int:
 
 
 def carried_covered(prev_plan: dict, residual: dict, backs: Set[int]) -> int:
-    """SPEC 5.4 step 2: the previous plan's visits of the residual targets, pruned until
+    """SPEC 12.4 step 2: the previous plan's visits of the residual targets, pruned until
     every visit left fits (no UAV late or short of fuel home; whole needs only); the
     number of targets it covers. UAVs in `backs` came back since: they have no visits."""
     tm = {t["id"]: _T(t) for t in residual["targets"]}

@@ -21,9 +21,9 @@ def need_one(seed):
 
 @pytest.mark.parametrize("seed", range(40))
 def test_model_admits_the_optimum(seed):
-    """PEERS.md's model check: ref's proven optimum is feasible in the PyVRP model, its
-    distance there is its fuel, and the objective is the plan's cost less the fleet's
-    ways home, so a miss of the peer is a search failure, not a modelling error."""
+    """The model check (docs/results.md, "flow against PyVRP"): ref's proven optimum is
+    feasible in the PyVRP model, its distance there is its fuel, and the objective is the
+    plan's cost less the fleet's ways home, so a miss of the peer is a search failure, not a modelling error."""
     m = need_one(seed)
     r = ref.solve_ref(m)
     assert r.stats["optimal"]

@@ -375,7 +375,7 @@ def test_bundled_scenarios_fly_and_check(sva_bin, tmp_path, name):
 # --- gen --events ----------------------------------------------------------------------
 
 def replay_rules(doc, max_coord=20):
-    """The SPEC 5.3 rules a generated scenario must keep, judged from the events alone
+    """The SPEC 12.3 rules a generated scenario must keep, judged from the events alone
     (nothing of the generator's bookkeeping), and gen's own promises for position
     reports: a UAV in service, on the grid, no farther from its last known cell than it
     could fly since, fuel between the longest flight home and what it last had less the

@@ -94,7 +94,7 @@ def generate_events(m: model.Mission, count: int, *, kinds: Sequence[str] = EVEN
                     seed: int = 0,
                     index: int = 0) -> tuple[model.Mission, list[dict[str, Any]]]:
     """`count` events at random ticks in [1, the mission's last window end), drawn from
-    `kinds`, valid when applied in order (SPEC 5.3): a UAV is lost only while in
+    `kinds`, valid when applied in order (SPEC 12.3): a UAV is lost only while in
     service and comes back only after it was lost (at a later tick); fuel readings go to
     UAVs in service; targets are cancelled or changed only before their window starts
     (so never done, lost or under way) and never after a cancellation; a pop-up or a

@@ -204,7 +204,7 @@ class Flight:
             c = self.by_id[e["uav"]]
             tid = c.hover
             if tid is not None:
-                # SPEC 5.1: a visit under way (every UAV sent there hovering) is lost.
+                # SPEC 12.1: a visit under way (every UAV sent there hovering) is lost.
                 hovering = sum(1 for o in self.crafts if o.in_service and o.hover == tid)
                 self._end_hover(c, t)
                 if hovering >= self.targets[tid].need:
@@ -300,7 +300,7 @@ class Flight:
 
     def _changes(self, residual: dict[str, Any], plan: dict[str, Any], now_events: list[dict[str, Any]],
                  cli_changes: dict[str, Any] | None) -> dict[str, Any]:
-        """SPEC 5.4's changed visits of this replan: (UAV, target) pairs of the residual
+        """SPEC 12.4's changed visits of this replan: (UAV, target) pairs of the residual
         mission that the plan in force had (the previous replan's plan; none for a UAV
         that came back since) and this plan drops, or that this plan adds. Recomputed
         here from consecutive plans, as the CLI's own figure describes only its last

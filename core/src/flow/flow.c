@@ -13,13 +13,13 @@
 //       concerns no one else. Children whose kept prefix already breaks the
 //       fuel rule are skipped, as is the one keeping the whole route: adding targets
 //       never shortens a route (triangle inequality).
-// Every node's relaxation is rounded into a plan (flow_repair.c); the plans of `ga`
+// Every node's relaxation is rounded into a plan (flow_round.c, flow_repair.c); the plans of `ga`
 // and `sva` are the first incumbents, so flow never plans worse than either (a
 // replan's standing plan, repaired, comes before them: flow_standing.c). The search
 // gets a sixteenth of the work budget (SVA_FLOW_MAX_WORK units, deterministic; a
 // replan has its own, flow_replan_work, and gives the search half);
 // if it does not finish, the Lagrangian phase (flow_lagrange.c) improves the bound
-// and the plan, ruin and recreate (flow_repair.c) improves the plan, and the search
+// and the plan, ruin and recreate (flow_ruin.c) improves the plan, and the search
 // runs again on what is left. The bound comes from the nodes left open and from the
 // Lagrangian phase. With a need above 1 the pooled graph (one node per target) is
 // solved first: its routes are taken when they are a plan, and past

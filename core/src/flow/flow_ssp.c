@@ -434,7 +434,7 @@ uint16_t sva_flow_route(const sva_flow_work_t* w, uint16_t u, uint16_t* out, uin
         const uint16_t c = (uint16_t)(next - s.u);
         if (n >= cap) {
             // Not an error: a relaxation's route may be longer than the rounding's cap
-            // SVA_MAX_ROUTE_TARGETS (flow_repair.c cuts it; branching splits it).
+            // SVA_MAX_ROUTE_TARGETS (flow_round.c cuts it; branching splits it).
             return n;
         }
         out[n] = c;

@@ -1,5 +1,5 @@
 // live_carry.c -- the plan in force carried over to a residual mission (SPEC section
-// 5.4): its visits of the targets still waiting, less every visit that no longer fits.
+// 12.4): its visits of the targets still waiting, less every visit that no longer fits.
 // It is the candidate that keeps a replan from covering fewer targets than the plan in
 // force still could.
 #include "live_internal.h"

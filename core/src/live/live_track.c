@@ -236,7 +236,7 @@ sva_target_state_t sva_live_state_at(const sva_live_t* self, uint16_t i, int64_t
             if ((state == SVA_TARGET_WAITING) && (present(self, i) >= tg->need)) {
                 return (tg->end_ticks <= at) ? SVA_TARGET_DONE : SVA_TARGET_UNDER_WAY;
             }
-            // SPEC 5.1: starting now, it may still be covered by UAVs already there.
+            // SPEC 12.1: starting now, it may still be covered by UAVs already there.
             return (tg->start_ticks < at) ? SVA_TARGET_EXPIRED : state;
         }
         if (!reach) {

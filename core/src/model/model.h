@@ -8,10 +8,11 @@
 
 #include "sva/sva.h"
 
-// Asserts guard API misuse and internal invariants only, never untrusted input
-// (STYLE: Errors). Default: the C library's assert (so NDEBUG turns it off, as
-// anywhere in C); SVA_ENABLE_ASSERT=0 compiles them out; firmware may define
-// SVA_ASSERT(x) to its own handler. Disabled, the expression is still type-checked.
+// Asserts guard API misuse and internal invariants only, never untrusted input (bad
+// input gets an error, never a crash: SPEC section 4). Default: the C library's
+// assert (so NDEBUG turns it off, as anywhere in C); SVA_ENABLE_ASSERT=0 compiles them
+// out; firmware may define SVA_ASSERT(x) to its own handler. Disabled, the expression
+// is still type-checked.
 #ifndef SVA_ASSERT
 #    if SVA_ENABLE_ASSERT && !defined(NDEBUG)
 #        include <assert.h>

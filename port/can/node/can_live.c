@@ -33,7 +33,7 @@ uint16_t sva_can_live_in_service(const sva_can_live_t* self)
     uint16_t u;
     uint16_t n = 0;
     for (u = 0; u < self->live.mission.uav_count; ++u) {
-        n = (uint16_t)(n + (self->live.priv.uavs[u].lost ? 0u : 1u));
+        n = (uint16_t)(n + (self->live.priv.uavs[u].lost ? 0U : 1U));
     }
     return n;
 }
@@ -93,7 +93,7 @@ int sva_can_live_start(sva_can_live_t* self, const sva_mission_t* mission,
     memset(self->fuel_heard, 0xFF, sizeof self->fuel_heard);
     memset(&self->stats, 0, sizeof self->stats);
     self->algorithm = algorithm;
-    self->pending = 0u;
+    self->pending = 0U;
     if (self->track_tolerance_cells < 0) {
         self->track_tolerance_cells = 0;
     }
@@ -111,7 +111,7 @@ int sva_can_live_start(sva_can_live_t* self, const sva_mission_t* mission,
         (void)snprintf(err, err_size, "plan 1 failed (status %d): %s", (int)st, msg);
         return -1;
     }
-    if (sva_can_plan_from_core(&self->wire, mission, &self->plan, 1u) != SVA_CAN_OK) {
+    if (sva_can_plan_from_core(&self->wire, mission, &self->plan, 1U) != SVA_CAN_OK) {
         (void)snprintf(err, err_size, "plan 1 does not fit the wire (more than %d items?)",
                        SVA_CAN_MAX_ITEMS);
         return -1;
@@ -119,8 +119,8 @@ int sva_can_live_start(sva_can_live_t* self, const sva_mission_t* mission,
     for (u = 0; u < mission->uav_count; ++u) {
         self->fuel_heard[u] = mission->uavs[u].fuel;
     }
-    self->plan_id = 1u;
-    self->covered = (uint8_t)((self->plan.covered > 255u) ? 255u : self->plan.covered);
+    self->plan_id = 1U;
+    self->covered = (uint8_t)((self->plan.covered > 255U) ? 255U : self->plan.covered);
     self->sent = self->wire;
     return 0;
 }
@@ -297,7 +297,7 @@ int sva_can_live_poll(sva_can_live_t* self, uint32_t now_ms, uint32_t settle_ms)
     if (self->halted) {
         return SVA_CAN_LIVE_HALTED;
     }
-    if ((self->pending == 0u) || ((uint32_t)(now_ms - self->last_event_ms) < settle_ms)) {
+    if ((self->pending == 0U) || ((uint32_t)(now_ms - self->last_event_ms) < settle_ms)) {
         return 0;
     }
     return keep(self, SVA_CAN_LIVE_INPUT_REPLAN, NULL, now_ms, poll_settled(self));
@@ -309,7 +309,7 @@ static int poll_settled(sva_can_live_t* self)
     sva_diag_t diag;
     sva_status_t st;
     uint16_t next_id;
-    self->pending = 0u;
+    self->pending = 0U;
     st = sva_live_replan(&self->live, &self->planner, self->algorithm, &self->result, &diag);
     if (st != SVA_OK) {
         char msg[200];
@@ -321,8 +321,8 @@ static int poll_settled(sva_can_live_t* self)
         return -1;
     }
     ++self->stats.replans;
-    self->covered = (uint8_t)((self->result.covered > 255u) ? 255u : self->result.covered);
-    next_id = (uint16_t)((self->plan_id == 65535u) ? 1u : (self->plan_id + 1u));
+    self->covered = (uint8_t)((self->result.covered > 255U) ? 255U : self->result.covered);
+    next_id = (uint16_t)((self->plan_id == 65535U) ? 1U : (self->plan_id + 1U));
     if (!plan_in_force(self) || (sva_can_plan_from_core(&self->wire, &self->live.mission,
                                                         &self->plan, next_id) != SVA_CAN_OK)) {
         logf_line(self, "replan does not fit the wire: plan in force kept on the bus", -1,

@@ -8,17 +8,19 @@
 #include "sva/sva_can.h"
 
 // The CAN mission frame's ranges are sva_frame.h's: a frame the JSON layer accepts always fits.
-typedef char sva_can_mission_frame_ranges_agree
-    [((SVA_CAN_MISSION_FRAME_MAX_LAT_E7 == SVA_FRAME_MAX_LAT_DEG * 10000000L) &&
-      (SVA_CAN_MISSION_FRAME_MAX_LON_E7 == SVA_FRAME_MAX_LON_DEG * 10000000L) &&
-      (SVA_CAN_MISSION_FRAME_MAX_ALT_CM == SVA_FRAME_MAX_ALT_CM) &&
-      (SVA_CAN_MISSION_FRAME_MIN_CELL_CM == SVA_FRAME_MIN_CELL_CM) &&
-      (SVA_CAN_MISSION_FRAME_MAX_CELL_CM == SVA_FRAME_MAX_CELL_CM) &&
-      (SVA_CAN_MISSION_FRAME_MIN_TICK_MS == SVA_FRAME_MIN_TICK_MS) &&
-      (SVA_CAN_MISSION_FRAME_MAX_TICK_MS == SVA_FRAME_MAX_TICK_MS) &&
-      (SVA_CAN_MISSION_FRAME_MAX_T0_MS == SVA_FRAME_MAX_T0_MS))
-         ? 1
-         : -1];
+// One assertion per range, so a mismatch names the range that differs.
+#define SVA_CAN_MISSION_FRAME_AGREES(name, cond) \
+    typedef char sva_can_mission_frame_agrees_##name[(cond) ? 1 : -1]
+SVA_CAN_MISSION_FRAME_AGREES(lat,
+                             SVA_CAN_MISSION_FRAME_MAX_LAT_E7 == SVA_FRAME_MAX_LAT_DEG * 10000000L);
+SVA_CAN_MISSION_FRAME_AGREES(lon,
+                             SVA_CAN_MISSION_FRAME_MAX_LON_E7 == SVA_FRAME_MAX_LON_DEG * 10000000L);
+SVA_CAN_MISSION_FRAME_AGREES(alt, SVA_CAN_MISSION_FRAME_MAX_ALT_CM == SVA_FRAME_MAX_ALT_CM);
+SVA_CAN_MISSION_FRAME_AGREES(min_cell, SVA_CAN_MISSION_FRAME_MIN_CELL_CM == SVA_FRAME_MIN_CELL_CM);
+SVA_CAN_MISSION_FRAME_AGREES(max_cell, SVA_CAN_MISSION_FRAME_MAX_CELL_CM == SVA_FRAME_MAX_CELL_CM);
+SVA_CAN_MISSION_FRAME_AGREES(min_tick, SVA_CAN_MISSION_FRAME_MIN_TICK_MS == SVA_FRAME_MIN_TICK_MS);
+SVA_CAN_MISSION_FRAME_AGREES(max_tick, SVA_CAN_MISSION_FRAME_MAX_TICK_MS == SVA_FRAME_MAX_TICK_MS);
+SVA_CAN_MISSION_FRAME_AGREES(t0, SVA_CAN_MISSION_FRAME_MAX_T0_MS == SVA_FRAME_MAX_T0_MS);
 
 sva_json_status_t sva_can_mission_load(const char* path, sva_mission_t* m, char* name,
                                        size_t name_size, char* err, size_t err_size)

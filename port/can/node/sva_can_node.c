@@ -47,9 +47,9 @@ static uint32_t now_ms(void)
 {
     struct timespec ts;
     if (clock_gettime(CLOCK_MONOTONIC, &ts) != 0) {
-        return 0u;
+        return 0U;
     }
-    return (uint32_t)((uint64_t)ts.tv_sec * 1000u + (uint64_t)ts.tv_nsec / 1000000u);
+    return (uint32_t)((uint64_t)ts.tv_sec * 1000U + (uint64_t)ts.tv_nsec / 1000000U);
 }
 
 // Everything the node owns: static, no heap (the live mission and planner are large).
@@ -69,12 +69,12 @@ static uint8_t send_frame(void)
     sva_can_frame_t out[SVA_CAN_MISSION_FRAME_PARTS];
     unsigned p;
     if (!g_has_frame) {
-        return 0u;
+        return 0U;
     }
     if (sva_can_mission_frame_encode(&g_frame, g_frame_counter, out) != SVA_CAN_OK) {
         return SVA_CAN_FAULT_TX_ERRORS;
     }
-    g_frame_counter = (uint8_t)((g_frame_counter + SVA_CAN_MISSION_FRAME_PARTS) & 15u);
+    g_frame_counter = (uint8_t)((g_frame_counter + SVA_CAN_MISSION_FRAME_PARTS) & 15U);
     for (p = 0; p < SVA_CAN_MISSION_FRAME_PARTS; ++p) {
         const sva_can_status_t st = g_tp->send(g_tp->ctx, &out[p]);
         if (st != SVA_CAN_OK) {
@@ -83,7 +83,7 @@ static uint8_t send_frame(void)
             return SVA_CAN_FAULT_TX_ERRORS;
         }
     }
-    return 0u;
+    return 0U;
 }
 
 static uint32_t elapsed(uint32_t now, uint32_t then)
@@ -111,7 +111,7 @@ static int parse_u32(const char* s, const char* opt, uint32_t* out)
     unsigned long v;
     errno = 0;
     v = strtoul(s, &end, 10);
-    if ((errno != 0) || (end == s) || (*end != '\0') || (v > 0x7FFFFFFFul) || (s[0] == '-')) {
+    if ((errno != 0) || (end == s) || (*end != '\0') || (v > 0x7FFFFFFFUL) || (s[0] == '-')) {
         char shown[SHOWN_SIZE];
         fprintf(stderr,
                 "sva_can_node: error: %s: must be an integer in [0, 2147483647], got \"%s\"\n", opt,
@@ -131,11 +131,11 @@ static uint8_t send_plan(uint32_t t, int print)
     fprintf(stderr, "sva_can_node: plan %u: %s %s, covered %u of %u, %u items, %u frames\n",
             plan->plan_id, sva_algorithm_name((sva_algorithm_t)plan->algorithm),
             (plan->plan_status == SVA_CAN_PLAN_COMPLETE) ? "complete" : "partial", g_live.covered,
-            g_live.live.mission.target_count, plan->item_count, 2u * plan->item_count + 2u);
+            g_live.live.mission.target_count, plan->item_count, 2U * plan->item_count + 2U);
     if (print) {
         sva_can_plan_print(plan);
     }
-    if (send_frame() != 0u) {
+    if (send_frame() != 0U) {
         return SVA_CAN_FAULT_TX_ERRORS;
     }
     cst = sva_can_sender_start(&g_sender, plan, t);
@@ -144,7 +144,7 @@ static uint8_t send_plan(uint32_t t, int print)
                 sva_can_status_name(cst));
         return SVA_CAN_FAULT_TX_ERRORS;
     }
-    return 0u;
+    return 0U;
 }
 
 // The options that take a value (every option but --help, --version and --state-reset).
@@ -204,7 +204,7 @@ static int parse_options(int argc, char** argv, node_options_t* o)
     o->iface = "vcan0";
     o->algo_name = "sva";
     o->algo_option = "--algo";
-    o->settle_ms = 200u;
+    o->settle_ms = 200U;
     o->track_tolerance = SVA_CAN_LIVE_TRACK_TOLERANCE;
     for (i = 1; i < argc; ++i) {
         const char* a = argv[i];
@@ -473,21 +473,21 @@ static void heartbeat(node_run_t* r, const sva_can_transport_t* tp, uint32_t t)
     hb.u.heartbeat.state =
         (uint8_t)((g_sender.state == SVA_CAN_TX_SENDING || g_sender.state == SVA_CAN_TX_WAIT_ACK)
                       ? SVA_CAN_NODE_SENDING
-                  : (r->active_plan_id != 0u) ? SVA_CAN_NODE_ACTIVE
-                  : (r->faults != 0u)         ? SVA_CAN_NODE_FAULT
+                  : (r->active_plan_id != 0U) ? SVA_CAN_NODE_ACTIVE
+                  : (r->faults != 0U)         ? SVA_CAN_NODE_FAULT
                                               : SVA_CAN_NODE_IDLE);
     hb.u.heartbeat.active_plan_id = r->active_plan_id;
     {
         const uint16_t in_service = sva_can_live_in_service(&g_live);
-        hb.u.heartbeat.uav_count = (uint8_t)((in_service > 255u) ? 255u : in_service);
+        hb.u.heartbeat.uav_count = (uint8_t)((in_service > 255U) ? 255U : in_service);
         hb.u.heartbeat.target_count =
-            (uint8_t)((g_live.live.mission.target_count > 255u) ? 255u
+            (uint8_t)((g_live.live.mission.target_count > 255U) ? 255U
                                                                 : g_live.live.mission.target_count);
     }
     hb.u.heartbeat.covered_count = r->covered_active;
     hb.u.heartbeat.faults = (uint8_t)(r->faults & SVA_CAN_FAULT_MASK);
     if ((sva_can_encode(&hb, &hf) == SVA_CAN_OK) && (tp->send(tp->ctx, &hf) == SVA_CAN_OK)) {
-        r->hb_counter = (uint8_t)((r->hb_counter + 1u) & 0x0Fu);
+        r->hb_counter = (uint8_t)((r->hb_counter + 1U) & 0x0FU);
     }
     r->faults = (uint8_t)(r->faults & (uint8_t)~SVA_CAN_FAULT_RX_ERRORS);  // per heartbeat period
     r->last_hb = t;
@@ -526,13 +526,13 @@ static int run_loop(const node_options_t* o, node_run_t* r, sva_can_transport_t*
         }
         watch_transfer(r);
         heartbeat(r, tp, t);
-        if ((o->exit_after_acks != 0u) && (r->acks >= o->exit_after_acks)) {
+        if ((o->exit_after_acks != 0U) && (r->acks >= o->exit_after_acks)) {
             break;
         }
-        if ((o->max_runtime_ms != 0u) && (elapsed(t, r->t0) >= o->max_runtime_ms)) {
+        if ((o->max_runtime_ms != 0U) && (elapsed(t, r->t0) >= o->max_runtime_ms)) {
             fprintf(stderr, "sva_can_node: --max-runtime-ms %lu reached\n",
                     (unsigned long)o->max_runtime_ms);
-            return (o->exit_after_acks != 0u) ? 1 : 0;  // asked for ACKs that never came
+            return (o->exit_after_acks != 0U) ? 1 : 0;  // asked for ACKs that never came
         }
     }
     return 0;

@@ -54,20 +54,20 @@ const char* sva_can_status_name(sva_can_status_t status)
 
 uint8_t sva_can_crc8(const uint8_t* data, size_t size)
 {
-    uint8_t crc = 0xFFu;
+    uint8_t crc = 0xFFU;
     size_t i;
     if (data == NULL) {
-        return 0u;
+        return 0U;
     }
     for (i = 0; i < size; ++i) {
         unsigned bit;
         crc = (uint8_t)(crc ^ data[i]);
-        for (bit = 0; bit < 8u; ++bit) {
-            crc = ((crc & 0x80u) != 0u) ? (uint8_t)((uint8_t)(crc << 1) ^ 0x1Du)
+        for (bit = 0; bit < 8U; ++bit) {
+            crc = ((crc & 0x80U) != 0U) ? (uint8_t)((uint8_t)(crc << 1) ^ 0x1DU)
                                         : (uint8_t)(crc << 1);
         }
     }
-    return (uint8_t)(crc ^ 0xFFu);
+    return (uint8_t)(crc ^ 0xFFU);
 }
 
 uint32_t sva_can_crc32(uint32_t crc, const uint8_t* data, size_t size)
@@ -80,8 +80,8 @@ uint32_t sva_can_crc32(uint32_t crc, const uint8_t* data, size_t size)
     for (i = 0; i < size; ++i) {
         unsigned bit;
         crc ^= data[i];
-        for (bit = 0; bit < 8u; ++bit) {
-            crc = ((crc & 1u) != 0u) ? ((crc >> 1) ^ 0xEDB88320u) : (crc >> 1);
+        for (bit = 0; bit < 8U; ++bit) {
+            crc = ((crc & 1U) != 0U) ? ((crc >> 1) ^ 0xEDB88320U) : (crc >> 1);
         }
     }
     return ~crc;
@@ -93,10 +93,10 @@ uint8_t sva_can_frame_crc8(uint32_t id, const uint8_t data[8])
     // then data bytes 0..6.
     uint8_t buf[9];
     unsigned i;
-    buf[0] = (uint8_t)(id & 0xFFu);
-    buf[1] = (uint8_t)((id >> 8) & 0x07u);
-    for (i = 0; i < 7u; ++i) {
-        buf[2u + i] = data[i];
+    buf[0] = (uint8_t)(id & 0xFFU);
+    buf[1] = (uint8_t)((id >> 8) & 0x07U);
+    for (i = 0; i < 7U; ++i) {
+        buf[2U + i] = data[i];
     }
     return sva_can_crc8(buf, sizeof buf);
 }
@@ -106,23 +106,23 @@ void sva_can_put_bits(uint8_t data[8], unsigned start, unsigned len, uint64_t va
     unsigned k;
     for (k = 0; k < len; ++k) {
         const unsigned bit = start + k;
-        const uint8_t mask = (uint8_t)(1u << (bit % 8u));
-        if (((value >> k) & 1u) != 0u) {
-            data[bit / 8u] = (uint8_t)(data[bit / 8u] | mask);
+        const uint8_t mask = (uint8_t)(1U << (bit % 8U));
+        if (((value >> k) & 1U) != 0U) {
+            data[bit / 8U] = (uint8_t)(data[bit / 8U] | mask);
         } else {
-            data[bit / 8u] = (uint8_t)(data[bit / 8u] & (uint8_t)~mask);
+            data[bit / 8U] = (uint8_t)(data[bit / 8U] & (uint8_t)~mask);
         }
     }
 }
 
 uint64_t sva_can_get_bits(const uint8_t data[8], unsigned start, unsigned len)
 {
-    uint64_t value = 0u;
+    uint64_t value = 0U;
     unsigned k;
     for (k = 0; k < len; ++k) {
         const unsigned bit = start + k;
-        if (((data[bit / 8u] >> (bit % 8u)) & 1u) != 0u) {
-            value |= (uint64_t)1u << k;
+        if (((data[bit / 8U] >> (bit % 8U)) & 1U) != 0U) {
+            value |= (uint64_t)1U << k;
         }
     }
     return value;
@@ -136,7 +136,7 @@ static uint64_t from_i16(int16_t v)
 
 static int16_t to_i16(uint64_t raw)
 {
-    const long v = (long)(raw & 0xFFFFu);
+    const long v = (long)(raw & 0xFFFFU);
     return (int16_t)((v >= 32768L) ? (v - 65536L) : v);
 }
 
@@ -194,114 +194,114 @@ static uint32_t id_of_kind(sva_can_msg_kind_t kind)
     case SVA_CAN_MSG_NONE:
     case SVA_CAN_MSG_COUNT_:
     default:
-        return 0u;
+        return 0U;
     }
 }
 
 // Field widths must hold the value: the encoder refuses rather than truncates.
-#define FITS(value, bits) ((uint64_t)(value) < ((uint64_t)1u << (bits)))
+#define FITS(value, bits) ((uint64_t)(value) < ((uint64_t)1U << (bits)))
 
 sva_can_status_t sva_can_encode(const sva_can_msg_t* msg, sva_can_frame_t* out)
 {
-    uint8_t d[8] = {0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u};
+    uint8_t d[8] = {0U, 0U, 0U, 0U, 0U, 0U, 0U, 0U};
     uint32_t id;
     unsigned i;
-    if ((msg == NULL) || (out == NULL) || (msg->counter > 15u)) {
+    if ((msg == NULL) || (out == NULL) || (msg->counter > 15U)) {
         return SVA_CAN_ERR_ARGUMENT;
     }
     id = id_of_kind(msg->kind);
-    if (id == 0u) {
+    if (id == 0U) {
         return SVA_CAN_ERR_ARGUMENT;
     }
-    sva_can_put_bits(d, 0u, 4u, msg->counter);
+    sva_can_put_bits(d, 0U, 4U, msg->counter);
     switch (msg->kind) {
     case SVA_CAN_MSG_HEARTBEAT: {
         const sva_can_heartbeat_t* m = &msg->u.heartbeat;
-        if (!FITS(m->state, 4u)) {
+        if (!FITS(m->state, 4U)) {
             return SVA_CAN_ERR_ARGUMENT;
         }
-        sva_can_put_bits(d, 4u, 4u, m->state);
-        sva_can_put_bits(d, 8u, 16u, m->active_plan_id);
-        sva_can_put_bits(d, 24u, 8u, m->uav_count);
-        sva_can_put_bits(d, 32u, 8u, m->target_count);
-        sva_can_put_bits(d, 40u, 8u, m->covered_count);
-        sva_can_put_bits(d, 48u, 8u, m->faults);
+        sva_can_put_bits(d, 4U, 4U, m->state);
+        sva_can_put_bits(d, 8U, 16U, m->active_plan_id);
+        sva_can_put_bits(d, 24U, 8U, m->uav_count);
+        sva_can_put_bits(d, 32U, 8U, m->target_count);
+        sva_can_put_bits(d, 40U, 8U, m->covered_count);
+        sva_can_put_bits(d, 48U, 8U, m->faults);
         break;
     }
     case SVA_CAN_MSG_PLAN_BEGIN: {
         const sva_can_begin_t* m = &msg->u.begin;
-        if (!FITS(m->version, 4u) || !FITS(m->algorithm, 4u) || !FITS(m->plan_status, 4u)) {
+        if (!FITS(m->version, 4U) || !FITS(m->algorithm, 4U) || !FITS(m->plan_status, 4U)) {
             return SVA_CAN_ERR_ARGUMENT;
         }
-        sva_can_put_bits(d, 4u, 4u, m->version);
-        sva_can_put_bits(d, 8u, 16u, m->plan_id);
-        sva_can_put_bits(d, 24u, 16u, m->item_count);
-        sva_can_put_bits(d, 40u, 4u, m->algorithm);
-        sva_can_put_bits(d, 44u, 4u, m->plan_status);
-        sva_can_put_bits(d, 48u, 8u, m->route_count);
+        sva_can_put_bits(d, 4U, 4U, m->version);
+        sva_can_put_bits(d, 8U, 16U, m->plan_id);
+        sva_can_put_bits(d, 24U, 16U, m->item_count);
+        sva_can_put_bits(d, 40U, 4U, m->algorithm);
+        sva_can_put_bits(d, 44U, 4U, m->plan_status);
+        sva_can_put_bits(d, 48U, 8U, m->route_count);
         break;
     }
     case SVA_CAN_MSG_PLAN_ITEM: {
         const sva_can_item_where_t* m = &msg->u.item;
-        if (!FITS(m->target_id, 12u)) {
+        if (!FITS(m->target_id, 12U)) {
             return SVA_CAN_ERR_ARGUMENT;
         }
-        sva_can_put_bits(d, 4u, 8u, m->uav_id);
-        sva_can_put_bits(d, 12u, 12u, m->target_id);
-        sva_can_put_bits(d, 24u, 16u, from_i16(m->x));
-        sva_can_put_bits(d, 40u, 16u, from_i16(m->y));
+        sva_can_put_bits(d, 4U, 8U, m->uav_id);
+        sva_can_put_bits(d, 12U, 12U, m->target_id);
+        sva_can_put_bits(d, 24U, 16U, from_i16(m->x));
+        sva_can_put_bits(d, 40U, 16U, from_i16(m->y));
         break;
     }
     case SVA_CAN_MSG_PLAN_ITEM_TIME: {
         const sva_can_item_time_t* m = &msg->u.item_time;
-        if (!FITS(m->item_seq, 4u) || !FITS(m->arrive_by_ticks, 24u) ||
-            !FITS(m->hold_until_ticks, 24u)) {
+        if (!FITS(m->item_seq, 4U) || !FITS(m->arrive_by_ticks, 24U) ||
+            !FITS(m->hold_until_ticks, 24U)) {
             return SVA_CAN_ERR_ARGUMENT;
         }
-        sva_can_put_bits(d, 4u, 4u, m->item_seq);
-        sva_can_put_bits(d, 8u, 24u, m->arrive_by_ticks);
-        sva_can_put_bits(d, 32u, 24u, m->hold_until_ticks);
+        sva_can_put_bits(d, 4U, 4U, m->item_seq);
+        sva_can_put_bits(d, 8U, 24U, m->arrive_by_ticks);
+        sva_can_put_bits(d, 32U, 24U, m->hold_until_ticks);
         break;
     }
     case SVA_CAN_MSG_PLAN_COMMIT:
-        sva_can_put_bits(d, 8u, 16u, msg->u.commit.plan_id);
-        sva_can_put_bits(d, 24u, 32u, msg->u.commit.plan_crc);
+        sva_can_put_bits(d, 8U, 16U, msg->u.commit.plan_id);
+        sva_can_put_bits(d, 24U, 32U, msg->u.commit.plan_crc);
         break;
     case SVA_CAN_MSG_PLAN_ABORT:
-        if (!FITS(msg->u.abort_.reason, 4u)) {
+        if (!FITS(msg->u.abort_.reason, 4U)) {
             return SVA_CAN_ERR_ARGUMENT;
         }
-        sva_can_put_bits(d, 4u, 4u, msg->u.abort_.reason);
-        sva_can_put_bits(d, 8u, 16u, msg->u.abort_.plan_id);
+        sva_can_put_bits(d, 4U, 4U, msg->u.abort_.reason);
+        sva_can_put_bits(d, 8U, 16U, msg->u.abort_.plan_id);
         break;
     case SVA_CAN_MSG_PLAN_ACK:
-        if (!FITS(msg->u.ack.result, 4u)) {
+        if (!FITS(msg->u.ack.result, 4U)) {
             return SVA_CAN_ERR_ARGUMENT;
         }
-        sva_can_put_bits(d, 4u, 4u, msg->u.ack.result);
-        sva_can_put_bits(d, 8u, 16u, msg->u.ack.plan_id);
-        sva_can_put_bits(d, 24u, 16u, msg->u.ack.items_received);
+        sva_can_put_bits(d, 4U, 4U, msg->u.ack.result);
+        sva_can_put_bits(d, 8U, 16U, msg->u.ack.plan_id);
+        sva_can_put_bits(d, 24U, 16U, msg->u.ack.items_received);
         break;
     case SVA_CAN_MSG_VEHICLE_STATUS: {
         const sva_can_vehicle_status_t* m = &msg->u.vehicle;
-        if (!FITS(m->state, 4u)) {
+        if (!FITS(m->state, 4U)) {
             return SVA_CAN_ERR_ARGUMENT;
         }
-        sva_can_put_bits(d, 4u, 4u, m->state);
-        sva_can_put_bits(d, 8u, 8u, m->uav_id);
-        sva_can_put_bits(d, 16u, 16u, from_i16(m->x));
-        sva_can_put_bits(d, 32u, 16u, from_i16(m->y));
+        sva_can_put_bits(d, 4U, 4U, m->state);
+        sva_can_put_bits(d, 8U, 8U, m->uav_id);
+        sva_can_put_bits(d, 16U, 16U, from_i16(m->x));
+        sva_can_put_bits(d, 32U, 16U, from_i16(m->y));
         break;
     }
     case SVA_CAN_MSG_VEHICLE_FUEL:
-        sva_can_put_bits(d, 8u, 8u, msg->u.fuel.uav_id);
-        sva_can_put_bits(d, 16u, 32u, msg->u.fuel.fuel);
+        sva_can_put_bits(d, 8U, 8U, msg->u.fuel.uav_id);
+        sva_can_put_bits(d, 16U, 32U, msg->u.fuel.fuel);
         break;
     case SVA_CAN_MSG_MISSION_CLOCK:
         if (msg->u.clock.tick > (uint32_t)SVA_CAN_MAX_TICK) {
             return SVA_CAN_ERR_ARGUMENT;
         }
-        sva_can_put_bits(d, 8u, 24u, msg->u.clock.tick);
+        sva_can_put_bits(d, 8U, 24U, msg->u.clock.tick);
         break;
     case SVA_CAN_MSG_NONE:
     case SVA_CAN_MSG_COUNT_:
@@ -310,9 +310,9 @@ sva_can_status_t sva_can_encode(const sva_can_msg_t* msg, sva_can_frame_t* out)
     }
     d[7] = sva_can_frame_crc8(id, d);
     out->id = id;
-    out->flags = 0u;
-    out->dlc = 8u;
-    for (i = 0; i < 8u; ++i) {
+    out->flags = 0U;
+    out->dlc = 8U;
+    for (i = 0; i < 8U; ++i) {
         out->data[i] = d[i];
     }
     return SVA_CAN_OK;
@@ -323,14 +323,14 @@ sva_can_status_t sva_can_frame_check(const sva_can_frame_t* frame, int expected_
     if (frame == NULL) {
         return SVA_CAN_ERR_ARGUMENT;
     }
-    if ((frame->dlc != 8u) || ((frame->flags & SVA_CAN_FLAG_FD) != 0u)) {
+    if ((frame->dlc != 8U) || ((frame->flags & SVA_CAN_FLAG_FD) != 0U)) {
         return SVA_CAN_ERR_DLC;
     }
     if (sva_can_frame_crc8(frame->id, frame->data) != frame->data[7]) {
         return SVA_CAN_ERR_CRC;
     }
     if ((expected_counter >= 0) && (expected_counter <= 15) &&
-        ((unsigned)(frame->data[0] & 0x0Fu) != (unsigned)expected_counter)) {
+        ((unsigned)(frame->data[0] & 0x0FU) != (unsigned)expected_counter)) {
         return SVA_CAN_ERR_COUNTER;
     }
     return SVA_CAN_OK;
@@ -343,7 +343,7 @@ sva_can_status_t sva_can_decode(const sva_can_frame_t* frame, sva_can_msg_t* out
     if ((frame == NULL) || (out == NULL)) {
         return SVA_CAN_ERR_ARGUMENT;
     }
-    if ((frame->flags & (SVA_CAN_FLAG_EXTENDED | SVA_CAN_FLAG_RTR)) != 0u) {
+    if ((frame->flags & (SVA_CAN_FLAG_EXTENDED | SVA_CAN_FLAG_RTR)) != 0U) {
         return SVA_CAN_IGNORED;  // DroneCAN and other 29-bit traffic shares the bus
     }
     m.kind = sva_can_kind_of_id(frame->id);
@@ -351,98 +351,98 @@ sva_can_status_t sva_can_decode(const sva_can_frame_t* frame, sva_can_msg_t* out
         return SVA_CAN_IGNORED;
     }
     // DLC before any byte is read: classic frames of exactly 8 bytes only.
-    if ((frame->dlc != 8u) || ((frame->flags & SVA_CAN_FLAG_FD) != 0u)) {
+    if ((frame->dlc != 8U) || ((frame->flags & SVA_CAN_FLAG_FD) != 0U)) {
         return SVA_CAN_ERR_DLC;
     }
     d = frame->data;
     if (sva_can_frame_crc8(frame->id, d) != d[7]) {
         return SVA_CAN_ERR_CRC;
     }
-    m.counter = (uint8_t)sva_can_get_bits(d, 0u, 4u);
+    m.counter = (uint8_t)sva_can_get_bits(d, 0U, 4U);
     switch (m.kind) {
     case SVA_CAN_MSG_HEARTBEAT:
-        m.u.heartbeat.state = (uint8_t)sva_can_get_bits(d, 4u, 4u);
-        m.u.heartbeat.active_plan_id = (uint16_t)sva_can_get_bits(d, 8u, 16u);
-        m.u.heartbeat.uav_count = (uint8_t)sva_can_get_bits(d, 24u, 8u);
-        m.u.heartbeat.target_count = (uint8_t)sva_can_get_bits(d, 32u, 8u);
-        m.u.heartbeat.covered_count = (uint8_t)sva_can_get_bits(d, 40u, 8u);
-        m.u.heartbeat.faults = (uint8_t)sva_can_get_bits(d, 48u, 8u);
+        m.u.heartbeat.state = (uint8_t)sva_can_get_bits(d, 4U, 4U);
+        m.u.heartbeat.active_plan_id = (uint16_t)sva_can_get_bits(d, 8U, 16U);
+        m.u.heartbeat.uav_count = (uint8_t)sva_can_get_bits(d, 24U, 8U);
+        m.u.heartbeat.target_count = (uint8_t)sva_can_get_bits(d, 32U, 8U);
+        m.u.heartbeat.covered_count = (uint8_t)sva_can_get_bits(d, 40U, 8U);
+        m.u.heartbeat.faults = (uint8_t)sva_can_get_bits(d, 48U, 8U);
         if ((m.u.heartbeat.state > SVA_CAN_NODE_STATE_MAX) ||
-            ((m.u.heartbeat.faults & (uint8_t)~SVA_CAN_FAULT_MASK) != 0u)) {
+            ((m.u.heartbeat.faults & (uint8_t)~SVA_CAN_FAULT_MASK) != 0U)) {
             return SVA_CAN_ERR_VALUE;
         }
         break;
     case SVA_CAN_MSG_PLAN_BEGIN:
-        m.u.begin.version = (uint8_t)sva_can_get_bits(d, 4u, 4u);
-        m.u.begin.plan_id = (uint16_t)sva_can_get_bits(d, 8u, 16u);
-        m.u.begin.item_count = (uint16_t)sva_can_get_bits(d, 24u, 16u);
-        m.u.begin.algorithm = (uint8_t)sva_can_get_bits(d, 40u, 4u);
-        m.u.begin.plan_status = (uint8_t)sva_can_get_bits(d, 44u, 4u);
-        m.u.begin.route_count = (uint8_t)sva_can_get_bits(d, 48u, 8u);
+        m.u.begin.version = (uint8_t)sva_can_get_bits(d, 4U, 4U);
+        m.u.begin.plan_id = (uint16_t)sva_can_get_bits(d, 8U, 16U);
+        m.u.begin.item_count = (uint16_t)sva_can_get_bits(d, 24U, 16U);
+        m.u.begin.algorithm = (uint8_t)sva_can_get_bits(d, 40U, 4U);
+        m.u.begin.plan_status = (uint8_t)sva_can_get_bits(d, 44U, 4U);
+        m.u.begin.route_count = (uint8_t)sva_can_get_bits(d, 48U, 8U);
         // The version is checked by the receiver (it NACKs with BAD_VERSION).
-        if ((m.u.begin.plan_id == 0u) || (m.u.begin.algorithm >= (uint8_t)SVA_ALGO_COUNT_) ||
+        if ((m.u.begin.plan_id == 0U) || (m.u.begin.algorithm >= (uint8_t)SVA_ALGO_COUNT_) ||
             (m.u.begin.plan_status < SVA_CAN_PLAN_COMPLETE) ||
             (m.u.begin.plan_status > SVA_CAN_PLAN_PARTIAL)) {
             return SVA_CAN_ERR_VALUE;
         }
         break;
     case SVA_CAN_MSG_PLAN_ITEM:
-        m.u.item.uav_id = (uint8_t)sva_can_get_bits(d, 4u, 8u);
-        m.u.item.target_id = (uint16_t)sva_can_get_bits(d, 12u, 12u);
-        m.u.item.x = to_i16(sva_can_get_bits(d, 24u, 16u));
-        m.u.item.y = to_i16(sva_can_get_bits(d, 40u, 16u));
-        if ((m.u.item.uav_id == 0u) || (m.u.item.target_id == 0u)) {
+        m.u.item.uav_id = (uint8_t)sva_can_get_bits(d, 4U, 8U);
+        m.u.item.target_id = (uint16_t)sva_can_get_bits(d, 12U, 12U);
+        m.u.item.x = to_i16(sva_can_get_bits(d, 24U, 16U));
+        m.u.item.y = to_i16(sva_can_get_bits(d, 40U, 16U));
+        if ((m.u.item.uav_id == 0U) || (m.u.item.target_id == 0U)) {
             return SVA_CAN_ERR_VALUE;
         }
         break;
     case SVA_CAN_MSG_PLAN_ITEM_TIME:
-        m.u.item_time.item_seq = (uint8_t)sva_can_get_bits(d, 4u, 4u);
-        m.u.item_time.arrive_by_ticks = (uint32_t)sva_can_get_bits(d, 8u, 24u);
-        m.u.item_time.hold_until_ticks = (uint32_t)sva_can_get_bits(d, 32u, 24u);
+        m.u.item_time.item_seq = (uint8_t)sva_can_get_bits(d, 4U, 4U);
+        m.u.item_time.arrive_by_ticks = (uint32_t)sva_can_get_bits(d, 8U, 24U);
+        m.u.item_time.hold_until_ticks = (uint32_t)sva_can_get_bits(d, 32U, 24U);
         if (m.u.item_time.arrive_by_ticks >= m.u.item_time.hold_until_ticks) {
             return SVA_CAN_ERR_VALUE;  // SPEC section 1: start < end
         }
         break;
     case SVA_CAN_MSG_PLAN_COMMIT:
-        m.u.commit.plan_id = (uint16_t)sva_can_get_bits(d, 8u, 16u);
-        m.u.commit.plan_crc = (uint32_t)sva_can_get_bits(d, 24u, 32u);
-        if (m.u.commit.plan_id == 0u) {
+        m.u.commit.plan_id = (uint16_t)sva_can_get_bits(d, 8U, 16U);
+        m.u.commit.plan_crc = (uint32_t)sva_can_get_bits(d, 24U, 32U);
+        if (m.u.commit.plan_id == 0U) {
             return SVA_CAN_ERR_VALUE;
         }
         break;
     case SVA_CAN_MSG_PLAN_ABORT:
-        m.u.abort_.reason = (uint8_t)sva_can_get_bits(d, 4u, 4u);
-        m.u.abort_.plan_id = (uint16_t)sva_can_get_bits(d, 8u, 16u);
-        if ((m.u.abort_.reason == 0u) || (m.u.abort_.reason > SVA_CAN_ABORT_REASON_MAX)) {
+        m.u.abort_.reason = (uint8_t)sva_can_get_bits(d, 4U, 4U);
+        m.u.abort_.plan_id = (uint16_t)sva_can_get_bits(d, 8U, 16U);
+        if ((m.u.abort_.reason == 0U) || (m.u.abort_.reason > SVA_CAN_ABORT_REASON_MAX)) {
             return SVA_CAN_ERR_VALUE;
         }
         break;
     case SVA_CAN_MSG_PLAN_ACK:
-        m.u.ack.result = (uint8_t)sva_can_get_bits(d, 4u, 4u);
-        m.u.ack.plan_id = (uint16_t)sva_can_get_bits(d, 8u, 16u);
-        m.u.ack.items_received = (uint16_t)sva_can_get_bits(d, 24u, 16u);
+        m.u.ack.result = (uint8_t)sva_can_get_bits(d, 4U, 4U);
+        m.u.ack.plan_id = (uint16_t)sva_can_get_bits(d, 8U, 16U);
+        m.u.ack.items_received = (uint16_t)sva_can_get_bits(d, 24U, 16U);
         if (m.u.ack.result > SVA_CAN_ACK_RESULT_MAX) {
             return SVA_CAN_ERR_VALUE;
         }
         break;
     case SVA_CAN_MSG_VEHICLE_STATUS:
-        m.u.vehicle.state = (uint8_t)sva_can_get_bits(d, 4u, 4u);
-        m.u.vehicle.uav_id = (uint8_t)sva_can_get_bits(d, 8u, 8u);
-        m.u.vehicle.x = to_i16(sva_can_get_bits(d, 16u, 16u));
-        m.u.vehicle.y = to_i16(sva_can_get_bits(d, 32u, 16u));
-        if ((m.u.vehicle.uav_id == 0u) || (m.u.vehicle.state > SVA_CAN_VEHICLE_STATE_MAX)) {
+        m.u.vehicle.state = (uint8_t)sva_can_get_bits(d, 4U, 4U);
+        m.u.vehicle.uav_id = (uint8_t)sva_can_get_bits(d, 8U, 8U);
+        m.u.vehicle.x = to_i16(sva_can_get_bits(d, 16U, 16U));
+        m.u.vehicle.y = to_i16(sva_can_get_bits(d, 32U, 16U));
+        if ((m.u.vehicle.uav_id == 0U) || (m.u.vehicle.state > SVA_CAN_VEHICLE_STATE_MAX)) {
             return SVA_CAN_ERR_VALUE;
         }
         break;
     case SVA_CAN_MSG_VEHICLE_FUEL:
-        m.u.fuel.uav_id = (uint8_t)sva_can_get_bits(d, 8u, 8u);
-        m.u.fuel.fuel = (uint32_t)sva_can_get_bits(d, 16u, 32u);
-        if (m.u.fuel.uav_id == 0u) {
+        m.u.fuel.uav_id = (uint8_t)sva_can_get_bits(d, 8U, 8U);
+        m.u.fuel.fuel = (uint32_t)sva_can_get_bits(d, 16U, 32U);
+        if (m.u.fuel.uav_id == 0U) {
             return SVA_CAN_ERR_VALUE;
         }
         break;
     case SVA_CAN_MSG_MISSION_CLOCK:
-        m.u.clock.tick = (uint32_t)sva_can_get_bits(d, 8u, 24u);
+        m.u.clock.tick = (uint32_t)sva_can_get_bits(d, 8U, 24U);
         break;
     case SVA_CAN_MSG_NONE:
     case SVA_CAN_MSG_COUNT_:

@@ -9,11 +9,11 @@ void sva_can_loopback_init(sva_can_loopback_t* self)
     if (self == NULL) {
         return;
     }
-    for (e = 0; e < 2u; ++e) {
-        self->to[e].head = 0u;
-        self->to[e].count = 0u;
-        self->sent[e] = 0u;
-        self->dropped[e] = 0u;
+    for (e = 0; e < 2U; ++e) {
+        self->to[e].head = 0U;
+        self->to[e].count = 0U;
+        self->sent[e] = 0U;
+        self->dropped[e] = 0U;
         self->priv_ends[e].bus = self;
         self->priv_ends[e].endpoint = e;
     }
@@ -31,11 +31,11 @@ static sva_can_status_t queue_push(sva_can_queue_t* q, const sva_can_frame_t* f)
 
 static sva_can_status_t queue_pop(sva_can_queue_t* q, sva_can_frame_t* f)
 {
-    if (q->count == 0u) {
+    if (q->count == 0U) {
         return SVA_CAN_AGAIN;
     }
     *f = q->frames[q->head];
-    q->head = (uint16_t)(((uint32_t)q->head + 1u) % SVA_CAN_LOOPBACK_CAPACITY);
+    q->head = (uint16_t)(((uint32_t)q->head + 1U) % SVA_CAN_LOOPBACK_CAPACITY);
     --q->count;
     return SVA_CAN_OK;
 }
@@ -43,7 +43,7 @@ static sva_can_status_t queue_pop(sva_can_queue_t* q, sva_can_frame_t* f)
 sva_can_status_t sva_can_loopback_inject(sva_can_loopback_t* self, unsigned endpoint,
                                          const sva_can_frame_t* frame)
 {
-    if ((self == NULL) || (endpoint > 1u) || (frame == NULL)) {
+    if ((self == NULL) || (endpoint > 1U) || (frame == NULL)) {
         return SVA_CAN_ERR_ARGUMENT;
     }
     return queue_push(&self->to[endpoint], frame);
@@ -52,7 +52,7 @@ sva_can_status_t sva_can_loopback_inject(sva_can_loopback_t* self, unsigned endp
 sva_can_status_t sva_can_loopback_take(sva_can_loopback_t* self, unsigned endpoint,
                                        sva_can_frame_t* out)
 {
-    if ((self == NULL) || (endpoint > 1u) || (out == NULL)) {
+    if ((self == NULL) || (endpoint > 1U) || (out == NULL)) {
         return SVA_CAN_ERR_ARGUMENT;
     }
     return queue_pop(&self->to[endpoint], out);
@@ -65,7 +65,7 @@ static sva_can_status_t loop_send(void* ctx, const sva_can_frame_t* frame)
     if ((end == NULL) || (frame == NULL)) {
         return SVA_CAN_ERR_ARGUMENT;
     }
-    st = queue_push(&end->bus->to[1u - end->endpoint], frame);
+    st = queue_push(&end->bus->to[1U - end->endpoint], frame);
     if (st == SVA_CAN_OK) {
         ++end->bus->sent[end->endpoint];
     } else {
@@ -86,7 +86,7 @@ static sva_can_status_t loop_recv(void* ctx, sva_can_frame_t* frame)
 sva_can_status_t sva_can_loopback_transport(sva_can_loopback_t* self, unsigned endpoint,
                                             sva_can_transport_t* out)
 {
-    if ((self == NULL) || (endpoint > 1u) || (out == NULL)) {
+    if ((self == NULL) || (endpoint > 1U) || (out == NULL)) {
         return SVA_CAN_ERR_ARGUMENT;
     }
     out->send = loop_send;

@@ -9,10 +9,10 @@ uint32_t sva_can_crc32_frame(uint32_t crc, const sva_can_frame_t* frame)
 {
     uint8_t bytes[7];
     unsigned i;
-    for (i = 0; i < 7u; ++i) {
+    for (i = 0; i < 7U; ++i) {
         bytes[i] = frame->data[i];
     }
-    bytes[0] = (uint8_t)(bytes[0] & 0xF0u);  // counter nibble cleared: retries give one CRC
+    bytes[0] = (uint8_t)(bytes[0] & 0xF0U);  // counter nibble cleared: retries give one CRC
     return sva_can_crc32(crc, bytes, sizeof bytes);
 }
 
@@ -21,8 +21,8 @@ sva_can_status_t sva_can_transfer_frame(const sva_can_plan_t* plan, uint32_t ind
 {
     sva_can_msg_t m;
     const uint32_t n = plan->item_count;
-    m.counter = (uint8_t)(counter & 0x0Fu);
-    if (index == 0u) {
+    m.counter = (uint8_t)(counter & 0x0FU);
+    if (index == 0U) {
         m.kind = SVA_CAN_MSG_PLAN_BEGIN;
         m.u.begin.version = SVA_CAN_PROTOCOL_VERSION;
         m.u.begin.plan_id = plan->plan_id;
@@ -30,10 +30,10 @@ sva_can_status_t sva_can_transfer_frame(const sva_can_plan_t* plan, uint32_t ind
         m.u.begin.algorithm = plan->algorithm;
         m.u.begin.plan_status = plan->plan_status;
         m.u.begin.route_count = plan->route_count;
-    } else if (index <= 2u * n) {
-        const uint32_t item_index = (index - 1u) / 2u;
+    } else if (index <= 2U * n) {
+        const uint32_t item_index = (index - 1U) / 2U;
         const sva_can_item_t* it = &plan->items[item_index];
-        if ((index % 2u) == 1u) {
+        if ((index % 2U) == 1U) {
             m.kind = SVA_CAN_MSG_PLAN_ITEM;
             m.u.item.uav_id = it->uav_id;
             m.u.item.target_id = it->target_id;
@@ -41,11 +41,11 @@ sva_can_status_t sva_can_transfer_frame(const sva_can_plan_t* plan, uint32_t ind
             m.u.item.y = it->y;
         } else {
             m.kind = SVA_CAN_MSG_PLAN_ITEM_TIME;
-            m.u.item_time.item_seq = (uint8_t)(item_index & 0x0Fu);
+            m.u.item_time.item_seq = (uint8_t)(item_index & 0x0FU);
             m.u.item_time.arrive_by_ticks = it->arrive_by_ticks;
             m.u.item_time.hold_until_ticks = it->hold_until_ticks;
         }
-    } else if (index == (2u * n) + 1u) {
+    } else if (index == (2U * n) + 1U) {
         m.kind = SVA_CAN_MSG_PLAN_COMMIT;
         m.u.commit.plan_id = plan->plan_id;
         m.u.commit.plan_crc = plan_crc;
@@ -57,15 +57,15 @@ sva_can_status_t sva_can_transfer_frame(const sva_can_plan_t* plan, uint32_t ind
 
 uint32_t sva_can_plan_crc(const sva_can_plan_t* plan)
 {
-    uint32_t crc = 0u;
+    uint32_t crc = 0U;
     uint32_t index;
     if ((plan == NULL) || (plan->item_count > SVA_CAN_MAX_ITEMS)) {
-        return 0u;
+        return 0U;
     }
-    for (index = 0u; index <= 2u * (uint32_t)plan->item_count; ++index) {
+    for (index = 0U; index <= 2U * (uint32_t)plan->item_count; ++index) {
         sva_can_frame_t f;
-        if (sva_can_transfer_frame(plan, index, 0u, 0u, &f) != SVA_CAN_OK) {
-            return 0u;  // a field wider than its signal: such a plan cannot be sent
+        if (sva_can_transfer_frame(plan, index, 0U, 0U, &f) != SVA_CAN_OK) {
+            return 0U;  // a field wider than its signal: such a plan cannot be sent
         }
         crc = sva_can_crc32_frame(crc, &f);
     }
@@ -134,12 +134,12 @@ sva_can_status_t sva_can_plan_from_core(sva_can_plan_t* out, const sva_mission_t
                                         const sva_plan_t* plan, uint16_t plan_id)
 {
     uint32_t r;
-    uint32_t n = 0u;
-    if ((out == NULL) || (mission == NULL) || (plan == NULL) || (plan_id == 0u) ||
+    uint32_t n = 0U;
+    if ((out == NULL) || (mission == NULL) || (plan == NULL) || (plan_id == 0U) ||
         (plan->status == SVA_PLAN_NONE) || (plan->route_count > SVA_MAX_UAVS)) {
         return SVA_CAN_ERR_ARGUMENT;
     }
-    if ((plan->route_count > SVA_CAN_MAX_UAV_ID) || ((unsigned)plan->algorithm > 15u)) {
+    if ((plan->route_count > SVA_CAN_MAX_UAV_ID) || ((unsigned)plan->algorithm > 15U)) {
         return SVA_CAN_ERR_LIMIT;
     }
     // First pass: check everything, so *out stays untouched on error.
@@ -175,7 +175,7 @@ sva_can_status_t sva_can_plan_from_core(sva_can_plan_t* out, const sva_mission_t
         (plan->status == SVA_PLAN_COMPLETE) ? SVA_CAN_PLAN_COMPLETE : SVA_CAN_PLAN_PARTIAL;
     out->route_count = (uint8_t)plan->route_count;
     out->item_count = (uint16_t)n;
-    n = 0u;
+    n = 0U;
     for (r = 0; r < plan->route_count; ++r) {
         const sva_route_t* route = &plan->routes[r];
         uint32_t k;

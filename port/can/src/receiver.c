@@ -7,31 +7,31 @@
 
 #include "can_internal.h"
 
-#define SVA_CAN_RX_DEFAULT_TIMEOUT_MS 2000u
+#define SVA_CAN_RX_DEFAULT_TIMEOUT_MS 2000U
 
 sva_can_status_t sva_can_receiver_init(sva_can_receiver_t* self,
                                        const sva_can_transport_t* transport, uint32_t timeout_ms)
 {
     if ((self == NULL) || ((transport != NULL) && (transport->send == NULL)) ||
-        (timeout_ms >= 0x80000000u)) {
+        (timeout_ms >= 0x80000000U)) {
         return SVA_CAN_ERR_ARGUMENT;
     }
     self->transport = transport;
-    self->timeout_ms = (timeout_ms == 0u) ? SVA_CAN_RX_DEFAULT_TIMEOUT_MS : timeout_ms;
+    self->timeout_ms = (timeout_ms == 0U) ? SVA_CAN_RX_DEFAULT_TIMEOUT_MS : timeout_ms;
     self->stats =
-        (sva_can_receiver_stats_t){0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u};
+        (sva_can_receiver_stats_t){0U, 0U, 0U, 0U, 0U, 0U, 0U, 0U, 0U, 0U, 0U, 0U, 0U, 0U, 0U, 0U};
     self->has_active = false;
-    self->active.plan_id = 0u;
-    self->active.item_count = 0u;
-    self->priv.staging.plan_id = 0u;
-    self->priv.staging.item_count = 0u;
+    self->active.plan_id = 0U;
+    self->active.item_count = 0U;
+    self->priv.staging.plan_id = 0U;
+    self->priv.staging.item_count = 0U;
     self->priv.receiving = false;
     self->priv.expect_time = false;
-    self->priv.last_counter = 0u;
-    self->priv.ack_counter = 0u;
-    self->priv.items_done = 0u;
-    self->priv.begin_ms = 0u;
-    self->priv.crc = 0u;
+    self->priv.last_counter = 0U;
+    self->priv.ack_counter = 0U;
+    self->priv.items_done = 0U;
+    self->priv.begin_ms = 0U;
+    self->priv.crc = 0U;
     return SVA_CAN_OK;
 }
 
@@ -54,7 +54,7 @@ static void send_ack(sva_can_receiver_t* self, uint8_t result, uint16_t plan_id,
         ++self->stats.tx_errors;  // the sender's ACK timeout recovers
         return;
     }
-    self->priv.ack_counter = (uint8_t)((self->priv.ack_counter + 1u) & 0x0Fu);
+    self->priv.ack_counter = (uint8_t)((self->priv.ack_counter + 1U) & 0x0FU);
     if (result == SVA_CAN_ACK_ACCEPTED) {
         ++self->stats.acks_sent;
     } else {
@@ -98,12 +98,12 @@ static sva_can_status_t on_begin(sva_can_receiver_t* self, const sva_can_msg_t* 
     self->priv.receiving = false;
     if (m->u.begin.version != SVA_CAN_PROTOCOL_VERSION) {
         ++self->stats.bad_version;
-        send_ack(self, SVA_CAN_ACK_BAD_VERSION, m->u.begin.plan_id, 0u);
+        send_ack(self, SVA_CAN_ACK_BAD_VERSION, m->u.begin.plan_id, 0U);
         return SVA_CAN_ERR_VERSION;
     }
     if (m->u.begin.item_count > SVA_CAN_MAX_ITEMS) {
         ++self->stats.too_large;
-        send_ack(self, SVA_CAN_ACK_TOO_LARGE, m->u.begin.plan_id, 0u);
+        send_ack(self, SVA_CAN_ACK_TOO_LARGE, m->u.begin.plan_id, 0U);
         return SVA_CAN_ERR_LIMIT;
     }
     self->priv.staging.plan_id = m->u.begin.plan_id;
@@ -113,10 +113,10 @@ static sva_can_status_t on_begin(sva_can_receiver_t* self, const sva_can_msg_t* 
     self->priv.staging.item_count = m->u.begin.item_count;
     self->priv.receiving = true;
     self->priv.expect_time = false;
-    self->priv.items_done = 0u;
+    self->priv.items_done = 0U;
     self->priv.last_counter = m->counter;
     self->priv.begin_ms = now_ms;
-    self->priv.crc = sva_can_crc32_frame(0u, frame);
+    self->priv.crc = sva_can_crc32_frame(0U, frame);
     return SVA_CAN_OK;
 }
 
@@ -138,7 +138,7 @@ static sva_can_status_t on_commit(sva_can_receiver_t* self, const sva_can_msg_t*
     self->active.plan_status = s->plan_status;
     self->active.route_count = s->route_count;
     self->active.item_count = s->item_count;
-    for (i = 0u; i < s->item_count; ++i) {
+    for (i = 0U; i < s->item_count; ++i) {
         self->active.items[i] = s->items[i];
     }
     self->has_active = true;
@@ -160,7 +160,7 @@ sva_can_status_t sva_can_receiver_on_frame(sva_can_receiver_t* self, const sva_c
     if (sva_can_receiver_poll(self, now_ms) != SVA_CAN_OK) {
         // Counted as a timeout; the frame is still handled (a BEGIN may start anew).
     }
-    if (((frame->flags & (SVA_CAN_FLAG_EXTENDED | SVA_CAN_FLAG_RTR)) != 0u) ||
+    if (((frame->flags & (SVA_CAN_FLAG_EXTENDED | SVA_CAN_FLAG_RTR)) != 0U) ||
         !is_transfer_id(frame->id)) {
         ++self->stats.ignored;
         return SVA_CAN_IGNORED;
@@ -210,7 +210,7 @@ sva_can_status_t sva_can_receiver_on_frame(sva_can_receiver_t* self, const sva_c
         ++self->stats.out_of_order;  // ITEM, ITEM_TIME or COMMIT without a BEGIN
         return SVA_CAN_ERR_SEQUENCE;
     }
-    if (m.counter != ((self->priv.last_counter + 1u) & 0x0Fu)) {
+    if (m.counter != ((self->priv.last_counter + 1U) & 0x0FU)) {
         ++self->stats.counter_jumps;  // a frame lost, repeated or reordered
         return reject(self, SVA_CAN_ACK_BAD_SEQUENCE, SVA_CAN_ERR_COUNTER);
     }
@@ -233,7 +233,7 @@ sva_can_status_t sva_can_receiver_on_frame(sva_can_receiver_t* self, const sva_c
     } else {  // SVA_CAN_MSG_PLAN_ITEM_TIME
         sva_can_item_t* it;
         if (!self->priv.expect_time ||
-            (m.u.item_time.item_seq != (self->priv.items_done & 0x0Fu))) {
+            (m.u.item_time.item_seq != (self->priv.items_done & 0x0FU))) {
             ++self->stats.out_of_order;
             return reject(self, SVA_CAN_ACK_BAD_SEQUENCE, SVA_CAN_ERR_SEQUENCE);
         }

@@ -10,9 +10,9 @@
 sva_can_sender_config_t sva_can_sender_default_config(void)
 {
     sva_can_sender_config_t c;
-    c.ack_timeout_ms = 250u;
-    c.transfer_timeout_ms = 3000u;
-    c.max_attempts = 3u;
+    c.ack_timeout_ms = 250U;
+    c.transfer_timeout_ms = 3000U;
+    c.max_attempts = 3U;
     return c;
 }
 
@@ -21,26 +21,26 @@ sva_can_status_t sva_can_sender_init(sva_can_sender_t* self, const sva_can_trans
 {
     sva_can_sender_config_t c = (config != NULL) ? *config : sva_can_sender_default_config();
     if ((self == NULL) || (transport == NULL) || (transport->send == NULL) ||
-        (c.ack_timeout_ms == 0u) || (c.transfer_timeout_ms == 0u) || (c.max_attempts == 0u) ||
-        (c.transfer_timeout_ms >= 0x80000000u) || (c.ack_timeout_ms >= 0x80000000u)) {
+        (c.ack_timeout_ms == 0U) || (c.transfer_timeout_ms == 0U) || (c.max_attempts == 0U) ||
+        (c.transfer_timeout_ms >= 0x80000000U) || (c.ack_timeout_ms >= 0x80000000U)) {
         return SVA_CAN_ERR_ARGUMENT;
     }
     self->transport = transport;
     self->config = c;
     self->state = SVA_CAN_TX_IDLE;
-    self->last_abort_reason = 0u;
-    self->last_nack = 0u;
-    self->stats = (sva_can_sender_stats_t){0u, 0u, 0u, 0u, 0u, 0u, 0u, 0u};
-    self->priv.plan.plan_id = 0u;
-    self->priv.plan.item_count = 0u;
-    self->priv.next_frame = 0u;
-    self->priv.started_ms = 0u;
-    self->priv.commit_sent_ms = 0u;
-    self->priv.counter = 0u;
-    self->priv.pending_abort = 0u;
-    self->priv.abort_plan_id = 0u;
-    self->priv.attempt = 0u;
-    self->priv.crc = 0u;
+    self->last_abort_reason = 0U;
+    self->last_nack = 0U;
+    self->stats = (sva_can_sender_stats_t){0U, 0U, 0U, 0U, 0U, 0U, 0U, 0U};
+    self->priv.plan.plan_id = 0U;
+    self->priv.plan.item_count = 0U;
+    self->priv.next_frame = 0U;
+    self->priv.started_ms = 0U;
+    self->priv.commit_sent_ms = 0U;
+    self->priv.counter = 0U;
+    self->priv.pending_abort = 0U;
+    self->priv.abort_plan_id = 0U;
+    self->priv.attempt = 0U;
+    self->priv.crc = 0U;
     return SVA_CAN_OK;
 }
 
@@ -65,7 +65,7 @@ static void next_attempt(sva_can_sender_t* self)
     }
     ++self->priv.attempt;
     ++self->stats.attempts;
-    self->priv.next_frame = 0u;
+    self->priv.next_frame = 0U;
     self->state = SVA_CAN_TX_SENDING;
 }
 
@@ -74,7 +74,7 @@ static sva_can_status_t push(sva_can_sender_t* self, const sva_can_frame_t* f)
 {
     const sva_can_status_t st = self->transport->send(self->transport->ctx, f);
     if (st == SVA_CAN_OK) {
-        self->priv.counter = (uint8_t)((self->priv.counter + 1u) & 0x0Fu);
+        self->priv.counter = (uint8_t)((self->priv.counter + 1U) & 0x0FU);
         ++self->stats.frames_sent;
     } else if (st != SVA_CAN_AGAIN) {
         ++self->stats.tx_errors;
@@ -98,7 +98,7 @@ sva_can_status_t sva_can_sender_poll(sva_can_sender_t* self, uint32_t now_ms)
         ++self->stats.ack_timeouts;
         next_attempt(self);
     }
-    if (self->priv.pending_abort != 0u) {
+    if (self->priv.pending_abort != 0U) {
         sva_can_msg_t m;
         sva_can_frame_t f;
         m.kind = SVA_CAN_MSG_PLAN_ABORT;
@@ -116,11 +116,11 @@ sva_can_status_t sva_can_sender_poll(sva_can_sender_t* self, uint32_t now_ms)
         if (st != SVA_CAN_OK) {
             return st;
         }
-        self->priv.pending_abort = 0u;
+        self->priv.pending_abort = 0U;
         ++self->stats.aborts_sent;
     }
     while (self->state == SVA_CAN_TX_SENDING) {
-        const uint32_t last = (2u * (uint32_t)self->priv.plan.item_count) + 1u;
+        const uint32_t last = (2U * (uint32_t)self->priv.plan.item_count) + 1U;
         sva_can_frame_t f;
         st = sva_can_transfer_frame(&self->priv.plan, self->priv.next_frame, self->priv.counter,
                                     self->priv.crc, &f);
@@ -148,14 +148,14 @@ sva_can_status_t sva_can_sender_start(sva_can_sender_t* self, const sva_can_plan
                                       uint32_t now_ms)
 {
     uint32_t i;
-    if ((self == NULL) || (plan == NULL) || (plan->plan_id == 0u) ||
+    if ((self == NULL) || (plan == NULL) || (plan->plan_id == 0U) ||
         (plan->item_count > SVA_CAN_MAX_ITEMS)) {
         return SVA_CAN_ERR_ARGUMENT;
     }
     // Every field must fit its signal before anything changes (all-or-nothing).
-    for (i = 0u; i <= (2u * (uint32_t)plan->item_count) + 1u; ++i) {
+    for (i = 0U; i <= (2U * (uint32_t)plan->item_count) + 1U; ++i) {
         sva_can_frame_t f;
-        if (sva_can_transfer_frame(plan, i, 0u, 0u, &f) != SVA_CAN_OK) {
+        if (sva_can_transfer_frame(plan, i, 0U, 0U, &f) != SVA_CAN_OK) {
             return SVA_CAN_ERR_ARGUMENT;
         }
     }
@@ -168,14 +168,14 @@ sva_can_status_t sva_can_sender_start(sva_can_sender_t* self, const sva_can_plan
     self->priv.plan.plan_status = plan->plan_status;
     self->priv.plan.route_count = plan->route_count;
     self->priv.plan.item_count = plan->item_count;
-    for (i = 0u; i < plan->item_count; ++i) {
+    for (i = 0U; i < plan->item_count; ++i) {
         self->priv.plan.items[i] = plan->items[i];
     }
     self->priv.crc = sva_can_plan_crc(&self->priv.plan);
     self->priv.started_ms = now_ms;
-    self->priv.attempt = 0u;
-    self->last_nack = 0u;
-    self->last_abort_reason = 0u;
+    self->priv.attempt = 0U;
+    self->last_nack = 0U;
+    self->last_abort_reason = 0U;
     next_attempt(self);
     return sva_can_sender_poll(self, now_ms);
 }
@@ -189,7 +189,7 @@ sva_can_status_t sva_can_sender_on_frame(sva_can_sender_t* self, const sva_can_f
         return SVA_CAN_ERR_ARGUMENT;
     }
     if ((frame->id != SVA_CAN_ID_PLAN_ACK) ||
-        ((frame->flags & (SVA_CAN_FLAG_EXTENDED | SVA_CAN_FLAG_RTR)) != 0u)) {
+        ((frame->flags & (SVA_CAN_FLAG_EXTENDED | SVA_CAN_FLAG_RTR)) != 0U)) {
         return SVA_CAN_IGNORED;
     }
     st = sva_can_decode(frame, &m);
@@ -221,7 +221,7 @@ sva_can_status_t sva_can_sender_on_frame(sva_can_sender_t* self, const sva_can_f
 
 sva_can_status_t sva_can_sender_abort(sva_can_sender_t* self, uint8_t reason, uint32_t now_ms)
 {
-    if ((self == NULL) || (reason == 0u) || (reason > SVA_CAN_ABORT_REASON_MAX)) {
+    if ((self == NULL) || (reason == 0U) || (reason > SVA_CAN_ABORT_REASON_MAX)) {
         return SVA_CAN_ERR_ARGUMENT;
     }
     if (!in_flight(self)) {

@@ -34,8 +34,8 @@ sva_can_status_t sva_can_socketcan_open(sva_can_socketcan_t* self, const char* i
     }
     self->fd = -1;
     self->last_errno = 0;
-    self->rx_short = 0u;
-    self->rx_bad_dlc = 0u;
+    self->rx_short = 0U;
+    self->rx_bad_dlc = 0U;
     if (ifname == NULL) {
         return SVA_CAN_ERR_NAME;
     }
@@ -44,7 +44,7 @@ sva_can_status_t sva_can_socketcan_open(sva_can_socketcan_t* self, const char* i
         return SVA_CAN_ERR_NAME;  // no room for the NUL in ifr_name
     }
     len = (size_t)((const char*)nul - ifname);
-    if (len == 0u) {
+    if (len == 0U) {
         return SVA_CAN_ERR_NAME;
     }
     fd = socket(PF_CAN, SOCK_RAW | SOCK_NONBLOCK | SOCK_CLOEXEC, CAN_RAW);
@@ -61,7 +61,7 @@ sva_can_status_t sva_can_socketcan_open(sva_can_socketcan_t* self, const char* i
         return SVA_CAN_ERR_IO;
     }
     memset(&ifr, 0, sizeof ifr);
-    memcpy(ifr.ifr_name, ifname, len + 1u);
+    memcpy(ifr.ifr_name, ifname, len + 1U);
     if (ioctl(fd, SIOCGIFINDEX, &ifr) != 0) {
         self->last_errno = errno;
         (void)close(fd);
@@ -95,11 +95,11 @@ static sva_can_status_t sc_send(void* ctx, const sva_can_frame_t* frame)
     struct can_frame f;
     ssize_t n;
     unsigned i;
-    if ((self == NULL) || (frame == NULL) || (self->fd < 0) || (frame->dlc > 8u)) {
+    if ((self == NULL) || (frame == NULL) || (self->fd < 0) || (frame->dlc > 8U)) {
         return SVA_CAN_ERR_ARGUMENT;
     }
     memset(&f, 0, sizeof f);
-    if ((frame->flags & SVA_CAN_FLAG_EXTENDED) != 0u) {
+    if ((frame->flags & SVA_CAN_FLAG_EXTENDED) != 0U) {
         f.can_id = (canid_t)((frame->id & CAN_EFF_MASK) | CAN_EFF_FLAG);
     } else {
         f.can_id = (canid_t)(frame->id & CAN_SFF_MASK);
@@ -131,13 +131,13 @@ static sva_can_status_t sc_recv(void* ctx, sva_can_frame_t* frame)
         return SVA_CAN_ERR_ARGUMENT;
     }
     // Bounded: malformed reads are dropped and counted, at most 64 per call.
-    for (guard = 0; guard < 64u; ++guard) {
+    for (guard = 0; guard < 64U; ++guard) {
         struct canfd_frame f;
         ssize_t n;
         size_t max_len;
         size_t len;
         size_t i;
-        uint8_t flags = 0u;
+        uint8_t flags = 0U;
         memset(&f, 0, sizeof f);
         n = read(self->fd, &f, sizeof f);
         if (n < 0) {
@@ -161,22 +161,22 @@ static sva_can_status_t sc_recv(void* ctx, sva_can_frame_t* frame)
             ++self->rx_bad_dlc;
             continue;
         }
-        if ((f.can_id & CAN_ERR_FLAG) != 0u) {
+        if ((f.can_id & CAN_ERR_FLAG) != 0U) {
             continue;  // error frames are not requested; ignore if they come
         }
-        if ((f.can_id & CAN_EFF_FLAG) != 0u) {
+        if ((f.can_id & CAN_EFF_FLAG) != 0U) {
             flags |= SVA_CAN_FLAG_EXTENDED;
             frame->id = f.can_id & CAN_EFF_MASK;
         } else {
             frame->id = f.can_id & CAN_SFF_MASK;
         }
-        if ((f.can_id & CAN_RTR_FLAG) != 0u) {
+        if ((f.can_id & CAN_RTR_FLAG) != 0U) {
             flags |= SVA_CAN_FLAG_RTR;
         }
         frame->flags = flags;
         frame->dlc = (uint8_t)len;
         for (i = 0; i < sizeof frame->data; ++i) {
-            frame->data[i] = (i < len) ? f.data[i] : 0u;
+            frame->data[i] = (i < len) ? f.data[i] : 0U;
         }
         return SVA_CAN_OK;
     }

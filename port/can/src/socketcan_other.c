@@ -9,8 +9,8 @@ sva_can_status_t sva_can_socketcan_open(sva_can_socketcan_t* self, const char* i
     if (self != NULL) {
         self->fd = -1;
         self->last_errno = 0;
-        self->rx_short = 0u;
-        self->rx_bad_dlc = 0u;
+        self->rx_short = 0U;
+        self->rx_bad_dlc = 0U;
     }
     return SVA_CAN_ERR_UNSUPPORTED;
 }

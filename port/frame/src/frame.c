@@ -52,7 +52,7 @@ static void shortest(double v, char d[24], int* e)
 // least one fraction digit from 1e-4 up to 1e16, else "d.ddde+XX".
 static void float_text(double v, char* out, size_t size)
 {
-    char d[24];
+    char d[24] = {0};
     int e = 0;
     if (!isfinite(v)) {
         (void)snprintf(out, size, "%s", isnan(v) ? "nan" : ((v < 0) ? "-inf" : "inf"));
@@ -62,12 +62,12 @@ static void float_text(double v, char* out, size_t size)
     const int n = (int)strlen(d);
     const int x = e - 1;  // v = d.ddd * 10^x
     char body[48];
-    size_t k = 0;
     if ((x < -4) || (x >= 16)) {
         (void)snprintf(body, sizeof body, "%c%s%se%c%02d", d[0], (n > 1) ? "." : "", d + 1,
                        (x < 0) ? '-' : '+', (x < 0) ? -x : x);
     } else {
         // positional: the digits with the point after the first e of them (zeros pad)
+        size_t k = 0;
         if (e <= 0) {
             body[k++] = '0';
             body[k++] = '.';
@@ -79,7 +79,11 @@ static void float_text(double v, char* out, size_t size)
             }
         } else {
             for (int i = 0; i < e; i++) {
-                body[k++] = (i < n) ? d[i] : '0';
+                if (i < n) {
+                    body[k++] = d[i];
+                } else {
+                    body[k++] = '0';
+                }
             }
             body[k++] = '.';
             if (e >= n) {
@@ -99,7 +103,7 @@ static void float_text(double v, char* out, size_t size)
 // |v| * 10^places must fit an int64 (the ranges are checked first).
 static int64_t rounded(double v, int places)
 {
-    char d[24];
+    char d[24] = {0};
     int e = 0;
     shortest(v, d, &e);
     const int keep = e + places;  // digits of d before the rounding point
@@ -343,7 +347,15 @@ sva_status_t sva_frame_parse_utc(const char* text, const char* field, int64_t* m
                                  size_t err_size)
 {
     static const int month_days[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
-    int64_t y, mo, d, h, mi, s, frac = 0, oh = 0, om = 0;
+    int64_t y = 0;
+    int64_t mo = 0;
+    int64_t d = 0;
+    int64_t h = 0;
+    int64_t mi = 0;
+    int64_t s = 0;
+    int64_t frac = 0;
+    int64_t oh = 0;
+    int64_t om = 0;
     bool finer = false;  // nonzero digits past the millisecond
     bool round_up = false;
     const char* p = text;

@@ -76,12 +76,12 @@ sva_json_status_t sva_json_read_input(const char* path, char** text, size_t* len
     }
     struct stat st;
     if (fstat(fileno(in), &st) == 0 && S_ISDIR(st.st_mode)) {
-        fclose(in);
+        (void)fclose(in);  // read only: nothing to lose
         snprintf(err, err_size, "%s: cannot open: %s", shown, strerror(EISDIR));
         return SVA_JSON_ERR_INPUT;
     }
     sva_json_status_t result = read_stream(in, shown, text, len, err, err_size);
-    fclose(in);
+    (void)fclose(in);  // read only: read_stream has judged every byte
     return result;
 }
 
@@ -116,15 +116,13 @@ const char* sva_json_other_kind(const json_t* root, const char* expected)
     } else if (json_object_get(root, "routes") != NULL) {
         kind = PLAN;
     } else if (json_is_object(json_object_get(root, "mission"))) {
-        // {mission, events} is both a scenario and a live mission.
-        if (json_object_get(root, "change_penalty") != NULL) {
-            kind = SCENARIO;
-        } else if (json_object_get(root, "plan") != NULL || json_object_get(root, "now") != NULL ||
-                   json_object_get(root, "events") == NULL || live_expected) {
-            kind = LIVE;
-        } else {
-            kind = SCENARIO;
-        }
+        // {mission, events} is both a scenario and a live mission; change_penalty makes it
+        // a scenario, a plan or a clock a live mission.
+        const bool live =
+            json_object_get(root, "change_penalty") == NULL &&
+            (json_object_get(root, "plan") != NULL || json_object_get(root, "now") != NULL ||
+             json_object_get(root, "events") == NULL || live_expected);
+        kind = live ? LIVE : SCENARIO;
     } else if (json_object_get(root, "mission") == NULL &&
                (json_object_get(root, "depot") != NULL || json_object_get(root, "uavs") != NULL ||
                 json_object_get(root, "targets") != NULL)) {

@@ -118,7 +118,7 @@ static bool check_keys(const json_t* object, const char* prefix, const key_spec_
     const char* key;
     json_t* value;
     // json_object_foreach needs a non-const object; nothing is modified.
-    json_t* mutable_object = (json_t*)(uintptr_t)object;
+    json_t* mutable_object = (json_t*)object;
     json_object_foreach(mutable_object, key, value)
     {
         bool known = false;

@@ -48,7 +48,7 @@ char* sva_text_escape(char* out, size_t size, const char* text)
             n = 1;
         } else if (*s == '\n' || *s == '\r' || *s == '\t') {
             piece[0] = '\\';
-            piece[1] = *s == '\n' ? 'n' : (*s == '\r' ? 'r' : 't');
+            piece[1] = (char)(*s == '\n' ? 'n' : (*s == '\r' ? 'r' : 't'));
             n = 2;
         } else if ((n = printable_utf8(s)) > 0) {
             memcpy(piece, s, n);

@@ -230,9 +230,9 @@ static void dispatch(const sva_lcm_plan_t* p, const sva_lcm_fleet_state_t* f,
             // its targets were taken away: the new mission is to come home
             built[0].command = MAV_CMD_NAV_RETURN_TO_LAUNCH;
             built[0].frame = MAV_FRAME_MISSION;
-            built[0].param1 = built[0].param2 = built[0].param3 = built[0].param4 = 0.0f;
+            built[0].param1 = built[0].param2 = built[0].param3 = built[0].param4 = 0.0F;
             built[0].x = built[0].y = 0;
-            built[0].z = 0.0f;
+            built[0].z = 0.0F;
             count = 1;
         }
         start_upload(s, built, count, route_targets, n, p->plan_id);

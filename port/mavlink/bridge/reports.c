@@ -41,12 +41,19 @@ void bridge_reports_release(void)
     }
 }
 
+// Field by field: sva_frame_t has padding before t0_ms, which memcmp would compare too.
+static bool same_frame(const sva_frame_t* a, const sva_frame_t* b)
+{
+    return (a->lat_e7 == b->lat_e7) && (a->lon_e7 == b->lon_e7) && (a->alt_cm == b->alt_cm) &&
+           (a->cell_cm == b->cell_cm) && (a->tick_ms == b->tick_ms) && (a->t0_ms == b->t0_ms);
+}
+
 void bridge_reports_hold(const sva_frame_t* f, int64_t fleet_revision, int64_t mission_revision,
                          int64_t now_ms)
 {
     held_fleet_revision = fleet_revision;
     held_mission_revision = mission_revision;
-    const bool same = holding && memcmp(&frame, f, sizeof frame) == 0;
+    const bool same = holding && same_frame(&frame, f);
     if (!same) {
         bridge_reports_release();
         char err[SVA_FRAME_ERROR_SIZE];

@@ -66,8 +66,12 @@ int main(int argc, char** argv)
         return 1;
     }
     bridge_reports_configure(&options);
-    signal(SIGINT, on_signal);
-    signal(SIGTERM, on_signal);
+    if ((signal(SIGINT, on_signal) == SIG_ERR) || (signal(SIGTERM, on_signal) == SIG_ERR)) {
+        fprintf(stderr, "sva_mavlink_bridge: error: cannot catch SIGINT and SIGTERM\n");
+        bridge_vehicles_close();
+        lcm_destroy(lcm);
+        return 1;
+    }
     printf("sva_mavlink_bridge: %zu vehicles, listening on %sFLEET, MISSION, PLAN, REPLAN; "
            "reports on %sREPORT every %ld ms while a plan is held\n",
            bridge_slot_count, options.prefix, options.prefix, options.report_ms);

@@ -15,7 +15,7 @@
 #define MAX_PORT   65535L
 #define MAX_SYSID  255L
 /// Widest decimal an option carries here ("-2147483648").
-#define MAX_INT_TEXT 11u
+#define MAX_INT_TEXT 11U
 /// How much of a bad value a message quotes.
 #define QUOTE_LEN 60
 

@@ -87,7 +87,7 @@ sva_mavlink_status_t sva_mavlink_build(const sva_frame_t* frame, sva_frame_geode
         return SVA_MAVLINK_ERR_INVALID;
     }
     float speed = sva_mavlink_speed(frame, route->ticks_per_cell);
-    if (route->cruise_m_s > 0.0f) {
+    if (route->cruise_m_s > 0.0F) {
         if (route->cruise_m_s < speed) {
             snprintf(err, err_size,
                      "uav %d: cruise speed %.3g m/s is below the plan's speed %.3g m/s "
@@ -97,7 +97,7 @@ sva_mavlink_status_t sva_mavlink_build(const sva_frame_t* frame, sva_frame_geode
         }
         speed = route->cruise_m_s;
     }
-    const float alt = (float)frame->alt_cm / 100.0f;
+    const float alt = (float)frame->alt_cm / 100.0F;
     const uint8_t global = MAV_FRAME_GLOBAL_RELATIVE_ALT_INT;
     sva_frame_geo_t geo;
     size_t n = 0;
@@ -106,10 +106,10 @@ sva_mavlink_status_t sva_mavlink_build(const sva_frame_t* frame, sva_frame_geode
                  (int)route->uav_id, (int)route->x, (int)route->y);
         return SVA_MAVLINK_ERR_GEODESY;
     }
-    (void)put(items, capacity, &n, MAV_CMD_NAV_TAKEOFF, global, 0.0f, 0.0f, 0.0f, NAN,
+    (void)put(items, capacity, &n, MAV_CMD_NAV_TAKEOFF, global, 0.0F, 0.0F, 0.0F, NAN,
               to_e7(geo.lat_deg), to_e7(geo.lon_deg), alt);
-    (void)put(items, capacity, &n, MAV_CMD_DO_CHANGE_SPEED, MAV_FRAME_MISSION, 1.0f, speed, -1.0f,
-              0.0f, 0, 0, 0.0f);
+    (void)put(items, capacity, &n, MAV_CMD_DO_CHANGE_SPEED, MAV_FRAME_MISSION, 1.0F, speed, -1.0F,
+              0.0F, 0, 0, 0.0F);
 
     int32_t at_x = route->x;
     int32_t at_y = route->y;
@@ -148,7 +148,7 @@ sva_mavlink_status_t sva_mavlink_build(const sva_frame_t* frame, sva_frame_geode
                      (int)route->uav_id, i, (int)t->id, (int)t->x, (int)t->y);
             return SVA_MAVLINK_ERR_GEODESY;
         }
-        (void)put(items, capacity, &n, MAV_CMD_NAV_WAYPOINT, global, 0.0f, 0.0f, 0.0f, NAN,
+        (void)put(items, capacity, &n, MAV_CMD_NAV_WAYPOINT, global, 0.0F, 0.0F, 0.0F, NAN,
                   to_e7(geo.lat_deg), to_e7(geo.lon_deg), alt);
         // the window's end rounded up to a whole second: the hold never ends early
         int64_t end_s = (end_ms + 999) / 1000;
@@ -156,14 +156,14 @@ sva_mavlink_status_t sva_mavlink_build(const sva_frame_t* frame, sva_frame_geode
         int64_t hour = tod / 3600;
         int64_t minute = (tod / 60) % 60;
         int64_t second = tod % 60;
-        (void)put(items, capacity, &n, MAV_CMD_NAV_DELAY, MAV_FRAME_MISSION, -1.0f, (float)hour,
-                  (float)minute, (float)second, 0, 0, 0.0f);
+        (void)put(items, capacity, &n, MAV_CMD_NAV_DELAY, MAV_FRAME_MISSION, -1.0F, (float)hour,
+                  (float)minute, (float)second, 0, 0, 0.0F);
         at_x = t->x;
         at_y = t->y;
         departure = t->end;
     }
-    (void)put(items, capacity, &n, MAV_CMD_NAV_RETURN_TO_LAUNCH, MAV_FRAME_MISSION, 0.0f, 0.0f,
-              0.0f, 0.0f, 0, 0, 0.0f);
+    (void)put(items, capacity, &n, MAV_CMD_NAV_RETURN_TO_LAUNCH, MAV_FRAME_MISSION, 0.0F, 0.0F,
+              0.0F, 0.0F, 0, 0, 0.0F);
     *count = n;
     return SVA_MAVLINK_OK;
 }
@@ -229,8 +229,8 @@ bool sva_mavlink_prepend_home(sva_mavlink_item_t* items, size_t capacity, size_t
     memmove(&items[1], &items[0], *count * sizeof items[0]);
     items[0] = items[1];
     items[0].command = MAV_CMD_NAV_WAYPOINT;
-    items[0].param4 = 0.0f;
-    items[0].z = 0.0f;
+    items[0].param4 = 0.0F;
+    items[0].z = 0.0F;
     (*count)++;
     return true;
 }

@@ -8,7 +8,7 @@
 
 // MAVLink 1: STX, len, seq, sysid, compid, msgid; MAVLink 2 adds the incompat and compat
 // flags and a 3-byte message id.
-#define V1_HEADER_LEN 6u
+#define V1_HEADER_LEN 6U
 #define V2_HEADER_LEN MAVLINK_NUM_HEADER_BYTES
 #define CRC_LEN       MAVLINK_NUM_CHECKSUM_BYTES
 
@@ -78,7 +78,7 @@ static verdict_t judge(const sva_mavlink_parser_t* self, mavlink_message_t* msg,
     }
     const bool signed_packet = v2 && (b[2] & MAVLINK_IFLAG_SIGNED) != 0;
     const size_t total =
-        header + payload_len + CRC_LEN + (signed_packet ? MAVLINK_SIGNATURE_BLOCK_LEN : 0u);
+        header + payload_len + CRC_LEN + (signed_packet ? MAVLINK_SIGNATURE_BLOCK_LEN : 0U);
     if (self->len < total) {
         return PACKET_INCOMPLETE;
     }
@@ -87,7 +87,7 @@ static verdict_t judge(const sva_mavlink_parser_t* self, mavlink_message_t* msg,
     crc_accumulate_buffer(&crc, (const char*)(b + 1), (uint16_t)(header - 1 + payload_len));
     crc_accumulate(entry->crc_extra, &crc);
     const uint8_t* ck = b + header + payload_len;
-    if (ck[0] != (uint8_t)(crc & 0xFFu) || ck[1] != (uint8_t)(crc >> 8)) {
+    if (ck[0] != (uint8_t)(crc & 0xFFU) || ck[1] != (uint8_t)(crc >> 8)) {
         return PACKET_BAD;
     }
     // Zeroed first: decoders read a MAVLink 2 payload cut at its trailing zeros as zeros.

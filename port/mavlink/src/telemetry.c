@@ -56,7 +56,7 @@ static void heard_stream(sva_mavlink_telemetry_t* self, uint32_t msgid)
 {
     for (uint32_t k = 0; k < SVA_MAVLINK_STREAM_COUNT; k++) {
         if (stream_ids[k] == msgid) {
-            self->streams_heard |= 1u << k;
+            self->streams_heard |= 1U << k;
         }
     }
 }
@@ -69,7 +69,7 @@ static void reboot(sva_mavlink_telemetry_t* self, int64_t now_host_ms)
 }
 
 // A vehicle with both messages may leave one unknown (-1): it does not hide the other.
-static void on_battery(sva_mavlink_telemetry_t* self, int8_t percent)
+static void on_battery(sva_mavlink_telemetry_t* self, int32_t percent)
 {
     if (percent >= 0 && percent <= PERCENT_MAX) {
         self->battery_percent = percent;
@@ -194,7 +194,7 @@ size_t sva_mavlink_telemetry_requests(sva_mavlink_telemetry_t* self, int64_t now
     for (uint32_t k = 0; k < SVA_MAVLINK_STREAM_COUNT && n < capacity; k++) {
         const bool first_round = self->stream_tries[k] == 0;
         if (self->stream_tries[k] >= SVA_MAVLINK_STREAM_TRIES ||
-            (!first_round && (self->streams_heard & (1u << k)) != 0)) {
+            (!first_round && (self->streams_heard & (1U << k)) != 0)) {
             continue;
         }
         mavlink_message_t msg;
@@ -202,11 +202,11 @@ size_t sva_mavlink_telemetry_requests(sva_mavlink_telemetry_t* self, int64_t now
         mavlink_msg_command_long_pack(
             own_system, own_component, &msg, self->system, MAV_COMP_ID_AUTOPILOT1,
             MAV_CMD_SET_MESSAGE_INTERVAL, self->stream_tries[k], (float)stream_ids[k],
-            (float)(stream_interval_ms[k] * US_PER_MS), 0.0f, 0.0f, 0.0f, 0.0f, 0.0f);
+            (float)(stream_interval_ms[k] * US_PER_MS), 0.0F, 0.0F, 0.0F, 0.0F, 0.0F);
         out[n].len = mavlink_msg_to_send_buffer(out[n].bytes, &msg);
         n++;
         self->stream_tries[k]++;
-        self->streams_heard &= ~(1u << k);
+        self->streams_heard &= ~(1U << k);
         self->requests_sent++;
         more = more || self->stream_tries[k] < SVA_MAVLINK_STREAM_TRIES;
     }

@@ -31,8 +31,8 @@ static void send_item(sva_mavlink_upload_t* up, uint16_t seq, sva_mavlink_packet
     finish(&msg, out);
     up->last_seq = seq;
     up->sent_items++;
-    if ((up->sent[seq / 8] & (1u << (seq % 8))) == 0) {
-        up->sent[seq / 8] = (uint8_t)(up->sent[seq / 8] | (1u << (seq % 8)));
+    if ((up->sent[seq / 8] & (1U << (seq % 8))) == 0) {
+        up->sent[seq / 8] = (uint8_t)(up->sent[seq / 8] | (1U << (seq % 8)));
         up->distinct_sent++;
     }
 }

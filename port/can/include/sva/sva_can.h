@@ -133,25 +133,25 @@ typedef struct {
     uint8_t data[8];
 } sva_can_frame_t;
 
-#define SVA_CAN_FLAG_EXTENDED 0x01u  ///< 29-bit id (never this protocol's)
-#define SVA_CAN_FLAG_RTR      0x02u  ///< remote request (never this protocol's)
-#define SVA_CAN_FLAG_FD       0x04u  ///< arrived as a CAN FD frame (rejected by decode)
+#define SVA_CAN_FLAG_EXTENDED 0x01U  ///< 29-bit id (never this protocol's)
+#define SVA_CAN_FLAG_RTR      0x02U  ///< remote request (never this protocol's)
+#define SVA_CAN_FLAG_FD       0x04U  ///< arrived as a CAN FD frame (rejected by decode)
 
 /// Message ids (11-bit). Lower id wins arbitration.
-#define SVA_CAN_ID_PLAN_ABORT     0x100u
-#define SVA_CAN_ID_PLAN_BEGIN     0x101u
-#define SVA_CAN_ID_PLAN_ITEM      0x102u
-#define SVA_CAN_ID_PLAN_ITEM_TIME 0x103u
-#define SVA_CAN_ID_PLAN_COMMIT    0x104u
-#define SVA_CAN_ID_PLAN_ACK       0x108u
-#define SVA_CAN_ID_HEARTBEAT      0x110u
-#define SVA_CAN_ID_VEHICLE_STATUS 0x120u
-#define SVA_CAN_ID_VEHICLE_FUEL   0x121u
-#define SVA_CAN_ID_MISSION_CLOCK  0x122u
+#define SVA_CAN_ID_PLAN_ABORT     0x100U
+#define SVA_CAN_ID_PLAN_BEGIN     0x101U
+#define SVA_CAN_ID_PLAN_ITEM      0x102U
+#define SVA_CAN_ID_PLAN_ITEM_TIME 0x103U
+#define SVA_CAN_ID_PLAN_COMMIT    0x104U
+#define SVA_CAN_ID_PLAN_ACK       0x108U
+#define SVA_CAN_ID_HEARTBEAT      0x110U
+#define SVA_CAN_ID_VEHICLE_STATUS 0x120U
+#define SVA_CAN_ID_VEHICLE_FUEL   0x121U
+#define SVA_CAN_ID_MISSION_CLOCK  0x122U
 
 /// Heartbeat period and the silence after which peers treat the planner as offline.
-#define SVA_CAN_HEARTBEAT_PERIOD_MS 1000u
-#define SVA_CAN_OFFLINE_AFTER_MS    3000u
+#define SVA_CAN_HEARTBEAT_PERIOD_MS 1000U
+#define SVA_CAN_OFFLINE_AFTER_MS    3000U
 
 typedef enum {
     SVA_CAN_MSG_NONE = 0,
@@ -177,42 +177,42 @@ typedef enum {
     SVA_CAN_NODE_ACTIVE = 4,   ///< the bridge acknowledged active_plan_id
     SVA_CAN_NODE_FAULT = 5,
 } sva_can_node_state_t;
-#define SVA_CAN_NODE_STATE_MAX 5u
+#define SVA_CAN_NODE_STATE_MAX 5U
 
 /// Heartbeat fault bits.
-#define SVA_CAN_FAULT_MISSION_INVALID 0x01u  ///< fleet state makes the mission invalid
-#define SVA_CAN_FAULT_PLAN_FAILED     0x02u  ///< sva_plan() returned an error
-#define SVA_CAN_FAULT_TRANSFER_FAILED 0x04u  ///< last transfer aborted (timeout, retries)
-#define SVA_CAN_FAULT_RX_ERRORS       0x08u  ///< corrupt frames seen since last heartbeat
-#define SVA_CAN_FAULT_TX_ERRORS       0x10u  ///< the transport reported an error
-#define SVA_CAN_FAULT_MASK            0x1Fu
+#define SVA_CAN_FAULT_MISSION_INVALID 0x01U  ///< fleet state makes the mission invalid
+#define SVA_CAN_FAULT_PLAN_FAILED     0x02U  ///< sva_plan() returned an error
+#define SVA_CAN_FAULT_TRANSFER_FAILED 0x04U  ///< last transfer aborted (timeout, retries)
+#define SVA_CAN_FAULT_RX_ERRORS       0x08U  ///< corrupt frames seen since last heartbeat
+#define SVA_CAN_FAULT_TX_ERRORS       0x10U  ///< the transport reported an error
+#define SVA_CAN_FAULT_MASK            0x1FU
 
 /// ABORT reasons.
-#define SVA_CAN_ABORT_TIMEOUT    1u  ///< transfer deadline passed
-#define SVA_CAN_ABORT_RETRIES    2u  ///< no positive ACK after every attempt
-#define SVA_CAN_ABORT_SUPERSEDED 3u  ///< a newer plan replaces it
-#define SVA_CAN_ABORT_SHUTDOWN   4u
-#define SVA_CAN_ABORT_REASON_MAX 4u
+#define SVA_CAN_ABORT_TIMEOUT    1U  ///< transfer deadline passed
+#define SVA_CAN_ABORT_RETRIES    2U  ///< no positive ACK after every attempt
+#define SVA_CAN_ABORT_SUPERSEDED 3U  ///< a newer plan replaces it
+#define SVA_CAN_ABORT_SHUTDOWN   4U
+#define SVA_CAN_ABORT_REASON_MAX 4U
 
 /// ACK results (0 accepted, the rest are NACKs naming the receiver's reason).
-#define SVA_CAN_ACK_ACCEPTED     0u
-#define SVA_CAN_ACK_BAD_CRC      1u  ///< COMMIT CRC-32, count or plan id mismatch
-#define SVA_CAN_ACK_BAD_SEQUENCE 2u  ///< counter jump, ITEM out of order or missing
-#define SVA_CAN_ACK_TOO_LARGE    3u  ///< item_count above the receiver's capacity
-#define SVA_CAN_ACK_BAD_VERSION  4u
-#define SVA_CAN_ACK_BAD_VALUE    5u  ///< a field out of its range
-#define SVA_CAN_ACK_RESULT_MAX   5u
+#define SVA_CAN_ACK_ACCEPTED     0U
+#define SVA_CAN_ACK_BAD_CRC      1U  ///< COMMIT CRC-32, count or plan id mismatch
+#define SVA_CAN_ACK_BAD_SEQUENCE 2U  ///< counter jump, ITEM out of order or missing
+#define SVA_CAN_ACK_TOO_LARGE    3U  ///< item_count above the receiver's capacity
+#define SVA_CAN_ACK_BAD_VERSION  4U
+#define SVA_CAN_ACK_BAD_VALUE    5U  ///< a field out of its range
+#define SVA_CAN_ACK_RESULT_MAX   5U
 
 /// Vehicle states in VEHICLE_STATUS.
-#define SVA_CAN_VEHICLE_UNKNOWN     0u
-#define SVA_CAN_VEHICLE_AVAILABLE   1u  ///< planned for
-#define SVA_CAN_VEHICLE_BUSY        2u  ///< flying; still planned for from its position
-#define SVA_CAN_VEHICLE_UNAVAILABLE 3u  ///< left out of planning
-#define SVA_CAN_VEHICLE_STATE_MAX   3u
+#define SVA_CAN_VEHICLE_UNKNOWN     0U
+#define SVA_CAN_VEHICLE_AVAILABLE   1U  ///< planned for
+#define SVA_CAN_VEHICLE_BUSY        2U  ///< flying; still planned for from its position
+#define SVA_CAN_VEHICLE_UNAVAILABLE 3U  ///< left out of planning
+#define SVA_CAN_VEHICLE_STATE_MAX   3U
 
 /// Plan status in PLAN_BEGIN (SPEC section 1).
-#define SVA_CAN_PLAN_COMPLETE 1u
-#define SVA_CAN_PLAN_PARTIAL  2u
+#define SVA_CAN_PLAN_COMPLETE 1U
+#define SVA_CAN_PLAN_PARTIAL  2U
 
 typedef struct {
     uint8_t state;            ///< sva_can_node_state_t

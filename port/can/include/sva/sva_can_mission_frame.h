@@ -24,12 +24,12 @@
 extern "C" {
 #endif
 
-#define SVA_CAN_ID_MISSION_FRAME_A 0x130u
-#define SVA_CAN_ID_MISSION_FRAME_B 0x131u
-#define SVA_CAN_ID_MISSION_FRAME_C 0x132u
-#define SVA_CAN_ID_MISSION_FRAME_D 0x133u
+#define SVA_CAN_ID_MISSION_FRAME_A 0x130U
+#define SVA_CAN_ID_MISSION_FRAME_B 0x131U
+#define SVA_CAN_ID_MISSION_FRAME_C 0x132U
+#define SVA_CAN_ID_MISSION_FRAME_D 0x133U
 /// CAN frames per mission frame.
-#define SVA_CAN_MISSION_FRAME_PARTS 4u
+#define SVA_CAN_MISSION_FRAME_PARTS 4U
 
 /// Ranges of a mission frame on the wire: sva_frame.h's (static-asserted by the node).
 #define SVA_CAN_MISSION_FRAME_MAX_LAT_E7  850000000L
