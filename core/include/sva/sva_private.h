@@ -279,6 +279,8 @@ typedef struct {
     sva_hga_work_t hga;
     sva_bfa_work_t bfa;
     sva_flow_work_t flow;
+    /// sva_replan()'s standing plan for the sva_plan() call it makes; NULL otherwise.
+    const struct sva_plan* standing;
 } sva_planner_priv_t;
 
 /// One UAV of a live mission (core/src/live/): where its route in force starts, and
