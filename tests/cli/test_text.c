@@ -1,5 +1,6 @@
-// Unit tests of sva_text_escape() (port/json, sva/sva_text.h): what is kept, what is
-// escaped, cuts that never split an escape or a character, and escaping twice.
+// Unit tests of sva_text_escape() and sva_text_to_long() (port/json, sva/sva_text.h): what
+// is kept, what is escaped, cuts that never split an escape or a character, escaping
+// twice, and the integer option parser.
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
@@ -68,4 +69,31 @@ void test_cuts_never_split_an_escape_or_a_character(void)
     const char* worst = "\x01\x02\x03";
     char fits[SVA_TEXT_ESCAPED_SIZE(3)];
     TEST_ASSERT_EQUAL_STRING("\\x01\\x02\\x03", sva_text_escape(fits, sizeof fits, worst));
+}
+
+// sva_text_to_long, the programs' integer option parser: whole decimal integers in
+// [lo, hi] only; the error names the option, the range and the text, escaped.
+void test_integer_options_are_whole_and_in_range(void)
+{
+    long v = 7;
+    char err[200];
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_text_to_long("--n", "42", 0, 100, &v, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(42, v);
+    TEST_ASSERT_EQUAL_INT(SVA_OK, sva_text_to_long("--n", "-3", -5, 0, &v, NULL, 0));
+    TEST_ASSERT_EQUAL_INT(-3, v);
+    const char* bad[] = {"",    "1s", " 1", "+1",   "1 ",
+                         "101", "-1", "-",  "0x10", "99999999999999999999999"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+        v = 7;
+        TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID,
+                              sva_text_to_long("--n", bad[i], 0, 100, &v, err, sizeof err));
+        TEST_ASSERT_EQUAL_INT(7, v);  // untouched
+    }
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_INVALID,
+                          sva_text_to_long("--n", "x\n\x1b[31m", 0, 100, &v, err, sizeof err));
+    TEST_ASSERT_EQUAL_STRING("--n: must be an integer in [0, 100], got \"x\\n\\x1b[31m\"", err);
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT,
+                          sva_text_to_long("--n", NULL, 0, 1, &v, err, sizeof err));
+    TEST_ASSERT_EQUAL_INT(SVA_ERR_ARGUMENT,
+                          sva_text_to_long("--n", "1", 0, 1, NULL, err, sizeof err));
 }

@@ -8,21 +8,15 @@
 #include <string.h>
 
 #include <sva/sva.h>
+#include <sva/sva_text.h>
 
 #include "cli.h"
 
-// An option's value as a decimal integer in [lo, hi] into *out; false if it is not
-// one or out of range.
+// An option's value as a decimal integer in [lo, hi] into *out (the programs' parser;
+// bad_value words the error); false if it is not one or out of range.
 static bool long_in(const char* value, long lo, long hi, long* out)
 {
-    char* end = NULL;
-    errno = 0;
-    const long n = strtol(value, &end, 10);
-    if (errno != 0 || end == value || *end != '\0' || n < lo || n > hi) {
-        return false;
-    }
-    *out = n;
-    return true;
+    return sva_text_to_long(NULL, value, lo, hi, out, NULL, 0) == SVA_OK;
 }
 
 // getopt_long codes of the options; -h is the one short option.
@@ -134,13 +128,13 @@ int sva_cli_parse_options(const char* command, const struct option* options, int
             }
             break;
         case OPT_TRACE:
-            if (optarg[0] == '\0') {
+            if ((optarg == NULL) || (optarg[0] == '\0')) {
                 return bad_value(command, code);
             }
             opt->trace = optarg;
             break;
         case OPT_RESIDUAL:
-            if (optarg[0] == '\0') {
+            if ((optarg == NULL) || (optarg[0] == '\0')) {
                 return bad_value(command, code);
             }
             opt->residual = optarg;

@@ -68,7 +68,8 @@ int64_t sva_cli_elapsed_us(const struct timespec* a, const struct timespec* b)
 // One sva_plan() call into g_plan; *fastest_us becomes its wall time if that is less.
 static sva_status_t timed_plan(sva_algorithm_t algorithm, sva_diag_t* diag, int64_t* fastest_us)
 {
-    struct timespec before, after;
+    struct timespec before;
+    struct timespec after;
     clock_gettime(CLOCK_MONOTONIC, &before);
     const sva_status_t status = sva_plan(&sva_cli_planner, &g_mission, algorithm, &g_plan, diag);
     clock_gettime(CLOCK_MONOTONIC, &after);
@@ -166,7 +167,7 @@ int sva_cli_plan(int argc, char** argv)
         }
     }
     FILE* trace_file = NULL;
-    sva_trace_t trace;
+    sva_trace_t trace = {NULL, NULL, 0UL, false};  // attached below when --trace is given
     if (opt.trace != NULL) {
         trace_file = fopen(opt.trace, "w");
         if (trace_file == NULL) {

@@ -26,7 +26,8 @@ static sva_json_live_t g_doc;
 static sva_status_t timed_replan(sva_algorithm_t algorithm, sva_live_result_t* result,
                                  sva_diag_t* diag, int64_t* solve_us)
 {
-    struct timespec before, after;
+    struct timespec before;
+    struct timespec after;
     clock_gettime(CLOCK_MONOTONIC, &before);
     const sva_status_t status = sva_live_replan(&g_live, &sva_cli_planner, algorithm, result, diag);
     clock_gettime(CLOCK_MONOTONIC, &after);

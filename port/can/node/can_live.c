@@ -43,7 +43,6 @@ static int apply(sva_can_live_t* self, const sva_event_t* e, uint32_t now_ms)
 {
     uint8_t before[SVA_MAX_TARGETS];
     sva_diag_t diag;
-    uint16_t i;
     const uint16_t targets = self->live.mission.target_count;
     memcpy(before, self->live.target_state, sizeof before);
     if (sva_live_apply(&self->live, e, &diag) != SVA_OK) {
@@ -71,7 +70,7 @@ static int apply(sva_can_live_t* self, const sva_event_t* e, uint32_t now_ms)
             fprintf(self->log, " fuel %ld", (long)e->fuel);
         }
         fprintf(self->log, " at tick %ld\n", (long)e->at_ticks);
-        for (i = 0; i < targets; ++i) {
+        for (uint16_t i = 0; i < targets; ++i) {
             if (before[i] != self->live.target_state[i]) {
                 fprintf(self->log, "sva_can_node: target %ld %s at tick %ld\n",
                         (long)self->live.mission.targets[i].id,
@@ -89,7 +88,6 @@ int sva_can_live_start(sva_can_live_t* self, const sva_mission_t* mission,
     sva_diag_t diag;
     sva_status_t st;
     uint16_t u;
-    char msg[200];
     memset(self->fuel_heard, 0xFF, sizeof self->fuel_heard);
     memset(&self->stats, 0, sizeof self->stats);
     self->algorithm = algorithm;
@@ -107,6 +105,7 @@ int sva_can_live_start(sva_can_live_t* self, const sva_mission_t* mission,
         st = sva_live_init(&self->live, mission, &self->plan, &diag);
     }
     if (st != SVA_OK) {
+        char msg[200];
         (void)sva_diag_format(&diag, msg, sizeof msg);
         (void)snprintf(err, err_size, "plan 1 failed (status %d): %s", (int)st, msg);
         return -1;
@@ -336,7 +335,7 @@ static int poll_settled(sva_can_live_t* self)
                 (long)self->live.now_ticks, (unsigned long)self->live.revision,
                 self->result.kept ? "plan in force kept" : "new plan",
                 (unsigned)self->result.covered, (unsigned)self->result.under_way,
-                (unsigned long)(self->result.dropped + self->result.added));
+                (unsigned long)self->result.dropped + (unsigned long)self->result.added);
     }
     if (same_plan(&self->wire, &self->sent)) {
         ++self->stats.unchanged;

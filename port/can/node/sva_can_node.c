@@ -107,15 +107,10 @@ static void usage(FILE* out)
 
 static int parse_u32(const char* s, const char* opt, uint32_t* out)
 {
-    char* end = NULL;
-    unsigned long v;
-    errno = 0;
-    v = strtoul(s, &end, 10);
-    if ((errno != 0) || (end == s) || (*end != '\0') || (v > 0x7FFFFFFFUL) || (s[0] == '-')) {
-        char shown[SHOWN_SIZE];
-        fprintf(stderr,
-                "sva_can_node: error: %s: must be an integer in [0, 2147483647], got \"%s\"\n", opt,
-                sva_text_escape(shown, sizeof shown, s));
+    char err[SHOWN_SIZE];
+    long v = 0;
+    if (sva_text_to_long(opt, s, 0, 0x7FFFFFFFL, &v, err, sizeof err) != SVA_OK) {
+        fprintf(stderr, "sva_can_node: error: %s\n", err);
         return -1;
     }
     *out = (uint32_t)v;
@@ -198,7 +193,6 @@ typedef struct {
 // --help or --version, 2 after a usage error, each with its message).
 static int parse_options(int argc, char** argv, node_options_t* o)
 {
-    char shown_arg[SHOWN_SIZE];
     int i;
     memset(o, 0, sizeof *o);
     o->iface = "vcan0";
@@ -250,17 +244,21 @@ static int parse_options(int argc, char** argv, node_options_t* o)
         } else if (strcmp(a, "--state-dir") == 0) {
             o->state_dir = v;
         } else if (strcmp(a, "--settle-ms") == 0) {
-            if (parse_u32(v, a, &o->settle_ms) != 0)
+            if (parse_u32(v, a, &o->settle_ms) != 0) {
                 return 2;
+            }
         } else if (strcmp(a, "--track-tolerance") == 0) {
-            if (parse_u32(v, a, &o->track_tolerance) != 0)
+            if (parse_u32(v, a, &o->track_tolerance) != 0) {
                 return 2;
+            }
         } else if (strcmp(a, "--exit-after-acks") == 0) {
-            if (parse_u32(v, a, &o->exit_after_acks) != 0)
+            if (parse_u32(v, a, &o->exit_after_acks) != 0) {
                 return 2;
+            }
         } else if (strcmp(a, "--max-runtime-ms") == 0) {
-            if (parse_u32(v, a, &o->max_runtime_ms) != 0)
+            if (parse_u32(v, a, &o->max_runtime_ms) != 0) {
                 return 2;
+            }
         } else {
             fprintf(stderr, "sva_can_node: error: unknown option %s\n",
                     sva_text_escape(shown, sizeof shown, a));
@@ -278,6 +276,7 @@ static int parse_options(int argc, char** argv, node_options_t* o)
         return 2;
     }
     if (sva_algorithm_from_name(o->algo_name, &o->algo) != SVA_OK) {
+        char shown_arg[SHOWN_SIZE];
         fprintf(stderr,
                 "sva_can_node: error: %s: unknown algorithm \"%s\" (sva, ga, hga, bfa, flow)\n",
                 o->algo_option, sva_text_escape(shown_arg, sizeof shown_arg, o->algo_name));
@@ -292,9 +291,9 @@ static int parse_options(int argc, char** argv, node_options_t* o)
 static int open_state(const node_options_t* o, char* name, size_t name_size)
 {
     char err[256];
-    char shown_arg[SHOWN_SIZE];
     if (sva_can_mission_load_frame(o->mission_path, &g_mission, name, name_size, &g_frame,
                                    &g_has_frame, err, sizeof err) != SVA_JSON_OK) {
+        char shown_arg[SHOWN_SIZE];
         fprintf(stderr, "sva_can_node: error: %s: %s\n",
                 sva_text_escape(shown_arg, sizeof shown_arg, o->mission_path), err);
         return 1;
@@ -322,10 +321,10 @@ static int open_state(const node_options_t* o, char* name, size_t name_size)
 static int open_transport(const node_options_t* o, sva_can_socketcan_t* sock,
                           sva_can_transport_t* tp)
 {
-    char shown_arg[SHOWN_SIZE];
     struct sigaction sa;
     const sva_can_status_t cst = sva_can_socketcan_open(sock, o->iface);
     if (cst != SVA_CAN_OK) {
+        char shown_arg[SHOWN_SIZE];
         fprintf(stderr, "sva_can_node: error: --iface %s: %s%s%s\n",
                 sva_text_escape(shown_arg, sizeof shown_arg, o->iface),
                 (cst == SVA_CAN_ERR_NAME) ? "interface name empty or longer than IFNAMSIZ - 1 (15)"

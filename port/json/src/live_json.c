@@ -40,7 +40,9 @@ static sva_json_status_t known_keys(const json_t* object, const char* path, cons
 {
     const char* key;
     json_t* value;
-    json_object_foreach((json_t*)(uintptr_t)object, key, value)
+    // json_object_foreach needs a non-const object; nothing is modified.
+    json_t* mutable_object = (json_t*)object;
+    json_object_foreach(mutable_object, key, value)
     {
         bool known = false;
         for (const char* const* k = keys; *k != NULL; ++k) {
@@ -337,10 +339,11 @@ json_t* sva_json_replan(const sva_live_t* live, const sva_live_result_t* r, cons
                         int64_t solve_us)
 {
     json_t* doc = sva_json_plan(r->residual, name, r->plan, solve_us);
-    json_t* changes = json_pack(
-        "{s:o*, s:o*, s:i, s:i}", "dropped", pairs_missing(r->residual, r->previous, r->plan),
-        "added", pairs_missing(r->residual, r->plan, r->previous), "count",
-        (json_int_t)(r->dropped + r->added), "penalty", (json_int_t)live->mission.change_penalty);
+    json_t* changes = json_pack("{s:o*, s:o*, s:i, s:i}", "dropped",
+                                pairs_missing(r->residual, r->previous, r->plan), "added",
+                                pairs_missing(r->residual, r->plan, r->previous), "count",
+                                (json_int_t)r->dropped + (json_int_t)r->added, "penalty",
+                                (json_int_t)live->mission.change_penalty);
     json_t* under_way = json_array();
     json_t* targets = json_array();
     bool ok = doc != NULL && changes != NULL && under_way != NULL && targets != NULL;

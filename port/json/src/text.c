@@ -1,7 +1,9 @@
 // text.c -- user-supplied text made safe to print (see sva/sva_text.h).
 #include <sva/sva_text.h>
 
+#include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 // Length of the well-formed UTF-8 sequence at s that encodes a printable code point
@@ -66,4 +68,29 @@ char* sva_text_escape(char* out, size_t size, const char* text)
     }
     out[used] = '\0';
     return out;
+}
+
+sva_status_t sva_text_to_long(const char* name, const char* text, long lo, long hi, long* out,
+                              char* err, size_t err_size)
+{
+    if ((text == NULL) || (out == NULL)) {
+        return SVA_ERR_ARGUMENT;
+    }
+    // Digits with an optional minus, nothing else (strtol alone would take spaces and '+').
+    const char* digits = (text[0] == '-') ? &text[1] : text;
+    const bool shaped = (digits[0] >= '0') && (digits[0] <= '9');
+    char* end = NULL;
+    errno = 0;
+    const long v = shaped ? strtol(text, &end, 10) : 0L;
+    if (shaped && (errno == 0) && (*end == '\0') && (v >= lo) && (v <= hi)) {
+        *out = v;
+        return SVA_OK;
+    }
+    if ((err != NULL) && (err_size > 0U)) {
+        char shown[SVA_TEXT_ESCAPED_SIZE(256)];  // escaping cuts a longer text, never an escape
+        (void)snprintf(err, err_size, "%s: must be an integer in [%ld, %ld], got \"%s\"",
+                       (name != NULL) ? name : "value", lo, hi,
+                       sva_text_escape(shown, sizeof shown, text));
+    }
+    return SVA_ERR_INVALID;
 }

@@ -144,25 +144,20 @@ static int realtime_setup(long rt_priority, int lock_memory)
 // An integer option's value in [lo, hi] into *out; false (after the error) otherwise.
 static bool integer_option(const char* name, const char* text, long lo, long hi, long* out)
 {
-    char* end = NULL;
-    errno = 0;
-    const long v = strtol(text, &end, 10);
-    if ((errno != 0) || (end == text) || (*end != '\0') || (v < lo) || (v > hi)) {
-        char shown[SHOWN_SIZE];
-        fprintf(stderr, "sva_node: error: %s: must be an integer in [%ld, %ld], got '%s'\n", name,
-                lo, hi, sva_text_escape(shown, sizeof shown, text));
+    char err[SHOWN_SIZE];
+    if (sva_text_to_long(name, text, lo, hi, out, err, sizeof err) != SVA_OK) {
+        fprintf(stderr, "sva_node: error: %s\n", err);
         return false;
     }
-    *out = v;
     return true;
 }
 
 // The folder of --state-dir, made when missing. Returns 0, or 1 after printing why.
 static int state_dir_ready(const char* dir)
 {
-    char shown[SHOWN_SIZE];
     struct stat st;
     if ((stat(dir, &st) != 0) && ((errno != ENOENT) || (mkdir(dir, 0700) != 0))) {
+        char shown[SHOWN_SIZE];
         fprintf(stderr, "sva_node: error: --state-dir %s: %s\n",
                 sva_text_escape(shown, sizeof shown, dir), strerror(errno));
         return 1;
@@ -263,10 +258,12 @@ static int parse_options(int argc, char** argv, node_options_t* o)
         if ((strcmp(a, "-h") == 0) || (strcmp(a, "--help") == 0)) {
             usage(stdout);
             return 0;
-        } else if (strcmp(a, "--version") == 0) {
+        }
+        if (strcmp(a, "--version") == 0) {
             printf("sva_node %d.%d.%d\n", SVA_VERSION_MAJOR, SVA_VERSION_MINOR, SVA_VERSION_PATCH);
             return 0;
-        } else if (((strcmp(a, "-u") == 0) || (strcmp(a, "--url") == 0)) && has_value) {
+        }
+        if (((strcmp(a, "-u") == 0) || (strcmp(a, "--url") == 0)) && has_value) {
             o->url_arg = argv[++i];
         } else if (((strcmp(a, "-p") == 0) || (strcmp(a, "--prefix") == 0)) && has_value) {
             o->prefix = argv[++i];

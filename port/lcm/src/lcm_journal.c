@@ -99,7 +99,7 @@ static void header_payload(const sva_lcm_node_t* node, uint8_t* p)
     sva_journal_put_u16(p + 8, SVA_VERSION_MINOR);
     sva_journal_put_u16(p + 10, SVA_VERSION_PATCH);
     for (int i = 0; i < 4; ++i) {
-        sva_journal_put_u64(p + NAMED_BYTES + (8 * i), fingerprint(i));
+        sva_journal_put_u64(p + NAMED_BYTES + (8U * (size_t)i), fingerprint(i));
     }
     p[44] = (uint8_t)node->algorithm;
     p[45] = node->fleet_reports ? 1U : 0U;
@@ -167,7 +167,7 @@ static sva_lcm_journal_status_t check_header(sva_lcm_journal_t* self, const uint
         return SVA_LCM_JOURNAL_ERR_FORMAT;
     }
     for (int i = 0; i < 4; ++i) {
-        const uint64_t got = sva_journal_get_u64(p + NAMED_BYTES + (8 * i));
+        const uint64_t got = sva_journal_get_u64(p + NAMED_BYTES + (8U * (size_t)i));
         if (got != fingerprint(i)) {
             (void)snprintf(self->message, sizeof self->message,
                            "the journal was written by %s with other wire types (%s "

@@ -56,12 +56,13 @@ static int16_t list_changes(const sva_plan_t* from, const sva_plan_t* to, const 
 {
     sva_visit_t visits[SVA_LCM_REPLAN_T_MAX_CHANGES];
     const uint32_t n = sva_plan_changes(from, to, visits, SVA_LCM_REPLAN_T_MAX_CHANGES);
-    const uint32_t listed = (n < SVA_LCM_REPLAN_T_MAX_CHANGES) ? n : SVA_LCM_REPLAN_T_MAX_CHANGES;
-    for (uint32_t i = 0; i < listed; ++i) {
+    int16_t listed = 0;
+    for (uint32_t i = 0; (i < n) && (i < (uint32_t)SVA_LCM_REPLAN_T_MAX_CHANGES); ++i) {
         uav[i] = from->routes[visits[i].route].uav_id;
         target[i] = m->targets[visits[i].target].id;
+        listed += 1;
     }
-    return (int16_t)listed;
+    return listed;
 }
 
 // Every message a replan carries names its version, also when it is empty.
@@ -156,8 +157,6 @@ void sva_lcm_replan_live(sva_lcm_node_t* self)
     sva_live_t* live = &self->priv.live;
     sva_diag_t diag;
     sva_diag_clear(&diag);
-    char msg[128];
-    char text[SVA_LCM_REPLAN_T_DIAG_TEXT_SIZE];
     r->accepted = 1;
     self->priv.plan_id += 1;
     sva_lcm_plan_t* p = &r->plan;
@@ -179,6 +178,8 @@ void sva_lcm_replan_live(sva_lcm_node_t* self)
         sva_lcm_plan_diag(p, &diag);
         p->error_code = (int8_t)st;
         p->status = SVA_LCM_PLAN_T_STATUS_FAILED;
+        char msg[128];
+        char text[SVA_LCM_REPLAN_T_DIAG_TEXT_SIZE];
         (void)sva_diag_format(&diag, msg, sizeof msg);
         (void)snprintf(text, sizeof text, "%.31s: %.126s", self->channel_replan, msg);
         for (size_t i = 0; (i + 1U < sizeof text) && (text[i] != '\0'); ++i) {

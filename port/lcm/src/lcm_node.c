@@ -55,7 +55,8 @@ static bool make_channel(char* out, const char* prefix, const char* suffix)
         return false;
     }
     memcpy(out, prefix, p);
-    memcpy(out + p, suffix, s + 1U);
+    memcpy(out + p, suffix, s);
+    out[p + s] = '\0';
     return true;
 }
 

@@ -7,6 +7,7 @@
 
 #include "bridge.h"
 #include "sva/sva.h"  // SVA_VERSION_*; SVA_MAX_FUEL: report_t.fuel is [0, SVA_MAX_FUEL]
+#include "sva/sva_text.h"
 
 #define PROGRAM "sva_mavlink_bridge"
 
@@ -66,15 +67,11 @@ static void usage(FILE* f)
 
 static bool int_arg(const char* name, const char* text, long lo, long hi, long* out)
 {
-    char* end = NULL;
-    errno = 0;
-    long v = strtol(text, &end, 10);
-    if (text[0] == '\0' || *end != '\0' || errno != 0 || v < lo || v > hi) {
-        fprintf(stderr, PROGRAM ": error: %s: must be an integer in [%ld, %ld], got \"%.40s\"\n",
-                name, lo, hi, text);
+    char err[512];
+    if (sva_text_to_long(name, text, lo, hi, out, err, sizeof err) != SVA_OK) {
+        fprintf(stderr, PROGRAM ": error: %s\n", err);
         return false;
     }
-    *out = v;
     return true;
 }
 

@@ -1,5 +1,6 @@
 /// sva_text.h -- user-supplied text made safe to print outside JSON (host tools and
-/// nodes). Part of the sva_json library (sva::json); needs nothing but the C library.
+/// nodes), and the programs' integer option parser. Part of the sva_json library
+/// (sva::json); needs nothing but the C library and sva.h's status codes.
 ///
 /// A mission name, a file name or a command-line argument may hold a newline or a
 /// terminal escape sequence (ESC [ ...). Printed raw, it forges output lines or
@@ -18,6 +19,8 @@
 
 #include <stddef.h>
 
+#include <sva/sva.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -32,6 +35,15 @@ extern "C" {
 /// of printf. Preconditions: out != NULL, size >= 1; text == NULL is written as "".
 /// Complexity O(strlen(text)); allocates nothing; thread-safe.
 char* sva_text_escape(char* out, size_t size, const char* text);
+
+/// The integer option parser of every program (the CLI, the nodes, the bridge): reads
+/// `text` as a whole decimal integer (digits with an optional leading minus) in [lo, hi]
+/// into *out and returns SVA_OK. Returns SVA_ERR_INVALID, *out untouched, when it is not
+/// one (empty, spaces, a plus, other characters, beyond long) or lies outside [lo, hi], with "<name>: must be an integer in [lo, hi], got
+/// \"<text, escaped>\"" in err (when err is not NULL and err_size > 0); SVA_ERR_ARGUMENT
+/// for a NULL text or out. Allocates nothing; O(strlen(text) + err_size); thread-safe.
+SVA_NODISCARD sva_status_t sva_text_to_long(const char* name, const char* text, long lo, long hi,
+                                            long* out, char* err, size_t err_size);
 
 #ifdef __cplusplus
 }
