@@ -148,7 +148,7 @@ int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t
 int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                           uint64_t budget, bool* coverage_proven, uint32_t* iters);
 
-// flow_lp.c, flow_simplex.c, flow_dive.c: the route master (its layout: flow_lp.h).
+// flow_lp.c, flow_simplex.c, flow_dive.c: the route master (its layout: flow_master.h).
 typedef enum {
     SVA_FLOW_LP_COST,   ///< a new cost master
     SVA_FLOW_LP_COVER,  ///< a new cover master (costs left out)

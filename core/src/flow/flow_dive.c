@@ -7,7 +7,7 @@
 // cost M) in the basis, and a target partly served gets cost M on w_t: the basis stays
 // feasible and the primal simplex goes on; both leave for good. The fixed routes go
 // through the repair and the local search (flow_repair.c) like every other plan.
-#include "flow_lp.h"
+#include "flow_master.h"
 
 #if SVA_FLOW_LP_ROWS >= 2
 

@@ -22,7 +22,7 @@
 //
 // Nothing here is trusted for a claim: the prices are only proposed, and the bound is
 // the Lagrangian's value at them (flow_lagrange.c), valid for any prices.
-#include "flow_lp.h"
+#include "flow_master.h"
 
 #if SVA_FLOW_LP_ROWS >= 2
 

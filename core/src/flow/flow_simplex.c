@@ -6,7 +6,7 @@
 // of the constraint matrix: exact, no rounding. The solve gives up (no prices) when an
 // entry outgrows ENTRY_MAX, which keeps every product inside int64. Dantzig's rule,
 // Bland's after DEGENERATE_RUN degenerate pivots in a row (no cycling).
-#include "flow_lp.h"
+#include "flow_master.h"
 
 #if SVA_FLOW_LP_ROWS >= 2
 

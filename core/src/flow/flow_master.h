@@ -1,4 +1,4 @@
-// flow_lp.h -- the layout of flow's route master (sva_flow_lp_t), shared by its
+// flow_master.h -- the layout of flow's route master (sva_flow_lp_t), shared by its
 // simplex (flow_simplex.c), its column generation (flow_lp.c) and its dive
 // (flow_dive.c). Private to those three files.
 //
@@ -6,8 +6,8 @@
 // the coverage row (slack_cover), a (artificial), then the route columns
 // (first_route + col). adj is rows x SVA_FLOW_LP_ROWS; a route column's rows are a
 // bit set of SVA_FLOW_LP_WORDS words.
-#ifndef SVA_FLOW_LP_H
-#define SVA_FLOW_LP_H
+#ifndef SVA_FLOW_MASTER_H
+#define SVA_FLOW_MASTER_H
 
 #include "flow.h"
 
@@ -65,4 +65,4 @@ static inline bool penalty(const sva_flow_lp_t* lp, uint16_t j)
 bool sva_flow_master_solve(sva_flow_work_t* w, const sva_mission_t* m, uint64_t budget);
 
 #endif  // SVA_FLOW_LP_ROWS >= 2
-#endif  // SVA_FLOW_LP_H
+#endif  // SVA_FLOW_MASTER_H
