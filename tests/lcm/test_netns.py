@@ -256,7 +256,7 @@ def test_node_prints_user_text_escaped(tmp_path):
     assert lines(r) == [f"sva_node: error: --algorithm: unknown name '{HOSTILE_SHOWN}' (sva, ga, hga, bfa, flow)"]
     r = subprocess.run([NODE, "--status-ms", HOSTILE], capture_output=True, text=True)
     assert r.returncode == 2
-    assert lines(r) == [f"sva_node: error: --status-ms: must be an integer in [10, 3600000], got '{HOSTILE_SHOWN}'"]
+    assert lines(r) == [f'sva_node: error: --status-ms: must be an integer in [10, 3600000], got "{HOSTILE_SHOWN}"']
     r = subprocess.run([NODE, "--" + HOSTILE], capture_output=True, text=True)
     assert r.returncode == 2
     assert lines(r)[0] == f"sva_node: error: unknown or incomplete option '--{HOSTILE_SHOWN}'"

@@ -39,7 +39,8 @@ char* sva_text_escape(char* out, size_t size, const char* text);
 /// The integer option parser of every program (the CLI, the nodes, the bridge): reads
 /// `text` as a whole decimal integer (digits with an optional leading minus) in [lo, hi]
 /// into *out and returns SVA_OK. Returns SVA_ERR_INVALID, *out untouched, when it is not
-/// one (empty, spaces, a plus, other characters, beyond long) or lies outside [lo, hi], with "<name>: must be an integer in [lo, hi], got
+/// one (empty, spaces, a plus, other characters, beyond long) or lies outside [lo, hi], with
+/// "<name>: must be an integer in [lo, hi], got
 /// \"<text, escaped>\"" in err (when err is not NULL and err_size > 0); SVA_ERR_ARGUMENT
 /// for a NULL text or out. Allocates nothing; O(strlen(text) + err_size); thread-safe.
 SVA_NODISCARD sva_status_t sva_text_to_long(const char* name, const char* text, long lo, long hi,
