@@ -10,6 +10,7 @@ import argparse
 import json
 import sys
 import time
+from typing import Any
 
 from ..lcm import wire
 from ..text import shown
@@ -205,7 +206,8 @@ def _scenario(args) -> int:
     if plan.status not in (plan.STATUS_COMPLETE, plan.STATUS_PARTIAL):
         return _fail(f"the node did not plan the mission (status {plan.status}): "
                      f"{wire.diag_text(plan)}", 1)
-    record = {"mission": name, "plan": wire.plan_document(plan, name), "replans": []}
+    record: dict[str, Any] = {"mission": name, "plan": wire.plan_document(plan, name),
+                              "replans": []}
     refused = 0
     for ev in events:
         lc.publish(args.prefix + "EVENT", ev.encode())

@@ -24,10 +24,12 @@ import json
 import re
 import signal
 import time
+from collections.abc import Awaitable, Coroutine
 from pathlib import Path
-from typing import Callable
+from typing import Any, Callable
 
 from aiohttp import WSMsgType, web
+from aiohttp.typedefs import Handler
 
 from .guard import Access, ConnectionGate, RefusalLog, peer
 from .limits import Limits
@@ -37,13 +39,17 @@ STATIC = Path(__file__).resolve().parent / "static"
 PUSH_PERIOD_S = 0.1
 LOG_YIELD_EVERY = 64     # a log played faster than it is read still lets the server answer
 
+# A source of traffic: its (start, stop) hooks, run at the application's startup and cleanup.
+Hook = Callable[[web.Application], Awaitable[None]]
+Source = tuple[Hook, Hook]
+
 
 class Client:
     """One websocket client: its own bounded queue of updates and its own sender, so a
     client that does not read holds up nobody else. Each update is the whole picture,
     so dropping the oldest loses nothing the next one does not say."""
 
-    def __init__(self, ws: web.WebSocketResponse, request: web.BaseRequest, queue: int):
+    def __init__(self, ws: web.WebSocketResponse, request: web.BaseRequest, queue: int) -> None:
         self.ws = ws
         self.request = request
         self.peer = peer(request.transport)
@@ -68,7 +74,7 @@ class Client:
 
 class Server:
     def __init__(self, ground: Ground, limits: Limits = Limits(),
-                 access: Access | None = None):
+                 access: Access | None = None) -> None:
         self.ground = ground
         self.limits = limits
         self.access = access if access is not None else Access("127.0.0.1", (), None)
@@ -83,7 +89,7 @@ class Server:
     # --- http ---------------------------------------------------------------------------
 
     @web.middleware
-    async def guard(self, request: web.Request, handler: Callable) -> web.StreamResponse:
+    async def guard(self, request: web.Request, handler: Handler) -> web.StreamResponse:
         self.gate.requested.add(request.protocol)
         why = self.access.refusal(request.headers, request.query_string, request.path)
         if why is not None:
@@ -92,10 +98,10 @@ class Server:
             raise web.HTTPForbidden(text=f"sva-tools ground: {why}\n")
         return await handler(request)
 
-    async def index(self, request):
+    async def index(self, request: web.Request) -> web.FileResponse:
         return web.FileResponse(STATIC / "index.html")
 
-    async def state(self, request):
+    async def state(self, request: web.Request) -> web.Response:
         """The picture once; a reader that takes none of it for --send-timeout is cut
         (aiohttp would wait on it for ever)."""
         resp = web.Response(body=json.dumps(self.ground.snapshot()).encode(),
@@ -117,7 +123,7 @@ class Server:
             self._frame_text = json.dumps({"type": "state", **self.ground.snapshot()})
         return self._frame_text
 
-    async def ws(self, request):
+    async def ws(self, request: web.Request) -> web.WebSocketResponse:
         lim = self.limits
         ws = web.WebSocketResponse(heartbeat=lim.heartbeat_s,
                                    max_msg_size=lim.max_message_bytes)
@@ -168,10 +174,10 @@ class Server:
         app.on_shutdown.append(self._close_clients)
         return app
 
-    async def _start_pusher(self, app):
+    async def _start_pusher(self, app: web.Application) -> None:
         app["pusher"] = asyncio.get_running_loop().create_task(self._push_loop())
 
-    async def _close_clients(self, app):
+    async def _close_clients(self, app: web.Application) -> None:
         app["pusher"].cancel()
         for client in list(self.clients):
             if client.frames or (client.request.transport is not None and
@@ -180,7 +186,7 @@ class Server:
             else:
                 await client.ws.close(code=1001, message=b"server shutdown")
 
-    async def _push_loop(self):
+    async def _push_loop(self) -> None:
         while True:
             await asyncio.sleep(PUSH_PERIOD_S)
             if self.ground.version == self.sent_version or not self.clients:
@@ -193,7 +199,7 @@ class Server:
 
 # --- sources ----------------------------------------------------------------------------
 
-def live_source(ground: Ground, url: str, prefix: str):
+def live_source(ground: Ground, url: str, prefix: str) -> Source:
     """Subscribes to every channel of the prefix; the LCM socket is read by the loop."""
     import lcm
 
@@ -201,22 +207,22 @@ def live_source(ground: Ground, url: str, prefix: str):
     sub = lc.subscribe(re.escape(prefix) + ".*", ground.on_message)
     sub.set_queue_capacity(10000)
 
-    async def start(app):
+    async def start(app: web.Application) -> None:
         asyncio.get_running_loop().add_reader(lc.fileno(), lc.handle)
 
-    async def stop(app):
+    async def stop(app: web.Application) -> None:
         asyncio.get_running_loop().remove_reader(lc.fileno())
         lc.unsubscribe(sub)
     return start, stop
 
 
-def lcm_log_source(ground: Ground, path: str, speed: float):
+def lcm_log_source(ground: Ground, path: str, speed: float) -> Source:
     """Plays an lcm-logger file at `speed` times its recorded pace."""
     import lcm
 
     log = lcm.EventLog(path, "r")
 
-    async def play():
+    async def play() -> None:
         first_log: int | None = None
         first_wall = time.monotonic()
         for n, ev in enumerate(log):
@@ -234,11 +240,11 @@ def lcm_log_source(ground: Ground, path: str, speed: float):
     return _task(play)
 
 
-def flight_log_source(ground: Ground, log: dict, speed: float):
+def flight_log_source(ground: Ground, log: dict[str, Any], speed: float) -> Source:
     """Plays a flight log tick by tick: frame.tick_s (else 1 s) per tick, over speed."""
     tick_s = (ground.frame or {}).get("tick_s", 1.0)
 
-    async def play():
+    async def play() -> None:
         for t in range(0, log["end_tick"] + 1):
             flight_at(ground, log, t)
             await asyncio.sleep(tick_s / speed)
@@ -247,16 +253,17 @@ def flight_log_source(ground: Ground, log: dict, speed: float):
     return _task(play)
 
 
-def _task(play):
-    async def start(app):
+def _task(play: Callable[[], Coroutine[Any, Any, None]]) -> Source:
+    async def start(app: web.Application) -> None:
         app["player"] = asyncio.get_running_loop().create_task(play())
 
-    async def stop(app):
+    async def stop(app: web.Application) -> None:
         app["player"].cancel()
     return start, stop
 
 
-def serve(ground: Ground, host: str, port: int, source, ready=None,
+def serve(ground: Ground, host: str, port: int, source: Source,
+          ready: Callable[[int], object] | None = None,
           limits: Limits = Limits(), access: Access | None = None) -> None:
     """Serves until SIGINT or SIGTERM. `ready(port)` once listening (port: the bound one).
     OSError if the address cannot be bound."""
@@ -264,7 +271,8 @@ def serve(ground: Ground, host: str, port: int, source, ready=None,
                        source, ready))
 
 
-async def _serve(srv: Server, host: str, port: int, source, ready) -> None:
+async def _serve(srv: Server, host: str, port: int, source: Source,
+                 ready: Callable[[int], object] | None) -> None:
     app = srv.app()
     start, stop = source
     app.on_startup.append(start)

@@ -40,7 +40,7 @@ class FrameError(ValueError):
     pass
 
 
-def check_frame(frame: Any, where: str = "frame") -> dict:
+def check_frame(frame: Any, where: str = "frame") -> dict[str, Any]:
     """A mission frame {"lat", "lon", "alt_m", "cell_m", "tick_s", "t0"} checked by the
     frame's contract (docs/flight-stack.md: the mission schema's `frame` and t0's rules,
     sva_tools.frame), returned at its resolutions as `sva plan` echoes it (t0 in UTC with
@@ -59,26 +59,27 @@ def check_frame(frame: Any, where: str = "frame") -> dict:
 
 
 class Ground:
-    def __init__(self, prefix: str = "SVA_", frame: dict | None = None, source: str = "lcm"):
+    def __init__(self, prefix: str = "SVA_", frame: dict[str, Any] | None = None,
+                 source: str = "lcm") -> None:
         self.prefix = prefix
         self.source = source
         self.version = 0           # bumps on every change (the server pushes when it moves)
         self.frame = frame
         self.given_frame = frame   # --frame (or a flight log's); a mission_t's frame wins
-        self.mission: dict | None = None
+        self.mission: dict[str, Any] | None = None
         self.now = 0
-        self.uavs: dict[int, dict] = {}
-        self.targets: dict[int, dict] = {}
-        self.plan: dict | None = None
-        self.replans: list[dict] = []
+        self.uavs: dict[int, dict[str, Any]] = {}
+        self.targets: dict[int, dict[str, Any]] = {}
+        self.plan: dict[str, Any] | None = None
+        self.replans: list[dict[str, Any]] = []
         self.replans_summary = _no_replans()
         self.forgotten = {"targets": 0, "uavs": 0}
-        self.log: list[dict] = []
+        self.log: list[dict[str, Any]] = []
         self.node: dict[str, Any] = {"status": None, "replans_answered": 0, "refused": 0,
                                      "last_solve_us": None, "plans": 0}
         self.warnings: dict[str, Any] = {"count": 0, "recent": []}
         self.counts: dict[str, int] = {}
-        self.events_seen: dict[int, dict] = {}
+        self.events_seen: dict[int, dict[str, Any]] = {}
         self.end: int | None = None
 
     # --- bookkeeping ------------------------------------------------------------------
@@ -86,7 +87,7 @@ class Ground:
     def _changed(self) -> None:
         self.version += 1
 
-    def add_replan(self, entry: dict) -> None:
+    def add_replan(self, entry: dict[str, Any]) -> None:
         """Keeps the last MAX_REPLANS replans; an older one goes into the summary."""
         self.replans.append(entry)
         if len(self.replans) > MAX_REPLANS:
@@ -104,7 +105,7 @@ class Ground:
         self.replans_summary = _no_replans()
 
     @staticmethod
-    def add_track(uav: dict, point: list) -> None:
+    def add_track(uav: dict[str, Any], point: list[int]) -> None:
         uav["track"].append(point)
         if len(uav["track"]) > MAX_TRACK:
             del uav["track"][0]
@@ -135,7 +136,7 @@ class Ground:
             del self.uavs[uid]
         self.forgotten["uavs"] += excess
 
-    def _log(self, kind: str, text: str, **extra) -> None:
+    def _log(self, kind: str, text: str, **extra: Any) -> None:
         self.log.append({"t": self.now, "kind": kind, "text": text,
                          "wall": round(time.time(), 3), **extra})
         del self.log[:-MAX_LOG]
@@ -177,7 +178,7 @@ class Ground:
             return
         self._changed()
 
-    def _on_fleet(self, f) -> None:
+    def _on_fleet(self, f: wire.Message) -> None:
         if not 0 <= f.uav_count <= len(f.uavs):
             raise ValueError(f"uav_count {f.uav_count}")
         self.uavs = {}
@@ -187,7 +188,7 @@ class Ground:
                                "lost": False, "track": [[self.now, u.x, u.y]]}
         self._log("fleet", f"fleet revision {f.revision}: {f.uav_count} UAVs")
 
-    def _on_mission(self, m) -> None:
+    def _on_mission(self, m: wire.Message) -> None:
         if not 0 <= m.target_count <= len(m.targets):
             raise ValueError(f"target_count {m.target_count}")
         self.mission = {"revision": m.revision, "depot": [m.depot_x, m.depot_y],
@@ -206,14 +207,14 @@ class Ground:
                                f"mission's: {link}")
         self.frame = link if link is not None else self.given_frame
 
-    def _put_target(self, g) -> None:
+    def _put_target(self, g: wire.Message) -> None:
         old = self.targets.get(g.id, {})
         self.targets[g.id] = {"id": g.id, "x": g.x, "y": g.y, "start": g.start_ticks,
                               "end": g.end_ticks, "need": g.need,
                               "state": old.get("state", "waiting"),
                               "planned": old.get("planned", []), "visits": old.get("visits", [])}
 
-    def _plan_doc(self, p) -> dict:
+    def _plan_doc(self, p: wire.Message) -> dict[str, Any]:
         status = {1: "complete", 2: "partial", 3: "rejected", 4: "failed", 5: "too_large"}.get(
             p.status, str(p.status))
         doc = {"plan_id": p.plan_id, "status": status, "solve_us": p.solve_us,
@@ -225,7 +226,7 @@ class Ground:
             doc["uncovered"] = d["uncovered"]
         return doc
 
-    def _set_plan(self, doc: dict) -> None:
+    def _set_plan(self, doc: dict[str, Any]) -> None:
         self.plan = doc
         for r in doc["routes"]:
             for tid in r["targets"]:
@@ -233,7 +234,7 @@ class Ground:
                 if tg is not None and tg["state"] == "waiting":
                     tg["planned"] = sorted(set(tg["planned"]) | {r["uav"]})
 
-    def _on_plan(self, p) -> None:
+    def _on_plan(self, p: wire.Message) -> None:
         doc = self._plan_doc(p)
         self.node["plans"] += 1
         self.node["last_solve_us"] = p.solve_us
@@ -244,7 +245,7 @@ class Ground:
         self._log("plan", f"plan {p.plan_id} ({doc['algorithm']}, {doc['status']}): covers "
                           f"{p.covered}, cost {p.cost}, solved in {p.solve_us} µs")
 
-    def _on_event(self, e) -> None:
+    def _on_event(self, e: wire.Message) -> None:
         if e.version != self.types_version("event_t"):
             raise wire.InputError(f"event_t.version is {e.version}, this view speaks version "
                                   f"{self.types_version('event_t')}")
@@ -262,9 +263,10 @@ class Ground:
 
     @staticmethod
     def types_version(name: str) -> int:
-        return getattr(wire.types(), name).VERSION
+        version: int = getattr(wire.types(), name).VERSION
+        return version
 
-    def _on_replan(self, r) -> None:
+    def _on_replan(self, r: wire.Message) -> None:
         doc = wire.replan_document(r, "mission")  # InputError on another version
         ev = self.events_seen.get(r.event_seq)
         self.node["replans_answered"] += 1
@@ -329,7 +331,7 @@ class Ground:
                             f"{doc['changes']['dropped']} dropped, {doc['changes']['added']} "
                             f"added, solved in {r.plan.solve_us} µs")
 
-    def _apply_event(self, ev: dict) -> None:
+    def _apply_event(self, ev: dict[str, Any]) -> None:
         kind = ev["type"]
         if kind == "uav_lost":
             c = self.uavs.get(ev["uav"])
@@ -353,7 +355,7 @@ class Ground:
                                      "planned": []}
             self._bound_targets()
 
-    def _on_status(self, s) -> None:
+    def _on_status(self, s: wire.Message) -> None:
         self.node["status"] = {
             "seq": s.seq, "state": "ready" if s.state == 1 else "waiting",
             "algorithm": wire.ALGORITHMS[s.algorithm] if 0 <= s.algorithm < 5 else "?",
@@ -365,7 +367,7 @@ class Ground:
 
     # --- the picture ------------------------------------------------------------------
 
-    def snapshot(self) -> dict:
+    def snapshot(self) -> dict[str, Any]:
         return {"version": self.version, "source": self.source, "prefix": self.prefix,
                 "frame": self.frame, "mission": self.mission, "now": self.now, "end": self.end,
                 "uavs": sorted(self.uavs.values(), key=lambda u: u["id"]),
@@ -377,14 +379,14 @@ class Ground:
                 "node": self.node, "warnings": self.warnings, "counts": self.counts}
 
 
-def _no_replans() -> dict:
+def _no_replans() -> dict[str, Any]:
     return {"count": 0, "accepted": 0, "refused": 0, "kept": 0, "first_now": None,
             "last_now": None}
 
 
 # --- a simulator flight log, tick by tick -----------------------------------------------
 
-def flight_at(g: Ground, log: dict, t: int) -> None:
+def flight_at(g: Ground, log: dict[str, Any], t: int) -> None:
     """Sets g to the flight log's picture at tick t (the log is the ground truth: tracks,
     visits, outcomes; the replans up to t)."""
     mission = log["scenario"]["mission"]

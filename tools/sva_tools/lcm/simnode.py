@@ -31,7 +31,7 @@ import signal
 import subprocess
 import tempfile
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -73,14 +73,14 @@ def percentile(values: Sequence[float], q: float) -> float | None:
     return s[int(k) - 1]
 
 
-def flight_messages(events: list[dict]) -> int:
+def flight_messages(events: list[dict[str, Any]]) -> int:
     """The messages a flight sends the node: the fleet and mission (one answer, the
     plan), then one event_t per event, and a clock event_t at tick 0 when no event is
     at tick 0 (sim.Flight replans at tick 0 and at every tick with events)."""
     return 1 + len(events) + (0 if any(e.get("at") == 0 for e in events) else 1)
 
 
-def kill_plan(events: list[dict], kills: int, seed: int) -> list[tuple[int, float]]:
+def kill_plan(events: list[dict[str, Any]], kills: int, seed: int) -> list[tuple[int, float]]:
     """`kills` seeded moments to kill the node: (after_message, delay in seconds), the
     message drawn from 1 .. messages - 1 (after the plan, before the last event; the same
     message may come twice: a node killed again right after it resumed), sorted."""
@@ -99,26 +99,26 @@ class NodePlanner:
 
     def __init__(self, algo: str, penalty: int | None, url: str = DEFAULT_URL,
                  prefix: str = DEFAULT_PREFIX, attach: bool = False, timeout: float = 10.0,
-                 kills: list[tuple[int, float]] | None = None, takeoff: int = 0):
+                 kills: list[tuple[int, float]] | None = None, takeoff: int = 0) -> None:
         import lcm  # the venv's lcm==1.5.3
 
         self.algo, self.penalty = algo, penalty or 0
         self.takeoff = takeoff  # the mission's takeoff_ticks: a node option (not on the wire)
         self.url, self.prefix, self.attach, self.timeout = url, prefix, attach, timeout
-        self.proc: subprocess.Popen | None = None
+        self.proc: subprocess.Popen[str] | None = None
         self.kill_at = list(kills or [])
         if self.kill_at and attach:
             raise NodeError("--kill-node: the node must be the run's own (not --attach)", 2)
         self.state_dir = tempfile.mkdtemp(prefix="sva-sim-state-") if self.kill_at else None
-        self.kills: list[dict] = []
+        self.kills: list[dict[str, Any]] = []
         self.answered = 0    # messages answered (the plan, then each replan)
         self.last: tuple[int, int, int] = (-1, 0, 0)  # plan id, revision, now of the last answer
         self.t = wire.types()
         self.lc = lcm.LCM(url)
-        self.subs: list = []
-        self.statuses: list = []
-        self.plans: list = []
-        self.replans: dict = {}
+        self.subs: list[Any] = []      # lcm.LCMSubscription (the lcm package has no hints)
+        self.statuses: list[wire.Message] = []
+        self.plans: list[tuple[int, wire.Message]] = []    # (arrival, plan_t)
+        self.replans: dict[int, tuple[int, wire.Message]] = {}  # event seq: (arrival, replan_t)
         self.rev = time.time_ns() // 1000
         self.seq0 = (self.rev % 10**12) * 10**6  # this run's event seqs: seq0, seq0 + 1, ...
         self.sent = 0        # history events published
@@ -128,8 +128,9 @@ class NodePlanner:
         esc = prefix.replace("\\", "\\\\")
         t = self.t
 
-        def keep(store, decode):
-            def on(channel, data):
+        def keep(store: Callable[[wire.Message], object],
+                 decode: Callable[[bytes], wire.Message]) -> Callable[[str, bytes], None]:
+            def on(channel: str, data: bytes) -> None:
                 try:
                     store(decode(data))
                 except (ValueError, IndexError):
@@ -159,15 +160,15 @@ class NodePlanner:
             raise NodeError(f"--algo {algo}: the node plans with {shown} (start sva_node "
                             f"--algorithm {algo})", 2)
 
-    def _on_plan(self, p) -> None:
+    def _on_plan(self, p: wire.Message) -> None:
         if p.fleet_revision == self.rev and p.mission_revision == self.rev:
             self.plans.append((time.perf_counter_ns(), p))
 
-    def _on_replan(self, r) -> None:
+    def _on_replan(self, r: wire.Message) -> None:
         if self.seq0 <= r.event_seq < self.seq0 + 10**6:
             self.replans[r.event_seq] = (time.perf_counter_ns(), r)
 
-    def _wait(self, cond, timeout: float) -> bool:
+    def _wait(self, cond: Callable[[], object], timeout: float) -> bool:
         end = time.monotonic() + timeout
         while not cond():
             left = end - time.monotonic()
@@ -251,7 +252,7 @@ class NodePlanner:
             self.lc.unsubscribe(sub)
         self.subs = []
 
-    def _start(self, mission_doc: dict) -> dict:
+    def _start(self, mission_doc: dict[str, Any]) -> dict[str, Any]:
         try:
             self.name, fleet, mission = wire.mission_messages(mission_doc, self.rev, self.rev)
         except wire.InputError as e:
@@ -272,7 +273,8 @@ class NodePlanner:
         return {"channel": "PLAN", "plan_id": p.plan_id, "solve_us": p.solve_us,
                 "round_trip_us": rt}
 
-    def _send(self, event: dict, now: int, is_event: bool) -> tuple[dict, Any]:
+    def _send(self, event: dict[str, Any], now: int,
+              is_event: bool) -> tuple[dict[str, Any], tuple[dict[str, Any], wire.Message]]:
         seq = self.seq0 + self.messages
         self.messages += 1
         where = f"events[{self.sent}]." if is_event else "clock."
@@ -300,13 +302,14 @@ class NodePlanner:
                 "plan_id": r.plan.plan_id if doc["accepted"] else None, "round_trip_us": rt}
         return info, (doc, r)
 
-    def __call__(self, mission_doc: dict, history: list[dict], now: int, algo: str):
+    def __call__(self, mission_doc: dict[str, Any], history: list[dict[str, Any]], now: int,
+                 algo: str) -> tuple[dict[str, Any], dict[str, Any]]:
         messages = []
         if not self.plans:
             messages.append(self._start(mission_doc))
         new = history[self.sent:]
         todo = new if new else [{"at": now, "type": "clock"}]
-        last: tuple[dict, Any] | None = None
+        last: tuple[dict[str, Any], wire.Message] | None = None
         for e in todo:
             info, (doc, r) = self._send(e, now, bool(new))
             messages.append(info)
@@ -335,7 +338,7 @@ class NodePlanner:
         out["node"] = {"plan_id": r.plan.plan_id, "messages": messages}
         return out, doc["residual"]
 
-    def summary(self) -> dict:
+    def summary(self) -> dict[str, Any]:
         rts = self.round_trips
         return {"url": self.url, "prefix": self.prefix, "algorithm": self.algo,
                 "change_penalty": self.penalty, "attached": self.attach,
@@ -344,7 +347,7 @@ class NodePlanner:
                                   "max": max(rts) if rts else None}}
 
 
-def comparable_flight(log: dict) -> dict:
+def comparable_flight(log: dict[str, Any]) -> dict[str, Any]:
     """What a flight through the node must share with another flight of the same
     scenario to count as the same flight (e.g. one whose node was killed and resumed):
     the ground truth (tracks, visits, outcomes, summary) and every replan (residual

@@ -19,6 +19,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+from types import ModuleType
 from typing import Any
 
 REPO = Path(__file__).resolve().parents[3]
@@ -32,7 +33,11 @@ ALGORITHMS = ["sva", "ga", "hga", "bfa", "flow"]  # sva_algorithm_t order
 REJECT_REASONS = ["truncated", "trailing", "fingerprint", "count", "value", "invalid",
                   "planner", "too_large", "version"]  # sva_lcm_reject_t order
 
-_types: Any = None
+_types: ModuleType | None = None
+
+# An instance of a class lcm-gen writes (frame_t, plan_t, ...): generated at build time,
+# without type hints, its fields set in its constructor, so Any at this boundary.
+Message = Any
 
 
 class InputError(ValueError):
@@ -50,7 +55,7 @@ def lcm_tool(name: str) -> str:
     return found
 
 
-def types():
+def types() -> ModuleType:
     """The generated `sva_lcm` Python package (see the module docstring)."""
     global _types
     if _types is not None:
@@ -75,7 +80,7 @@ def types():
 
 # --- mission JSON -> messages ---------------------------------------------------------
 
-def _int(obj: dict, key: str, path: str, default: int | None = None) -> int:
+def _int(obj: dict[str, Any], key: str, path: str, default: int | None = None) -> int:
     if key not in obj:
         if default is None:
             raise InputError(f"{path}{key}: missing key")
@@ -88,7 +93,7 @@ def _int(obj: dict, key: str, path: str, default: int | None = None) -> int:
     return v
 
 
-def _keys(obj: Any, allowed: set, path: str) -> None:
+def _keys(obj: Any, allowed: set[str], path: str) -> None:
     if not isinstance(obj, dict):
         raise InputError(f"{path or 'mission'}: must be an object")
     extra = sorted(set(obj) - allowed)
@@ -98,7 +103,7 @@ def _keys(obj: Any, allowed: set, path: str) -> None:
 
 # --- the mission frame (docs/flight-stack.md; sva_tools.frame, port/frame) ---------------
 
-def frame_message(doc: Any):
+def frame_message(doc: Any) -> Message:
     """frame_t from a mission's `frame` object, or an absent one (present 0) for None.
     Checked and rounded by the frame's contract (the mission schema's `frame`, t0's
     rules beyond it, sva_tools.frame's rounding), in the words of `sva validate` and
@@ -127,7 +132,7 @@ def frame_message(doc: Any):
     return w
 
 
-def frame_document(w) -> dict | None:
+def frame_document(w: Message) -> dict[str, Any] | None:
     """A mission's `frame` object from a frame_t (None when present is 0); numbers at
     the wire's resolution, t0 as sva_frame_format_utc writes it."""
     if not w.present:
@@ -142,7 +147,8 @@ def frame_document(w) -> dict | None:
 NODE_OPTION_KEYS = ("change_penalty", "takeoff_ticks")
 
 
-def mission_messages(doc: Any, fleet_revision: int, mission_revision: int):
+def mission_messages(doc: Any, fleet_revision: int,
+                     mission_revision: int) -> tuple[str, Message, Message]:
     """(name, fleet_state_t, mission_t) from a SPEC section 3 mission document.
 
     Checks the file's shape (keys, types, list lengths against the wire arrays);
@@ -204,7 +210,7 @@ def mission_messages(doc: Any, fleet_revision: int, mission_revision: int):
 
 # --- plan message -> JSON ----------------------------------------------------------------
 
-def diag_text(plan) -> str:
+def diag_text(plan: Message) -> str:
     """A plan with STATUS_REJECTED/FAILED described as sva_diag_format would."""
     f = FIELD_NAMES[plan.diag_field] if 0 <= plan.diag_field < len(FIELD_NAMES) else "?"
     if "." in f and plan.diag_index >= 0:
@@ -220,7 +226,7 @@ def diag_text(plan) -> str:
     return f"{f or 'mission'}: {text}"
 
 
-def plan_document(plan, mission_name: str) -> dict:
+def plan_document(plan: Message, mission_name: str) -> dict[str, Any]:
     """SPEC section 3 plan JSON from a plan_t with STATUS_COMPLETE or STATUS_PARTIAL.
     A plan_t of another version is refused (InputError naming both versions)."""
     check_version(plan, "plan_t")
@@ -262,7 +268,7 @@ _EVENT_KEYS = {"clock": set(), "uav_lost": {"uav"}, "uav_back": {"uav", "x", "y"
                "position": {"uav", "x", "y", "fuel"}}
 
 
-def event_message(doc: Any, seq: int, path: str = "event."):
+def event_message(doc: Any, seq: int, path: str = "event.") -> Message:
     """event_t from a SPEC section 12.5 event object (shape checked here; whether it may
     be applied is the node's to judge)."""
     t = types()
@@ -296,7 +302,7 @@ def event_message(doc: Any, seq: int, path: str = "event."):
     return e
 
 
-def mission_document(fleet, mission, name: str) -> dict:
+def mission_document(fleet: Message, mission: Message, name: str) -> dict[str, Any]:
     """SPEC section 3 mission JSON from a fleet_state_t and a mission_t (with its frame,
     when it has one)."""
     doc = {
@@ -316,14 +322,14 @@ def mission_document(fleet, mission, name: str) -> dict:
     return doc
 
 
-def check_version(msg, type_name: str) -> None:
+def check_version(msg: Message, type_name: str) -> None:
     """Refuses a message whose version is not its type's VERSION (InputError naming both)."""
     want = getattr(types(), type_name).VERSION
     if msg.version != want:
         raise InputError(f"{type_name}.version is {msg.version}, this tool speaks version {want}")
 
 
-def replan_document(replan, mission_name: str) -> dict:
+def replan_document(replan: Message, mission_name: str) -> dict[str, Any]:
     """JSON of a replan_t: the event answered, whether it was accepted, the clock and
     revision, the changed visits, and (accepted) the residual mission and the plan over
     it. A replan_t of another version is refused (InputError naming both versions)."""
