@@ -9,7 +9,12 @@ import sys
 import time
 import uuid
 from pathlib import Path
-from typing import Any, Callable
+from typing import TYPE_CHECKING, Any, Callable
+
+if TYPE_CHECKING:
+    from distributed import Client
+
+    from .store import Store
 
 # The Dask, Parquet and schema modules are imported when a campaign runs, not when the
 # `sva-tools` parser is built for another subcommand.
@@ -30,18 +35,18 @@ class _Cluster:
     """The Dask client, connected (and the LocalCluster started) only when a task is to
     be submitted: a campaign whose results are all stored starts no cluster."""
 
-    def __init__(self, scheduler: str | None, workers: int | None, client=None):
+    def __init__(self, scheduler: str | None, workers: int | None, client: Client | None = None) -> None:
         self.scheduler, self.workers = scheduler, workers
-        self.client: Any = client
+        self.client: Any = client  # a distributed.Client: few of its methods have type hints
         self.cluster: Any = None  # the LocalCluster this run starts, if any
         self.own = client is None
 
-    def get(self):
+    def get(self) -> Any:
         if self.client is None:
             from distributed import Client, LocalCluster
             if self.scheduler:
                 try:
-                    self.client = Client(self.scheduler, timeout="30s")
+                    self.client = Client(self.scheduler, timeout="30s")  # type: ignore[no-untyped-call]  # distributed: no hints
                 except (OSError, TimeoutError) as e:
                     raise CampaignError(f"--scheduler {self.scheduler}: cannot connect within 30 s "
                                         f"({type(e).__name__}: {e})") from None
@@ -49,10 +54,10 @@ class _Cluster:
                 n = self.workers or min(2, os.cpu_count() or 1)
                 # On loopback; no dashboard, and the scheduler's HTTP server (health
                 # checks) on a free port rather than 8787, which may be taken.
-                self.cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                            host="127.0.0.1", dashboard_address=None,
-                                            scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
-                self.client = Client(self.cluster)
+                self.cluster = LocalCluster(  # type: ignore[no-untyped-call]  # distributed: no hints
+                    n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1",
+                    dashboard_address=None, scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
+                self.client = Client(self.cluster)  # type: ignore[no-untyped-call]  # distributed: no hints
         return self.client
 
     def n_workers(self) -> int:
@@ -65,8 +70,8 @@ class _Cluster:
                 self.cluster.close()
 
 
-def _execute(cl: _Cluster, tasks: list[dict], store, stored: set, stats: dict, progress: bool,
-             label: str, compute: bool = True) -> None:
+def _execute(cl: _Cluster, tasks: list[dict[str, Any]], store: Store, stored: set[str], stats: dict[str, Any],
+             progress: bool, label: str, compute: bool = True) -> None:
     from distributed import as_completed
 
     from .tasks import run_task
@@ -88,7 +93,7 @@ def _execute(cl: _Cluster, tasks: list[dict], store, stored: set, stats: dict, p
         from tqdm import tqdm
         bar = tqdm(total=len(futures), desc=label, unit="task", file=sys.stderr, dynamic_ncols=True)
     try:
-        for fut in as_completed(futures):
+        for fut in as_completed(futures):  # type: ignore[no-untyped-call]  # distributed: no hints
             try:
                 row = fut.result()
             except Exception as e:  # noqa: BLE001 - a worker's refusal or a lost task: not stored
@@ -107,10 +112,10 @@ def _execute(cl: _Cluster, tasks: list[dict], store, stored: set, stats: dict, p
             bar.close()
 
 
-def run(spec: dict, out: str, scheduler: str | None = None, workers: int | None = None,
-        progress: bool = True, client=None, flush_rows: int = 64,
+def run(spec: dict[str, Any], out: str, scheduler: str | None = None, workers: int | None = None,
+        progress: bool = True, client: Client | None = None, flush_rows: int = 64,
         columns: list[str] | None = None, repair: bool = False,
-        on_damaged: Callable[[Path, str], None] | None = None) -> dict:
+        on_damaged: Callable[[Path, str], None] | None = None) -> dict[str, Any]:
     """Runs the campaign; returns {"run", "tasks", "stored", "computed", "failed", "wall_s",
     "compute_s" (first submission to last result, cluster start excluded), "workers",
     "held" (tasks not computed because of damaged parts), "set_aside" ((from, to) of the
@@ -129,8 +134,8 @@ def run(spec: dict, out: str, scheduler: str | None = None, workers: int | None 
     first = first_tasks(spec, run_id)
     store = Store(out, run_id, flush_rows=flush_rows, on_damaged=on_damaged)
     stored = store.keys()
-    stats: dict = {"run": run_id, "tasks": 0, "stored": 0, "computed": 0, "failed": [], "workers": 0,
-                   "compute_s": 0.0, "held": 0, "set_aside": []}
+    stats: dict[str, Any] = {"run": run_id, "tasks": 0, "stored": 0, "computed": 0, "failed": [], "workers": 0,
+                             "compute_s": 0.0, "held": 0, "set_aside": []}
     if repair and store.damaged:
         stats["set_aside"] = store.set_aside()
     compute = not store.damaged

@@ -10,12 +10,19 @@ import json
 import math
 import os
 import statistics
+from typing import TYPE_CHECKING, Any, cast
 
 from .spec import missions, set_label
 from .tasks import mission_hash, residual_for_ref
 
+if TYPE_CHECKING:
+    import pyarrow as pa  # no type hints: its names are Any to mypy
+    from matplotlib.figure import Figure
 
-def percentile(values: list[float], p: float):
+    from .store import Store
+
+
+def percentile(values: list[float], p: float) -> float | None:
     """Nearest-rank percentile (None for no values)."""
     if not values:
         return None
@@ -32,16 +39,16 @@ STORED = ("key", "task", "tool", "targets", "uavs", "penalty", "mission_hash", "
           "cost", "optimal", "solve_us", "wall_s", "error")
 
 
-def stored_columns(spec: dict) -> list[str]:
+def stored_columns(spec: dict[str, Any]) -> list[str]:
     """The columns of the store that metrics() reads."""
     return list(STORED) + (["replan_us", "result"] if spec["kind"] == "live" else [])
 
 
-def _gap(cost, ref_cost):
+def _gap(cost: float, ref_cost: float) -> float | None:
     return 100.0 * (cost - ref_cost) / ref_cost if ref_cost else None
 
 
-def _this_run(table, tasks: list[dict]):
+def _this_run(table: pa.Table, tasks: list[dict[str, Any]]) -> tuple[pa.Table, pa.Table]:
     """One row per task of this run whose key is stored: the stored figures under this
     run's set label, seed and index; and the stored ref results of this run's tasks
     without an error. A stored row is keyed by content, so its own set
@@ -68,13 +75,13 @@ def _this_run(table, tasks: list[dict]):
     return t.take(order), refs.filter(pc.is_in(refs["key"], value_set=mine["key"]))
 
 
-def _ok(t):
+def _ok(t: pa.Table) -> pa.ChunkedArray:
     """True where a row has no error."""
     import pyarrow.compute as pc
     return pc.invert(pc.fill_null(pc.not_equal(t["error"], ""), False))
 
 
-def metrics(spec: dict, table, tasks: list[dict]):
+def metrics(spec: dict[str, Any], table: pa.Table, tasks: list[dict[str, Any]]) -> pa.Table:
     """A pyarrow table, one record per task of this run with a stored row (table: the
     store's rows, stored_columns() at least; tasks: this run's task list).
     kind plan: one record per planner or ref result with the ref result of the same
@@ -108,14 +115,14 @@ def metrics(spec: dict, table, tasks: list[dict]):
     return pa.table(dict({c: t[c] for c in BASE}, **ref_cols, cover_diff=cover_diff, gap_pct=gap_pct))
 
 
-def _live(t, refs):
+def _live(t: pa.Table, refs: pa.Table) -> pa.Table:
     """kind live: the flights' records (each flight's log is read here, row by row)."""
     import pyarrow as pa
     import pyarrow.compute as pc
     t = t.filter(pc.equal(t["task"], "fly"))
     by_hash = {h: (c, k) for h, c, k in zip(refs["mission_hash"].to_pylist(), refs["covered"].to_pylist(),
                                             refs["cost"].to_pylist())}
-    cols: dict[str, list] = {c: [] for c in ("replans", "judged", "as_many", "gap_mean", "gap_max", "gaps",
+    cols: dict[str, list[Any]] = {c: [] for c in ("replans", "judged", "as_many", "gap_mean", "gap_max", "gaps",
                                              "changes", "later", "p50_us", "p99_us", "replan_us")}
     for result, times in zip(t["result"].to_pylist(), t["replan_us"].to_pylist()):
         log = json.loads(result) if result else {"replans": []}
@@ -129,7 +136,7 @@ def _live(t, refs):
             judged += 1
             as_many += rp["plan"]["covered"] >= q[0]
             if rp["plan"]["covered"] == q[0] and q[1]:
-                gaps.append(_gap(rp["plan"]["cost"], q[1]))
+                gaps.append(cast(float, _gap(rp["plan"]["cost"], q[1])))  # a float: ref's cost is not 0
         times = times or []
         later = [rp for rp in log["replans"] if rp["cause"] != "start"]
         for k, v in (("replans", len(log["replans"])), ("judged", judged), ("as_many", as_many),
@@ -145,7 +152,8 @@ def _live(t, refs):
     return pa.table(out)
 
 
-def build(spec: dict, store, tasks: list[dict]):
+def build(spec: dict[str, Any], store: Store,
+          tasks: list[dict[str, Any]]) -> tuple[pa.Table, list[dict[str, Any]], int]:
     """(metrics(), groups(), how many stored rows the tasks have) from a Store, reading
     only stored_columns()."""
     import pyarrow as pa
@@ -157,7 +165,7 @@ def build(spec: dict, store, tasks: list[dict]):
     return records, groups(spec, records), stored
 
 
-def write_metrics(records, out: str) -> str:
+def write_metrics(records: pa.Table, out: str) -> str:
     import pyarrow.parquet as pq
     path = os.path.join(out, "metrics.parquet")
     if "gaps" in records.column_names:
@@ -168,7 +176,7 @@ def write_metrics(records, out: str) -> str:
     return path
 
 
-def groups(spec: dict, records) -> list[dict]:
+def groups(spec: dict[str, Any], records: pa.Table) -> list[dict[str, Any]]:
     """The summary rows: per set and tool (and change_penalty for live). records: the
     table metrics() returns (sorted by set, tool and penalty, so a group is a run of
     consecutive records); its figures are computed with pyarrow, group by group."""
@@ -190,7 +198,7 @@ def groups(spec: dict, records) -> list[dict]:
         k = tuple(r[c][0].as_py() for c in keys)
         rs = r.filter(_ok(r))
 
-        def total(col, rows=rs):
+        def total(col: str, rows: pa.Table = rs) -> int:
             return pc.sum(rows[col]).as_py() or 0
 
         g = {"set": k[0], "tool": k[1], "penalty": k[2] if live else None, "n": len(r),
@@ -214,7 +222,7 @@ def groups(spec: dict, records) -> list[dict]:
     return [g for *_, g in sorted(out, key=lambda x: x[:3])]
 
 
-def _rank(values: list, p: float):
+def _rank(values: list[Any], p: float) -> Any:
     """percentile() through numpy's sort (the same nearest rank)."""
     if not values:
         return None
@@ -223,19 +231,19 @@ def _rank(values: list, p: float):
     return v[max(1, math.ceil(len(v) * p / 100)) - 1].item()
 
 
-def _pct(a, b):
+def _pct(a: float, b: float) -> str:
     return f"{100.0 * a / b:.1f} %" if b else "–"
 
 
-def _ms(us):
+def _ms(us: float | None) -> str:
     return "–" if us is None else f"{us / 1000:.3f} ms"
 
 
-def _gaps(g):
+def _gaps(g: dict[str, Any]) -> str:
     return "–" if g["gap_mean"] is None else f"mean {g['gap_mean']:.3f} %, largest {g['gap_max']:.2f} %"
 
 
-def table(spec: dict, gs: list[dict]) -> list[list[str]]:
+def table(spec: dict[str, Any], gs: list[dict[str, Any]]) -> list[list[str]]:
     """Header and rows of the summary table (text cells)."""
     if spec["kind"] == "plan":
         rows = [["set", "algorithm", "missions", "covered / targets", "coverage vs ref (equal, below, above)",
@@ -262,7 +270,7 @@ def markdown(rows: list[list[str]]) -> str:
     return "\n".join(lines + ["| " + " | ".join(r) + " |" for r in rows[1:]])
 
 
-def summary(spec: dict, stats: dict, gs: list[dict]) -> str:
+def summary(spec: dict[str, Any], stats: dict[str, Any], gs: list[dict[str, Any]]) -> str:
     """The printed summary: one line of counts and times, and the table of groups()."""
     units = "missions" if spec["kind"] == "plan" else "scenarios"
     n = missions(spec)
@@ -275,13 +283,13 @@ def summary(spec: dict, stats: dict, gs: list[dict]) -> str:
     return head + "\n" + markdown(table(spec, gs))
 
 
-def _png(fig) -> str:
+def _png(fig: Figure) -> str:
     buf = _io.BytesIO()
     fig.savefig(buf, format="png", dpi=90, bbox_inches="tight")
     return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
 
 
-def figures(spec: dict, gs: list[dict]) -> list[tuple]:
+def figures(spec: dict[str, Any], gs: list[dict[str, Any]]) -> list[tuple[str, str]]:
     """(title, data URI) of the coverage, gap and latency plots."""
     import matplotlib
     matplotlib.use("Agg")
@@ -315,7 +323,8 @@ def figures(spec: dict, gs: list[dict]) -> list[tuple]:
     return out
 
 
-def write_html(spec: dict, stats: dict, gs: list[dict], out: str, stored: int) -> str:
+def write_html(spec: dict[str, Any], stats: dict[str, Any], gs: list[dict[str, Any]], out: str,
+               stored: int) -> str:
     """OUT/report.html from groups(); stored: how many stored rows this spec's tasks have."""
     rows = table(spec, gs)
     e = html.escape

@@ -22,13 +22,20 @@ import math
 import os
 import re
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any, Callable, NoReturn, TypeVar, cast
 
 from jsonschema import Draft202012Validator, validators
+from jsonschema.exceptions import ValidationError
 
 from .. import gen
 from ..schema import field_path, json_type
 from . import tasks
+
+if TYPE_CHECKING:
+    from yaml import SafeLoader
+    from yaml.nodes import Node
+
+_T = TypeVar("_T")
 
 SCHEMA = Path(__file__).resolve().parent / "spec.schema.json"
 DEFAULT_REF = {"det_limit": 10.0, "time_limit": 600.0, "max_targets": 40}
@@ -40,9 +47,10 @@ class SpecError(ValueError):
 
 
 @functools.cache
-def schema() -> dict:
+def schema() -> dict[str, Any]:
     with open(SCHEMA, encoding="utf-8") as f:
-        return json.load(f)
+        doc: dict[str, Any] = json.load(f)
+        return doc
 
 
 def limit(name: str) -> int:
@@ -51,13 +59,13 @@ def limit(name: str) -> int:
     return int(schema()[f"x-sva-max-{name}"])
 
 
-def _is_int(_checker, value: Any) -> bool:
+def _is_int(_checker: object, value: Any) -> bool:
     # 5.0 is a real here, as in the mission files (sva_tools.schema): JSON Schema's own
     # "integer" would take it, and gen would then fail on it.
     return isinstance(value, int) and not isinstance(value, bool)
 
 
-_Validator = validators.extend(
+_Validator = validators.extend(  # type: ignore[no-untyped-call]  # extend() has no hints in its stubs
     Draft202012Validator,
     type_checker=Draft202012Validator.TYPE_CHECKER.redefine("integer", _is_int))
 
@@ -74,7 +82,7 @@ def shown_value(v: Any, width: int = 48) -> str:
     return text if len(text) <= width else text[:width] + "..."
 
 
-def _leaf(err):
+def _leaf(err: ValidationError) -> ValidationError:
     """The most telling error of a oneOf/anyOf: one from the branch whose type matched."""
     while err.validator in ("oneOf", "anyOf") and err.context:
         # a type error below the branch's top (ref.det_limit: a string) is the branch's
@@ -85,44 +93,47 @@ def _leaf(err):
     return err
 
 
-def _message(err) -> str:
+def _message(err: ValidationError) -> str:
     top = err
     err = _leaf(err)
     where = field_path("spec", list(err.absolute_path))
-    kw, v, sch = err.validator, err.instance, err.schema if isinstance(err.schema, dict) else {}
+    kw, sch = err.validator, err.schema if isinstance(err.schema, dict) else {}
+    # Set on every error the validator yields (Unset only on an error built by hand).
+    v: Any = err.instance
+    want: Any = err.validator_value
     if kw == "type":
-        want = err.validator_value
         return f"{where}: must be {' or '.join(want) if isinstance(want, list) else want}, got {json_type(v)}"
     if kw in ("oneOf", "anyOf"):
-        kinds = sorted({e.validator_value for e in top.context if e.validator == "type"})
+        types: set[Any] = {e.validator_value for e in top.context if e.validator == "type"}
+        kinds = sorted(types)
         return f"{where}: must be {' or '.join(map(str, kinds))}, got {json_type(v)}"
     if kw == "additionalProperties":
         extra = next(k for k in v if k not in sch.get("properties", {}))
         return f"{where}: unknown key {shown_value(extra)} (known: {', '.join(sch.get('properties', {}))})"
     if kw == "required":
-        missing = next(k for k in err.validator_value if k not in v)
+        missing = next(k for k in want if k not in v)
         return f"{where}: missing key {json.dumps(missing)}"
     if kw in ("minimum", "maximum", "exclusiveMinimum", "exclusiveMaximum"):
         op = {"minimum": ">=", "maximum": "<=", "exclusiveMinimum": ">", "exclusiveMaximum": "<"}[kw]
         name = sch.get(f"x-sva-{kw}-name")
-        limit = f"{err.validator_value} ({name})" if name else str(err.validator_value)
+        limit = f"{want} ({name})" if name else str(want)
         return f"{where}: must be {op} {limit}, got {shown_value(v)}"
     if kw == "enum":
-        return f"{where}: must be one of {', '.join(json.dumps(x) for x in err.validator_value)}, got {shown_value(v)}"
+        return f"{where}: must be one of {', '.join(json.dumps(x) for x in want)}, got {shown_value(v)}"
     if kw in ("minItems", "maxItems"):
         word = "at least" if kw == "minItems" else "at most"
-        return f"{where}: must have {word} {err.validator_value} entries, got {len(v)}"
+        return f"{where}: must have {word} {want} entries, got {len(v)}"
     if kw == "uniqueItems":
         return f"{where}: entries must be unique, got {shown_value(v)}"
     if kw == "pattern":
-        rule = sch.get("x-sva-pattern-rule") or f"must match {err.validator_value}"
+        rule = sch.get("x-sva-pattern-rule") or f"must match {want}"
         return f"{where}: {rule}, got {shown_value(v)}"
     return f"{where}: {err.message}"
 
 
-def _first_not_finite(doc: Any) -> tuple | None:
+def _first_not_finite(doc: Any) -> tuple[tuple[Any, ...], Any] | None:
     """(path, value) of the first NaN or infinity in document order, else None."""
-    todo: list[tuple] = [((), doc)]
+    todo: list[tuple[tuple[Any, ...], Any]] = [((), doc)]
     while todo:
         parts, v = todo.pop()
         if isinstance(v, float) and not math.isfinite(v):
@@ -140,7 +151,7 @@ _NAME = re.compile(r"(?!\.)[A-Za-z0-9_.-]{1,64}")
 _LABEL = re.compile(r"[A-Za-z0-9_.-]{1,32}")
 
 
-def _totals(spec: dict) -> None:
+def _totals(spec: dict[str, Any]) -> None:
     """The spec's totals: missions or scenarios, and targets the client generates (it
     holds every mission of its task list), within the schema's limits."""
     n = missions(spec)
@@ -161,7 +172,7 @@ def _totals(spec: dict) -> None:
                                 f"({need}) free cells, got {cells}")
 
 
-def validate(doc: Any) -> dict:
+def validate(doc: Any) -> dict[str, Any]:
     """The spec with defaults filled in; raises SpecError with the first error."""
     bad = _first_not_finite(doc)
     if bad is not None:
@@ -175,7 +186,7 @@ def validate(doc: Any) -> dict:
     for i, s in enumerate(doc["sets"]):
         if "label" in s and not _LABEL.fullmatch(s["label"]):
             raise SpecError(f"sets[{i}].label: must match ^[A-Za-z0-9_.-]{{1,32}}$, got {shown_value(s['label'])}")
-    spec = json.loads(json.dumps(doc))
+    spec: dict[str, Any] = json.loads(json.dumps(doc))
     if spec["kind"] == "plan" and "penalties" in spec:
         raise SpecError("penalties: only for kind \"live\" (a live scenario's change_penalty), got kind \"plan\"")
     for i, s in enumerate(spec["sets"]):
@@ -208,7 +219,9 @@ class _Refused(Exception):
     """A breach the loader finds: (path parts, rule, what it got)."""
 
 
-def _mark(mark) -> str:
+def _mark(mark: Any) -> str:
+    # a PyYAML Mark, of the Python or the C loader; the stubs allow None where the
+    # composer always sets one
     return f"line {mark.line + 1}, column {mark.column + 1}"
 
 
@@ -218,7 +231,7 @@ _SCALAR_TAGS = {f"tag:yaml.org,2002:{t}" for t in ("str", "int", "float", "bool"
 _COLLECTION_TAGS = {"tag:yaml.org,2002:seq", "tag:yaml.org,2002:map"}
 
 
-def _loader_class():
+def _loader_class() -> type[SafeLoader]:
     import yaml
     from yaml.events import AliasEvent, CollectionStartEvent
     from yaml.nodes import ScalarNode
@@ -238,11 +251,12 @@ def _loader_class():
             self.nodes = 0
             self.keys: dict[int, dict[str, Any]] = {}
 
-        def refuse(self, rule: str, got: str, parts=None):
+        def refuse(self, rule: str, got: str, parts: list[Any] | None = None) -> NoReturn:
             raise _Refused(list(self.where) if parts is None else parts, rule, got)
 
-        def compose_node(self, parent, index):
-            event = self.peek_event()
+        # index: a sequence item's position, a mapping value's key node, None for a key
+        def compose_node(self, parent: Node | None, index: Any) -> Node:
+            event = self.peek_event()  # type: ignore[no-untyped-call]  # Parser.peek_event has no hints in its stubs
             is_key = parent is not None and index is None
             pushed = parent is not None and not is_key
             if pushed:
@@ -260,7 +274,8 @@ def _loader_class():
                 if self.depth > limit("depth"):
                     self.refuse(f"must be nested at most {limit('depth')} deep (x-sva-max-depth)",
                                 f"deeper at {_mark(event.start_mark)}")
-            node = super().compose_node(parent, index)
+            # PyYAML's composer returns a node here; its stubs say Node | None
+            node = cast("Node", super().compose_node(parent, index))
             if isinstance(event, CollectionStartEvent):
                 self.depth -= 1
                 self.keys.pop(id(node), None)
@@ -269,7 +284,7 @@ def _loader_class():
                 self.where.pop()
             return node
 
-        def check(self, node, parent, is_key: bool) -> None:
+        def check(self, node: Node, parent: Node | None, is_key: bool) -> None:
             if node.tag == "tag:yaml.org,2002:merge":
                 self.refuse("YAML merge keys are not allowed", f"<< at {_mark(node.start_mark)}")
             if isinstance(node, ScalarNode):
@@ -317,7 +332,7 @@ def parse(data: bytes, size: int | None = None) -> Any:
         column = e.start - (data.rfind(b"\n", 0, e.start) + 1) + 1
         raise SpecError(f"spec: must be UTF-8 text, got byte 0x{data[e.start]:02x} at line {line}, column {column}") \
             from None
-    loader = None
+    loader: SafeLoader | None = None
     try:
         loader = _loader_class()(text)  # the reader refuses unprintable characters here
         node = loader.get_single_node()
@@ -342,7 +357,7 @@ def parse(data: bytes, size: int | None = None) -> Any:
     return doc
 
 
-def load(path: str) -> dict:
+def load(path: str) -> dict[str, Any]:
     try:
         with open(path, "rb") as f:
             data = f.read(limit("bytes") + 1)  # never more: a pipe or a device has no size
@@ -355,13 +370,13 @@ def load(path: str) -> dict:
     return validate(doc)
 
 
-def _range(v, default):
+def _range(v: Any, default: tuple[int, int]) -> tuple[int, int]:
     if v is None:
         return default
     return (v, v) if isinstance(v, int) else (v[0], v[1])
 
 
-def gen_kwargs(s: dict) -> dict:
+def gen_kwargs(s: dict[str, Any]) -> dict[str, Any]:
     kw = {"width": _range(s.get("width"), (20, 40)), "need": _range(s.get("need"), (2, 2))}
     for k in ("ratio", "max_coord", "fuel", "hover", "ticks_per_cell", "overlap_percent"):
         if k in s:
@@ -369,22 +384,23 @@ def gen_kwargs(s: dict) -> dict:
     return kw
 
 
-def missions(spec: dict) -> int:
+def missions(spec: dict[str, Any]) -> int:
     """Missions (kind plan) or scenarios (kind live) the spec names."""
-    return sum(s.get("count", spec["count"]) for s in spec["sets"]) * spec["seeds"]["count"]
+    n: int = sum(s.get("count", spec["count"]) for s in spec["sets"]) * spec["seeds"]["count"]
+    return n
 
 
-def set_label(s: dict) -> str:
+def set_label(s: dict[str, Any]) -> str:
     return s.get("label") or f"{s['targets']}x{s['uavs']}"
 
 
-def _base(spec: dict, run: str, s: dict, seed: int, index: int) -> dict:
+def _base(spec: dict[str, Any], run: str, s: dict[str, Any], seed: int, index: int) -> dict[str, Any]:
     return {"campaign": spec["name"], "run": run, "set": set_label(s), "targets": s["targets"],
             "uavs": s["uavs"], "seed": seed, "index": index, "penalty": None}
 
 
-def _task(base: dict, task: str, tool: str, mission_doc: dict, settings: dict,
-          penalty: int | None = None, coverable: int | None = None) -> dict:
+def _task(base: dict[str, Any], task: str, tool: str, mission_doc: dict[str, Any], settings: dict[str, Any],
+          penalty: int | None = None, coverable: int | None = None) -> dict[str, Any]:
     version = tasks.tool_version(task)
     mh = tasks.mission_hash(mission_doc)
     key_settings = dict(settings, penalty=penalty) if task == "fly" else settings
@@ -397,15 +413,15 @@ def _task(base: dict, task: str, tool: str, mission_doc: dict, settings: dict,
     return t
 
 
-def plan_settings(spec: dict) -> dict:
+def plan_settings(spec: dict[str, Any]) -> dict[str, Any]:
     return {k: spec[k] for k in ("flow_work", "repeat") if k in spec}
 
 
-def ref_settings(spec: dict) -> dict:
+def ref_settings(spec: dict[str, Any]) -> dict[str, Any]:
     return {"det_limit": float(spec["ref"]["det_limit"]), "time_limit": float(spec["ref"]["time_limit"])}
 
 
-def _generated(n: int, seed: int, index: int, make):
+def _generated(n: int, seed: int, index: int, make: Callable[[], _T]) -> _T:
     """make()'s mission; SpecError when gen cannot make one from the set's settings (a
     grid too small for a live scenario's new cells, a ratio it cannot hit)."""
     from .. import io
@@ -416,11 +432,11 @@ def _generated(n: int, seed: int, index: int, make):
                         f"mission {index}: {e}") from None
 
 
-def first_tasks(spec: dict, run: str) -> list[dict]:
+def first_tasks(spec: dict[str, Any], run: str) -> list[dict[str, Any]]:
     """Every task the spec names before any result is known: for kind plan, each
     mission's planner and ref tasks; for kind live, each scenario's flights (their
     replans' ref tasks follow from the flight logs: ref_tasks)."""
-    out = []
+    out: list[dict[str, Any]] = []
     seeds = range(spec["seeds"]["first"], spec["seeds"]["first"] + spec["seeds"]["count"])
     for n, s in enumerate(spec["sets"]):
         kw = gen_kwargs(s)
@@ -446,13 +462,15 @@ def first_tasks(spec: dict, run: str) -> list[dict]:
     return out
 
 
-def ref_tasks(spec: dict, run: str, flights: list[dict], logs: dict[str, dict]) -> list[dict]:
+def ref_tasks(spec: dict[str, Any], run: str, flights: list[dict[str, Any]],
+              logs: dict[str, dict[str, Any]]) -> list[dict[str, Any]]:
     """ref on the residual missions (with a target) of the replans of each set's first
     ref_count scenarios (default: all) per seed, once per distinct residual mission."""
     if not spec["ref"]:
         return []
     by_set = {set_label(s): s for s in spec["sets"]}
-    out, seen = [], set()
+    out: list[dict[str, Any]] = []
+    seen: set[str] = set()
     for f in flights:
         s = by_set[f["set"]]
         if f["index"] >= s.get("ref_count", s.get("count", spec["count"])) or f["key"] not in logs:

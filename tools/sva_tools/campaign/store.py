@@ -19,7 +19,7 @@ import time
 from collections.abc import Iterable
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
-from typing import Callable
+from typing import Any, Callable
 
 import numpy as np
 import pyarrow as pa
@@ -84,13 +84,13 @@ class Store:
         self.dir.mkdir(parents=True, exist_ok=True)
         self.run = run
         self.flush_rows, self.flush_s = flush_rows, flush_s
-        self.pending: list[dict] = []
+        self.pending: list[dict[str, Any]] = []
         self.seq = 0
         self.last = time.monotonic()
         self.written = 0
         self.damaged: dict[Path, str] = {}  # part file -> reason, in the order found
         self.on_damaged = on_damaged
-        self.schema_ok: set = set()  # part files whose schema was checked (a fifth of a read's cost)
+        self.schema_ok: set[Path] = set()  # part files whose schema was checked (a fifth of a read's cost)
 
     def files(self) -> list[Path]:
         """The part files, damaged ones included, in name order."""
@@ -101,7 +101,7 @@ class Store:
         file is recorded, reported once and skipped."""
         schema = SCHEMA if columns is None else pa.schema([SCHEMA.field(c) for c in columns])
 
-        def read(path) -> tuple[pa.Table | None, str]:
+        def read(path: Path) -> tuple[pa.Table | None, str]:
             try:
                 t = read_part(path, schema, path not in self.schema_ok)
                 self.schema_ok.add(path)
@@ -146,16 +146,17 @@ class Store:
             del self.damaged[path]
         return moved
 
-    def keys(self) -> set:
+    def keys(self) -> set[str]:
         return set(self.table(["key"]).column("key").to_pylist())
 
-    def rows(self, keys: Iterable[str] | None = None, columns: list[str] | None = None) -> dict[str, dict]:
+    def rows(self, keys: Iterable[str] | None = None,
+             columns: list[str] | None = None) -> dict[str, dict[str, Any]]:
         """key -> row (only the given columns, key always included)."""
         t = self.table(None if columns is None else ["key"] + [c for c in columns if c != "key"])
         wanted = set(keys) if keys is not None else None
         return {r["key"]: r for r in t.to_pylist() if wanted is None or r["key"] in wanted}
 
-    def add(self, row: dict) -> None:
+    def add(self, row: dict[str, Any]) -> None:
         self.pending.append(row)
         if len(self.pending) >= self.flush_rows or time.monotonic() - self.last >= self.flush_s:
             self.flush()

@@ -15,6 +15,7 @@ import json
 import os
 import socket
 import time
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
@@ -45,7 +46,7 @@ def _file_hash(path: Path) -> str:
     return _hashes[key]
 
 
-def _sources_hash(names) -> str:
+def _sources_hash(names: Iterable[str]) -> str:
     h = hashlib.sha256()
     for name in names:
         h.update(name.encode("utf-8") + b"\0")
@@ -53,7 +54,7 @@ def _sources_hash(names) -> str:
     return h.hexdigest()
 
 
-def tool_version(task: str) -> dict:
+def tool_version(task: str) -> dict[str, Any]:
     """The version a task's result depends on: sva_tools' version, and for `plan` the
     C CLI binary's SHA-256, for `ref` ref's sources and OR-tools (cache.version), for
     `fly` the simulator's sources and the C CLI binary."""
@@ -67,19 +68,19 @@ def tool_version(task: str) -> dict:
     return out
 
 
-def task_key(task: str, tool: str, mission_hash: str, settings: dict, version: dict) -> str:
+def task_key(task: str, tool: str, mission_hash: str, settings: dict[str, Any], version: dict[str, Any]) -> str:
     return sha256(canonical({"task": task, "tool": tool, "mission": mission_hash,
                              "settings": settings, "version": version}))
 
 
-def _plan_figures(plan: dict) -> dict:
+def _plan_figures(plan: dict[str, Any]) -> dict[str, Any]:
     stats = plan.get("stats") or {}
     return {"covered": plan.get("covered"), "cost": plan.get("cost"),
             "optimal": bool(stats.get("optimal")) if "optimal" in stats else None,
             "solve_us": stats.get("solve_us")}
 
 
-def _run_plan(task: dict) -> dict:
+def _run_plan(task: dict[str, Any]) -> dict[str, Any]:
     import subprocess
     import tempfile
 
@@ -102,7 +103,7 @@ def _run_plan(task: dict) -> dict:
     return dict(_plan_figures(plan), result=canonical(plan))
 
 
-def _run_ref(task: dict) -> dict:
+def _run_ref(task: dict[str, Any]) -> dict[str, Any]:
     from .. import io
     from ..ref import solve_ref
     s = task["settings"]
@@ -111,7 +112,7 @@ def _run_ref(task: dict) -> dict:
     return dict(_plan_figures(plan), result=canonical(plan))
 
 
-def _run_fly(task: dict) -> dict:
+def _run_fly(task: dict[str, Any]) -> dict[str, Any]:
     from .. import sim
     doc = json.loads(task["mission"])
     m, events, _ = sim.parse_scenario(doc)
@@ -125,7 +126,7 @@ def _run_fly(task: dict) -> dict:
 RUNNERS = {"plan": _run_plan, "ref": _run_ref, "fly": _run_fly}
 
 
-def run_task(task: dict) -> dict:
+def run_task(task: dict[str, Any]) -> dict[str, Any]:
     """Runs one task and returns its stored row. Raises RuntimeError when this worker's
     tool version differs from the task's (the result must not be stored)."""
     mine = tool_version(task["task"])
@@ -157,11 +158,11 @@ def run_task(task: dict) -> dict:
     return row
 
 
-def mission_hash(doc: dict) -> str:
+def mission_hash(doc: dict[str, Any]) -> str:
     return sha256(canonical(doc))
 
 
-def residual_for_ref(mission: dict) -> dict:
+def residual_for_ref(mission: dict[str, Any]) -> dict[str, Any]:
     """A live replan's residual mission as ref solves it: without change_penalty, named by
     its content, so equal residuals of different flights are one task."""
     doc = {k: v for k, v in mission.items() if k not in ("change_penalty", "name")}
@@ -169,6 +170,6 @@ def residual_for_ref(mission: dict) -> dict:
     return doc
 
 
-def residuals(log: dict) -> list[dict]:
+def residuals(log: dict[str, Any]) -> list[dict[str, Any]]:
     """The residual missions of a flight log's replans that have a target."""
     return [residual_for_ref(r["mission"]) for r in log["replans"] if r["mission"]["targets"]]
