@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 import time
-from typing import Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from .vehicle import (
     COPTER_AUTO,
@@ -22,12 +22,30 @@ from .vehicle import (
     Process,
 )
 
+if TYPE_CHECKING:
+    from .ground import BridgeLine
+
 MAV_CMD_NAV_DELAY = 93
 MAV_CMD_NAV_RETURN_TO_LAUNCH = 20
 COPTER_RTL = 6
 COPTER_LAND = 9
 ARM_RETRY_VEHICLE_S = 1.0  # vehicle seconds between two arming steps
 TEXTS_KEPT = 40
+
+
+class MissionItem(Protocol):
+    """The fields read of a MISSION_ITEM_INT (a pymavlink message: pymavlink has no type
+    hints, so the messages themselves are Any)."""
+
+    seq: int
+    command: int
+    param1: float
+    param2: float
+    param3: float
+    param4: float
+    x: int
+    y: int
+    z: float
 
 
 class Spell:
@@ -39,7 +57,7 @@ class Spell:
         self.clock = Clock(speedup)
         self.reader = MissionReader()
         self.launched_utc_ms = launched_utc_ms   # the fleet's clock at launch
-        self.heard: set = set()
+        self.heard: set[int] = set()
         self.streams_due = 0.0
         self.gps_fix = 0
         self.ekf_ok = False
@@ -54,32 +72,32 @@ class Craft:
         self.sysid = index + 1
         self.speedup = speedup
         self.spell: Spell | None = None
-        self.spells: list[dict] = []
+        self.spells: list[dict[str, Any]] = []
         self.in_service = False
-        self.out: list[list] = []
-        self.telemetry: list[list] = []        # [utc_ms, lat, lon, rel_alt_m]
+        self.out: list[list[int | None]] = []  # [lost tick, back tick (None: not yet)]
+        self.telemetry: list[list[float]] = []  # [utc_ms, lat, lon, rel_alt_m]
         self.armed = False
         self.mode: int | None = None
         self.current: int | None = None
-        self.currents: list[list] = []         # [utc_ms, seq]
-        self.reached: list[list] = []          # [utc_ms, seq]
-        self.uploads: list[dict] = []          # bridge lines for this UAV
+        self.currents: list[list[float | None]] = []  # [utc_ms, seq]
+        self.reached: list[list[float | None]] = []   # [utc_ms, seq]
+        self.uploads: list[dict[str, Any]] = []       # bridge lines for this UAV
         self.mission_version = 0               # accepted uploads (bridge) this spell
         self.start_wanted = False              # a mission uploaded and not started yet
         self.pause_until: float | None = None   # GUIDED until this UTC ms (a hold's end)
-        self.pause_item: tuple | None = None     # the hold item paused, and its waypoint
-        self.pauses: list[dict] = []
+        self.pause_item: tuple[Any, Any] | None = None  # the hold item paused, and its waypoint
+        self.pauses: list[dict[str, Any]] = []
         self.start_asked_host: float | None = None
         self.start_seen = False                # item 1..3 began since the start was asked
         self.current_command: int | None = None
         self.current_item: Any = None  # pymavlink messages (untyped)
         self.current_wp: Any = None
         self.items: list[Any] = []          # the mission it holds (read back)
-        self.missions: list[dict] = []         # every read-back: {utc_ms, items}
-        self.holds: list[dict] = []
-        self.starts: list[dict] = []           # {utc_ms, version, was_armed, mode, started_utc_ms}
+        self.missions: list[dict[str, Any]] = []  # every read-back: {utc_ms, items}
+        self.holds: list[dict[str, Any]] = []
+        self.starts: list[dict[str, Any]] = []    # {utc_ms, version, was_armed, mode, started_utc_ms}
         self.reenter_auto = False              # a start from the ground in AUTO: leave AUTO first
-        self.texts: list[list] = []
+        self.texts: list[list[Any]] = []      # [utc_ms, text]
         self.next_try = 0.0
         self.unexpected_exit: str | None = None
 
@@ -165,7 +183,7 @@ class Craft:
             self.spells[-1]["ready_utc_ms"] = sp.ready_utc_ms
             self.spells[-1]["ready_wall_s"] = round(sp.ready_host - sp.process.launched, 3)
 
-    def _take(self, sp: Spell, m) -> None:
+    def _take(self, sp: Spell, m: Any) -> None:  # m: a pymavlink message (untyped)
         kind = m.get_type()
         if kind == "GLOBAL_POSITION_INT":
             sp.clock.on_boot(m.time_boot_ms)
@@ -229,15 +247,16 @@ class Craft:
             # elsewhere before that window began) is cut, not ended by the clock
             self._hold_ended(ended, ended_wp, now, cut=self.start_asked_host is not None)
 
-    def _hold_ended(self, item, wp, now: float | None, cut: bool = False) -> None:
-        hold = {"seq": item.seq, "ended_utc_ms": now, "until_tod_s": _tod_s(item), "cut": cut}
+    def _hold_ended(self, item: MissionItem, wp: MissionItem | None, now: float | None,
+                    cut: bool = False) -> None:
+        hold: dict[str, Any] = {"seq": item.seq, "ended_utc_ms": now, "until_tod_s": _tod_s(item), "cut": cut}
         if wp is not None:
             hold["wp"] = (wp.x / 1e7, wp.y / 1e7)
         self.holds.append(hold)
 
     # --- missions and arming -----------------------------------------------------------
 
-    def on_upload(self, line: dict, utc_ms: float | None, busy_until: float | None) -> None:
+    def on_upload(self, line: BridgeLine, utc_ms: float | None, busy_until: float | None) -> None:
         """A bridge line about this UAV. After an accepted upload the operator starts the
         new mission from its first item: ArduPilot would go on with the new mission's
         item at the index it was flying (it restarts that command when its mission
@@ -340,7 +359,7 @@ class Craft:
         return self.current_command == MAV_CMD_NAV_RETURN_TO_LAUNCH
 
 
-def _tod_s(item) -> int:
+def _tod_s(item: MissionItem) -> int:
     """The UTC time of day (s) a MAV_CMD_NAV_DELAY item holds until."""
     return int(item.param2) * 3600 + int(item.param3) * 60 + int(item.param4)
 
@@ -356,7 +375,7 @@ def _num(v: float) -> float | None:
     return None if v != v else round(float(v), 7)  # NaN (the vehicle's choice): null
 
 
-def _item_json(m) -> list:
+def _item_json(m: MissionItem) -> list[float | None]:
     """[seq, command, param1..4, lat, lon, alt] of a MISSION_ITEM_INT (NaN as null)."""
     return [m.seq, m.command, _num(m.param1), _num(m.param2), _num(m.param3), _num(m.param4),
             m.x / 1e7, m.y / 1e7, _num(m.z)]

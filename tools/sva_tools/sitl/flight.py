@@ -40,7 +40,7 @@ from ..frame import Frame, format_utc
 from ..model import Mission
 from . import judge, record
 from .craft import Craft
-from .ground import Ground, GroundError
+from .ground import BridgeLine, Ground, GroundError
 from .relay import UPLOAD_FAULTS, Relay
 from .vehicle import Process, SitlError, write_extra_parameters
 
@@ -70,9 +70,9 @@ def takeoff_allowance_s(alt_m: float) -> int:
 class Settings:
     scenario_path: str
     mission: Mission
-    events: list[dict]
+    events: list[dict[str, Any]]
     penalty: int | None
-    frame: dict                 # lat, lon, alt_m, cell_m, tick_s, and t0 (None: choose it)
+    frame: dict[str, Any]       # lat, lon, alt_m, cell_m, tick_s, and t0 (None: choose it)
     algo: str
     speedup: float
     sitl: Path
@@ -80,7 +80,7 @@ class Settings:
     url: str
     prefix: str
     progress: bool = True
-    faults: list[dict] = field(default_factory=list)   # {kind, uav, t_s} (cli.parse_fault)
+    faults: list[dict[str, Any]] = field(default_factory=list)  # {kind, uav, t_s} (cli.parse_fault)
 
 
 class Flight:
@@ -97,19 +97,20 @@ class Flight:
         self.ground: Ground | None = None
         self.defaults = f"{s.defaults},{write_extra_parameters(self.tmp)}"
         self.pending = [dict(e, index=i) for i, e in enumerate(s.events)]
-        self.flown_events: list[dict] = []
-        self.awaiting: dict[int, dict] = {}      # event seq -> its record
-        self.replans: list[dict] = []
+        self.flown_events: list[dict[str, Any]] = []
+        self.awaiting: dict[int, dict[str, Any]] = {}  # event seq -> its record
+        self.replans: list[dict[str, Any]] = []
         self.replans_seen = 0
         # plan_id -> (residual ready_at per UAV, the replan's now): the bridge's lines name
         # the plan they upload
-        self.residual_ready: dict[str, tuple] = {}
-        self.held_lines: list[tuple] = []
+        self.residual_ready: dict[str, tuple[dict[int, int], int]] = {}
+        # (host monotonic, fleet UTC ms, the line) of bridge lines not taken yet
+        self.held_lines: list[tuple[float, float | None, BridgeLine]] = []
         self.plans_seen = 0
         self.node_now = 0
-        self.bridge_log: list[list] = []
+        self.bridge_log: list[list[Any]] = []  # [fleet UTC ms, line]
         self.name = s.mission.name
-        self.start_doc: dict | None = None
+        self.start_doc: dict[str, Any] | None = None
         self.clock_spread_ms: float | None = None
         self.ended_by = "the end of the mission"
         self.bar: Tqdm[Any] | None = None  # the progress bar while flying
@@ -117,14 +118,14 @@ class Flight:
         self.wall_s = 0.0
         self.end_utc_ms: float | None = None
         self.bridge_cmd: list[str] = []
-        self.frame_doc: dict = {}
-        self.mission_doc: dict = {}
+        self.frame_doc: dict[str, Any] = {}
+        self.mission_doc: dict[str, Any] = {}
         self.closed = False
-        self._last_fleet: tuple | None = None
+        self._last_fleet: tuple[float, float] | None = None  # (fleet UTC ms, host monotonic)
         # --fault: a relay per vehicle with an upload fault; reboots due at their time
         self.relays: dict[int, Relay] = {}
         self.reboots = [dict(f) for f in s.faults if f["kind"] == "reboot"]
-        self.fault_log: list[dict] = []
+        self.fault_log: list[dict[str, Any]] = []
         self.faulty = {f["uav"] for f in s.faults}
 
     # --- clocks ----------------------------------------------------------------------
@@ -162,8 +163,8 @@ class Flight:
 
     # --- start -----------------------------------------------------------------------
 
-    def _launch(self, c: Craft, cell, start_time_s: int, launched_utc_ms: float,
-                home: tuple | None = None) -> None:
+    def _launch(self, c: Craft, cell: tuple[int, int], start_time_s: int, launched_utc_ms: float,
+                home: tuple[float, float] | None = None) -> None:
         home = home or self.geo.cell_to_geodetic(*cell)
         folder = self.tmp / f"uav{c.id}-{len(c.spells)}"
         p = Process(self.s.sitl, self.defaults, folder, c.instance, c.sysid, home,
@@ -345,7 +346,7 @@ class Flight:
 
     # --- faults (--fault) -------------------------------------------------------------
 
-    def _fault_at(self, f: dict) -> float | None:
+    def _fault_at(self, f: dict[str, Any]) -> float | None:
         """The fleet-clock instant (UTC ms) a fault arms at: None (from the start) for an
         upload fault without T_S; infinity while t0 is not known."""
         if f["t_s"] is None and f["kind"] in UPLOAD_FAULTS:
@@ -354,7 +355,7 @@ class Flight:
             return math.inf
         return self.t0_ms + (f["t_s"] or 0.0) * 1000.0
 
-    def _reboot(self, f: dict) -> None:
+    def _reboot(self, f: dict[str, Any]) -> None:
         """SIGKILL the vehicle's process and start a fresh one at once (fresh working
         folder, same instance, system id and ports), home where it is, on the ground."""
         c = self.by_id[f["uav"]]
@@ -376,7 +377,7 @@ class Flight:
         start = int(round((own or now or time.time() * 1000.0) / 1000.0))
         self._launch(c, cell, start, own or now or start * 1000.0, home=home)
 
-    def _note_out(self, doc: dict, cause: str) -> None:
+    def _note_out(self, doc: dict[str, Any], cause: str) -> None:
         """A faulty UAV's time out of service as the node sees it: from the replan that
         drops it from the residual fleet to the one that takes it back."""
         ids = {u["id"] for u in doc["residual"]["uavs"]}
@@ -390,8 +391,8 @@ class Flight:
 
     # --- the flight ------------------------------------------------------------------
 
-    def _due(self, e: dict) -> bool:
-        at_ms = self.t0_ms + e["at"] * self.tick_ms
+    def _due(self, e: dict[str, Any]) -> bool:
+        at_ms: float = self.t0_ms + e["at"] * self.tick_ms
         if e["type"] == "uav_lost" and e["uav"] in self.by_id:
             c = self.by_id[e["uav"]]
             own = c.utc_ms() if c.in_service else None
@@ -400,7 +401,7 @@ class Flight:
         now = self.fleet_utc_ms()
         return now is not None and now >= at_ms
 
-    def _do(self, e: dict) -> None:
+    def _do(self, e: dict[str, Any]) -> None:
         now = self.fleet_utc_ms()
         rec = {"index": e["index"], "type": e["type"], "at": e["at"], "utc_ms": now}
         if "uav" in e:
@@ -429,7 +430,7 @@ class Flight:
             self._publish(rec, max(e["at"], self.node_now, self._gnd.report_now))
         self.flown_events.append(rec)
 
-    def _publish(self, rec: dict, at: int) -> None:
+    def _publish(self, rec: dict[str, Any], at: int) -> None:
         """An event_t from the ground at tick `at` (its tick, or the node's clock when the
         vehicles' reports have moved it past)."""
         ev = dict(rec["event"], at=at)
@@ -442,7 +443,7 @@ class Flight:
         self.awaiting[seq] = rec
 
     def _last_end(self) -> int:
-        ends = [t.end for t in self.s.mission.targets] + [e["at"] for e in self.s.events]
+        ends: list[int] = [t.end for t in self.s.mission.targets] + [e["at"] for e in self.s.events]
         for e in self.s.events:
             if isinstance(e.get("target"), dict):
                 ends.append(int(e["target"]["end"]))
@@ -518,5 +519,5 @@ class Flight:
             shutil.copytree(self.tmp, keep, dirs_exist_ok=True)
         shutil.rmtree(self.tmp, ignore_errors=True)
 
-    def log(self) -> dict:
+    def log(self) -> dict[str, Any]:
         return judge.judge_log(record.record(self))

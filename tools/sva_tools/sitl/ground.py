@@ -16,7 +16,7 @@ import re
 import subprocess
 import time
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any, Callable, TypedDict
 
 from ..lcm import wire
 from .vehicle import die_with_parent
@@ -27,6 +27,16 @@ DEFAULT_PREFIX = "SVA_"
 # `plan 3: uav 2 (tcp:127.0.0.1:5770:2): uploaded 7 items`
 _BRIDGE_LINE = re.compile(r"^plan (\S+): uav (\d+) \(([^)]*)\): (.*)$")
 _UPLOADED = re.compile(r"^uploaded (\d+) items$")
+
+
+class BridgeLine(TypedDict):
+    """A per-vehicle line of the bridge (Ground.parse_bridge_line)."""
+
+    plan: str
+    uav: int
+    endpoint: str
+    text: str
+    items: int | None
 
 
 class GroundError(RuntimeError):
@@ -53,25 +63,29 @@ class Ground:
 
         self.folder, self.algo, self.penalty, self.takeoff = folder, algo, penalty, takeoff
         self.url, self.prefix = url, prefix
-        self.node: subprocess.Popen | None = None
-        self.bridge: subprocess.Popen | None = None
+        self.node: subprocess.Popen[bytes] | None = None
+        self.bridge: subprocess.Popen[bytes] | None = None
         self._bridge_buf = b""
-        self.t = wire.types()
+        # wire.types (not annotated) loads the package of message classes lcm-gen writes
+        # at build time; they have no type hints, so the package is Any at this boundary.
+        load_types: Callable[[], Any] = wire.types
+        self.t = load_types()
         self.lc = lcm.LCM(url)
         self.statuses = 0
         self.plans: list[tuple[float, Any]] = []
         self.replans: list[tuple[float, object]] = []   # (host monotonic, replan_t)
         self.reports = 0                                 # report_t heard
         self.report_now = -1                             # the latest at_ticks reported
-        self.health: dict[int, list[list]] = {}          # uav -> [[host, health], ...] on change
+        self.health: dict[int, list[list[Any]]] = {}     # uav -> [[host, health], ...] on change
         self.rev = time.time_ns() // 1000
         self.seq0 = (self.rev % 10**12) * 10**6
         self.sent = 0
         esc = prefix.replace("\\", "\\\\")
         t = self.t
 
-        def keep(store: Callable, decode: Callable):
-            def on(_channel, data):
+        def keep(store: Callable[[tuple[float, Any]], object],
+                 decode: Callable[[bytes], Any]) -> Callable[[str, bytes], None]:
+            def on(_channel: str, data: bytes) -> None:
                 try:
                     store((time.monotonic(), decode(data)))
                 except (ValueError, IndexError):
@@ -87,10 +101,10 @@ class Ground:
         self.lc.subscribe(esc + "REPORT", keep(self._on_report, t.report_t.decode)
                           ).set_queue_capacity(10000)
 
-    def _on_status(self, _item) -> None:
+    def _on_status(self, _item: tuple[float, Any]) -> None:
         self.statuses += 1
 
-    def _on_report(self, item) -> None:
+    def _on_report(self, item: tuple[float, Any]) -> None:
         at, r = item
         self.reports += 1
         self.report_now = max(self.report_now, r.at_ticks)
@@ -182,7 +196,7 @@ class Ground:
         return [ln.decode("utf-8", "replace") for ln in lines]
 
     @staticmethod
-    def parse_bridge_line(line: str) -> dict[str, object] | None:
+    def parse_bridge_line(line: str) -> BridgeLine | None:
         """{plan, uav, endpoint, text, items (for an accepted upload)} of a per-vehicle
         line, None for another line."""
         m = _BRIDGE_LINE.match(line)
@@ -202,9 +216,10 @@ class Ground:
             self.check_alive()
         return True
 
-    def publish_mission(self, mission_doc: dict) -> str:
+    def publish_mission(self, mission_doc: dict[str, Any]) -> str:
         """Publishes the fleet and the mission (one revision); returns its name. The
         mission's takeoff_ticks is the node's --takeoff-ticks (mission_t has none)."""
+        name: str
         try:
             name, fleet, mission = wire.mission_messages(mission_doc, self.rev, self.rev)
         except wire.InputError as e:
@@ -219,7 +234,7 @@ class Ground:
                 return at, p
         return None
 
-    def publish_event(self, event: dict) -> int:
+    def publish_event(self, event: dict[str, Any]) -> int:
         """Publishes one event_t; returns its seq."""
         seq = self.seq0 + self.sent
         self.sent += 1

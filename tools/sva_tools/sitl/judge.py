@@ -21,6 +21,7 @@ there was lost while its window was open.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -35,7 +36,7 @@ def radius_m(cell_m: float) -> float:
     return max(cell_m / 2.0, MIN_RADIUS_M)
 
 
-def enu(geo, lat: np.ndarray, lon: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def enu(geo: frame.Frame, lat: np.ndarray, lon: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """East and north of positions in the frame's tangent plane (Frame.geodetic_to_enu,
     on arrays)."""
     import pymap3d
@@ -47,8 +48,8 @@ def enu(geo, lat: np.ndarray, lon: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         np.asarray(n0) + h * (np.asarray(n1) - np.asarray(n0))
 
 
-def final_targets(scenario_targets: list[dict],
-                  events: list[dict]) -> tuple[dict[int, dict], dict[int, int], list[int]]:
+def final_targets(scenario_targets: list[dict[str, Any]], events: list[dict[str, Any]]
+                  ) -> tuple[dict[int, dict[str, Any]], dict[int, int], list[int]]:
     """Every target as it finally stood, the tick each cancelled one was cancelled at,
     and the ids in order of appearance."""
     out = {t["id"]: dict(t) for t in scenario_targets}
@@ -69,7 +70,7 @@ def final_targets(scenario_targets: list[dict],
 class Track:
     """One UAV's telemetry in the frame: t (ms since t0), east, north (m), alt (m)."""
 
-    def __init__(self, geo, telemetry: list[list]):
+    def __init__(self, geo: frame.Frame, telemetry: list[list[float]]):
         a = np.array(telemetry, dtype=float).reshape(-1, 4)
         a = a[np.argsort(a[:, 0], kind="stable")] if len(a) else a
         self.t = a[:, 0]
@@ -123,7 +124,7 @@ def _snap(v: float) -> int:
     return int(math.floor(abs(v) + 0.5)) * (1 if v >= 0 else -1)
 
 
-def _promised(replans: list[dict], tid: int, start: int) -> list[int] | None:
+def _promised(replans: list[dict[str, Any]], tid: int, start: int) -> list[int] | None:
     """UAVs the plan in force at tick `start` sends to target tid (None: no plan had it)."""
     chosen = None
     for r in replans:
@@ -137,7 +138,8 @@ def _promised(replans: list[dict], tid: int, start: int) -> list[int] | None:
     return [rt["uav"] for rt in chosen["plan"].get("routes", []) if tid in rt["targets"]]
 
 
-def _targets(log: dict, tracks: dict[int, Track], geo, r: float) -> dict:
+def _targets(log: dict[str, Any], tracks: dict[int, Track], geo: frame.Frame, r: float
+             ) -> dict[str, Any]:
     """Every target's outcome and every visit (see the module docstring)."""
     tick_ms = geo.tick_ms
     sc = log["scenario"]
@@ -151,7 +153,7 @@ def _targets(log: dict, tracks: dict[int, Track], geo, r: float) -> dict:
         miss it: the loss did)."""
         return any(lost <= tick and (back is None or tick < back) for lost, back in spells_out.get(uid, []))
 
-    visits: dict[int, list[dict]] = {uid: [] for uid in tracks}
+    visits: dict[int, list[dict[str, Any]]] = {uid: [] for uid in tracks}
     tout = []
     slack: list[float] = []
     late = 0
@@ -208,7 +210,8 @@ def _targets(log: dict, tracks: dict[int, Track], geo, r: float) -> dict:
             "by_id": targets}
 
 
-def _holds(holds: list[dict], geo, targets: dict[int, dict]) -> list[dict]:
+def _holds(holds: list[dict[str, Any]], geo: frame.Frame, targets: dict[int, dict[str, Any]]
+           ) -> list[dict[str, Any]]:
     """A UAV's holds (NAV_DELAY items it ended), each with its target, the window's end
     and the error of the hold's end against it (ms, vehicle clock); `cut` holds are those
     the operator ended early by starting a new mission (the replan sent the UAV elsewhere
@@ -229,7 +232,7 @@ def _holds(holds: list[dict], geo, targets: dict[int, dict]) -> list[dict]:
     return out
 
 
-def _losses(log: dict) -> list[dict]:
+def _losses(log: dict[str, Any]) -> list[dict[str, Any]]:
     """Per uav_lost event: vehicle ms from the kill to the node's replan of the loss and
     to the last of the bridge's uploads that followed it (and the UAVs uploaded to)."""
     out = []
@@ -262,7 +265,7 @@ def _losses(log: dict) -> list[dict]:
     return out
 
 
-def judge_log(log: dict) -> dict:
+def judge_log(log: dict[str, Any]) -> dict[str, Any]:
     """The flight log of a record (or of a flight log: judged again): targets, each UAV's
     track, visits and holds, the losses' latencies and the summary."""
     geo = frame.Frame.from_json(log["sitl"]["frame"])
@@ -308,7 +311,7 @@ def _r(v: float | None) -> float | None:
     return None if v is None else round(float(v), 3)
 
 
-def end_line(log: dict) -> str:
+def end_line(log: dict[str, Any]) -> str:
     s = log["summary"]
     p50 = "-" if s["slack_p50_s"] is None else f"{s['slack_p50_s']:.1f}"
     p1 = "-" if s["slack_p1_s"] is None else f"{s['slack_p1_s']:.1f}"

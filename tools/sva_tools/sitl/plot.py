@@ -8,6 +8,8 @@ a triangle where it came back). Right: windows and visits on the vehicle clock (
 """
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from .. import frame, plot
@@ -15,7 +17,8 @@ from ..simplot import OUTCOME_COLOUR
 from . import judge
 
 
-def _route_points(mission: dict, plan: dict, uav: int):
+def _route_points(mission: dict[str, Any], plan: dict[str, Any], uav: int
+                  ) -> list[tuple[int, int]]:
     u = next((x for x in mission["uavs"] if x["id"] == uav), None)
     if u is None:
         return []
@@ -27,7 +30,7 @@ def _route_points(mission: dict, plan: dict, uav: int):
     return pts
 
 
-def render(log: dict, path: str) -> None:
+def render(log: dict[str, Any], path: str) -> None:
     plt = plot.pyplot()
     sc = log["scenario"]
     mission = sc["mission"]

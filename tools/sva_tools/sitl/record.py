@@ -6,8 +6,12 @@ again (`judge.judge_log`).
 from __future__ import annotations
 
 import os
+from typing import TYPE_CHECKING, Any, cast
 
 from .craft import tod_instant_ms
+
+if TYPE_CHECKING:
+    from .flight import Flight
 
 
 def _ms(utc_ms: float | None, t0: int) -> int | None:
@@ -19,11 +23,11 @@ def _ms_key(key: str) -> str:
     return "at_ms" if key == "utc_ms" else key.replace("_utc_ms", "_ms")
 
 
-def _times(row: dict, t0: int) -> dict:
+def _times(row: dict[str, Any], t0: int) -> dict[str, Any]:
     return {_ms_key(k): _ms(v, t0) if k.endswith("utc_ms") else v for k, v in row.items()}
 
 
-def _hold(h: dict, t0: int) -> dict:
+def _hold(h: dict[str, Any], t0: int) -> dict[str, Any]:
     out = {"seq": h["seq"], "ended_ms": _ms(h["ended_utc_ms"], t0),
            "until_ms": _ms(tod_instant_ms(h["until_tod_s"], h["ended_utc_ms"]), t0), "cut": h["cut"]}
     if h.get("wp") is not None:
@@ -31,17 +35,18 @@ def _hold(h: dict, t0: int) -> dict:
     return out
 
 
-def _fault(f: dict, t0: int) -> dict:
+def _fault(f: dict[str, Any], t0: int) -> dict[str, Any]:
     out = _times(f, t0)
     if "acks" in f:
         out["acks"] = [_times(a, t0) for a in f["acks"]]
     return out
 
 
-def record(fl) -> dict:
+def record(fl: Flight) -> dict[str, Any]:
     """The flight's record (flight.Flight after fly())."""
-    s, t0 = fl.s, fl.t0_ms
-    scenario = {"mission": s.mission.to_json(), "events": s.events}
+    # t0 is known from Flight.start() on (the mission's, or chosen once the clocks agree)
+    s, t0 = fl.s, cast(int, fl.t0_ms)
+    scenario: dict[str, Any] = {"mission": s.mission.to_json(), "events": s.events}
     scenario["mission"]["frame"] = fl.frame_doc
     if s.penalty is not None:
         scenario["change_penalty"] = s.penalty

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import select
 import socket
-from typing import Callable
+from typing import Any, Callable
 
 from pymavlink.dialects.v20 import ardupilotmega as mavlink
 
@@ -61,9 +61,9 @@ class Relay:
         self.fired = False
         self.silent = False
         self.rejecting: int | None = None     # the seq to rewrite in the upload under way
-        self.record: dict[str, object] = {"kind": kind, "uav": uav_id, "relay_port": self.port,
-                                          "connections": 0, "fired_utc_ms": None}
-        self.acks: list[dict] = []               # the vehicle's MISSION_ACKs to the bridge
+        self.record: dict[str, Any] = {"kind": kind, "uav": uav_id, "relay_port": self.port,
+                                       "connections": 0, "fired_utc_ms": None}
+        self.acks: list[dict[str, Any]] = []     # the vehicle's MISSION_ACKs to the bridge
         self.dropped = {"to_vehicle": 0, "to_bridge": 0}
 
     @staticmethod
@@ -104,7 +104,7 @@ class Relay:
             s.settimeout(2.0)
         self.bridge, self.vehicle = conn, up
         self.rx_bridge, self.rx_vehicle = self._parser(), self._parser()
-        self.record["connections"] = int(self.record["connections"]) + 1  # type: ignore[call-overload]
+        self.record["connections"] = int(self.record["connections"]) + 1
 
     @staticmethod
     def _read(s: socket.socket | None) -> bytes | None:
@@ -189,7 +189,7 @@ class Relay:
                                   "result": result_name(m.type)})
         self._send(self.bridge, data)
 
-    def log(self) -> dict:
+    def log(self) -> dict[str, Any]:
         """What the fault did (instants as UTC ms; sitl.record makes them ms since t0)."""
         out = dict(self.record)
         out["acks"] = list(self.acks)

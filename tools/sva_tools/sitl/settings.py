@@ -3,9 +3,13 @@ against what a copter can fly (docs/sitl.md)."""
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Any
 
 from .. import schema
 from ..text import shown
+
+if TYPE_CHECKING:
+    from ..model import Mission
 
 DEFAULT_FRAME = "47.3977,8.5456,30,25,6"
 # The copter's default horizontal speed (WPNAV_SPEED 1000 cm/s; 9.7 m/s measured) and
@@ -28,7 +32,7 @@ class Refused(Exception):
     """A bad command line or scenario for SITL: one line, exit 2."""
 
 
-def parse_frame(text: str) -> dict:
+def parse_frame(text: str) -> dict[str, Any]:
     parts = text.split(",")
     if len(parts) != 5:
         raise Refused(f"--frame: must be LAT,LON,ALT_M,CELL_M,TICK_S, got \"{shown(text)[:60]}\"")
@@ -44,7 +48,7 @@ def parse_frame(text: str) -> dict:
     return doc
 
 
-def parse_fault(text: str, uav_ids: list[int]) -> dict:
+def parse_fault(text: str, uav_ids: list[int]) -> dict[str, Any]:
     """One --fault KIND:UAV_ID[:T_S] value: {kind, uav, t_s (None: from the start)}."""
     parts = text.split(":")
     if len(parts) not in (2, 3):
@@ -72,8 +76,8 @@ def parse_fault(text: str, uav_ids: list[int]) -> dict:
     return {"kind": kind, "uav": uav, "t_s": t_s}
 
 
-def parse_faults(texts: list[str], uav_ids: list[int]) -> list[dict]:
-    faults: list[dict] = []
+def parse_faults(texts: list[str], uav_ids: list[int]) -> list[dict[str, Any]]:
+    faults: list[dict[str, Any]] = []
     for text in texts:
         f = parse_fault(text, uav_ids)
         if any(g["uav"] == f["uav"] for g in faults):
@@ -82,9 +86,9 @@ def parse_faults(texts: list[str], uav_ids: list[int]) -> list[dict]:
     return faults
 
 
-def check_speed(frame: dict, ticks_per_cell: int) -> float:
+def check_speed(frame: dict[str, Any], ticks_per_cell: int) -> float:
     """The plan's ground speed; Refused when the copter cannot fly it with margin."""
-    v = frame["cell_m"] / (ticks_per_cell * frame["tick_s"])
+    v: float = frame["cell_m"] / (ticks_per_cell * frame["tick_s"])
     limit = COPTER_SPEED_M_S * MAX_SPEED_SHARE
     if v > limit + 1e-9:
         raise Refused(f"frame: the plan's speed cell_m / (ticks_per_cell * tick_s) = "
@@ -101,7 +105,7 @@ def check_speed(frame: dict, ticks_per_cell: int) -> float:
     return v
 
 
-def check_takeoff(frame: dict, mission) -> int:
+def check_takeoff(frame: dict[str, Any], mission: Mission) -> int:
     """The ticks a copter on the ground needs before it leaves (arming and the climb to the
     frame's altitude: flight.takeoff_allowance_s): a mission without takeoff_ticks (or 0)
     gets them; Refused when the mission's own are fewer."""

@@ -205,7 +205,7 @@ class Link:
         self.sock = None
         self.closed = True
 
-    def send(self, what: str, *args) -> bool:
+    def send(self, what: str, *args: float) -> bool:
         if self.sock is None:
             return False
         try:
@@ -273,7 +273,7 @@ class Clock:
 class MissionReader:
     """Reads back the mission a vehicle holds (MISSION_REQUEST_LIST, then each item)."""
 
-    def __init__(self):
+    def __init__(self) -> None:
         self.count: int | None = None
         self.items: dict[int, object] = {}
         self.asked_at = 0.0
@@ -284,8 +284,9 @@ class MissionReader:
         self.asked_at = time.monotonic()
         link.request_mission()
 
-    def on_message(self, link: Link, m) -> list[Any] | None:
+    def on_message(self, link: Link, m: Any) -> list[Any] | None:
         """The items once complete, else None."""
+        # m, like the items, is a pymavlink message: pymavlink has no type hints
         if not self.active:
             return None
         kind = m.get_type()
