@@ -66,10 +66,7 @@ class Ground:
         self.node: subprocess.Popen[bytes] | None = None
         self.bridge: subprocess.Popen[bytes] | None = None
         self._bridge_buf = b""
-        # wire.types (not annotated) loads the package of message classes lcm-gen writes
-        # at build time; they have no type hints, so the package is Any at this boundary.
-        load_types: Callable[[], Any] = wire.types
-        self.t = load_types()
+        self.t = wire.types()
         self.lc = lcm.LCM(url)
         self.statuses = 0
         self.plans: list[tuple[float, Any]] = []
