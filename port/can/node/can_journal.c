@@ -340,35 +340,42 @@ static sva_can_journal_status_t replay_record(sva_can_journal_t* self, uint32_t 
     return SVA_CAN_JOURNAL_OK;
 }
 
+// One record of the replay (sva_journal_replay's callback): its status kept, a failure
+// stops the replay.
+typedef struct {
+    sva_can_journal_t* self;
+    sva_can_journal_resume_t* out;
+    sva_can_journal_status_t status;
+} replaying_t;
+
+static int on_record(void* user, uint32_t off, uint32_t type, const uint8_t* payload, uint32_t len)
+{
+    replaying_t* r = (replaying_t*)user;
+    (void)payload;  // in self->buf, where replay_record reads it
+    r->status = replay_record(r->self, off, type, len, r->out);
+    if (r->status != SVA_CAN_JOURNAL_OK) {
+        return 1;
+    }
+    r->self->records += 1U;
+    return 0;
+}
+
 // Replays the records from off; a torn or corrupt one ends the journal there.
 static sva_can_journal_status_t replay(sva_can_journal_t* self, uint32_t off,
                                        sva_can_journal_resume_t* out)
 {
-    while (off < self->size) {
-        uint32_t type = 0U;
-        uint32_t len = 0U;
-        char why[96];
-        const int got = read_record(self, off, &type, &len, why, sizeof why);
-        if (got < 0) {
-            return io_failed(self, "read");
-        }
-        if (got == 0) {
-            out->cut = true;
-            out->cut_offset = off;
-            if (sva_journal_cut_torn(&self->storage, off, why, &self->size, &out->cut_bytes,
-                                     self->message, sizeof self->message) != 0) {
-                return SVA_CAN_JOURNAL_ERR_IO;
-            }
-            break;
-        }
-        const sva_can_journal_status_t st = replay_record(self, off, type, len, out);
-        if (st != SVA_CAN_JOURNAL_OK) {
-            return st;
-        }
-        self->records += 1U;
-        off += len + (uint32_t)SVA_JOURNAL_RECORD_OVERHEAD;
+    replaying_t r = {self, out, SVA_CAN_JOURNAL_OK};
+    sva_journal_cut_t cut;
+    const sva_journal_replay_status_t st = sva_journal_replay(
+        &self->storage, off, &self->size, self->buf, (uint32_t)SVA_CAN_JOURNAL_MAX_PAYLOAD,
+        on_record, &r, &cut, self->message, sizeof self->message);
+    out->cut = cut.cut;
+    out->cut_offset = cut.offset;
+    out->cut_bytes = cut.bytes;
+    if (st == SVA_JOURNAL_REPLAY_IO) {
+        return SVA_CAN_JOURNAL_ERR_IO;
     }
-    return SVA_CAN_JOURNAL_OK;
+    return r.status;
 }
 
 // A new journal: HEADER and MISSION, replacing whatever was there.

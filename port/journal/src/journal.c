@@ -161,3 +161,40 @@ int sva_journal_cut_torn(const sva_journal_storage_t* storage, uint32_t offset, 
     *size = offset;
     return 0;
 }
+
+sva_journal_replay_status_t sva_journal_replay(const sva_journal_storage_t* storage,
+                                               uint32_t offset, uint32_t* size, uint8_t* buf,
+                                               uint32_t max_payload,
+                                               sva_journal_on_record_t on_record, void* user,
+                                               sva_journal_cut_t* cut, char* message,
+                                               size_t message_size)
+{
+    cut->cut = false;
+    cut->offset = 0U;
+    cut->bytes = 0U;
+    uint32_t off = offset;
+    while (off < *size) {
+        uint32_t type = 0U;
+        uint32_t len = 0U;
+        char why[96];
+        const sva_journal_record_status_t got = sva_journal_read_record(
+            storage, *size, off, buf, max_payload, &type, &len, why, sizeof why);
+        if (got == SVA_JOURNAL_RECORD_IO) {
+            sva_journal_say_failed(storage, "read", message, message_size);
+            return SVA_JOURNAL_REPLAY_IO;
+        }
+        if (got == SVA_JOURNAL_RECORD_BAD) {
+            cut->cut = true;
+            cut->offset = off;
+            return (sva_journal_cut_torn(storage, off, why, size, &cut->bytes, message,
+                                         message_size) == 0)
+                       ? SVA_JOURNAL_REPLAY_DONE
+                       : SVA_JOURNAL_REPLAY_IO;
+        }
+        if (on_record(user, off, type, buf + SVA_JOURNAL_PREFIX_BYTES, len) != 0) {
+            return SVA_JOURNAL_REPLAY_STOPPED;
+        }
+        off += len + (uint32_t)SVA_JOURNAL_RECORD_OVERHEAD;
+    }
+    return SVA_JOURNAL_REPLAY_DONE;
+}

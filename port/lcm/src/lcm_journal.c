@@ -304,36 +304,43 @@ static sva_lcm_journal_status_t replay_record(sva_lcm_journal_t* self, uint32_t 
     return SVA_LCM_JOURNAL_OK;
 }
 
+// One record of the replay (sva_journal_replay's callback): its status kept, a failure
+// stops the replay.
+typedef struct {
+    sva_lcm_journal_t* self;
+    sva_lcm_journal_resume_t* out;
+    sva_lcm_journal_status_t status;
+} replaying_t;
+
+static int on_record(void* user, uint32_t off, uint32_t type, const uint8_t* payload, uint32_t len)
+{
+    replaying_t* r = (replaying_t*)user;
+    (void)payload;  // in self->buf, where replay_record reads it
+    r->status = replay_record(r->self, off, type, len);
+    if (r->status != SVA_LCM_JOURNAL_OK) {
+        return 1;
+    }
+    r->out->records += (type == (uint32_t)SVA_LCM_RECORD_BASE) ? 0U : 1U;
+    r->self->records += 1U;
+    return 0;
+}
+
 // Replays the records after the header; a torn or corrupt one ends the journal there.
 static sva_lcm_journal_status_t replay(sva_lcm_journal_t* self, uint32_t off,
                                        sva_lcm_journal_resume_t* out)
 {
-    while (off < self->size) {
-        uint32_t type = 0U;
-        uint32_t len = 0U;
-        char why[96];
-        const int got = read_record(self, off, &type, &len, why, sizeof why);
-        if (got < 0) {
-            return io_failed(self, "read");
-        }
-        if (got == 0) {
-            out->cut = true;
-            out->cut_offset = off;
-            if (sva_journal_cut_torn(&self->storage, off, why, &self->size, &out->cut_bytes,
-                                     self->message, sizeof self->message) != 0) {
-                return SVA_LCM_JOURNAL_ERR_IO;
-            }
-            break;
-        }
-        const sva_lcm_journal_status_t st = replay_record(self, off, type, len);
-        if (st != SVA_LCM_JOURNAL_OK) {
-            return st;
-        }
-        out->records += (type == (uint32_t)SVA_LCM_RECORD_BASE) ? 0U : 1U;
-        self->records += 1U;
-        off += len + (uint32_t)SVA_LCM_JOURNAL_RECORD_OVERHEAD;
+    replaying_t r = {self, out, SVA_LCM_JOURNAL_OK};
+    sva_journal_cut_t cut;
+    const sva_journal_replay_status_t st = sva_journal_replay(
+        &self->storage, off, &self->size, self->buf, (uint32_t)SVA_LCM_JOURNAL_MAX_PAYLOAD,
+        on_record, &r, &cut, self->message, sizeof self->message);
+    out->cut = cut.cut;
+    out->cut_offset = cut.offset;
+    out->cut_bytes = cut.bytes;
+    if (st == SVA_JOURNAL_REPLAY_IO) {
+        return SVA_LCM_JOURNAL_ERR_IO;
     }
-    return SVA_LCM_JOURNAL_OK;
+    return r.status;
 }
 
 // Reads and judges the header record; *end is where the records after it start.

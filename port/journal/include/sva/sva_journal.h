@@ -120,6 +120,36 @@ SVA_JOURNAL_NODISCARD sva_journal_record_status_t sva_journal_read_record(
     const sva_journal_storage_t* storage, uint32_t size, uint32_t offset, uint8_t* buf,
     uint32_t max_payload, uint32_t* type, uint32_t* len, char* why, size_t why_size);
 
+/// Hands one good record to the journal that replays it (its payload, len bytes, at the
+/// record's offset): 0 goes on, non-zero stops the replay (the journal keeps its reason).
+typedef int (*sva_journal_on_record_t)(void* user, uint32_t offset, uint32_t type,
+                                       const uint8_t* payload, uint32_t len);
+
+/// How sva_journal_replay() ended.
+typedef enum {
+    SVA_JOURNAL_REPLAY_DONE = 0,     ///< every record handed on (a torn tail cut, if any)
+    SVA_JOURNAL_REPLAY_STOPPED = 1,  ///< on_record returned non-zero
+    SVA_JOURNAL_REPLAY_IO = -1,      ///< the storage's read or truncate failed (message)
+} sva_journal_replay_status_t;
+
+/// A torn tail a replay cut: where (the bytes kept) and how many bytes it dropped.
+typedef struct {
+    bool cut;
+    uint32_t offset;
+    uint32_t bytes;
+} sva_journal_cut_t;
+
+/// The replay every journal makes: reads the records from `offset` of a journal of *size
+/// bytes into buf (as sva_journal_read_record, max_payload) and hands each good one, in
+/// order, to on_record. The first torn or corrupt record ends the journal there
+/// (sva_journal_cut_torn: *cut filled, *size cut, message says so; cut->cut false when
+/// none was). On _IO, message names the failed storage call. O(journal), allocates
+/// nothing.
+SVA_JOURNAL_NODISCARD sva_journal_replay_status_t
+sva_journal_replay(const sva_journal_storage_t* storage, uint32_t offset, uint32_t* size,
+                   uint8_t* buf, uint32_t max_payload, sva_journal_on_record_t on_record,
+                   void* user, sva_journal_cut_t* cut, char* message, size_t message_size);
+
 // ---------------------------------------------------------------------------------
 // POSIX storage: DIR/file, held with an exclusive fcntl lock on DIR/lock; `replace`
 // writes DIR/temp, fsyncs it, renames it over DIR/file and fsyncs DIR. `open` removes
