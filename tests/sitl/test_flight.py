@@ -26,10 +26,13 @@ def tool_env():
 
 
 def ours():
-    """Processes and namespaces a sitl run leaves behind (none, when it cleaned up)."""
+    """Processes (vehicles, node, bridge, the tool) and working folders a sitl run leaves
+    behind (none, when it cleaned up)."""
     procs = subprocess.run(["ps", "-eww", "-o", "pid,args"], capture_output=True, text=True).stdout
+    programs = tuple(os.path.basename(os.environ.get(k, "-")) for k in ("SVA_NODE", "SVA_MAVLINK_BRIDGE"))
     left = [ln for ln in procs.splitlines() if "sva-sitl-" in ln or
-            ("sva_tools" in ln and " sitl " in ln and "pytest" not in ln)]
+            ("sva_tools" in ln and " sitl " in ln and "pytest" not in ln) or
+            (len(ln.split()) > 1 and os.path.basename(ln.split()[1]) in programs)]
     tmp = [p.name for p in Path("/tmp").glob("sva-sitl-*")]
     return left, tmp
 
@@ -133,14 +136,19 @@ def test_the_log_reads_as_a_sim_log(flight, tmp_path):
     assert (tmp_path / "as_sim.png").stat().st_size > 10_000
 
 
-def test_ctrl_c_stops_everything(tmp_path):
+def start_and_wait_for_vehicles(out):
     p = subprocess.Popen([sys.executable, "-m", "sva_tools", "sitl", str(SCENARIO), "--quiet",
-                          "--out", str(tmp_path / "never.json")],
+                          "--out", str(out)],
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=tool_env(),
                          preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     end = time.monotonic() + 60
     while time.monotonic() < end and not any("arducopter" in ln for ln in ours()[0]):
         time.sleep(0.2)
+    return p
+
+
+def test_ctrl_c_stops_everything(tmp_path):
+    p = start_and_wait_for_vehicles(tmp_path / "never.json")
     time.sleep(3)
     p.send_signal(signal.SIGINT)
     _out, err = p.communicate(timeout=60)
@@ -148,4 +156,49 @@ def test_ctrl_c_stops_everything(tmp_path):
     assert "interrupted" in err
     time.sleep(1)
     assert ours() == ([], [])
+    assert not (tmp_path / "never.json").exists()
+
+
+def test_ctrl_c_while_starting_up_is_said_and_leaves_nothing(tmp_path):
+    for delay in (0.5, 1.0, 2.0):
+        p = subprocess.Popen([sys.executable, "-m", "sva_tools", "sitl", str(SCENARIO), "--quiet",
+                              "--out", str(tmp_path / "never.json")],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=tool_env(),
+                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+        time.sleep(delay)
+        p.send_signal(signal.SIGINT)
+        _out, err = p.communicate(timeout=60)
+        assert p.returncode == 130, (delay, err)
+        assert "interrupted" in err and "Traceback" not in err, (delay, err)
+        time.sleep(1)
+        assert ours() == ([], []), delay
+
+
+def flight_process(outer, timeout=30):
+    """The pid of the run inside the namespace: the namespace helper's child."""
+    end = time.monotonic() + timeout
+    table = ""
+    while time.monotonic() < end:
+        table = subprocess.run(["ps", "-eww", "-o", "pid=,ppid=,args="], capture_output=True,
+                               text=True).stdout
+        rows = [ln.split(None, 2) for ln in table.splitlines()]
+        helper = [int(pid) for pid, ppid, args in rows if int(ppid) == outer and "netns_run" in args]
+        inner = [int(pid) for pid, ppid, args in rows if helper and int(ppid) == helper[0] and
+                 "sva_tools sitl" in args]
+        if inner:
+            return inner[0]
+        time.sleep(0.2)
+    raise AssertionError(f"no flight process under the namespace helper of {outer}:\n{table}")
+
+
+def test_a_killed_flight_takes_its_vehicles_and_folder_with_it(tmp_path):
+    p = start_and_wait_for_vehicles(tmp_path / "never.json")
+    os.kill(flight_process(p.pid), signal.SIGKILL)
+    _out, err = p.communicate(timeout=60)
+    assert p.returncode == 128 + signal.SIGKILL, err
+    assert "ended by SIGKILL" in err
+    time.sleep(1)
+    assert ours() == ([], [])
+    netns = subprocess.run(["ip", "netns", "list"], capture_output=True, text=True).stdout
+    assert "sva-lcm-" not in netns
     assert not (tmp_path / "never.json").exists()

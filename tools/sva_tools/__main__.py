@@ -1,5 +1,9 @@
 import sys
 
-from .commands import main
+try:
+    from .commands import main
 
-sys.exit(main())
+    sys.exit(main())
+except KeyboardInterrupt:  # before a command could take it (while starting up)
+    print("sva-tools: interrupted", file=sys.stderr)
+    sys.exit(130)

@@ -42,6 +42,7 @@ def main(argv: list[str] | None = None) -> int:
     except io.InputError as e:  # a bad mission or plan file (SPEC 4): one line, exit 2
         return fail(e.path or args.command, e)
     except KeyboardInterrupt:
+        print(f"sva-tools: {args.command}: interrupted", file=sys.stderr)
         return 130
     except BrokenPipeError:
         return 1

@@ -25,9 +25,11 @@ from __future__ import annotations
 
 import argparse
 import os
+import shutil
 import signal
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 from .. import cbin, io
@@ -88,17 +90,41 @@ def _argv(args) -> list[str]:
     return argv
 
 
+STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+FOLDER_ENV = "SVA_SITL_FOLDER"  # the working folder the namespace's run uses (made outside)
+
+
 def _default_signals() -> None:
     """SIGINT and SIGTERM as a terminal gives them (an ignored signal stays ignored across
-    exec, and a shell cannot trap one ignored on entry)."""
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    exec, and a shell cannot trap one ignored on entry), and not blocked (a blocked mask is
+    inherited too)."""
+    for sig in STOP_SIGNALS:
+        signal.signal(sig, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)
+
+
+def _ended(rc: int, stopped: bool) -> int:
+    """The run's status, said once when the run inside could not say it itself."""
+    if rc == 77:
+        print("sva-tools: error: sitl: could not create a network namespace (ip netns: needs "
+              "root and iproute2)", file=sys.stderr)
+        return 2
+    if rc > 128 and not (stopped and rc == 130):
+        try:
+            name = signal.Signals(rc - 128).name
+        except ValueError:
+            name = f"signal {rc - 128}"
+        print(f"sva-tools: error: sitl: the flight was ended by {name}; its vehicles, node and "
+              "bridge ended with it", file=sys.stderr)
+    return rc
 
 
 def _netns(argv: list[str]) -> int:
     """Runs `python -m sva_tools ARGV` in a network namespace of its own: the vehicles'
-    TCP ports and the LCM multicast stay inside it."""
+    TCP ports and the LCM multicast stay inside it. The working folder is made here and
+    removed here, so it goes even when the run inside is killed."""
     from ..lcm import simnode
+    from ..sitl.flight import FOLDER_PREFIX
 
     if os.geteuid() != 0:
         print("sva-tools: error: sitl: needs root to create the network namespace the vehicles, "
@@ -112,30 +138,36 @@ def _netns(argv: list[str]) -> int:
     env = dict(os.environ)
     tools = str(Path(__file__).resolve().parents[2])
     env["PYTHONPATH"] = tools + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
-    # The run gets a session of its own; Ctrl-C or SIGTERM here is passed on to all of
-    # it as SIGINT, so the run inside stops its vehicles, node and bridge and the helper
-    # deletes the namespace.
-    proc = subprocess.Popen([str(helper), sys.executable, "-m", "sva_tools", *argv], env=env,
-                            start_new_session=True, preexec_fn=_default_signals)
+    stopped = False
 
     def forward(_signum, _frame):
+        nonlocal stopped
+        stopped = True
         try:
             os.killpg(proc.pid, signal.SIGINT)
         except ProcessLookupError:
             pass
 
-    old_int = signal.signal(signal.SIGINT, forward)
-    old_term = signal.signal(signal.SIGTERM, forward)
+    # The run gets a session of its own; Ctrl-C or SIGTERM here is passed on to all of
+    # it as SIGINT, so the run inside stops its vehicles, node and bridge and the helper
+    # deletes the namespace. The signals wait, blocked, until the forwarding is in place.
+    folder = tempfile.mkdtemp(prefix=FOLDER_PREFIX)
+    env[FOLDER_ENV] = folder
+    old = {sig: signal.getsignal(sig) for sig in STOP_SIGNALS}
     try:
+        signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)
+        proc = subprocess.Popen([str(helper), sys.executable, "-m", "sva_tools", *argv], env=env,
+                                start_new_session=True, preexec_fn=_default_signals)
+        for sig in STOP_SIGNALS:
+            signal.signal(sig, forward)
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)
         rc = proc.wait()
     finally:
-        signal.signal(signal.SIGINT, old_int)
-        signal.signal(signal.SIGTERM, old_term)
-    if rc == 77:
-        print("sva-tools: error: sitl: could not create a network namespace (ip netns: needs "
-              "root and iproute2)", file=sys.stderr)
-        return 2
-    return rc
+        for sig, handler in old.items():
+            signal.signal(sig, handler)
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)
+        shutil.rmtree(folder, ignore_errors=True)
+    return _ended(rc, stopped)
 
 
 def _settings(args):
@@ -169,7 +201,8 @@ def _settings(args):
         raise Refused(f"--sitl: {defaults} is missing (copter.parm beside the binary)")
     return Settings(args.scenario, mission, events, penalty, frame, args.algo, args.speedup,
                     binary, defaults, os.environ.get("SVA_LCM_URL", "udpm://239.255.76.67:7667?ttl=0"),
-                    "SVA_", not args.quiet, faults)
+                    "SVA_", not args.quiet, faults,
+                    Path(os.environ[FOLDER_ENV]) if os.environ.get(FOLDER_ENV) else None)
 
 
 def run(args) -> int:
@@ -183,7 +216,10 @@ def run(args) -> int:
     return fly(args, settings)
 
 
-def _term(_signum, _frame):
+def _stop(_signum, _frame):
+    """The first SIGINT or SIGTERM stops the flight; later ones wait for its cleanup."""
+    for sig in STOP_SIGNALS:
+        signal.signal(sig, signal.SIG_IGN)
     raise KeyboardInterrupt
 
 
@@ -195,8 +231,8 @@ def fly(args, settings) -> int:
     from ..sitl.judge import end_line
     from ..sitl.vehicle import SitlError
 
-    signal.signal(signal.SIGTERM, _term)
-    signal.signal(signal.SIGINT, _term)
+    for sig in STOP_SIGNALS:
+        signal.signal(sig, _stop)
     flight: Flight | None = None
     try:
         flight = Flight(settings)

@@ -66,6 +66,9 @@ def takeoff_allowance_s(alt_m: float) -> int:
     return int(math.ceil(TAKEOFF_BASE_S + alt_m / CLIMB_M_S))
 
 
+FOLDER_PREFIX = "sva-sitl-"
+
+
 @dataclass
 class Settings:
     scenario_path: str
@@ -81,12 +84,13 @@ class Settings:
     prefix: str
     progress: bool = True
     faults: list[dict[str, Any]] = field(default_factory=list)  # {kind, uav, t_s} (cli.parse_fault)
+    folder: Path | None = None  # the working folder (None: a new one under the temp dir)
 
 
 class Flight:
     def __init__(self, s: Settings):
         self.s = s
-        self.tmp = Path(tempfile.mkdtemp(prefix="sva-sitl-"))
+        self.tmp = s.folder or Path(tempfile.mkdtemp(prefix=FOLDER_PREFIX))
         f = s.frame
         self.geo = Frame.from_json({**f, "t0": f.get("t0") or "1970-01-01T00:00:00Z"})
         self.t0_ms: int | None = self.geo.t0_ms if f.get("t0") else None
