@@ -40,10 +40,11 @@ void test_structs_within_budget(void)
 {
     const sva_limits_t l = sva_limits();
     printf("# large profile sizes: planner %lu B (budget %lu), plan %lu B (budget %lu), "
-           "mission %lu B (budget %lu)\n",
+           "mission %lu B (budget %lu), live %lu B\n",
            (unsigned long)l.planner_bytes, (unsigned long)SVA_TEST_PLANNER_BUDGET,
            (unsigned long)l.plan_bytes, (unsigned long)SVA_TEST_PLAN_BUDGET,
-           (unsigned long)l.mission_bytes, (unsigned long)SVA_TEST_MISSION_BUDGET);
+           (unsigned long)l.mission_bytes, (unsigned long)SVA_TEST_MISSION_BUDGET,
+           (unsigned long)l.live_bytes);
     TEST_ASSERT_EQUAL_INT(sizeof(sva_planner_t), l.planner_bytes);
     TEST_ASSERT_TRUE(sizeof(sva_planner_t) <= (size_t)SVA_TEST_PLANNER_BUDGET);
     TEST_ASSERT_TRUE(sizeof(sva_plan_t) <= (size_t)SVA_TEST_PLAN_BUDGET);

@@ -3,8 +3,8 @@
 
 Each benchmark writes its own fragment when run with `--results` (scripts/bench.sh,
 scripts/instructions.sh, tests/footprint/footprint.py results, tools/bench/flow_vs_ref.py,
-tools/bench/flow_vs_peer.py, tools/bench/live_bench.py, tools/bench/campaign_bench.py, `sva-tools bench`,
-tools/bench/lcm_latency.sh), then this script assembles docs/results.md; re-running a bench
+tools/bench/flow_vs_peer.py, tools/bench/large_profile.py, tools/bench/live_bench.py,
+tools/bench/campaign_bench.py, `sva-tools bench`, tools/bench/lcm_latency.sh), then this script assembles docs/results.md; re-running a bench
 rewrites only its own fragment.
 A fragment is docs/results/SECTION.md (the section's text) or docs/results/SECTION.PART.md
 (one part of it, e.g. one mission set; parts follow the section's own fragment, in name
@@ -43,6 +43,7 @@ SECTIONS = [
     ("footprint", "Cortex-M footprint and stack"),
     ("flow_vs_ref", "flow against the exact optimum"),
     ("flow_vs_peer", "flow against the OR-tools routing peer"),
+    ("large", "flow at 1,000 targets x 100 UAVs (the large profile)"),
     ("live", "Live missions"),
     ("sitl", "Flights in ArduCopter SITL"),
     ("campaign", "Regression campaigns"),

@@ -6,7 +6,8 @@ cache-entry (`bench --cache`). `first_error(doc, kind)` returns the message of t
 error in the order the C CLI reports them: shape errors (unknown keys, then missing
 keys, wrong types, integers beyond int32, the name) before value rules, each in
 document order (SPEC key order, list index); then rules that need more than one field
-(duplicate ids, end > start) and the default profile's bounds (list lengths, need).
+(duplicate ids, end > start) and the default profile's bounds (list lengths, need), or
+another profile's within `profile_bounds(uavs, targets)`.
 Messages match the CLI's word for word, e.g. `targets[1].need: must be >= 1, got 0`,
 `uavs[0]: unknown key "speed"`, `uavs: 65 entries exceed SVA_MAX_UAVS (64)`.
 
@@ -15,9 +16,10 @@ Integers are JSON numbers written without a fraction or exponent: 5.0 is a real 
 """
 from __future__ import annotations
 
+import contextlib
 import functools
 import json
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -36,6 +38,22 @@ if not (SCHEMA_DIR / "mission.schema.json").is_file():
     SCHEMA_DIR = Path(__file__).resolve().parent / "schema_files"
 KINDS = ("mission", "plan", "trace", "bound", "cache-entry")
 # How messages name the document itself (the CLI calls a mission's root "mission").
+# SVA_MAX_UAVS and SVA_MAX_TARGETS as the mission rules check them (profile_bounds).
+_BOUNDS = {"SVA_MAX_UAVS": SVA_MAX_UAVS, "SVA_MAX_TARGETS": SVA_MAX_TARGETS}
+
+
+@contextlib.contextmanager
+def profile_bounds(uavs: int, targets: int) -> Iterator[None]:
+    """Within it, missions are checked against SVA_MAX_UAVS = uavs and SVA_MAX_TARGETS =
+    targets: another bound profile's (core/profiles/), as a CLI built with it checks them."""
+    saved = dict(_BOUNDS)
+    _BOUNDS.update(SVA_MAX_UAVS=uavs, SVA_MAX_TARGETS=targets)
+    try:
+        yield
+    finally:
+        _BOUNDS.update(saved)
+
+
 ROOT_NAMES = {"mission": "mission", "plan": "plan", "trace": "record", "bound": "bound",
               "cache-entry": "entry"}
 
@@ -253,8 +271,9 @@ def _mission_rules(doc: Any, found: list[Found]) -> None:
     if isinstance(name, str) and len(name) <= limit < len(name.encode("utf-8")):
         found.append((_SHAPE, _position(["name"]), 3, f"name: must be a non-empty string of at "
                                                       f"most {limit} bytes, got {len(name.encode('utf-8'))}"))
-    for key, bound, bound_name in (("uavs", SVA_MAX_UAVS, "SVA_MAX_UAVS"),
-                                   ("targets", SVA_MAX_TARGETS, "SVA_MAX_TARGETS")):
+    max_uavs = _BOUNDS["SVA_MAX_UAVS"]
+    for key, bound, bound_name in (("uavs", max_uavs, "SVA_MAX_UAVS"),
+                                   ("targets", _BOUNDS["SVA_MAX_TARGETS"], "SVA_MAX_TARGETS")):
         items = doc.get(key)
         if isinstance(items, list) and len(items) > bound:
             found.append((_SHAPE, _position([key]), 3,
@@ -267,9 +286,9 @@ def _mission_rules(doc: Any, found: list[Found]) -> None:
             if not isinstance(t, dict):
                 continue
             need = t.get("need")
-            if _int(need) and need > SVA_MAX_UAVS:
+            if _int(need) and need > max_uavs:
                 found.append((_VALUE, _position(["targets", i, "need"]), 1,
-                              f"targets[{i}].need: must be <= SVA_MAX_UAVS ({SVA_MAX_UAVS}), got {need}"))
+                              f"targets[{i}].need: must be <= SVA_MAX_UAVS ({max_uavs}), got {need}"))
             start, end = t.get("start"), t.get("end")
             if _int(start) and _int(end) and end <= start:
                 found.append((_VALUE, _position(["targets", i]) + ((_AFTER_FIELDS, ""),), 0,
