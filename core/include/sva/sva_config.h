@@ -17,12 +17,13 @@
 ///                  + 16 * SVA_MAX_TP_SOURCES * SVA_MAX_TP_SINKS          (problem, hga)
 ///                  + bfa's stack (~3 KB by default)
 ///                  + 156 * SVA_MAX_UAVS + (74 + 16 * SVA_FLOW_LABELS) * SVA_MAX_TARGETS
-///                  + 8 * SVA_FLOW_MAX_ARCS                               (flow's graph)
+///                  + 8 * SVA_FLOW_MAX_ARCS (10 past 65,535 arcs)         (flow's graph)
 ///                  + (106 + 2 * SVA_FLOW_MAX_DEPTH) * SVA_FLOW_MAX_COPIES (copies, search)
 ///                  + 8 * SVA_FLOW_LP_ROWS^2 + 68 * SVA_FLOW_LP_ROWS
 ///                  + 14 * SVA_FLOW_LP_COLS                               (route master)
 ///                  + the coverage search (SVA_FLOW_COVER_TARGETS below)
-///   (default profile: 727,656 B, of which flow's sva_flow_work_t is 581,736 B.)
+///   (default profile: 727,656 B, of which flow's sva_flow_work_t is 581,736 B; large
+///   profile: 7,293,032 B, of which 6,560,000 B are flow's 656,000 arcs.)
 
 #ifndef SVA_CONFIG_H
 #define SVA_CONFIG_H
@@ -170,7 +171,8 @@
      SVA_FLOW_MAX_COPIES)
 
 /// Most arcs of one mission's graph (time- and fuel-feasible pairs only). Cost ~ 8 B
-/// per arc. 200 targets x 40 UAVs with need 1 need at most ~28,500.
+/// per arc, 10 B past 65,535 (the reverse index then takes 32 bits). 200 targets x 40
+/// UAVs with need 1 need at most ~28,500.
 #ifndef SVA_FLOW_MAX_ARCS
 #    if SVA_FLOW_DENSE_ARCS < 49152L
 #        define SVA_FLOW_MAX_ARCS SVA_FLOW_DENSE_ARCS
