@@ -20,13 +20,14 @@ def sva_large():
     return path
 
 
-def run(*args):
+def run(*args, env=None):
     return subprocess.run([sys.executable, str(SCRIPT), *map(str, args)], capture_output=True, text=True,
-                          timeout=240)
+                          timeout=240, env=env)
 
 
-def test_quick_plans_are_checked_and_reported(sva_large):
-    r = run("--quick", "--sva", sva_large)
+def test_quick_plans_are_checked_and_reported(sva_large, tmp_path):
+    # --results into a scratch root (SVA_RESULTS_ROOT), not the repository's docs
+    r = run("--quick", "--results", "--sva", sva_large, env={**os.environ, "SVA_RESULTS_ROOT": str(tmp_path)})
     assert r.returncode == 0, r.stdout + r.stderr
     rows = [line for line in r.stdout.splitlines() if line.startswith("| 300x80")]
     names = []
@@ -41,6 +42,12 @@ def test_quick_plans_are_checked_and_reported(sva_large):
         assert gap and float(gap[1]) >= 0.0, line  # a certified gap from flow's own bound
     assert names == ["300x80", "300x80_tight"], r.stdout
     assert "gen --targets 300 --uavs 80 --need 1 --fuel 80" in r.stdout
+    fragment = (tmp_path / "docs" / "results" / "large.md").read_text()
+    assert ("Command: `nice -n 15 .venv/bin/python tools/bench/large_profile.py --results --sets "
+            "300x80,300x80_tight --missions 1`") in fragment
+    assert all(line in fragment for line in rows), fragment
+    page = (tmp_path / "docs" / "results.md").read_text()
+    assert "## flow at 1,000 targets x 100 UAVs (the large profile)" in page
 
 
 def test_refuses_a_cli_of_another_profile():
