@@ -233,10 +233,28 @@ static bool exchange_tails(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_
     const int64_t before = w->route_cells[a] + w->route_cells[b];
     piece_cells(m, a, ra, w->piece_pre[0], w->piece_post[0]);
     piece_cells(m, b, rb, w->piece_pre[1], w->piece_post[1]);
-    w->work += (uint32_t)ra->target_count + rb->target_count;
-    for (uint16_t i = 0U; i <= ra->target_count; i++) {
-        for (uint16_t j = 0U; j <= rb->target_count; j++) {
-            w->work++;
+    const uint16_t la = ra->target_count;
+    const uint16_t lb = rb->target_count;
+    // Every cut pair (i, j) counts as one unit of work, but only those that can meet
+    // time are evaluated: routes keep time order, so b's stop j is reachable after a's
+    // first i only if it starts after they end (from j_lo on), and a's stop i after b's
+    // first j only if b is free by its start (up to a j that only grows with i).
+    w->work += (uint32_t)la + lb;
+    uint16_t j_lo = 0U;
+    for (uint16_t i = 0U; i <= la; i++) {
+        int32_t x = 0;
+        int32_t y = 0;
+        int64_t free_a = 0;
+        sva_flow_leg_ends(m, a, ra, i, &x, &y, &free_a);
+        while ((j_lo < lb) && (m->targets[rb->targets[j_lo]].start_ticks < free_a)) {
+            j_lo++;
+        }
+        for (uint16_t j = j_lo; j <= lb; j++) {
+            int64_t free_b = 0;
+            sva_flow_leg_ends(m, b, rb, j, &x, &y, &free_b);
+            if ((i < la) && (free_b > m->targets[ra->targets[i]].start_ticks)) {
+                break;  // and every later cut of b is free later still
+            }
             const uint16_t na = (uint16_t)(i + (rb->target_count - j));
             const uint16_t nb = (uint16_t)(j + (ra->target_count - i));
             const int64_t ca = spliced_cells(m, a, ra, i, w->piece_pre[0], rb, j, w->piece_post[1]);
@@ -262,9 +280,11 @@ static bool exchange_tails(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_
             rb->target_count = nb;
             w->route_cells[a] = ca;
             w->route_cells[b] = cb;
+            w->work += ((uint64_t)i * (lb + 1U)) + j + 1U;
             return true;
         }
     }
+    w->work += ((uint64_t)la + 1U) * (lb + 1U);
     return false;
 }
 
