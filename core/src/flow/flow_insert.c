@@ -93,6 +93,11 @@ bool sva_flow_detour(const sva_mission_t* m, uint16_t u, const sva_route_t* r, u
     int64_t free_at = 0;
     sva_flow_leg_ends(m, u, r, p, &px, &py, &free_at);
     const sva_target_t* tg = &m->targets[t];
+    // Time order alone first: t starts after the UAV is free, and ends before `next`.
+    if ((free_at > tg->start_ticks) ||
+        ((next < r->target_count) && (m->targets[r->targets[next]].start_ticks < tg->end_ticks))) {
+        return false;
+    }
     if (!sva_flow_arrives_in_time(m, free_at, px, py, tg)) {
         return false;
     }
@@ -117,7 +122,13 @@ bool sva_flow_best_place(sva_flow_work_t* w, const sva_mission_t* m, const sva_p
 {
     const sva_route_t* r = &plan->routes[u];
     bool found = false;
-    for (uint16_t p = 0U; p <= r->target_count; p++) {
+    // Routes keep time order: no place before the first stop that starts after t ends.
+    uint16_t first = 0U;
+    while ((first < r->target_count) &&
+           (m->targets[r->targets[first]].start_ticks < m->targets[t].end_ticks)) {
+        first++;
+    }
+    for (uint16_t p = first; p <= r->target_count; p++) {
         if ((p > 0U) && (m->targets[r->targets[p - 1U]].end_ticks > m->targets[t].start_ticks)) {
             break;  // routes keep time order: no later place is free by t's start either
         }
