@@ -6,7 +6,10 @@
 // the repair and local search, no bound).
 // flow also keeps 4 labels per target (not 8) in its Lagrangian phase, and searches
 // 16 levels deep (not 24). Its route master (the Lagrangian's LP prices) is off: the
-// prices come from subgradient steps alone. So is its coverage search (16 KiB).
+// prices come from subgradient steps alone. So is its coverage search (16 KiB). Its
+// missions all plan by the small missions' rules (SVA_FLOW_LARGE_FROM at its 256
+// targets): the large ones' granular moves would take 11 KiB of RAM, and their code a
+// little more stack than its budget leaves.
 #ifndef SVA_PROFILE_512K_H
 #define SVA_PROFILE_512K_H
 #define SVA_FLOW_MAX_ARCS      28672L
@@ -15,4 +18,5 @@
 #define SVA_FLOW_LP_ROWS       1
 #define SVA_FLOW_LP_COLS       1
 #define SVA_FLOW_COVER_TARGETS 0
+#define SVA_FLOW_LARGE_FROM    256
 #endif

@@ -22,6 +22,7 @@
 ///                  + 8 * SVA_FLOW_LP_ROWS^2 + 68 * SVA_FLOW_LP_ROWS
 ///                  + 14 * SVA_FLOW_LP_COLS                               (route master)
 ///                  + the coverage search (SVA_FLOW_COVER_TARGETS below)
+///                  + large missions' granular moves (SVA_FLOW_NEAR below)
 ///   (default profile: 727,656 B, of which flow's sva_flow_work_t is 581,736 B; large
 ///   profile: 7,293,032 B, of which 6,560,000 B are flow's 656,000 arcs.)
 
@@ -224,6 +225,41 @@
 #endif
 #if (SVA_FLOW_LABELS < 1) || (SVA_FLOW_LABELS > 64)
 #    error "SVA_FLOW_LABELS must be in [1, 64]"
+#endif
+
+/// A mission of more than SVA_FLOW_LARGE_FROM targets is large for flow: its work
+/// budget is flow_max_work * targets / SVA_FLOW_LARGE_FROM (sva.h), its Lagrangian
+/// phase gets an eighth of that budget, and its ruin and recreate is granular
+/// (flow_ruin.c): a round costs work for the targets it ruins, not the whole mission,
+/// and its local search starts from the routes the round changed and moves a visit only
+/// towards the routes serving its SVA_FLOW_NEAR most related targets (and the empty
+/// ones). Smaller missions plan exactly as without these rules. SVA_FLOW_NEAR 0 leaves
+/// the granular moves out. Cost, when SVA_MAX_TARGETS > SVA_FLOW_LARGE_FROM and
+/// SVA_FLOW_NEAR > 0: (2 * SVA_FLOW_NEAR + 12) B * SVA_MAX_TARGETS + 3 B * SVA_MAX_UAVS.
+#ifndef SVA_FLOW_LARGE_FROM
+#    define SVA_FLOW_LARGE_FROM 64
+#endif
+#if (SVA_FLOW_LARGE_FROM < 1) || (SVA_FLOW_LARGE_FROM > 4096)
+#    error "SVA_FLOW_LARGE_FROM must be in [1, 4096]"
+#endif
+#ifndef SVA_FLOW_NEAR
+#    define SVA_FLOW_NEAR 16
+#endif
+#if (SVA_FLOW_NEAR < 0) || (SVA_FLOW_NEAR > 64)
+#    error "SVA_FLOW_NEAR must be in [0, 64]"
+#endif
+/// Derived: SVA_FLOW_LARGE 1 when a mission can be large (the rules above are compiled
+/// in only then), SVA_FLOW_GRANULAR 1 when the granular moves are on too (their memory
+/// is there only then).
+#if SVA_MAX_TARGETS > SVA_FLOW_LARGE_FROM
+#    define SVA_FLOW_LARGE 1
+#else
+#    define SVA_FLOW_LARGE 0
+#endif
+#if (SVA_FLOW_NEAR > 0) && SVA_FLOW_LARGE
+#    define SVA_FLOW_GRANULAR 1
+#else
+#    define SVA_FLOW_GRANULAR 0
 #endif
 
 /// Subgradient iterations of one Lagrangian phase (each one resource-constrained

@@ -231,6 +231,21 @@ typedef struct {
     uint16_t insert_pos[SVA_MAX_UAVS];
     uint8_t uav_pick[SVA_MAX_UAVS];
     bool insert_backwards;  ///< the repair inserts in reverse window order (ruin and recreate)
+#if SVA_FLOW_GRANULAR
+    /// Past SVA_FLOW_LARGE_FROM targets: ruin and recreate's local search starts
+    /// only from routes changed since it last looked at them, with granular moves.
+    bool local_changed_only;              ///< the local search is in that mode now
+    uint8_t route_changed[SVA_MAX_UAVS];  ///< route u changed (set by every edit)
+    /// Each target's most related targets, nearest first (flow_ruin.c); near_count each.
+    uint16_t near[SVA_MAX_TARGETS][SVA_FLOW_NEAR];
+    uint16_t near_count;
+    uint16_t route_of[SVA_MAX_TARGETS];  ///< a route serving the target (checked on use)
+    uint16_t pos_of[SVA_MAX_TARGETS];    ///< its place there
+    int32_t pre_of[SVA_MAX_TARGETS];     ///< cells from that route's first target to it
+    int32_t post_of[SVA_MAX_TARGETS];    ///< and from it to the depot
+    uint16_t uav_tried[SVA_MAX_UAVS];    ///< try_epoch: already tried for this visit
+    uint16_t try_epoch;
+#endif
     uint16_t spare_route[SVA_MAX_ROUTE_TARGETS];       ///< a route's tail in an exchange
     uint16_t trade_pos[SVA_MAX_UAVS];                  ///< where a traded target was
     int32_t piece_pre[2][SVA_MAX_ROUTE_TARGETS + 1];   ///< two routes' cells up to a stop

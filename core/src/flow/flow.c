@@ -331,31 +331,10 @@ static void finish(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t*
     sva_stats_t* stats = &plan->stats;
     sva_flow_canonical_incumbent(priv, m);
     sva_flow_write_incumbent(priv, m, plan);
-
-    // Any plan p: cost(p) - reward(p) >= min(best, open). A plan covering c targets
-    // earns c * W (exact rewards) or at least c * (W - need + 1), and costs at most
-    // w->max_cost < W.
-    int32_t need_max = 1;
-    int64_t covered = 0;
-    int64_t reward = 0;
-    for (uint16_t t = 0U; t < m->target_count; t++) {
-        need_max = (m->targets[t].need > need_max) ? m->targets[t].need : need_max;
-        if ((int32_t)priv->target_served[t] == m->targets[t].need) {
-            covered++;
-            reward += (int64_t)m->targets[t].need * w->copy_reward[w->target_first_copy[t]];
-        }
-    }
-    const int64_t cost = w->inc_value + reward;
-    const int64_t least_whole =
-        w->reward_exact ? w->reward_whole : (w->reward_whole - need_max + 1);
-    const int64_t floor_value = min64(w->inc_value, open);
-    int64_t bound = floor_value + (covered * least_whole);
-    bound = (bound < lagrange_bound) ? lagrange_bound : bound;
-    bound = (bound < 0) ? 0 : bound;
-    // No open node holds a plan covering one target more: such a plan's value is at
-    // most max_cost - (covered + 1) * least_whole.
+    int64_t cost = 0;
+    int64_t bound = 0;
     const bool coverage_proven =
-        coverage_known || (floor_value > (w->max_cost - ((covered + 1) * least_whole)));
+        sva_flow_cost_bound(priv, m, open, lagrange_bound, coverage_known, &cost, &bound);
     stats->has_bound = true;
     stats->lower_bound = (bound > cost) ? cost : bound;
     stats->optimal =
@@ -435,9 +414,13 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
     }
     budget = (budget < 1000U) ? 1000U : budget;
     budget = (budget > (uint64_t)SVA_FLOW_MAX_WORK) ? (uint64_t)SVA_FLOW_MAX_WORK : budget;
+    budget = sva_flow_budget(m, budget);
     w->insert_backwards = false;
+#if SVA_FLOW_GRANULAR
+    w->local_changed_only = false;
+#endif
     w->work = 0U;
-    w->local_work = budget / 2U;
+    w->local_work = sva_flow_local_work(m, budget);
     stats->search_nodes = 0U;
     const sva_flow_incomplete_t over = sva_flow_build(priv, m, plan, false, stats);
     if (over == SVA_FLOW_OVER_COPIES) {
@@ -491,10 +474,18 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
         const uint64_t share = replan ? (uint64_t)REPLAN_COVER_SHARE : (uint64_t)COVER_SHARE;
         start += sva_flow_cover_incumbent(priv, m, plan, budget / share, &coverage_proven);
 #endif
-        lagrange_bound = sva_flow_lagrange(priv, m, plan, start + (budget - (budget / 4U)),
+        lagrange_bound = sva_flow_lagrange(priv, m, plan, start + sva_flow_lagrange_work(m, budget),
                                            &coverage_proven, &stats->flow_lagrange_iters);
-        const bool proven = sva_flow_ruin_recreate(priv, m, plan, start + budget,
-                                                   coverage_proven ? lagrange_bound : -1);
+        int64_t proven_bound = coverage_proven ? lagrange_bound : -1;
+#if SVA_FLOW_LARGE
+        if (sva_flow_large(m)) {
+            // A large mission's ruin and recreate also knows the search's bound, so that
+            // a plan already near it is not worked on with the large budget.
+            proven_bound =
+                sva_flow_known_bound(open, lagrange_bound, priv, m, plan, coverage_proven);
+        }
+#endif
+        const bool proven = sva_flow_ruin_recreate(priv, m, plan, start + budget, proven_bound);
         // Proven optimal already (the claim below): no second search.
         if (!proven || !w->reward_exact) {
             sva_flow_incomplete_t again = finished;

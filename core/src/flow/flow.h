@@ -217,4 +217,79 @@ void sva_flow_standing_finish(sva_planner_priv_t* priv, const sva_mission_t* m, 
 sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* mission,
                           const sva_plan_t* standing, sva_plan_t* plan);
 
+/// The incumbent's cost and a lower bound on any plan's cost with as many targets (from
+/// `open`, the least value of the nodes left open, and the Lagrangian bound); true when
+/// no plan covers more targets (or coverage_known). priv->target_served must be the
+/// incumbent's.
+bool sva_flow_cost_bound(const sva_planner_priv_t* priv, const sva_mission_t* m, int64_t open,
+                         int64_t lagrange_bound, bool coverage_known, int64_t* cost,
+                         int64_t* bound);
+
+/// One local search may start with half the budget, and the Lagrangian phase ends at
+/// three quarters of it (a large mission's shares are flow_large.c's).
+static inline uint64_t sva_flow_small_local_work(uint64_t budget)
+{
+    return budget / 2U;
+}
+
+static inline uint64_t sva_flow_small_lagrange_work(uint64_t budget)
+{
+    return budget - (budget / 4U);
+}
+
+#if SVA_FLOW_LARGE
+/// flow_large.c: the work budget of mission m given the planner's (scaled when m is
+/// large), one local search's work, and the Lagrangian phase's.
+uint64_t sva_flow_budget(const sva_mission_t* m, uint64_t budget);
+uint64_t sva_flow_local_work(const sva_mission_t* m, uint64_t budget);
+uint64_t sva_flow_lagrange_work(const sva_mission_t* m, uint64_t budget);
+
+/// The incumbent written into *plan, and a bound on its cost that ruin and recreate may
+/// trust: sva_flow_cost_bound's when the coverage is proven and the rewards exact, else -1.
+/// The two bounds come first, in registers: the caller is on flow's deepest stack path.
+int64_t sva_flow_known_bound(int64_t open, int64_t lagrange_bound, sva_planner_priv_t* priv,
+                             const sva_mission_t* m, sva_plan_t* plan, bool coverage_known);
+#else
+// No mission can be large in this profile: the small missions' rules.
+static inline uint64_t sva_flow_budget(const sva_mission_t* m, uint64_t budget)
+{
+    (void)m;
+    return budget;
+}
+
+static inline uint64_t sva_flow_local_work(const sva_mission_t* m, uint64_t budget)
+{
+    (void)m;
+    return sva_flow_small_local_work(budget);
+}
+
+static inline uint64_t sva_flow_lagrange_work(const sva_mission_t* m, uint64_t budget)
+{
+    (void)m;
+    return sva_flow_small_lagrange_work(budget);
+}
+#endif
+
+/// Whether the mission is large for flow (more than SVA_FLOW_LARGE_FROM targets).
+static inline bool sva_flow_large(const sva_mission_t* m)
+{
+#if SVA_FLOW_LARGE
+    return m->target_count > (uint16_t)SVA_FLOW_LARGE_FROM;
+#else
+    (void)m;
+    return false;
+#endif
+}
+
+/// Notes that route u changed (for the granular local search; nothing without it).
+static inline void sva_flow_changed(sva_flow_work_t* w, uint16_t u)
+{
+#if SVA_FLOW_GRANULAR
+    w->route_changed[u] = 1U;
+#else
+    (void)w;
+    (void)u;
+#endif
+}
+
 #endif  // SVA_FLOW_H

@@ -36,6 +36,7 @@ void sva_flow_remove_target(sva_planner_priv_t* priv, const sva_mission_t* m, sv
         if (kept != r->target_count) {
             r->target_count = kept;
             priv->flow.route_cells[u] = sva_route_cells(m, u, r);
+            sva_flow_changed(&priv->flow, u);
         }
     }
     priv->target_served[t] = 0U;
@@ -117,7 +118,16 @@ bool sva_flow_best_place(sva_flow_work_t* w, const sva_mission_t* m, const sva_p
 {
     const sva_route_t* r = &plan->routes[u];
     bool found = false;
-    for (uint16_t p = 0U; p <= r->target_count; p++) {
+    // Routes keep time order: no place before the first stop that starts after t ends
+    // (skipped at once where missions can be large; the same places either way).
+    uint16_t first = 0U;
+#if SVA_FLOW_LARGE
+    while ((first < r->target_count) &&
+           (m->targets[r->targets[first]].start_ticks < m->targets[t].end_ticks)) {
+        first++;
+    }
+#endif
+    for (uint16_t p = first; p <= r->target_count; p++) {
         if ((p > 0U) && (m->targets[r->targets[p - 1U]].end_ticks > m->targets[t].start_ticks)) {
             break;  // routes keep time order: no later place is free by t's start either
         }
@@ -174,6 +184,7 @@ void sva_flow_insert_at(sva_flow_work_t* w, sva_route_t* r, uint16_t u, uint16_t
     r->targets[w->insert_pos[u]] = t;
     r->target_count++;
     w->route_cells[u] += w->insert_delta[u];
+    sva_flow_changed(w, u);
 }
 
 void sva_flow_remove_at(const sva_mission_t* m, sva_flow_work_t* w, sva_route_t* r, uint16_t u,
@@ -184,6 +195,7 @@ void sva_flow_remove_at(const sva_mission_t* m, sva_flow_work_t* w, sva_route_t*
     }
     r->target_count--;
     w->route_cells[u] = sva_route_cells(m, u, r);
+    sva_flow_changed(w, u);
 }
 
 // Cheapest UAV other than `skip` that can take single-UAV target t; -1 if none.

@@ -76,35 +76,45 @@ static bool slot_delta(const sva_mission_t* m, uint16_t u, const sva_route_t* r,
     return true;
 }
 
-// Swaps the k-th visit of route a with a visit of a later route, each taking the
-// other's slot, when that saves cells.
+// Swaps the k-th visit of route a with the j-th of route b, each taking the other's
+// slot, when that saves cells.
+static bool swap_pair(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, uint16_t a,
+                      uint16_t k, uint16_t b, uint16_t j)
+{
+    sva_route_t* ra = &plan->routes[a];
+    sva_route_t* rb = &plan->routes[b];
+    const uint16_t s = ra->targets[k];
+    const uint16_t t = rb->targets[j];
+    w->work++;
+    int64_t da = 0;
+    int64_t db = 0;
+    if (!slot_delta(m, a, ra, k, t, &da) || !slot_delta(m, b, rb, j, s, &db) || ((da + db) >= 0) ||
+        !sva_flow_fits(m, a, w->route_cells[a] + da, ra->target_count) ||
+        !sva_flow_fits(m, b, w->route_cells[b] + db, rb->target_count) || serves(ra, t) ||
+        serves(rb, s)) {
+        return false;
+    }
+    ra->targets[k] = t;
+    rb->targets[j] = s;
+    w->route_cells[a] += da;
+    w->route_cells[b] += db;
+    sva_flow_changed(w, a);
+    sva_flow_changed(w, b);
+    return true;
+}
+
+// Swaps the k-th visit of route a with a visit of a later route when that saves cells.
 static bool swap(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, uint16_t a,
                  uint16_t k)
 {
-    sva_route_t* ra = &plan->routes[a];
-    const uint16_t s = ra->targets[k];
     for (uint16_t b = (uint16_t)(a + 1U); b < m->uav_count; b++) {
-        sva_route_t* rb = &plan->routes[b];
-        if (rb->stranded) {
+        if (plan->routes[b].stranded) {
             continue;
         }
-        for (uint16_t j = 0U; j < rb->target_count; j++) {
-            const uint16_t t = rb->targets[j];
-            w->work++;
-            int64_t da = 0;
-            int64_t db = 0;
-            if (!slot_delta(m, a, ra, k, t, &da) || !slot_delta(m, b, rb, j, s, &db) ||
-                ((da + db) >= 0) ||
-                !sva_flow_fits(m, a, w->route_cells[a] + da, ra->target_count) ||
-                !sva_flow_fits(m, b, w->route_cells[b] + db, rb->target_count) || serves(ra, t) ||
-                serves(rb, s)) {
-                continue;
+        for (uint16_t j = 0U; j < plan->routes[b].target_count; j++) {
+            if (swap_pair(w, m, plan, a, k, b, j)) {
+                return true;
             }
-            ra->targets[k] = t;
-            rb->targets[j] = s;
-            w->route_cells[a] += da;
-            w->route_cells[b] += db;
-            return true;
         }
     }
     return false;
@@ -223,59 +233,288 @@ static bool splice_distinct(const sva_route_t* ra, uint16_t i, const sva_route_t
     return true;
 }
 
+// Cut (i, j) of routes a and b (pieces' cells in piece_pre/post[0] for a, [1] for b):
+// a keeps its first i targets and takes b's from j on, b the other way round, when the
+// result is a plan and shorter than `before` cells.
+static bool cut_saves(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, uint16_t a,
+                      uint16_t b, uint16_t i, uint16_t j, int64_t before)
+{
+    sva_route_t* ra = &plan->routes[a];
+    sva_route_t* rb = &plan->routes[b];
+    const uint16_t na = (uint16_t)(i + (rb->target_count - j));
+    const uint16_t nb = (uint16_t)(j + (ra->target_count - i));
+    const int64_t ca = spliced_cells(m, a, ra, i, w->piece_pre[0], rb, j, w->piece_post[1]);
+    const int64_t cb =
+        (ca < 0) ? -1 : spliced_cells(m, b, rb, j, w->piece_pre[1], ra, i, w->piece_post[0]);
+    if ((cb < 0) || ((ca + cb) >= before) || !sva_flow_fits(m, a, ca, na) ||
+        !sva_flow_fits(m, b, cb, nb) || !splice_distinct(ra, i, rb, j) ||
+        !splice_distinct(rb, j, ra, i)) {
+        return false;
+    }
+    const uint16_t tail = (uint16_t)(ra->target_count - i);
+    for (uint16_t k = 0U; k < tail; k++) {
+        w->spare_route[k] = ra->targets[i + k];
+    }
+    for (uint16_t k = j; k < rb->target_count; k++) {
+        ra->targets[i + (k - j)] = rb->targets[k];
+    }
+    for (uint16_t k = 0U; k < tail; k++) {
+        rb->targets[j + k] = w->spare_route[k];
+    }
+    ra->target_count = na;
+    rb->target_count = nb;
+    w->route_cells[a] = ca;
+    w->route_cells[b] = cb;
+    sva_flow_changed(w, a);
+    sva_flow_changed(w, b);
+    return true;
+}
+
+#if SVA_FLOW_LARGE
+// When route u is free after its first i targets (sva_flow_leg_ends' free_at).
+static int64_t free_after(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t i)
+{
+    return (i == 0U) ? m->uavs[u].ready_at_ticks : m->targets[r->targets[i - 1U]].end_ticks;
+}
+#endif
+
 // Tail exchange: routes a and b swap everything after a cut each (a keeps its first i
 // targets and takes b's from j on; b the other way round) when that saves cells.
 static bool exchange_tails(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, uint16_t a,
                            uint16_t b)
 {
-    sva_route_t* ra = &plan->routes[a];
-    sva_route_t* rb = &plan->routes[b];
+    const sva_route_t* ra = &plan->routes[a];
+    const sva_route_t* rb = &plan->routes[b];
     const int64_t before = w->route_cells[a] + w->route_cells[b];
     piece_cells(m, a, ra, w->piece_pre[0], w->piece_post[0]);
     piece_cells(m, b, rb, w->piece_pre[1], w->piece_post[1]);
-    w->work += (uint32_t)ra->target_count + rb->target_count;
-    for (uint16_t i = 0U; i <= ra->target_count; i++) {
-        for (uint16_t j = 0U; j <= rb->target_count; j++) {
+    const uint16_t la = ra->target_count;
+    const uint16_t lb = rb->target_count;
+    // Every cut pair (i, j) counts as one unit of work, but where missions can be large
+    // only those that can meet time are evaluated: routes keep time order, so b's stop j
+    // is reachable after a's first i only if it starts after they end (from j_lo on),
+    // and a's stop i after b's first j only if b is free by its start (up to a j that
+    // only grows with i). The plans are the same either way.
+    w->work += (uint32_t)la + lb;
+#if SVA_FLOW_LARGE
+    uint16_t j_lo = 0U;
+    for (uint16_t i = 0U; i <= la; i++) {
+        const int64_t free_a = free_after(m, a, ra, i);
+        while ((j_lo < lb) && (m->targets[rb->targets[j_lo]].start_ticks < free_a)) {
+            j_lo++;
+        }
+        for (uint16_t j = j_lo; j <= lb; j++) {
+            if ((i < la) && (free_after(m, b, rb, j) > m->targets[ra->targets[i]].start_ticks)) {
+                break;  // and every later cut of b is free later still
+            }
+#else
+    for (uint16_t i = 0U; i <= la; i++) {
+        for (uint16_t j = 0U; j <= lb; j++) {
             w->work++;
-            const uint16_t na = (uint16_t)(i + (rb->target_count - j));
-            const uint16_t nb = (uint16_t)(j + (ra->target_count - i));
-            const int64_t ca = spliced_cells(m, a, ra, i, w->piece_pre[0], rb, j, w->piece_post[1]);
-            const int64_t cb =
-                (ca < 0) ? -1
-                         : spliced_cells(m, b, rb, j, w->piece_pre[1], ra, i, w->piece_post[0]);
-            if ((cb < 0) || ((ca + cb) >= before) || !sva_flow_fits(m, a, ca, na) ||
-                !sva_flow_fits(m, b, cb, nb) || !splice_distinct(ra, i, rb, j) ||
-                !splice_distinct(rb, j, ra, i)) {
-                continue;
+#endif
+            if (cut_saves(w, m, plan, a, b, i, j, before)) {
+#if SVA_FLOW_LARGE
+                w->work += ((uint64_t)i * (lb + 1U)) + j + 1U;
+#endif
+                return true;
             }
-            const uint16_t tail = (uint16_t)(ra->target_count - i);
-            for (uint16_t k = 0U; k < tail; k++) {
-                w->spare_route[k] = ra->targets[i + k];
-            }
-            for (uint16_t k = j; k < rb->target_count; k++) {
-                ra->targets[i + (k - j)] = rb->targets[k];
-            }
-            for (uint16_t k = 0U; k < tail; k++) {
-                rb->targets[j + k] = w->spare_route[k];
-            }
-            ra->target_count = na;
-            rb->target_count = nb;
-            w->route_cells[a] = ca;
-            w->route_cells[b] = cb;
+        }
+    }
+#if SVA_FLOW_LARGE
+    w->work += ((uint64_t)la + 1U) * (lb + 1U);
+#endif
+    return false;
+}
+
+#if SVA_FLOW_GRANULAR
+// Granular moves (ruin and recreate on missions past SVA_FLOW_LARGE_FROM targets):
+// a visit meets only the routes that serve one of its SVA_FLOW_NEAR most related
+// targets (w->near, flow_ruin.c), found through w->route_of / w->pos_of, an index of
+// the routes rebuilt at the start of the local search and after each move.
+
+static void index_route(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
+                        uint16_t u)
+{
+    const sva_route_t* r = &plan->routes[u];
+    piece_cells(m, u, r, w->piece_pre[0], w->piece_post[0]);
+    for (uint16_t k = 0U; k < r->target_count; k++) {
+        w->route_of[r->targets[k]] = u;
+        w->pos_of[r->targets[k]] = k;
+        w->pre_of[r->targets[k]] = w->piece_pre[0][k + 1U];
+        w->post_of[r->targets[k]] = w->piece_post[0][k];
+    }
+}
+
+// Route r's pieces at cut i from the index, into entry i of the scratch pieces `side`
+// (what cut_saves reads): up to its i-th stop, and from it on.
+static void indexed_pieces(sva_flow_work_t* w, const sva_route_t* r, uint16_t i, uint16_t side)
+{
+    w->piece_pre[side][i] = (i == 0U) ? 0 : w->pre_of[r->targets[i - 1U]];
+    w->piece_post[side][i] = (i == r->target_count) ? 0 : w->post_of[r->targets[i]];
+}
+
+// Where target v is served (one of its routes when its need is above 1); false if the
+// index is stale for v (v no longer served there), or v's route is a or stranded.
+static bool located(const sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
+                    uint16_t v, uint16_t a, uint16_t* b, uint16_t* j)
+{
+    const uint16_t u = w->route_of[v];
+    if ((u >= m->uav_count) || (u == a) || plan->routes[u].stranded) {
+        return false;
+    }
+    const sva_route_t* r = &plan->routes[u];
+    *b = u;
+    *j = w->pos_of[v];
+    return (*j < r->target_count) && (r->targets[*j] == v);
+}
+
+// Whether the index holds route u's pieces around cut i (a target of need above 1 may
+// be indexed under another of its routes).
+static bool fresh(const sva_flow_work_t* w, const sva_route_t* r, uint16_t u, uint16_t i)
+{
+    return ((i == 0U) || (w->route_of[r->targets[i - 1U]] == u)) &&
+           ((i == r->target_count) || (w->route_of[r->targets[i]] == u));
+}
+
+// A new mark over the UAVs: none tried yet for the visit at hand.
+static void new_try(sva_flow_work_t* w, uint16_t uav_count)
+{
+    w->try_epoch++;
+    if (w->try_epoch == 0U) {
+        for (uint16_t u = 0U; u < uav_count; u++) {
+            w->uav_tried[u] = 0U;
+        }
+        w->try_epoch = 1U;
+    }
+}
+
+// Moves route a's k-th visit t into route b when that saves cells (b untried so far).
+static bool relocate_to(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, uint16_t a,
+                        uint16_t k, uint16_t b)
+{
+    sva_route_t* ra = &plan->routes[a];
+    sva_route_t* rb = &plan->routes[b];
+    const uint16_t t = ra->targets[k];
+    if (w->uav_tried[b] == w->try_epoch) {
+        return false;
+    }
+    w->uav_tried[b] = w->try_epoch;
+    w->work += 1U + rb->target_count;
+    if (serves(rb, t) || !sva_flow_best_place(w, m, plan, b, t) ||
+        (w->insert_delta[b] >= sva_flow_stop_saving(m, a, ra, k))) {
+        return false;
+    }
+    sva_flow_remove_at(m, w, ra, a, k);
+    sva_flow_insert_at(w, rb, b, t);
+    return true;
+}
+
+// Route a's k-th visit: relocated into a near route or an empty one, swapped with a
+// near visit, or its successor changed by a tail exchange with a near visit's route.
+static bool granular_move(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, uint16_t a,
+                          uint16_t k)
+{
+    const uint16_t t = plan->routes[a].targets[k];
+    uint16_t b = 0U;
+    uint16_t j = 0U;
+    new_try(w, m->uav_count);
+    for (uint16_t n = 0U; n < w->near_count; n++) {
+        if (located(w, m, plan, w->near[t][n], a, &b, &j) &&
+            (relocate_to(w, m, plan, a, k, b) || swap_pair(w, m, plan, a, k, b, j))) {
             return true;
         }
     }
+    for (b = 0U; b < m->uav_count; b++) {
+        if ((b != a) && (plan->routes[b].target_count == 0U) && !plan->routes[b].stranded &&
+            relocate_to(w, m, plan, a, k, b)) {
+            return true;
+        }
+    }
+    for (uint16_t n = 0U; (n < w->near_count) && !plan->routes[a].stranded; n++) {
+        if (!located(w, m, plan, w->near[t][n], a, &b, &j)) {
+            continue;
+        }
+        const int64_t before = w->route_cells[a] + w->route_cells[b];
+        w->work += 2U;
+        // t then the near visit (a takes b's tail from it), or the near visit then t's
+        // successor (b takes a's tail after t).
+        for (uint16_t c = 0U; c < 2U; c++) {
+            const uint16_t i = (uint16_t)(k + 1U);
+            const uint16_t jc = (uint16_t)(j + c);
+            if (!fresh(w, &plan->routes[a], a, i) || !fresh(w, &plan->routes[b], b, jc)) {
+                continue;
+            }
+            indexed_pieces(w, &plan->routes[a], i, 0U);
+            indexed_pieces(w, &plan->routes[b], jc, 1U);
+            if (cut_saves(w, m, plan, a, b, i, jc, before)) {
+                return true;
+            }
+        }
+    }
     return false;
+}
+
+// The local search's pass over route a with granular moves; true if one saved cells.
+static bool granular_pass(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, uint16_t a)
+{
+    bool better = false;
+    for (uint16_t k = 0U; k < plan->routes[a].target_count; k++) {
+        if (granular_move(w, m, plan, a, k)) {
+            better = true;
+            for (uint16_t u = 0U; u < m->uav_count; u++) {
+                if (w->route_changed[u] != 0U) {
+                    index_route(w, m, plan, u);
+                }
+            }
+        }
+    }
+    return better;
+}
+#endif
+
+// Whether the local search starts from route a in this pass (and takes its mark).
+static bool starts_from(sva_flow_work_t* w, uint16_t a)
+{
+#if SVA_FLOW_GRANULAR
+    if (!w->local_changed_only) {
+        return true;
+    }
+    const bool changed = w->route_changed[a] != 0U;
+    w->route_changed[a] = 0U;
+    return changed;
+#else
+    (void)w;
+    (void)a;
+    return true;
+#endif
 }
 
 static void local_search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
 {
     sva_flow_work_t* w = &priv->flow;
     const uint64_t stop = w->work + w->local_work;
+#if SVA_FLOW_GRANULAR
+    const bool granular = w->local_changed_only;
+#endif
     bool better = true;
     for (uint32_t pass = 0U; better && (pass < LOCAL_PASSES) && (w->work < stop); pass++) {
         better = false;
+#if SVA_FLOW_GRANULAR
+        // The index, fresh for the pass (trades below change routes too).
+        for (uint16_t u = 0U; granular && (u < m->uav_count); u++) {
+            index_route(w, m, plan, u);
+        }
+#endif
         for (uint16_t a = 0U; a < m->uav_count; a++) {
+            if (!starts_from(w, a)) {
+                continue;
+            }
+#if SVA_FLOW_GRANULAR
+            if (granular) {
+                better = granular_pass(w, m, plan, a) || better;
+                continue;
+            }
+#endif
             for (uint16_t k = 0U; k < plan->routes[a].target_count; k++) {
                 if (relocate(w, m, plan, a, k) || swap(w, m, plan, a, k)) {
                     better = true;

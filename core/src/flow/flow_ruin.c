@@ -9,7 +9,7 @@
 // group's visits leave room. Then swaps: one covered target out, one uncovered in.
 #include "flow.h"
 
-#define RUIN_ROUND_UNITS 8U  // work units per round and per target x UAV (insertions)
+#define RUIN_ROUND_UNITS 8U  // work units per round, per target inserted x UAV
 
 static int64_t relatedness(const sva_mission_t* m, uint16_t a, uint16_t b)
 {
@@ -20,6 +20,45 @@ static int64_t relatedness(const sva_mission_t* m, uint16_t a, uint16_t b)
            (((ticks < 0) ? -ticks : ticks) / m->ticks_per_cell);
 }
 
+#if SVA_FLOW_GRANULAR
+// Each target's SVA_FLOW_NEAR most related targets, nearest first (ties: lower index),
+// the local search's granular neighbourhood during ruin and recreate.
+static void find_near(sva_flow_work_t* w, const sva_mission_t* m)
+{
+    const uint16_t k_max = (m->target_count > (uint16_t)SVA_FLOW_NEAR)
+                               ? (uint16_t)SVA_FLOW_NEAR
+                               : (uint16_t)(m->target_count - 1U);
+    w->near_count = k_max;
+    for (uint16_t s = 0U; s < m->target_count; s++) {
+        uint16_t n = 0U;
+        for (uint16_t t = 0U; t < m->target_count; t++) {
+            if (t == s) {
+                continue;
+            }
+            const int64_t rel = relatedness(m, s, t);
+            uint16_t at = n;
+            while ((at > 0U) && (relatedness(m, s, w->near[s][at - 1U]) > rel)) {
+                at--;
+            }
+            if (at >= k_max) {
+                continue;
+            }
+            const uint16_t last = (n < k_max) ? n : (uint16_t)(k_max - 1U);
+            for (uint16_t j = last; j > at; j--) {
+                w->near[s][j] = w->near[s][j - 1U];
+            }
+            w->near[s][at] = t;
+            n = (n < k_max) ? (uint16_t)(n + 1U) : n;
+        }
+    }
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        w->uav_tried[u] = 0U;
+    }
+    w->try_epoch = 0U;
+    w->work += (uint64_t)m->target_count * m->target_count;
+}
+#endif
+
 // The incumbent without s and the size - 1 covered targets most related to it.
 static void ruin(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, uint16_t s,
                  uint8_t size)
@@ -27,6 +66,9 @@ static void ruin(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* p
     sva_flow_work_t* w = &priv->flow;
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         w->route_cells[u] = sva_route_cells(m, u, &plan->routes[u]);
+#if SVA_FLOW_GRANULAR
+        w->route_changed[u] = 0U;
+#endif
     }
     sva_flow_remove_target(priv, m, plan, s);
     for (uint8_t k = 1U; k < size; k++) {
@@ -61,8 +103,16 @@ bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     const bool near = (proven_bound >= 0) && ((cost - proven_bound) <= (cost / 64));
     const uint64_t rest = ((end > w->work) && !near) ? (end - w->work) : 0U;
     const uint64_t budget = w->work + (rest - (rest / 4U));
-    const uint64_t round_units =
-        (uint64_t)m->target_count * (uint64_t)m->uav_count * RUIN_ROUND_UNITS;
+    // A round's insertions: every target's, or past SVA_FLOW_LARGE_FROM targets
+    // the ruined ones' (a swap round: two) and a scan of the targets.
+    const bool large = sva_flow_large(m);
+    const uint64_t uav_units = (uint64_t)m->uav_count * RUIN_ROUND_UNITS;
+    const uint64_t whole_units = (uint64_t)m->target_count * uav_units;
+#if SVA_FLOW_GRANULAR
+    if (large && (rest > 0U)) {
+        find_near(w, m);
+    }
+#endif
     // *plan holds the incumbent whenever a round is chosen (sva_flow_incumbent above,
     // then a write after each round).
     for (size_t i = 0U; i < (sizeof(ruin_sizes) / sizeof(ruin_sizes[0])); i++) {
@@ -70,9 +120,16 @@ bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
             if ((int32_t)priv->target_served[s] == m->targets[s].need) {
                 ruin(priv, m, plan, s, ruin_sizes[i]);
                 w->insert_backwards = ((s + i) % 2U) == 1U;
+#if SVA_FLOW_GRANULAR
+                w->local_changed_only = large;
+#endif
                 sva_flow_repair(priv, m, plan, true);
+#if SVA_FLOW_GRANULAR
+                w->local_changed_only = false;
+#endif
                 w->insert_backwards = false;
-                w->work += round_units;
+                w->work +=
+                    large ? ((uint64_t)m->target_count + (ruin_sizes[i] * uav_units)) : whole_units;
                 plan->stats.flow_ruin_rounds++;
                 sva_flow_write_incumbent(priv, m, plan);
             }
@@ -92,7 +149,7 @@ bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
                     sva_flow_repair(priv, m, plan, true);
                     plan->stats.flow_ruin_rounds++;
                 }
-                w->work += round_units;
+                w->work += large ? ((uint64_t)m->target_count + (2U * uav_units)) : whole_units;
                 sva_flow_write_incumbent(priv, m, plan);
             }
         }
