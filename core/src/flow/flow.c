@@ -36,9 +36,12 @@
 #define REPLAN_SEARCH_SHARE 2U
 // The coverage search's share, after the first search when that does not finish: a
 // sixteenth, and a quarter in a replan, whose residual missions (UAVs scattered, fuel
-// spent) are where the other phases stay a target short.
+// spent) are where the other phases stay a target short. A mission with a target of
+// need 2 or more gets half: the plan covering one more target pairs the UAVs anew, and
+// its bound (pooled over needs) prunes little there, so finding it takes many nodes.
 #define COVER_SHARE        16U
 #define REPLAN_COVER_SHARE 4U
+#define SYNC_COVER_SHARE   2U
 
 static uint32_t find_arc(const sva_flow_work_t* w, uint16_t tail, uint16_t head)
 {
@@ -488,7 +491,10 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
 #if SVA_FLOW_COVER_TARGETS > 0
         // Coverage first: its own share of the budget, on top of the phases below
         // (their ends move by the work it spent).
-        const uint64_t share = replan ? (uint64_t)REPLAN_COVER_SHARE : (uint64_t)COVER_SHARE;
+        uint64_t share = replan ? (uint64_t)REPLAN_COVER_SHARE : (uint64_t)COVER_SHARE;
+        for (uint16_t t = 0U; (t < m->target_count) && !replan; t++) {
+            share = (m->targets[t].need > 1) ? (uint64_t)SYNC_COVER_SHARE : share;
+        }
         start += sva_flow_cover_incumbent(priv, m, plan, budget / share, &coverage_proven);
 #endif
         lagrange_bound = sva_flow_lagrange(priv, m, plan, start + (budget - (budget / 4U)),
