@@ -17,11 +17,11 @@
 // to at most sum K(s), and to at most sum min(K(s), c): no UAV serves a target twice.
 // UAVs in one state are interchangeable: a combination taking the second of two alike
 // UAVs must take the first. Combinations are tried in the order of their legs'
-// lengths, the target left last; in the second half of the share, a target the
-// incumbent leaves is left first (incumbent_first): the plan covering one more target
-// mostly keeps the incumbent's choices, and serving every target first spends the fuel
-// on the first targets, so that the search only reaches such plans after many nodes.
-// No recursion: the path is the UAV states per depth.
+// lengths, the target left last; with a target of need 2 or more, in the second half
+// of the share, a target the incumbent leaves is left first (incumbent_first): the
+// plan covering one more target mostly keeps the incumbent's choices, and serving every
+// target first spends the fuel on the first targets, so that the search only reaches
+// such plans after many nodes. No recursion: the path is the UAV states per depth.
 #include "flow.h"
 
 #if SVA_FLOW_COVER_TARGETS > 0
@@ -390,11 +390,16 @@ uint64_t sva_flow_cover_incumbent(sva_planner_priv_t* priv, const sva_mission_t*
                                   sva_plan_t* plan, uint64_t work, bool* proven)
 {
     const uint64_t from = priv->flow.work;
+    // With a target of need 2 or more, two halves: targets served first, then the
+    // incumbent's choices first; otherwise the first order only.
+    uint32_t halves = 1U;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        halves = (m->targets[t].need > 1) ? 2U : halves;
+    }
     sva_flow_cover_result_t r = SVA_FLOW_COVER_OPEN;
-    // Two halves: targets served first, then the incumbent's choices first.
-    for (uint32_t half = 0U; (half < 2U) && (r == SVA_FLOW_COVER_OPEN); half++) {
+    for (uint32_t half = 0U; (half < halves) && (r == SVA_FLOW_COVER_OPEN); half++) {
         priv->flow.cover.incumbent_first = half == 1U;
-        const uint64_t end = from + ((half == 0U) ? (work / 2U) : work);
+        const uint64_t end = from + ((half + 1U < halves) ? (work / 2U) : work);
         r = SVA_FLOW_COVER_FOUND;
         while (r == SVA_FLOW_COVER_FOUND) {
             int64_t cost = 0;
