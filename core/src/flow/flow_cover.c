@@ -17,8 +17,8 @@
 // to at most sum K(s), and to at most sum min(K(s), c): no UAV serves a target twice.
 // UAVs in one state are interchangeable: a combination taking the second of two alike
 // UAVs must take the first. Combinations are tried in the order of their legs'
-// lengths, the target left last; with a target of need 2 or more, in the second half
-// of the share, a target the incumbent leaves is left first (incumbent_first): the
+// lengths, the target left last; in the second half of the coverage search that flow
+// runs last at need 2 and more, a target the incumbent leaves is left first: the
 // plan covering one more target mostly keeps the incumbent's choices, and serving every
 // target first spends the fuel on the first targets, so that the search only reaches
 // such plans after many nodes. No recursion: the path is the UAV states per depth.
@@ -387,15 +387,13 @@ sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_missi
 }
 
 uint64_t sva_flow_cover_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m,
-                                  sva_plan_t* plan, uint64_t work, bool* proven)
+                                  sva_plan_t* plan, uint64_t work, bool incumbent_first,
+                                  bool* proven)
 {
     const uint64_t from = priv->flow.work;
-    // With a target of need 2 or more, two halves: targets served first, then the
-    // incumbent's choices first; otherwise the first order only.
-    uint32_t halves = 1U;
-    for (uint16_t t = 0U; t < m->target_count; t++) {
-        halves = (m->targets[t].need > 1) ? 2U : halves;
-    }
+    // incumbent_first: two halves, targets served first, then the incumbent's choices
+    // first; otherwise the first order only.
+    const uint32_t halves = incumbent_first ? 2U : 1U;
     sva_flow_cover_result_t r = SVA_FLOW_COVER_OPEN;
     for (uint32_t half = 0U; (half < halves) && (r == SVA_FLOW_COVER_OPEN); half++) {
         priv->flow.cover.incumbent_first = half == 1U;
@@ -430,12 +428,14 @@ sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_missi
 }
 
 uint64_t sva_flow_cover_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m,
-                                  sva_plan_t* plan, uint64_t work, bool* proven)
+                                  sva_plan_t* plan, uint64_t work, bool incumbent_first,
+                                  bool* proven)
 {
     (void)priv;
     (void)m;
     (void)plan;
     (void)work;
+    (void)incumbent_first;
     *proven = false;
     return 0U;
 }
