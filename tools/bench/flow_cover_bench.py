@@ -95,7 +95,8 @@ def main(argv):
             solved = dict(zip(order, pool.map(lambda i: ref_answer(todo[i][1], args.cache, det), order)))
         refs = [solved[i] for i in range(len(todo))]
         for (s, p), ref in zip(todo, refs):
-            rows.append((s, os.path.basename(p)[:-5], flow_answer(p), ref))
+            index = p.rsplit("_", 1)[1][:-5]
+            rows.append((s, f"{s[0]}x{s[1]}n{s[2]}#{index}", flow_answer(p), ref))
     lines = []
     table = ["| set | missions | ref's coverage proven | flow fewer than proven | flow fewer than unproven ref "
              "| flow more than unproven ref | flow proven optimal | median | p95 |",
