@@ -184,6 +184,7 @@ typedef struct {
     uint8_t reach[SVA_FLOW_COVER_T];         ///< bound: UAVs that can reach a target
     uint16_t by_need[SVA_FLOW_COVER_U + 1];  ///< bound: those targets by need
     int32_t leg[SVA_FLOW_COVER_U];           ///< candidates: cells to the target
+    bool incumbent_first;                    ///< a target the incumbent leaves is left first
 } sva_flow_cover_t;
 #endif
 

@@ -36,9 +36,14 @@
 #define REPLAN_SEARCH_SHARE 2U
 // The coverage search's share, after the first search when that does not finish: a
 // sixteenth, and a quarter in a replan, whose residual missions (UAVs scattered, fuel
-// spent) are where the other phases stay a target short.
+// spent) are where the other phases stay a target short. With a target of need 2 or
+// more, a plan (not a replan) runs the search again at the end with half the budget: the
+// plan covering one more target pairs the UAVs anew, and the search's bound (pooled over
+// needs) prunes little there, so finding it takes many nodes. At the end, what comes
+// before is as it was, so the plan covers at least as many targets.
 #define COVER_SHARE        16U
 #define REPLAN_COVER_SHARE 4U
+#define SYNC_COVER_SHARE   2U
 
 static uint32_t find_arc(const sva_flow_work_t* w, uint16_t tail, uint16_t head)
 {
@@ -472,7 +477,7 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
         // Coverage first: its own share of the budget, on top of the phases below
         // (their ends move by the work it spent).
         const uint64_t share = replan ? (uint64_t)REPLAN_COVER_SHARE : (uint64_t)COVER_SHARE;
-        start += sva_flow_cover_incumbent(priv, m, plan, budget / share, &coverage_proven);
+        start += sva_flow_cover_incumbent(priv, m, plan, budget / share, false, &coverage_proven);
 #endif
         lagrange_bound = sva_flow_lagrange(priv, m, plan, start + sva_flow_lagrange_work(m, budget),
                                            &coverage_proven, &stats->flow_lagrange_iters);
@@ -493,6 +498,18 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
             open = (open_again > open) ? open_again : open;
             incomplete = (open_again == INT64_MAX) ? again : incomplete;
         }
+#if SVA_FLOW_COVER_TARGETS > 0
+        // With a target of need 2 or more and the coverage unproven, the coverage search
+        // once more, last, from the final incumbent (SYNC_COVER_SHARE above).
+        bool sync = false;
+        for (uint16_t t = 0U; t < m->target_count; t++) {
+            sync = sync || (m->targets[t].need > 1);
+        }
+        if (sync && !replan && !coverage_proven && (open != INT64_MAX)) {
+            (void)sva_flow_cover_incumbent(priv, m, plan, budget / SYNC_COVER_SHARE, true,
+                                           &coverage_proven);
+        }
+#endif
     }
     finish(priv, m, plan, open, lagrange_bound, coverage_proven, incomplete);
     return SVA_OK;

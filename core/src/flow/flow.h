@@ -193,10 +193,13 @@ sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_missi
                                        uint16_t* nodes);
 /// The coverage search for one target more than the incumbent covers, again after each
 /// plan it finds (repaired and offered: it covers more, so it becomes the incumbent),
-/// within `work` units; returns the work it spent. *proven: it proved the incumbent's
-/// coverage the most. Off (nothing spent, nothing proven) when SVA_FLOW_COVER_TARGETS is 0.
+/// within `work` units (incumbent_first: the first half in the search's own order, the
+/// second with the targets the incumbent leaves left first); returns the work it spent.
+/// *proven: it proved the incumbent's coverage the most. Off (nothing spent, nothing
+/// proven) when SVA_FLOW_COVER_TARGETS is 0.
 uint64_t sva_flow_cover_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m,
-                                  sva_plan_t* plan, uint64_t work, bool* proven);
+                                  sva_plan_t* plan, uint64_t work, bool incumbent_first,
+                                  bool* proven);
 
 // flow_standing.c: the standing plan (sva_replan()'s; SVA_FLOW_STANDING).
 /// Whether `standing` is a plan of the mission (*plan fresh from sva_state_reset): a

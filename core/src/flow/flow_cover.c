@@ -17,15 +17,21 @@
 // to at most sum K(s), and to at most sum min(K(s), c): no UAV serves a target twice.
 // UAVs in one state are interchangeable: a combination taking the second of two alike
 // UAVs must take the first. Combinations are tried in the order of their legs'
-// lengths, the target left last. No recursion: the path is the UAV states per depth.
+// lengths, the target left last; in the second half of the coverage search that flow
+// runs last at need 2 and more, a target the incumbent leaves is left first: the
+// plan covering one more target mostly keeps the incumbent's choices, and serving every
+// target first spends the fuel on the first targets, so that the search only reaches
+// such plans after many nodes. No recursion: the path is the UAV states per depth.
 #include "flow.h"
 
 #if SVA_FLOW_COVER_TARGETS > 0
 
-#    define STEP_COMBOS 0U  // the next combination in pick[d]
-#    define STEP_LEAVE  1U  // the target left
-#    define STEP_DONE   2U
-#    define NO_FUEL     INT32_MAX
+#    define STEP_COMBOS      0U  // the next combination in pick[d], then the target left
+#    define STEP_LEAVE       1U  // the target left
+#    define STEP_DONE        2U
+#    define STEP_LEAVE_FIRST 3U  // the target left, then the combinations
+#    define STEP_COMBOS_LAST 4U  // the next combination in pick[d], then done
+#    define NO_FUEL          INT32_MAX
 
 // fuel_after for the n targets in window order; returns the work (pairs x counts).
 static uint64_t fill_fuel_after(sva_flow_cover_t* c, const sva_planner_priv_t* priv,
@@ -249,8 +255,17 @@ static bool next_child(sva_flow_cover_t* c, const sva_planner_priv_t* priv, cons
                        uint16_t d, uint16_t uavs)
 {
     const sva_target_t* t = &m->targets[priv->target_order[d]];
-    const uint8_t need = (uint8_t)t->need;  // at most cand_count in STEP_COMBOS
-    while (c->step[d] == (uint8_t)STEP_COMBOS) {
+    const uint8_t need = (uint8_t)t->need;  // at most cand_count in STEP_COMBOS(_LAST)
+    if (c->step[d] == (uint8_t)STEP_LEAVE_FIRST) {
+        c->step[d] = (uint8_t)STEP_COMBOS_LAST;
+        for (uint16_t k = 0U; k < uavs; k++) {
+            c->at[d + 1U][k] = c->at[d][k];
+        }
+        c->chosen[d] = 0U;
+        c->covered[d + 1U] = c->covered[d];
+        return true;
+    }
+    while ((c->step[d] == (uint8_t)STEP_COMBOS) || (c->step[d] == (uint8_t)STEP_COMBOS_LAST)) {
         const bool take = cover_canonical(c, d, need);
         uint32_t chosen = 0U;
         if (take) {
@@ -259,7 +274,7 @@ static bool next_child(sva_flow_cover_t* c, const sva_planner_priv_t* priv, cons
             }
         }
         if (!cover_advance(c->pick[d], need, c->cand_count[d])) {
-            c->step[d] = (uint8_t)STEP_LEAVE;
+            c->step[d] = (uint8_t)((c->step[d] == (uint8_t)STEP_COMBOS) ? STEP_LEAVE : STEP_DONE);
         }
         if (take) {
             for (uint16_t k = 0U; k < uavs; k++) {
@@ -348,7 +363,12 @@ sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_missi
             w->work += uavs;
             c->step[d] = (uint8_t)STEP_LEAVE;
             if ((int32_t)c->cand_count[d] >= t->need) {
-                c->step[d] = (uint8_t)STEP_COMBOS;
+                // In the second half, the incumbent's choice first: a target it leaves
+                // is left first.
+                c->step[d] = (uint8_t)((c->incumbent_first &&
+                                        (priv->target_served[priv->target_order[d]] == 0U))
+                                           ? STEP_LEAVE_FIRST
+                                           : STEP_COMBOS);
                 for (int32_t i = 0; i < t->need; i++) {
                     c->pick[d][i] = (uint8_t)i;
                 }
@@ -367,20 +387,29 @@ sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_missi
 }
 
 uint64_t sva_flow_cover_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m,
-                                  sva_plan_t* plan, uint64_t work, bool* proven)
+                                  sva_plan_t* plan, uint64_t work, bool incumbent_first,
+                                  bool* proven)
 {
     const uint64_t from = priv->flow.work;
-    const uint64_t end = from + work;
-    sva_flow_cover_result_t r = SVA_FLOW_COVER_FOUND;
-    while (r == SVA_FLOW_COVER_FOUND) {
-        int64_t cost = 0;
-        int64_t covered = 0;
-        sva_flow_incumbent(priv, m, plan, &cost, &covered);
-        r = sva_flow_cover(priv, m, plan, covered, end, &plan->stats.flow_cover_nodes);
-        if (r == SVA_FLOW_COVER_FOUND) {
-            sva_flow_repair(priv, m, plan, true);
+    // incumbent_first: two halves, targets served first, then the incumbent's choices
+    // first; otherwise the first order only.
+    const uint32_t halves = incumbent_first ? 2U : 1U;
+    sva_flow_cover_result_t r = SVA_FLOW_COVER_OPEN;
+    for (uint32_t half = 0U; (half < halves) && (r == SVA_FLOW_COVER_OPEN); half++) {
+        priv->flow.cover.incumbent_first = half == 1U;
+        const uint64_t end = from + ((half + 1U < halves) ? (work / 2U) : work);
+        r = SVA_FLOW_COVER_FOUND;
+        while (r == SVA_FLOW_COVER_FOUND) {
+            int64_t cost = 0;
+            int64_t covered = 0;
+            sva_flow_incumbent(priv, m, plan, &cost, &covered);
+            r = sva_flow_cover(priv, m, plan, covered, end, &plan->stats.flow_cover_nodes);
+            if (r == SVA_FLOW_COVER_FOUND) {
+                sva_flow_repair(priv, m, plan, true);
+            }
         }
     }
+    priv->flow.cover.incumbent_first = false;
     *proven = r == SVA_FLOW_COVER_PROVEN;
     return priv->flow.work - from;
 }
@@ -399,12 +428,14 @@ sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_missi
 }
 
 uint64_t sva_flow_cover_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m,
-                                  sva_plan_t* plan, uint64_t work, bool* proven)
+                                  sva_plan_t* plan, uint64_t work, bool incumbent_first,
+                                  bool* proven)
 {
     (void)priv;
     (void)m;
     (void)plan;
     (void)work;
+    (void)incumbent_first;
     *proven = false;
     return 0U;
 }
