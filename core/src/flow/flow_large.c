@@ -1,8 +1,9 @@
 // flow_large.c -- flow's rules for large missions, of more than SVA_FLOW_LARGE_FROM
-// targets (DESIGN.md section 8): their work budget grows with their targets, the
-// Lagrangian phase gets an eighth of it (its subgradient steps are long there and its
-// bound gains little from them) and one local search an eighth (a half otherwise), and
-// ruin and recreate is told the search's bound. The rest of the budget goes to ruin and
+// targets (DESIGN.md section 8): their work budget grows with their targets (up to
+// twice the planner's, at twice SVA_FLOW_LARGE_FROM targets), the Lagrangian phase
+// gets an eighth of it (its subgradient steps are long there and its bound gains little
+// from them) and one local search an eighth (a half otherwise), and ruin and recreate
+// is told the search's bound. The rest of the budget goes to ruin and
 // recreate, whose rounds are granular (flow_ruin.c, flow_repair.c). These functions are
 // out of flow.c so that sva_run_flow's frame, on the core's deepest stack path, does
 // not grow (docs/embedded.md).
@@ -15,8 +16,9 @@
 
 uint64_t sva_flow_budget(const sva_mission_t* m, uint64_t budget)
 {
-    return sva_flow_large(m) ? ((budget / (uint64_t)SVA_FLOW_LARGE_FROM) * m->target_count)
-                             : budget;
+    const uint64_t most = 2U * (uint64_t)SVA_FLOW_LARGE_FROM;
+    const uint64_t targets = (m->target_count < most) ? m->target_count : most;
+    return sva_flow_large(m) ? ((budget / (uint64_t)SVA_FLOW_LARGE_FROM) * targets) : budget;
 }
 
 uint64_t sva_flow_local_work(const sva_mission_t* m, uint64_t budget)
