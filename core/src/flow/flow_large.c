@@ -1,12 +1,12 @@
 // flow_large.c -- flow's rules for large missions, of more than SVA_FLOW_LARGE_FROM
 // targets (DESIGN.md section 8): their work budget grows with their targets (up to
-// twice the planner's, at twice SVA_FLOW_LARGE_FROM targets), the Lagrangian phase
-// gets an eighth of it (its subgradient steps are long there and its bound gains little
-// from them) and one local search an eighth (a half otherwise), and ruin and recreate
-// is told the search's bound. The rest of the budget goes to ruin and
-// recreate, whose rounds are granular (flow_ruin.c, flow_repair.c). These functions are
-// out of flow.c so that sva_run_flow's frame, on the core's deepest stack path, does
-// not grow (docs/embedded.md).
+// twice the planner's, at twice SVA_FLOW_LARGE_FROM targets), the Lagrangian phase gets
+// an eighth of it (its subgradient steps are long there and its bound gains little from
+// them) and one local search an eighth (a half otherwise), and ruin and recreate is
+// told the search's bound. The rest of the budget goes to ruin and recreate, whose
+// rounds are granular (flow_ruin.c, flow_repair.c). These functions are out of flow.c
+// so that sva_run_flow's frame, on the core's deepest stack path, does not grow
+// (docs/embedded.md).
 #include "flow.h"
 
 #if SVA_FLOW_LARGE
