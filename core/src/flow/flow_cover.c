@@ -393,11 +393,17 @@ uint64_t sva_flow_cover_incumbent(sva_planner_priv_t* priv, const sva_mission_t*
     const uint64_t from = priv->flow.work;
     // incumbent_first: two halves, targets served first, then the incumbent's choices
     // first; otherwise the first order only.
-    const uint32_t halves = incumbent_first ? 2U : 1U;
+    uint32_t halves = 1U;
+    if (incumbent_first) {
+        halves = 2U;
+    }
     sva_flow_cover_result_t r = SVA_FLOW_COVER_OPEN;
     for (uint32_t half = 0U; (half < halves) && (r == SVA_FLOW_COVER_OPEN); half++) {
-        priv->flow.cover.incumbent_first = half == 1U;
-        const uint64_t end = from + ((half + 1U < halves) ? (work / 2U) : work);
+        priv->flow.cover.incumbent_first = (half == 1U);
+        uint64_t end = from + work;
+        if ((half + 1U) < halves) {
+            end = from + (work / 2U);
+        }
         r = SVA_FLOW_COVER_FOUND;
         while (r == SVA_FLOW_COVER_FOUND) {
             int64_t cost = 0;

@@ -18,18 +18,29 @@ uint64_t sva_flow_budget(const sva_mission_t* m, uint64_t budget)
 {
     const uint64_t most = 2U * (uint64_t)SVA_FLOW_LARGE_FROM;
     const uint64_t targets = (m->target_count < most) ? m->target_count : most;
-    return sva_flow_large(m) ? ((budget / (uint64_t)SVA_FLOW_LARGE_FROM) * targets) : budget;
+    uint64_t grown = budget;
+    if (sva_flow_large(m)) {
+        grown = (budget / (uint64_t)SVA_FLOW_LARGE_FROM) * targets;
+    }
+    return grown;
 }
 
 uint64_t sva_flow_local_work(const sva_mission_t* m, uint64_t budget)
 {
-    return sva_flow_large(m) ? (budget / LARGE_LOCAL_SHARE) : sva_flow_small_local_work(budget);
+    uint64_t work = sva_flow_small_local_work(budget);
+    if (sva_flow_large(m)) {
+        work = budget / LARGE_LOCAL_SHARE;
+    }
+    return work;
 }
 
 uint64_t sva_flow_lagrange_work(const sva_mission_t* m, uint64_t budget)
 {
-    return sva_flow_large(m) ? (budget / LARGE_LAGRANGE_SHARE)
-                             : sva_flow_small_lagrange_work(budget);
+    uint64_t work = sva_flow_small_lagrange_work(budget);
+    if (sva_flow_large(m)) {
+        work = budget / LARGE_LAGRANGE_SHARE;
+    }
+    return work;
 }
 
 int64_t sva_flow_known_bound(int64_t open, int64_t lagrange_bound, sva_planner_priv_t* priv,

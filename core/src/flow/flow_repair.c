@@ -314,14 +314,14 @@ static bool exchange_tails(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_
 #endif
             if (cut_saves(w, m, plan, a, b, i, j, before)) {
 #if SVA_FLOW_LARGE
-                w->work += ((uint64_t)i * (lb + 1U)) + j + 1U;
+                w->work += ((uint64_t)i * ((uint64_t)lb + 1U)) + j + 1U;
 #endif
                 return true;
             }
         }
     }
 #if SVA_FLOW_LARGE
-    w->work += ((uint64_t)la + 1U) * (lb + 1U);
+    w->work += ((uint64_t)la + 1U) * ((uint64_t)lb + 1U);
 #endif
     return false;
 }
