@@ -50,3 +50,19 @@ void check_against_optimum(const sva_plan_t* p, const brute_result_t* best, uint
                       p->covered, best->covered);
     }
 }
+
+void check_same_plan(const sva_plan_t* again, const sva_plan_t* plan)
+{
+    TEST_ASSERT_EQUAL_INT(again->cost, plan->cost);
+    TEST_ASSERT_EQUAL_INT(again->covered, plan->covered);
+    TEST_ASSERT_EQUAL_INT(again->stats.lower_bound, plan->stats.lower_bound);
+    TEST_ASSERT_EQUAL_INT(again->stats.optimal, plan->stats.optimal);
+    TEST_ASSERT_EQUAL_INT(again->stats.flow_work, plan->stats.flow_work);
+    TEST_ASSERT_EQUAL_INT(again->stats.flow_ruin_rounds, plan->stats.flow_ruin_rounds);
+    TEST_ASSERT_EQUAL_INT(again->route_count, plan->route_count);
+    for (uint16_t u = 0U; u < plan->route_count; u++) {
+        TEST_ASSERT_EQUAL_INT(again->routes[u].target_count, plan->routes[u].target_count);
+        SVA_TEST_ASSERT_EQUAL_BYTES(again->routes[u].targets, plan->routes[u].targets,
+                                    sizeof(uint16_t) * plan->routes[u].target_count);
+    }
+}

@@ -12,6 +12,10 @@
 void must_plan_checked(sva_planner_t* planner, const sva_mission_t* mission,
                        sva_algorithm_t algorithm, sva_plan_t* out, uint64_t seed, int round);
 
+/// The same plan twice: cost, coverage, certificate, work and every route (a plan must
+/// not depend on what the planner planned before).
+void check_same_plan(const sva_plan_t* again, const sva_plan_t* plan);
+
 /// The bound is in [0, cost], and equals the cost when the plan claims optimality.
 void check_certificate(const sva_plan_t* p, uint64_t seed, int round);
 

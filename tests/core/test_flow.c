@@ -468,16 +468,7 @@ void test_plans_do_not_depend_on_the_planners_history(void)
         must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &other, seed, round);
         mission = kept;
         must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &again, seed, round);
-        TEST_ASSERT_EQUAL_INT(again.cost, plan.cost);
-        TEST_ASSERT_EQUAL_INT(again.covered, plan.covered);
-        TEST_ASSERT_EQUAL_INT(again.stats.lower_bound, plan.stats.lower_bound);
-        TEST_ASSERT_EQUAL_INT(again.stats.optimal, plan.stats.optimal);
-        TEST_ASSERT_EQUAL_INT(again.stats.flow_work, plan.stats.flow_work);
-        for (uint16_t u = 0U; u < plan.route_count; u++) {
-            TEST_ASSERT_EQUAL_INT(again.routes[u].target_count, plan.routes[u].target_count);
-            SVA_TEST_ASSERT_EQUAL_BYTES(again.routes[u].targets, plan.routes[u].targets,
-                                        sizeof(uint16_t) * plan.routes[u].target_count);
-        }
+        check_same_plan(&again, &plan);
     }
 }
 

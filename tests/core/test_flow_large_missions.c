@@ -98,16 +98,7 @@ void test_large_plans_do_not_depend_on_the_planners_history(void)
     must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &other, seed, 1);
     mission = kept;
     must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &again, seed, 2);
-    TEST_ASSERT_EQUAL_INT(again.cost, plan.cost);
-    TEST_ASSERT_EQUAL_INT(again.covered, plan.covered);
-    TEST_ASSERT_EQUAL_INT(again.stats.lower_bound, plan.stats.lower_bound);
-    TEST_ASSERT_EQUAL_INT(again.stats.flow_work, plan.stats.flow_work);
-    TEST_ASSERT_EQUAL_INT(again.stats.flow_ruin_rounds, plan.stats.flow_ruin_rounds);
-    for (uint16_t u = 0U; u < plan.route_count; u++) {
-        TEST_ASSERT_EQUAL_INT(again.routes[u].target_count, plan.routes[u].target_count);
-        SVA_TEST_ASSERT_EQUAL_BYTES(again.routes[u].targets, plan.routes[u].targets,
-                                    sizeof(uint16_t) * plan.routes[u].target_count);
-    }
+    check_same_plan(&again, &plan);
 }
 
 // Every test starts from a freshly initialised planner.

@@ -249,6 +249,16 @@ static void cover_routes(sva_planner_priv_t* priv, const sva_mission_t* m, sva_p
     }
 }
 
+// Depth d + 1 with depth d's target left: the UAVs as they were, no target more.
+static void leave_target(sva_flow_cover_t* c, uint16_t d, uint16_t uavs)
+{
+    for (uint16_t k = 0U; k < uavs; k++) {
+        c->at[d + 1U][k] = c->at[d][k];
+    }
+    c->chosen[d] = 0U;
+    c->covered[d + 1U] = c->covered[d];
+}
+
 // Depth d's next child into depth d + 1: its next combination, then the target left.
 // False when none is left.
 static bool next_child(sva_flow_cover_t* c, const sva_planner_priv_t* priv, const sva_mission_t* m,
@@ -258,11 +268,7 @@ static bool next_child(sva_flow_cover_t* c, const sva_planner_priv_t* priv, cons
     const uint8_t need = (uint8_t)t->need;  // at most cand_count in STEP_COMBOS(_LAST)
     if (c->step[d] == (uint8_t)STEP_LEAVE_FIRST) {
         c->step[d] = (uint8_t)STEP_COMBOS_LAST;
-        for (uint16_t k = 0U; k < uavs; k++) {
-            c->at[d + 1U][k] = c->at[d][k];
-        }
-        c->chosen[d] = 0U;
-        c->covered[d + 1U] = c->covered[d];
+        leave_target(c, d, uavs);
         return true;
     }
     while ((c->step[d] == (uint8_t)STEP_COMBOS) || (c->step[d] == (uint8_t)STEP_COMBOS_LAST)) {
@@ -295,11 +301,7 @@ static bool next_child(sva_flow_cover_t* c, const sva_planner_priv_t* priv, cons
     }
     if (c->step[d] == (uint8_t)STEP_LEAVE) {
         c->step[d] = (uint8_t)STEP_DONE;
-        for (uint16_t k = 0U; k < uavs; k++) {
-            c->at[d + 1U][k] = c->at[d][k];
-        }
-        c->chosen[d] = 0U;
-        c->covered[d + 1U] = c->covered[d];
+        leave_target(c, d, uavs);
         return true;
     }
     return false;
