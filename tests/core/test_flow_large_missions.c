@@ -6,7 +6,10 @@
 // - ruin and recreate runs, and flow covers as many targets as sva and ga and costs no
 //   more than the better of them at equal coverage (their plans seed it);
 // - the same mission gives the same plan after another was planned: the index of the
-//   granular moves carries nothing over.
+//   granular moves carries nothing over;
+// - the Lagrangian heuristic's shortest paths on real paths are routes within fuel whose
+//   value is the one returned, never below the bound's (merged labels), and the flight
+//   flies only when its predicted work fits the plan's budget.
 // Seeds are printed and replayable (SVA_TEST_SEED=...).
 #include <stddef.h>
 #include <stdint.h>
@@ -14,6 +17,7 @@
 #include <string.h>
 #include "sva_unity.h"
 
+#include "flow/flow.h"
 #include "flow_certificate.h"
 #include "mission_gen.h"
 #include "sva/sva.h"
@@ -99,6 +103,107 @@ void test_large_plans_do_not_depend_on_the_planners_history(void)
     mission = kept;
     must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &again, seed, 2);
     check_same_plan(&again, &plan);
+}
+
+#if SVA_FLOW_LARGE
+// Fuel of UAV u's route over the last shortest path (to the first target, between,
+// home, and hover at each).
+static int64_t path_fuel(const sva_mission_t* m, uint16_t u, const sva_flow_lagrange_t* lg)
+{
+    return sva_path_cells(m, u, lg->path, lg->path_len) +
+           ((int64_t)m->hover_fuel * (int64_t)lg->path_len);
+}
+
+// alpha * cells - the prices of the last shortest path's targets.
+static int64_t path_value(const sva_mission_t* m, uint16_t u, const sva_flow_lagrange_t* lg,
+                          int64_t alpha)
+{
+    int64_t value = alpha * sva_path_cells(m, u, lg->path, lg->path_len);
+    for (uint16_t i = 0U; i < lg->path_len; i++) {
+        value -= lg->path_price[lg->path[i]];
+    }
+    return value;
+}
+#endif
+
+void test_real_paths_are_routes_within_fuel(void)
+{
+#if SVA_FLOW_LARGE
+    if (!fits_the_profile()) {
+        TEST_IGNORE_MESSAGE("the profile holds no 100 x 20 mission with flow's graph");
+    }
+    const uint64_t seed = test_seed(0x1A270ULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    sva_flow_work_t* w = &planner.priv.flow;
+    sva_flow_lagrange_t* lg = &w->lagrange;
+    const int64_t alpha = SVA_FLOW_PRICE_SCALE;
+    uint32_t paths = 0U;
+    uint32_t merged_over_fuel = 0U;
+    for (int round = 0; round < MISSIONS; round++) {
+        const test_gen_params_t p = params(LARGE_TARGETS);
+        test_gen_mission(&rng, &p, &mission);
+        sva_state_reset(&planner.priv, &mission, &plan);
+        TEST_ASSERT_EQUAL_INT(SVA_FLOW_COMPLETE,
+                              sva_flow_build(&planner.priv, &mission, &plan, false, &plan.stats));
+        for (int trial = 0; trial < 4; trial++) {
+            // Prices of up to a few round trips' cells: routes of many targets pay.
+            for (uint16_t t = 0U; t < mission.target_count; t++) {
+                lg->path_price[t] = alpha * test_rng_range(&rng, 0, 120);
+                lg->closed[t] = 0U;
+            }
+            for (uint16_t u = 0U; u < mission.uav_count; u++) {
+                lg->real_paths = false;
+                const int64_t bound = sva_flow_best_route(w, &mission, u, alpha);
+                merged_over_fuel += (path_fuel(&mission, u, lg) > mission.uavs[u].fuel) ? 1U : 0U;
+                lg->real_paths = true;
+                const int64_t real = sva_flow_best_route(w, &mission, u, alpha);
+                lg->real_paths = false;
+                TEST_ASSERT_TRUE(path_fuel(&mission, u, lg) <= mission.uavs[u].fuel);
+                TEST_ASSERT_EQUAL_INT64(path_value(&mission, u, lg, alpha), real);
+                TEST_ASSERT_TRUE(bound <= real);
+                paths++;
+            }
+        }
+    }
+    printf("# %u shortest paths; %u of the bound's (merged labels) over fuel\n", paths,
+           merged_over_fuel);
+    // Label sets fill up on these missions: the merged labels' paths break fuel.
+    TEST_ASSERT_TRUE(merged_over_fuel > 0U);
+#else
+    TEST_IGNORE_MESSAGE("no mission is large in this profile");
+#endif
+}
+
+void test_flight_flies_only_within_the_budget(void)
+{
+#if SVA_FLOW_LARGE
+    if (!fits_the_profile()) {
+        TEST_IGNORE_MESSAGE("the profile holds no 100 x 20 mission with flow's graph");
+    }
+    const uint64_t seed = test_seed(0x1A271ULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    sva_flow_work_t* w = &planner.priv.flow;
+    // A large mission: real paths, and a flight of UAVs / 4 evaluations must fit.
+    test_gen_params_t p = params(LARGE_TARGETS);
+    test_gen_mission(&rng, &p, &mission);
+    w->budget = 1000000U;
+    w->lagrange.evaluation_work = (w->budget * 4U) / mission.uav_count;
+    TEST_ASSERT_TRUE(sva_flow_flight_begins(w, &mission));
+    TEST_ASSERT_TRUE(w->lagrange.real_paths);
+    w->lagrange.evaluation_work += 1U;
+    TEST_ASSERT_FALSE(sva_flow_flight_begins(w, &mission));
+    TEST_ASSERT_FALSE(w->lagrange.real_paths);  // the bound's labels go on
+    // A small mission flies whatever its work, on a bound's labels.
+    p = params(SVA_FLOW_LARGE_FROM);
+    test_gen_mission(&rng, &p, &mission);
+    w->lagrange.evaluation_work = w->budget * 16U;
+    TEST_ASSERT_TRUE(sva_flow_flight_begins(w, &mission));
+    TEST_ASSERT_FALSE(w->lagrange.real_paths);
+#else
+    TEST_IGNORE_MESSAGE("no mission is large in this profile");
+#endif
 }
 
 // Every test starts from a freshly initialised planner.

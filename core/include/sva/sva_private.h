@@ -119,6 +119,10 @@ typedef struct {
     uint16_t group[SVA_MAX_UAVS];    ///< first UAV in the same state (flow_graph.c)
     uint16_t path[SVA_MAX_TARGETS];  ///< the last shortest path's targets
     uint16_t path_len;
+#if SVA_FLOW_LARGE
+    bool real_paths;           ///< a full label set keeps real paths (flow_label.c)
+    uint64_t evaluation_work;  ///< the last evaluation's work (flow_lagrange.c)
+#endif
 } sva_flow_lagrange_t;
 
 /// Words of a route column's row set (one bit per master row).
@@ -223,6 +227,9 @@ typedef struct {
     int64_t value;      ///< relaxation: cost - rewards
     uint64_t work;
     uint64_t local_work;  ///< work one local search may start
+#if SVA_FLOW_LARGE
+    uint64_t budget;  ///< this plan's work budget (flow.c)
+#endif
     // Scratch of the graph builder and of the rounding heuristic (flow_repair.c).
     int64_t target_lead[SVA_MAX_TARGETS];  ///< fuel labels (flow_graph.c)
     int64_t target_tail[SVA_MAX_TARGETS];

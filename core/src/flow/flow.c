@@ -426,6 +426,9 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
 #endif
     w->work = 0U;
     w->local_work = sva_flow_local_work(m, budget);
+#if SVA_FLOW_LARGE
+    w->budget = budget;
+#endif
     stats->search_nodes = 0U;
     const sva_flow_incomplete_t over = sva_flow_build(priv, m, plan, false, stats);
     if (over == SVA_FLOW_OVER_COPIES) {
@@ -479,8 +482,14 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
         const uint64_t share = replan ? (uint64_t)REPLAN_COVER_SHARE : (uint64_t)COVER_SHARE;
         start += sva_flow_cover_incumbent(priv, m, plan, budget / share, false, &coverage_proven);
 #endif
-        lagrange_bound = sva_flow_lagrange(priv, m, plan, start + sva_flow_lagrange_work(m, budget),
-                                           &coverage_proven, &stats->flow_lagrange_iters);
+        uint64_t lagrange_end = sva_flow_lagrange_end(m, start, w->work, budget);
+#if SVA_FLOW_LARGE
+        if (sva_flow_large(m) && sva_flow_near_bound(open, priv, m, plan)) {
+            lagrange_end = w->work;  // the search's bound nearly certifies the plan
+        }
+#endif
+        lagrange_bound = sva_flow_lagrange(priv, m, plan, lagrange_end, &coverage_proven,
+                                           &stats->flow_lagrange_iters);
         int64_t proven_bound = coverage_proven ? lagrange_bound : -1;
 #if SVA_FLOW_LARGE
         if (sva_flow_large(m)) {

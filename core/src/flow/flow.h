@@ -120,7 +120,7 @@ void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_
 /// Ruin and recreate: groups of related visits taken out of the
 /// incumbent, then swaps (one covered target out, one uncovered in first); the repair
 /// completes and offers each plan. With three quarters of the work left before `end`,
-/// unless the incumbent is within 1/64 of `proven_bound`, a bound with its coverage
+/// unless the incumbent is within 1/SVA_FLOW_CLOSE of `proven_bound`, a bound with its coverage
 /// proven the most (-1: none). Leaves the incumbent in *plan. Returns true, doing
 /// nothing, when the bound reaches the incumbent's cost: it is proven optimal.
 bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
@@ -137,6 +137,9 @@ void sva_flow_label_path(sva_flow_lagrange_t* lg, uint32_t l);
 /// UAV u's best route under w->lagrange.path_price (targets marked closed skipped):
 /// min over its routes within fuel of alpha * cells - sum of prices (flying home at
 /// once included); the route goes to w->lagrange.path. Label extensions count as work.
+/// With w->lagrange.real_paths (a large mission's heuristic sets it) a full label set
+/// keeps the cheaper of two labels instead of merging them, so the route is within fuel
+/// but not always the best: no bound.
 int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t u, int64_t alpha);
 
 // flow_lagrange.c: flow's Lagrangian bound and heuristic.
@@ -235,23 +238,34 @@ static inline uint64_t sva_flow_small_local_work(uint64_t budget)
     return budget / 2U;
 }
 
-static inline uint64_t sva_flow_small_lagrange_work(uint64_t budget)
+static inline uint64_t sva_flow_small_lagrange_end(uint64_t start, uint64_t budget)
 {
-    return budget - (budget / 4U);
+    return start + (budget - (budget / 4U));
 }
 
 #if SVA_FLOW_LARGE
 /// flow_large.c: the work budget of mission m given the planner's (scaled when m is
-/// large), one local search's work, and the Lagrangian phase's.
+/// large), one local search's work, and where the Lagrangian phase's work ends (the
+/// search's share started at start, the phase starts at now).
 uint64_t sva_flow_budget(const sva_mission_t* m, uint64_t budget);
 uint64_t sva_flow_local_work(const sva_mission_t* m, uint64_t budget);
-uint64_t sva_flow_lagrange_work(const sva_mission_t* m, uint64_t budget);
+uint64_t sva_flow_lagrange_end(const sva_mission_t* m, uint64_t start, uint64_t now,
+                               uint64_t budget);
 
 /// The incumbent written into *plan, and a bound on its cost that ruin and recreate may
 /// trust: sva_flow_cost_bound's when the coverage is proven and the rewards exact, else -1.
 /// The two bounds come first, in registers: the caller is on flow's deepest stack path.
 int64_t sva_flow_known_bound(int64_t open, int64_t lagrange_bound, sva_planner_priv_t* priv,
                              const sva_mission_t* m, sva_plan_t* plan, bool coverage_known);
+/// Whether the Lagrangian heuristic may fly the UAVs (flow_lagrange.c): always, except
+/// that a large mission's flight must fit the plan's whole budget (w->budget), as
+/// predicted from the last evaluation's work. A large mission's flight asks for real
+/// paths (w->lagrange.real_paths, which the flight clears when it lands).
+bool sva_flow_flight_begins(sva_flow_work_t* w, const sva_mission_t* m);
+/// Whether the search's bound (open, no Lagrangian yet) proves the incumbent's coverage
+/// and its cost within 1/SVA_FLOW_CLOSE; the incumbent is written into *plan.
+bool sva_flow_near_bound(int64_t open, sva_planner_priv_t* priv, const sva_mission_t* m,
+                         sva_plan_t* plan);
 #else
 // No mission can be large in this profile: the small missions' rules.
 static inline uint64_t sva_flow_budget(const sva_mission_t* m, uint64_t budget)
@@ -266,12 +280,25 @@ static inline uint64_t sva_flow_local_work(const sva_mission_t* m, uint64_t budg
     return sva_flow_small_local_work(budget);
 }
 
-static inline uint64_t sva_flow_lagrange_work(const sva_mission_t* m, uint64_t budget)
+static inline bool sva_flow_flight_begins(sva_flow_work_t* w, const sva_mission_t* m)
+{
+    (void)w;
+    (void)m;
+    return true;
+}
+
+static inline uint64_t sva_flow_lagrange_end(const sva_mission_t* m, uint64_t start, uint64_t now,
+                                             uint64_t budget)
 {
     (void)m;
-    return sva_flow_small_lagrange_work(budget);
+    (void)now;
+    return sva_flow_small_lagrange_end(start, budget);
 }
 #endif
+
+/// A plan within cost / SVA_FLOW_CLOSE of a proven bound is close enough that neither
+/// ruin and recreate nor a large mission's Lagrangian phase works on it.
+#define SVA_FLOW_CLOSE 64
 
 /// Whether the mission is large for flow (more than SVA_FLOW_LARGE_FROM targets).
 static inline bool sva_flow_large(const sva_mission_t* m)

@@ -224,8 +224,12 @@ static void index_heads(sva_flow_work_t* w, uint32_t nodes)
 }
 
 // UAVs in the same state (position, ready time, fuel) share a group: the first of them.
+// The shortest paths start as a bound's (only the heuristic's flights ask for real paths).
 static void group_uavs(sva_flow_lagrange_t* lg, const sva_mission_t* m)
 {
+#if SVA_FLOW_LARGE
+    lg->real_paths = false;
+#endif
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         const sva_uav_t* a = &m->uavs[u];
         lg->group[u] = u;

@@ -5,12 +5,26 @@
 // The DAG of targets is the first copies of flow_graph.c's graph, fuel the resource:
 // labels (reduced cost, fuel used), Pareto-best, at most SVA_FLOW_LABELS per target;
 // past that two merge into one that dominates both, which can only weaken a bound.
+// A merged label's path may break fuel, so a heuristic that flies the paths can ask
+// for real ones instead (lg->real_paths): of the two, the cheaper label is kept as it
+// is, which keeps every path flyable but is no bound.
 #include "flow.h"
 
 // Copy d is the first copy of its target (the DAG of targets uses only those).
 static bool first_copy(const sva_flow_work_t* w, uint16_t d)
 {
     return w->target_first_copy[w->copy_target[d]] == d;
+}
+
+// Whether a full label set keeps real paths (only a large mission's heuristic asks).
+static inline bool keeps_real_paths(const sva_flow_lagrange_t* lg)
+{
+#if SVA_FLOW_LARGE
+    return lg->real_paths;
+#else
+    (void)lg;
+    return false;
+#endif
 }
 
 // Whether a label of target t's Pareto set dominates (cost, fuel); tested inline, so
@@ -38,7 +52,7 @@ static void add_label(sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t
     uint32_t new_pred = pred;
     if (n == (uint32_t)SVA_FLOW_LABELS) {
         // Full: merge into the label nearest in fuel (min of both: dominates both),
-        // which leaves the set to be re-added.
+        // which leaves the set to be re-added; for real paths, keep the cheaper.
         uint32_t near = base;
         for (uint32_t j = base + 1U; j < (base + n); j++) {
             const int64_t dj = (int64_t)lg->label_fuel[j] - fuel;
@@ -46,10 +60,15 @@ static void add_label(sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t
             near = (((dj < 0) ? -dj : dj) < ((dn < 0) ? -dn : dn)) ? j : near;
         }
         if (lg->label_cost[near] <= cost) {
+            if (keeps_real_paths(lg)) {
+                return;
+            }
             new_cost = lg->label_cost[near];
             new_pred = lg->label_pred[near];
         }
-        new_fuel = (lg->label_fuel[near] < fuel) ? lg->label_fuel[near] : fuel;
+        if (!keeps_real_paths(lg) && (lg->label_fuel[near] < fuel)) {
+            new_fuel = lg->label_fuel[near];
+        }
         lg->label_cost[near] = lg->label_cost[base + n - 1U];
         lg->label_fuel[near] = lg->label_fuel[base + n - 1U];
         lg->label_pred[near] = lg->label_pred[base + n - 1U];

@@ -17,7 +17,8 @@
 // the second proving that no plan covers more targets than the incumbent. Prices move
 // by subgradient steps (Polyak's rule in integers: deterministic). Every few steps
 // the heuristic flies the UAVs one after another on their best routes under the
-// prices, a target's price growing with the UAVs already committed to it and a fully
+// prices (a large mission's on real paths, flow_label.c, when the flight fits its
+// budget), a target's price growing with the UAVs already committed to it and a fully
 // served target closed, then repairs the result (flow_repair.c) and offers it.
 // Before the steps, the route master's duals (flow_lp.c) are tried as prices, in
 // both phases: they are the LP's best, which the steps approach only slowly. After
@@ -74,6 +75,9 @@ static int64_t evaluate(sva_flow_work_t* w, const sva_mission_t* m, const sva_pl
         lg->path_price[t] = lg->price[t];
     }
     int64_t value = 0;
+#if SVA_FLOW_LARGE
+    lg->evaluation_work = w->work;
+#endif
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         if (plan->routes[u].stranded || (lg->group[u] != u)) {
             continue;
@@ -97,15 +101,22 @@ static int64_t evaluate(sva_flow_work_t* w, const sva_mission_t* m, const sva_pl
         lg->grad[t] = (y ? need : 0) - (int64_t)lg->visits[t];
     }
     *grad_mu = ph->covered - taken;
+#if SVA_FLOW_LARGE
+    lg->evaluation_work = w->work - lg->evaluation_work;
+#endif
     return value + (ph->mu * ph->covered);
 }
 
-// Heuristic: the UAVs fly one after another on their best routes under the prices.
+// Heuristic: the UAVs fly one after another on their best routes under the prices,
+// when the flight fits (the incumbent stays as it is otherwise).
 static void fly_on_prices(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                           uint16_t first)
 {
     sva_flow_work_t* w = &priv->flow;
     sva_flow_lagrange_t* lg = &w->lagrange;
+    if (!sva_flow_flight_begins(w, m)) {
+        return;
+    }
     for (uint16_t t = 0U; t < m->target_count; t++) {
         priv->target_served[t] = 0U;
         lg->closed[t] = 0U;
@@ -135,6 +146,9 @@ static void fly_on_prices(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
             r->target_count++;
         }
     }
+#if SVA_FLOW_LARGE
+    lg->real_paths = false;  // every other shortest path is a bound's
+#endif
     sva_flow_repair(priv, m, plan, true);
 }
 

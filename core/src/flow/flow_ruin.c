@@ -98,9 +98,9 @@ bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     if (proven_bound >= cost) {
         return true;  // proven optimal: nothing to find
     }
-    // Not when the coverage is proven and the plan within 1/64 of the bound: the
-    // search, with the rest of the budget, may prove it.
-    const bool near = (proven_bound >= 0) && ((cost - proven_bound) <= (cost / 64));
+    // Not when the coverage is proven and the plan within 1/SVA_FLOW_CLOSE of the bound:
+    // the search, with the rest of the budget, may prove it.
+    const bool near = (proven_bound >= 0) && ((cost - proven_bound) <= (cost / SVA_FLOW_CLOSE));
     const uint64_t rest = ((end > w->work) && !near) ? (end - w->work) : 0U;
     const uint64_t budget = w->work + (rest - (rest / 4U));
     // A round's insertions: every target's, or past SVA_FLOW_LARGE_FROM targets
