@@ -253,6 +253,11 @@ typedef struct {
     int32_t post_of[SVA_MAX_TARGETS];    ///< and from it to the depot
     uint16_t uav_tried[SVA_MAX_UAVS];    ///< try_epoch: already tried for this visit
     uint16_t try_epoch;
+    /// Ruin and recreate's current plan, as the incumbent's successor lists (flow_ruin.c:
+    /// a large mission's rounds accept a plan within a threshold of it).
+    uint16_t cur_first[SVA_MAX_UAVS];
+    uint16_t cur_next[SVA_FLOW_MAX_COPIES];
+    int64_t cur_value;
 #endif
     uint16_t spare_route[SVA_MAX_ROUTE_TARGETS];       ///< a route's tail in an exchange
     uint16_t trade_pos[SVA_MAX_UAVS];                  ///< where a traded target was

@@ -58,6 +58,13 @@ bool sva_flow_write_standing_pick(sva_planner_priv_t* priv, const sva_mission_t*
 /// routes to the highest. The same plan whatever order the mission lists them in.
 void sva_flow_canonical_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m);
 void sva_flow_write_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
+#if SVA_FLOW_GRANULAR
+/// Ruin and recreate's current plan (w->cur_first, w->cur_next, w->cur_value): the plan
+/// in *plan becomes it, with its value; or it is written into *plan.
+void sva_flow_keep_current(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan,
+                           int64_t value);
+void sva_flow_write_current(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
+#endif
 /// The incumbent written into *plan, with its cost in cells and the targets it covers.
 void sva_flow_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                         int64_t* cost, int64_t* covered);

@@ -194,6 +194,21 @@ void sva_flow_write_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, 
     write_routes(priv, m, plan, priv->flow.inc_first, priv->flow.inc_next);
 }
 
+#if SVA_FLOW_GRANULAR
+void sva_flow_keep_current(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan,
+                           int64_t value)
+{
+    sva_flow_work_t* w = &priv->flow;
+    link_routes(w, m, plan, w->cur_first, w->cur_next);
+    w->cur_value = value;
+}
+
+void sva_flow_write_current(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+{
+    write_routes(priv, m, plan, priv->flow.cur_first, priv->flow.cur_next);
+}
+#endif
+
 #if SVA_FLOW_STANDING
 bool sva_flow_write_standing_pick(sva_planner_priv_t* priv, const sva_mission_t* m,
                                   sva_plan_t* plan)

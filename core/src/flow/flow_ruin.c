@@ -7,9 +7,12 @@
 // nearest to it (cells between them plus the ticks between their window starts, in
 // cells). With need 2 this is how a target short of its second UAV finds one: the
 // group's visits leave room. Then swaps: one covered target out, one uncovered in.
+// A large mission's rounds start from a current plan instead of the incumbent, which
+// a round's plan replaces when within a falling threshold of it (threshold accepting).
 #include "flow.h"
 
-#define RUIN_ROUND_UNITS 8U  // work units per round, per target inserted x UAV
+#define RUIN_ROUND_UNITS 8U   // work units per round, per target inserted x UAV
+#define ACCEPT_SHARE     100  // the threshold starts at the incumbent's cost / ACCEPT_SHARE
 
 static int64_t relatedness(const sva_mission_t* m, uint16_t a, uint16_t b)
 {
@@ -56,6 +59,33 @@ static void find_near(sva_flow_work_t* w, const sva_mission_t* m)
     }
     w->try_epoch = 0U;
     w->work += (uint64_t)m->target_count * m->target_count;
+}
+#endif
+
+#if SVA_FLOW_GRANULAR
+// Threshold accepting (Dueck and Scheuer, 1990) for a large mission's rounds: a round's
+// plan becomes the current one when its value is at most the current's plus a threshold
+// that falls linearly from the incumbent's cost / ACCEPT_SHARE, when the rounds start,
+// to 0 when their budget [from, to) is spent. Descent alone (each round from the
+// incumbent) stalls on 100-target missions where fuel binds (docs/results.md). The
+// incumbent, which the repair offered the plan to, keeps the best.
+static void accept(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                   uint64_t from, uint64_t to, int64_t start_cost)
+{
+    const sva_flow_work_t* w = &priv->flow;
+    int64_t threshold = 0;
+    if ((to > from) && (to > w->work)) {
+        const uint64_t span = to - from;
+        const uint64_t left = to - w->work;
+        const uint64_t share = (left < span) ? left : span;
+        const uint64_t top = (uint64_t)start_cost / (uint64_t)ACCEPT_SHARE;
+        const uint64_t part = (top * share) / span;
+        threshold = (int64_t)part;
+    }
+    const int64_t value = sva_flow_plan_value(priv, m, plan);
+    if (value <= (w->cur_value + threshold)) {
+        sva_flow_keep_current(priv, m, plan, value);
+    }
 }
 #endif
 
@@ -109,12 +139,14 @@ bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     const uint64_t uav_units = (uint64_t)m->uav_count * RUIN_ROUND_UNITS;
     const uint64_t whole_units = (uint64_t)m->target_count * uav_units;
 #if SVA_FLOW_GRANULAR
+    const uint64_t from = w->work;
     if (large && (rest > 0U)) {
         find_near(w, m);
+        sva_flow_keep_current(priv, m, plan, sva_flow_plan_value(priv, m, plan));
     }
 #endif
-    // *plan holds the incumbent whenever a round is chosen (sva_flow_incumbent above,
-    // then a write after each round).
+    // *plan holds the incumbent (a large mission's rounds: the current plan) whenever a
+    // round is chosen (sva_flow_incumbent above, then a write after each round).
     for (size_t i = 0U; i < (sizeof(ruin_sizes) / sizeof(ruin_sizes[0])); i++) {
         for (uint16_t s = 0U; (s < m->target_count) && (w->work < budget); s++) {
             if ((int32_t)priv->target_served[s] == m->targets[s].need) {
@@ -131,10 +163,20 @@ bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
                 w->work +=
                     large ? ((uint64_t)m->target_count + (ruin_sizes[i] * uav_units)) : whole_units;
                 plan->stats.flow_ruin_rounds++;
+#if SVA_FLOW_GRANULAR
+                if (large) {
+                    accept(priv, m, plan, from, budget, cost);
+                    sva_flow_write_current(priv, m, plan);
+                    continue;
+                }
+#endif
                 sva_flow_write_incumbent(priv, m, plan);
             }
         }
     }
+#if SVA_FLOW_GRANULAR
+    sva_flow_write_incumbent(priv, m, plan);  // the swaps start from the incumbent
+#endif
     // Swaps: a covered target c leaves, an uncovered target t goes in first (all its
     // need at once), and the repair puts the rest back. With need 2 a plan may cover
     // the right number of targets but the wrong ones; groups reinserted in window
