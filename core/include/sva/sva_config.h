@@ -229,14 +229,17 @@
 
 /// A mission of more than SVA_FLOW_LARGE_FROM targets is large for flow: its work
 /// budget is flow_max_work * min(targets, 2 * SVA_FLOW_LARGE_FROM) /
-/// SVA_FLOW_LARGE_FROM (sva.h), its Lagrangian phase gets an eighth of that budget, and
-/// its ruin and recreate is granular (flow_ruin.c): a round costs work for the targets
-/// it ruins, not the whole mission, and its local search starts from the routes the
-/// round changed and moves a visit only towards the routes serving its SVA_FLOW_NEAR
-/// most related targets (and the empty ones). Smaller missions plan exactly as without
-/// these rules. SVA_FLOW_NEAR 0 leaves the granular moves out. Cost, when
-/// SVA_MAX_TARGETS > SVA_FLOW_LARGE_FROM and SVA_FLOW_NEAR > 0: (2 * SVA_FLOW_NEAR +
-/// 12) B * SVA_MAX_TARGETS + 3 B * SVA_MAX_UAVS.
+/// SVA_FLOW_LARGE_FROM (sva.h), its Lagrangian phase gets an eighth of that budget and
+/// its heuristic flies real paths when the flight fits the budget, and its ruin and
+/// recreate is granular (flow_ruin.c): a round costs work for the targets it ruins,
+/// not the whole mission, its local search starts from the routes the round changed
+/// and moves a visit only towards the routes serving its SVA_FLOW_NEAR most related
+/// targets (and the empty ones), and a round's plan within a falling threshold of the
+/// current one is accepted. Smaller missions plan exactly as without these rules.
+/// SVA_FLOW_NEAR 0 leaves the granular moves and the accepting out. Cost, when
+/// SVA_MAX_TARGETS > SVA_FLOW_LARGE_FROM: 24 B, and when SVA_FLOW_NEAR > 0 too:
+/// (2 * SVA_FLOW_NEAR + 12) B * SVA_MAX_TARGETS + 5 B * SVA_MAX_UAVS
+/// + 2 B * SVA_FLOW_MAX_COPIES + 8 B.
 #ifndef SVA_FLOW_LARGE_FROM
 #    define SVA_FLOW_LARGE_FROM 64
 #endif
