@@ -124,12 +124,13 @@ void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_
                      bool polish);
 
 // flow_ruin.c: ruin and recreate.
-/// Ruin and recreate: groups of related visits taken out of the
-/// incumbent, then swaps (one covered target out, one uncovered in first); the repair
-/// completes and offers each plan. With three quarters of the work left before `end`,
-/// unless the incumbent is within 1/SVA_FLOW_CLOSE of `proven_bound`, a bound with its coverage
-/// proven the most (-1: none). Leaves the incumbent in *plan. Returns true, doing
-/// nothing, when the bound reaches the incumbent's cost: it is proven optimal.
+/// Ruin and recreate: groups of related visits taken out of the incumbent (a large
+/// mission's: the current plan), then swaps (one covered target out, one uncovered in
+/// first); the repair completes and offers each plan. With three quarters of the work
+/// left before `end`, unless the incumbent is within 1/SVA_FLOW_CLOSE of
+/// `proven_bound`, a bound with its coverage proven the most (-1: none). Leaves the
+/// incumbent in *plan. Returns true, doing nothing, when the bound reaches the
+/// incumbent's cost: it is proven optimal.
 bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                             uint64_t end, int64_t proven_bound);
 
@@ -270,7 +271,9 @@ int64_t sva_flow_known_bound(int64_t open, int64_t lagrange_bound, sva_planner_p
 /// paths (w->lagrange.real_paths, which the flight clears when it lands).
 bool sva_flow_flight_begins(sva_flow_work_t* w, const sva_mission_t* m);
 /// Whether the search's bound (open, no Lagrangian yet) proves the incumbent's coverage
-/// and its cost within 1/SVA_FLOW_CLOSE; the incumbent is written into *plan.
+/// and its cost within 1/SVA_FLOW_CLOSE; the incumbent is written into *plan. (Before the
+/// Lagrangian phase only the search proves a large mission's coverage: the coverage
+/// search stops at SVA_FLOW_COVER_TARGETS, at most 64.)
 bool sva_flow_near_bound(int64_t open, sva_planner_priv_t* priv, const sva_mission_t* m,
                          sva_plan_t* plan);
 #else

@@ -1,13 +1,13 @@
 // flow_large.c -- flow's rules for large missions, of more than SVA_FLOW_LARGE_FROM
 // targets (DESIGN.md section 8): their work budget grows with their targets (up to
-// twice the planner's, at twice SVA_FLOW_LARGE_FROM targets), the Lagrangian phase gets
-// an eighth of it from its own start (its subgradient steps are long there and its
-// bound gains little from them, but its heuristic's first flight finds good plans) and
-// one local search an eighth (a half otherwise), and ruin and recreate is
-// told the search's bound. The rest of the budget goes to ruin and recreate, whose
-// rounds are granular (flow_ruin.c, flow_repair.c). These functions are out of flow.c
-// so that sva_run_flow's frame, on the core's deepest stack path, does not grow
-// (docs/embedded.md).
+// twice the planner's, at twice SVA_FLOW_LARGE_FROM targets); the Lagrangian phase
+// gets an eighth of it from its own start (its subgradient steps are long there and
+// its bound gains little from them, but its heuristic's flight finds good plans), and
+// none when the search's bound already certifies the plan; one local search gets an
+// eighth (a half otherwise); ruin and recreate is told the search's bound, and the
+// rest of the budget goes to it, its rounds granular (flow_ruin.c, flow_repair.c).
+// These functions are out of flow.c so that sva_run_flow's frame, on the core's
+// deepest stack path, does not grow (docs/embedded.md).
 #include "flow.h"
 
 #if SVA_FLOW_LARGE
