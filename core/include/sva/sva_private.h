@@ -201,6 +201,7 @@ typedef struct {
     uint16_t target_first_copy[SVA_MAX_TARGETS];  ///< copies of t are contiguous
     int64_t copy_reward[SVA_FLOW_MAX_COPIES];     ///< per covered copy: W / need
     int64_t reward_whole;                         ///< W: reward of a covered target
+    int32_t need_max;                             ///< the mission's largest need
     bool reward_exact;                            ///< need * (W / need) == W for all
     int32_t node_x[SVA_FLOW_NODES];               ///< arc cost = Manhattan distance
     int32_t node_y[SVA_FLOW_NODES];

@@ -363,11 +363,7 @@ static int64_t pooled_first(sva_planner_priv_t* priv, const sva_mission_t* m, sv
 {
     sva_flow_work_t* w = &priv->flow;
     *proven = false;
-    int32_t need_max = 1;
-    for (uint16_t t = 0U; t < m->target_count; t++) {
-        need_max = (m->targets[t].need > need_max) ? m->targets[t].need : need_max;
-    }
-    if ((need_max == 1) || (need_max > (int32_t)UINT8_MAX)) {
+    if ((w->need_max == 1) || (w->need_max > (int32_t)UINT8_MAX)) {
         return NO_POOLED;  // the pooled graph would be the copies' (or its units overflow)
     }
     int64_t pooled = NO_POOLED;
@@ -510,11 +506,7 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
 #if SVA_FLOW_COVER_TARGETS > 0
         // With a target of need 2 or more and the coverage unproven, the coverage search
         // once more, last, from the final incumbent (SYNC_COVER_SHARE above).
-        bool sync = false;
-        for (uint16_t t = 0U; t < m->target_count; t++) {
-            sync = sync || (m->targets[t].need > 1);
-        }
-        if (sync && !replan && !coverage_proven && (open != INT64_MAX)) {
+        if ((w->need_max > 1) && !replan && !coverage_proven && (open != INT64_MAX)) {
             (void)sva_flow_cover_incumbent(priv, m, plan, budget / SYNC_COVER_SHARE, true,
                                            &coverage_proven);
         }

@@ -34,6 +34,7 @@ static void set_rewards(sva_flow_work_t* w, const sva_mission_t* m, int64_t wide
     for (uint16_t t = 0U; t < m->target_count; t++) {
         need_max = (m->targets[t].need > need_max) ? m->targets[t].need : need_max;
     }
+    w->need_max = need_max;
     // Units cross arcs: at most one per UAV and one per slot (need summed) on their way.
     int64_t slots = 0;
     for (uint16_t t = 0U; t < m->target_count; t++) {

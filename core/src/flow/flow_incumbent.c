@@ -244,11 +244,9 @@ bool sva_flow_cost_bound(const sva_planner_priv_t* priv, const sva_mission_t* m,
     // Any plan p: cost(p) - reward(p) >= min(best, open). A plan covering c targets
     // earns c * W (exact rewards) or at least c * (W - need + 1), and costs at most
     // w->max_cost < W.
-    int32_t need_max = 1;
     int64_t covered = 0;
     int64_t reward = 0;
     for (uint16_t t = 0U; t < m->target_count; t++) {
-        need_max = (m->targets[t].need > need_max) ? m->targets[t].need : need_max;
         if ((int32_t)priv->target_served[t] == m->targets[t].need) {
             covered++;
             reward += (int64_t)m->targets[t].need * w->copy_reward[w->target_first_copy[t]];
@@ -256,7 +254,7 @@ bool sva_flow_cost_bound(const sva_planner_priv_t* priv, const sva_mission_t* m,
     }
     *cost = w->inc_value + reward;
     const int64_t least_whole =
-        w->reward_exact ? w->reward_whole : (w->reward_whole - need_max + 1);
+        w->reward_exact ? w->reward_whole : (w->reward_whole - w->need_max + 1);
     const int64_t floor_value = (w->inc_value < open) ? w->inc_value : open;
     *bound = floor_value + (covered * least_whole);
     *bound = (*bound < lagrange_bound) ? lagrange_bound : *bound;

@@ -62,11 +62,11 @@ int64_t sva_flow_known_bound(int64_t open, int64_t lagrange_bound, sva_planner_p
 bool sva_flow_near_bound(int64_t open, sva_planner_priv_t* priv, const sva_mission_t* m,
                          sva_plan_t* plan)
 {
-    const int64_t bound = sva_flow_known_bound(open, 0, priv, m, plan, false);
     int64_t cost = 0;
-    int64_t covered = 0;
-    sva_flow_incumbent(priv, m, plan, &cost, &covered);
-    return (bound >= 0) && ((cost - bound) <= (cost / SVA_FLOW_CLOSE));
+    int64_t bound = 0;
+    sva_flow_write_incumbent(priv, m, plan);  // target_served as the incumbent's
+    const bool proven = sva_flow_cost_bound(priv, m, open, 0, false, &cost, &bound);
+    return proven && priv->flow.reward_exact && ((cost - bound) <= (cost / SVA_FLOW_CLOSE));
 }
 
 // A flight runs a shortest path per UAV, most of them over fewer open targets than an

@@ -60,9 +60,7 @@ static void find_near(sva_flow_work_t* w, const sva_mission_t* m)
     w->try_epoch = 0U;
     w->work += (uint64_t)m->target_count * m->target_count;
 }
-#endif
 
-#if SVA_FLOW_GRANULAR
 // Threshold accepting (Dueck and Scheuer, 1990) for a large mission's rounds: a round's
 // plan becomes the current one when its value is at most the current's plus a threshold
 // that falls linearly from the incumbent's cost / ACCEPT_SHARE, when the rounds start,
