@@ -310,6 +310,12 @@ static inline uint64_t sva_flow_lagrange_end(const sva_mission_t* m, uint64_t st
 /// ruin and recreate nor a large mission's Lagrangian phase works on it.
 #define SVA_FLOW_CLOSE 64
 
+/// Whether a plan of this cost is that close to `bound` (negative: none proven).
+static inline bool sva_flow_close(int64_t cost, int64_t bound)
+{
+    return (bound >= 0) && ((cost - bound) <= (cost / SVA_FLOW_CLOSE));
+}
+
 /// Whether the mission is large for flow (more than SVA_FLOW_LARGE_FROM targets).
 static inline bool sva_flow_large(const sva_mission_t* m)
 {

@@ -66,7 +66,7 @@ bool sva_flow_near_bound(int64_t open, sva_planner_priv_t* priv, const sva_missi
     int64_t bound = 0;
     sva_flow_write_incumbent(priv, m, plan);  // target_served as the incumbent's
     const bool proven = sva_flow_cost_bound(priv, m, open, 0, false, &cost, &bound);
-    return proven && priv->flow.reward_exact && ((cost - bound) <= (cost / SVA_FLOW_CLOSE));
+    return proven && priv->flow.reward_exact && sva_flow_close(cost, bound);
 }
 
 // A flight runs a shortest path per UAV, most of them over fewer open targets than an

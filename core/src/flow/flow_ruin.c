@@ -128,7 +128,7 @@ bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     }
     // Not when the coverage is proven and the plan within 1/SVA_FLOW_CLOSE of the bound:
     // the search, with the rest of the budget, may prove it.
-    const bool near = (proven_bound >= 0) && ((cost - proven_bound) <= (cost / SVA_FLOW_CLOSE));
+    const bool near = sva_flow_close(cost, proven_bound);
     const uint64_t rest = ((end > w->work) && !near) ? (end - w->work) : 0U;
     const uint64_t budget = w->work + (rest - (rest / 4U));
     // A round's insertions: every target's, or past SVA_FLOW_LARGE_FROM targets
