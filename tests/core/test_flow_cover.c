@@ -7,6 +7,11 @@
 //   most, whose routes pass the SPEC checker;
 // - within a small budget it may give up (open), but never answers wrongly;
 // - past its bounds (more targets than SVA_FLOW_COVER_TARGETS) it gives up at once;
+// - on neighbourhoods (a few UAVs set free, the others' routes kept), from a plan
+//   covering the most with one route taken away: every plan it finds covers more,
+//   changes no more routes than it set free, and passes the SPEC checker; when the
+//   neighbourhoods are as large as the routes that changed it finds one; it never
+//   claims a proof;
 // - flow with it: every plan checked, every "optimal" claim true, and the most
 //   coverage on every mission where the search ran.
 // Seeds are printed and replayable (SVA_TEST_SEED=...).
@@ -121,6 +126,146 @@ void test_small_budget_is_never_wrong(void)
         }
     }
     printf("# %d missions at a budget of 40 units: %d answers open\n", ROUNDS, open);
+    TEST_ASSERT_TRUE(open > 0);
+}
+
+static sva_plan_t lost;  // a plan covering the most with one route taken away
+
+// Targets covered by *p's routes (each served by exactly its need, as checked).
+static int covered_by(const sva_plan_t* p)
+{
+    int served[SVA_MAX_TARGETS] = {0};
+    for (uint16_t u = 0U; u < mission.uav_count; u++) {
+        for (uint16_t i = 0U; i < p->routes[u].target_count; i++) {
+            served[p->routes[u].targets[i]]++;
+        }
+    }
+    int covered = 0;
+    for (uint16_t t = 0U; t < mission.target_count; t++) {
+        covered += (served[t] >= mission.targets[t].need) ? 1 : 0;
+    }
+    return covered;
+}
+
+// plan (covering the most) into `lost` with UAV x's route taken away and the targets it
+// shared dropped from the other routes; returns how many routes changed.
+static int take_route_away(uint16_t x)
+{
+    lost = plan;
+    int changed = 0;
+    for (uint16_t u = 0U; u < mission.uav_count; u++) {
+        sva_route_t* r = &lost.routes[u];
+        uint16_t kept = 0U;
+        for (uint16_t i = 0U; i < r->target_count; i++) {
+            bool shared = false;
+            for (uint16_t j = 0U; j < plan.routes[x].target_count; j++) {
+                shared = shared || (plan.routes[x].targets[j] == r->targets[i]);
+            }
+            if (!shared) {
+                r->targets[kept] = r->targets[i];
+                kept++;
+            }
+        }
+        changed += (kept != r->target_count) ? 1 : 0;
+        r->target_count = kept;
+    }
+    return changed;
+}
+
+static int routes_changed(const sva_plan_t* a, const sva_plan_t* b)
+{
+    int changed = 0;
+    for (uint16_t u = 0U; u < mission.uav_count; u++) {
+        bool same = a->routes[u].target_count == b->routes[u].target_count;
+        for (uint16_t i = 0U; same && (i < a->routes[u].target_count); i++) {
+            same = a->routes[u].targets[i] == b->routes[u].targets[i];
+        }
+        changed += same ? 0 : 1;
+    }
+    return changed;
+}
+
+// The neighbourhoods of `size` UAVs from `lost` (priv->target_served recounted).
+static sva_flow_cover_result_t around(int covered, uint16_t size, uint64_t budget)
+{
+    plan = lost;
+    for (uint16_t t = 0U; t < mission.target_count; t++) {
+        planner.priv.target_served[t] = 0U;
+    }
+    for (uint16_t u = 0U; u < mission.uav_count; u++) {
+        for (uint16_t i = 0U; i < plan.routes[u].target_count; i++) {
+            planner.priv.target_served[plan.routes[u].targets[i]]++;
+        }
+    }
+    planner.priv.flow.work = 0U;
+    uint16_t nodes = 0U;
+    return sva_flow_cover_around(&planner.priv, &mission, &plan, covered, size, budget, &nodes);
+}
+
+void test_neighbourhoods_find_what_a_lost_route_took(void)
+{
+    const uint64_t seed = test_seed(0x9E1B0ULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    int found = 0;
+    int forced = 0;
+    int open = 0;
+    for (int round = 0; round < ROUNDS; round++) {
+        next_mission(&rng);
+        const brute_result_t best = brute_force_optimum(&mission);
+        uint16_t nodes = 0U;
+        if ((best.covered == 0) ||
+            (cover(best.covered - 1, UINT64_MAX / 2U, &nodes) != SVA_FLOW_COVER_FOUND)) {
+            continue;
+        }
+        uint16_t x = 0U;  // the route to take away: a non-empty one, drawn
+        uint16_t flyers = 0U;
+        for (uint16_t u = 0U; u < mission.uav_count; u++) {
+            flyers = (uint16_t)(flyers + (plan.routes[u].stranded ? 0U : 1U));
+            if ((plan.routes[u].target_count > 0U) && ((x == 0U) || test_rng_range(&rng, 0, 1))) {
+                x = u;
+            }
+        }
+        const int changed = take_route_away(x);
+        const int covered = covered_by(&lost);
+        for (uint16_t size = 1U; size < flyers; size++) {
+            const uint64_t budget = test_rng_range(&rng, 0, 1) ? UINT64_MAX / 2U : 60U;
+            const sva_flow_cover_result_t r = around(covered, size, budget);
+            if (r == SVA_FLOW_COVER_PROVEN) {
+                SVA_TEST_FAIL("seed %llu round %d: the neighbourhoods claimed a proof",
+                              (unsigned long long)seed, round);
+            }
+            if (r == SVA_FLOW_COVER_OPEN) {
+                open++;
+                if ((budget > 60U) && (changed <= (int)size) && (covered < best.covered)) {
+                    SVA_TEST_FAIL("seed %llu round %d: %d routes changed, %u set free, no plan "
+                                  "covering more than %d (the most %d)",
+                                  (unsigned long long)seed, round, changed, size, covered,
+                                  best.covered);
+                }
+                continue;
+            }
+            forced += ((budget > 60U) && (changed <= (int)size)) ? 1 : 0;
+            const int now = covered_by(&plan);
+            if ((now <= covered) || (now > best.covered) || (routes_changed(&plan, &lost) > size)) {
+                SVA_TEST_FAIL("seed %llu round %d: %u set free: covers %d (was %d, the most %d), "
+                              "%d routes changed",
+                              (unsigned long long)seed, round, size, now, covered, best.covered,
+                              routes_changed(&plan, &lost));
+            }
+            sva_plan_finish(&planner.priv, &mission, &plan);
+            char msg[256];
+            if (spec_check_plan(&mission, &plan, msg, sizeof msg) != 0) {
+                SVA_TEST_FAIL("seed %llu round %d: the neighbourhood's plan breaks the SPEC: %s",
+                              (unsigned long long)seed, round, msg);
+            }
+            found++;
+        }
+    }
+    printf("# %d missions: %d plans found on neighbourhoods (%d where the changed routes fit), "
+           "%d open\n",
+           ROUNDS, found, forced, open);
+    TEST_ASSERT_TRUE(forced > 0);
     TEST_ASSERT_TRUE(open > 0);
 }
 

@@ -202,10 +202,18 @@ typedef enum {
 sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_mission_t* m,
                                        sva_plan_t* plan, int64_t covered, uint64_t budget,
                                        uint16_t* nodes);
+/// The same search over neighbourhoods of the incumbent in *plan (with
+/// priv->target_served): `size` of its UAVs not stranded set free, every such set in
+/// turn, the others' routes kept, until a plan covers more than `covered` targets or the
+/// work reaches `budget`. FOUND as sva_flow_cover's; otherwise OPEN (it proves nothing).
+sva_flow_cover_result_t sva_flow_cover_around(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                              sva_plan_t* plan, int64_t covered, uint16_t size,
+                                              uint64_t budget, uint16_t* nodes);
 /// The coverage search for one target more than the incumbent covers, again after each
 /// plan it finds (repaired and offered: it covers more, so it becomes the incumbent),
-/// within `work` units (incumbent_first: the first half in the search's own order, the
-/// second with the targets the incumbent leaves left first); returns the work it spent.
+/// within `work` units (incumbent_first: a third in the search's own order, a third on
+/// neighbourhoods of need + 1 UAVs, the last with the targets the incumbent leaves left
+/// first); returns the work it spent.
 /// *proven: it proved the incumbent's coverage the most. Off (nothing spent, nothing
 /// proven) when SVA_FLOW_COVER_TARGETS is 0.
 uint64_t sva_flow_cover_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m,

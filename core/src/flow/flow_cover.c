@@ -17,21 +17,30 @@
 // to at most sum K(s), and to at most sum min(K(s), c): no UAV serves a target twice.
 // UAVs in one state are interchangeable: a combination taking the second of two alike
 // UAVs must take the first. Combinations are tried in the order of their legs'
-// lengths, the target left last; in the second half of the coverage search that flow
+// lengths, the target left last; in the last third of the coverage search that flow
 // runs last at need 2 and more, a target the incumbent leaves is left first: the
 // plan covering one more target mostly keeps the incumbent's choices, and serving every
 // target first spends the fuel on the first targets, so that the search only reaches
 // such plans after many nodes. No recursion: the path is the UAV states per depth.
+//
+// Neighbourhoods: the same search over a few of the incumbent's UAVs set free, the
+// others' routes kept. A target the kept routes cover is covered; one they serve in
+// part needs only the rest of its UAVs. need + 1 UAVs (the mission's largest need) set
+// free, every such set in turn, each within a sixteenth of the work left: the plan
+// covering one more target often moves a UAV from a pair to a new one, and a small
+// neighbourhood finds it in few nodes, where the whole search takes many thousands. It
+// finds plans; it proves nothing.
 #include "flow.h"
 
 #if SVA_FLOW_COVER_TARGETS > 0
 
-#    define STEP_COMBOS      0U  // the next combination in pick[d], then the target left
-#    define STEP_LEAVE       1U  // the target left
-#    define STEP_DONE        2U
-#    define STEP_LEAVE_FIRST 3U  // the target left, then the combinations
-#    define STEP_COMBOS_LAST 4U  // the next combination in pick[d], then done
-#    define NO_FUEL          INT32_MAX
+#    define STEP_COMBOS         0U  // the next combination in pick[d], then the target left
+#    define STEP_LEAVE          1U  // the target left
+#    define STEP_DONE           2U
+#    define STEP_LEAVE_FIRST    3U  // the target left, then the combinations
+#    define STEP_COMBOS_LAST    4U  // the next combination in pick[d], then done
+#    define NO_FUEL             INT32_MAX
+#    define NEIGHBOURHOOD_SHARE 16U  // of the work left, for each neighbourhood
 
 // fuel_after for the n targets in window order; returns the work (pairs x counts).
 static uint64_t fill_fuel_after(sva_flow_cover_t* c, const sva_planner_priv_t* priv,
@@ -126,8 +135,8 @@ static bool may_cover(sva_flow_cover_t* c, const sva_planner_priv_t* priv, const
         by_need[k] = 0U;
     }
     for (uint16_t j = d; j < n; j++) {
-        const int32_t need = m->targets[priv->target_order[j]].need;
-        if (((int32_t)c->reach[j] >= need) && (need <= (int32_t)uavs)) {
+        const int32_t need = (int32_t)c->need_left[j];
+        if ((need > 0) && ((int32_t)c->reach[j] >= need) && (need <= (int32_t)uavs)) {
             by_need[need]++;
         }
     }
@@ -225,16 +234,14 @@ static bool cover_canonical(const sva_flow_cover_t* c, uint16_t d, uint8_t need)
     return true;
 }
 
-// The path's routes above depth d into *plan and priv->target_served.
+// The path's routes above depth d into the search's UAVs' routes of *plan (the others'
+// kept), and every route's visits into priv->target_served.
 static void cover_routes(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                          uint16_t d, uint16_t uavs)
 {
     const sva_flow_cover_t* c = &priv->flow.cover;
-    for (uint16_t t = 0U; t < m->target_count; t++) {
-        priv->target_served[t] = 0U;
-    }
-    for (uint16_t u = 0U; u < m->uav_count; u++) {
-        plan->routes[u].target_count = 0U;
+    for (uint16_t k = 0U; k < uavs; k++) {
+        plan->routes[c->uav[k]].target_count = 0U;
     }
     for (uint16_t e = 0U; e < d; e++) {
         const uint16_t t = priv->target_order[e];
@@ -243,8 +250,16 @@ static void cover_routes(sva_planner_priv_t* priv, const sva_mission_t* m, sva_p
                 sva_route_t* r = &plan->routes[c->uav[k]];
                 r->targets[r->target_count] = t;
                 r->target_count++;
-                priv->target_served[t]++;
             }
+        }
+    }
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        priv->target_served[t] = 0U;
+    }
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        const sva_route_t* r = &plan->routes[u];
+        for (uint16_t i = 0U; i < r->target_count; i++) {
+            priv->target_served[r->targets[i]]++;
         }
     }
 }
@@ -265,7 +280,7 @@ static bool next_child(sva_flow_cover_t* c, const sva_planner_priv_t* priv, cons
                        uint16_t d, uint16_t uavs)
 {
     const sva_target_t* t = &m->targets[priv->target_order[d]];
-    const uint8_t need = (uint8_t)t->need;  // at most cand_count in STEP_COMBOS(_LAST)
+    const uint8_t need = c->need_left[d];  // at most cand_count in STEP_COMBOS(_LAST)
     if (c->step[d] == (uint8_t)STEP_LEAVE_FIRST) {
         c->step[d] = (uint8_t)STEP_COMBOS_LAST;
         leave_target(c, d, uavs);
@@ -307,38 +322,15 @@ static bool next_child(sva_flow_cover_t* c, const sva_planner_priv_t* priv, cons
     return false;
 }
 
-sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_mission_t* m,
-                                       sva_plan_t* plan, int64_t covered, uint64_t budget,
-                                       uint16_t* nodes)
+// The search from the root set up in c (its UAVs c->uav[0..uavs) at c->at[0], the UAVs
+// each target still needs, the targets covered before it) for `goal` targets covered.
+static sva_flow_cover_result_t cover_search(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                            sva_plan_t* plan, uint16_t uavs, int32_t goal,
+                                            uint64_t budget, uint16_t* nodes)
 {
     sva_flow_work_t* w = &priv->flow;
     sva_flow_cover_t* c = &w->cover;
     const uint16_t n = m->target_count;
-    if (covered >= (int64_t)n) {
-        return SVA_FLOW_COVER_PROVEN;  // nothing is left to cover
-    }
-    if ((int32_t)n > (int32_t)SVA_FLOW_COVER_TARGETS) {
-        return SVA_FLOW_COVER_OPEN;
-    }
-    // The UAVs that are not stranded, in id order (the plan does not depend on the
-    // mission's order).
-    uint16_t uavs = 0U;
-    for (uint16_t i = 0U; i < m->uav_count; i++) {
-        const uint16_t u = priv->uav_order[i];
-        const sva_uav_t* uav = &m->uavs[u];
-        if ((int64_t)uav->fuel < sva_distance(uav->x, uav->y, m->depot_x, m->depot_y)) {
-            continue;
-        }
-        if ((int32_t)uavs == (int32_t)SVA_FLOW_COVER_UAVS) {
-            return SVA_FLOW_COVER_OPEN;
-        }
-        c->uav[uavs] = u;
-        c->at[0][uavs] = (sva_flow_cover_uav_t){uav->x, uav->y, uav->ready_at_ticks, uav->fuel, 0U};
-        uavs++;
-    }
-    w->work += fill_fuel_after(c, priv, m);
-    const int32_t goal = (int32_t)covered + 1;
-    c->covered[0] = 0U;
     uint16_t d = 0U;
     bool enter = true;
     for (;;) {
@@ -364,15 +356,15 @@ sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_missi
             cover_candidates(c, m, d, t, uavs);
             w->work += uavs;
             c->step[d] = (uint8_t)STEP_LEAVE;
-            if ((int32_t)c->cand_count[d] >= t->need) {
-                // In the second half, the incumbent's choice first: a target it leaves
+            if ((c->need_left[d] > 0U) && (c->cand_count[d] >= c->need_left[d])) {
+                // In the last third, the incumbent's choice first: a target it leaves
                 // is left first.
                 c->step[d] = (uint8_t)((c->incumbent_first &&
                                         (priv->target_served[priv->target_order[d]] == 0U))
                                            ? STEP_LEAVE_FIRST
                                            : STEP_COMBOS);
-                for (int32_t i = 0; i < t->need; i++) {
-                    c->pick[d][i] = (uint8_t)i;
+                for (uint8_t i = 0U; i < c->need_left[d]; i++) {
+                    c->pick[d][i] = i;
                 }
             }
         }
@@ -388,33 +380,180 @@ sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_missi
     }
 }
 
+// UAVs a target still needs, as c->need_left holds it: a need past the search's UAVs
+// (up to SVA_MAX_UAVS) stays one that no combination meets.
+static uint8_t still_needed(int32_t left)
+{
+    const int32_t most = (int32_t)SVA_FLOW_COVER_U + 1;
+    return (uint8_t)((left < 0) ? 0 : ((left > most) ? most : left));
+}
+
+// The UAVs that are not stranded, in id order (the plan does not depend on the
+// mission's order), into c->uav; false past SVA_FLOW_COVER_UAVS.
+static bool list_uavs(sva_flow_cover_t* c, const sva_planner_priv_t* priv, const sva_mission_t* m,
+                      uint16_t* uavs)
+{
+    *uavs = 0U;
+    for (uint16_t i = 0U; i < m->uav_count; i++) {
+        const uint16_t u = priv->uav_order[i];
+        const sva_uav_t* uav = &m->uavs[u];
+        if ((int64_t)uav->fuel < sva_distance(uav->x, uav->y, m->depot_x, m->depot_y)) {
+            continue;
+        }
+        if ((int32_t)*uavs == (int32_t)SVA_FLOW_COVER_UAVS) {
+            return false;
+        }
+        c->uav[*uavs] = u;
+        (*uavs)++;
+    }
+    return true;
+}
+
+// The search's UAVs as the mission starts them.
+static void start_states(sva_flow_cover_t* c, const sva_mission_t* m, uint16_t uavs)
+{
+    for (uint16_t k = 0U; k < uavs; k++) {
+        const sva_uav_t* uav = &m->uavs[c->uav[k]];
+        c->at[0][k] = (sva_flow_cover_uav_t){uav->x, uav->y, uav->ready_at_ticks, uav->fuel, 0U};
+    }
+}
+
+sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                       sva_plan_t* plan, int64_t covered, uint64_t budget,
+                                       uint16_t* nodes)
+{
+    sva_flow_work_t* w = &priv->flow;
+    sva_flow_cover_t* c = &w->cover;
+    const uint16_t n = m->target_count;
+    if (covered >= (int64_t)n) {
+        return SVA_FLOW_COVER_PROVEN;  // nothing is left to cover
+    }
+    uint16_t uavs = 0U;
+    if (((int32_t)n > (int32_t)SVA_FLOW_COVER_TARGETS) || !list_uavs(c, priv, m, &uavs)) {
+        return SVA_FLOW_COVER_OPEN;
+    }
+    start_states(c, m, uavs);
+    for (uint16_t j = 0U; j < n; j++) {
+        c->need_left[j] = still_needed(m->targets[priv->target_order[j]].need);
+    }
+    c->covered[0] = 0U;
+    w->work += fill_fuel_after(c, priv, m);
+    return cover_search(priv, m, plan, uavs, (int32_t)covered + 1, budget, nodes);
+}
+
+// Neighbourhood c->freed: those UAVs searched from their start, what the kept routes of
+// *plan leave to them in c->need_left and c->covered[0].
+static void set_free(sva_flow_cover_t* c, const sva_planner_priv_t* priv, const sva_mission_t* m,
+                     const sva_plan_t* plan, uint16_t count, uint16_t size)
+{
+    for (uint16_t k = 0U; k < size; k++) {
+        c->uav[k] = c->all[c->freed[k]];
+    }
+    start_states(c, m, size);
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        c->reach[t] = 0U;  // here: the kept routes' visits of target t
+    }
+    uint16_t next = 0U;  // the next freed UAV (c->freed ascends)
+    for (uint16_t k = 0U; k < count; k++) {
+        if ((next < size) && (c->freed[next] == (uint8_t)k)) {
+            next++;
+            continue;
+        }
+        const sva_route_t* r = &plan->routes[c->all[k]];
+        for (uint16_t i = 0U; i < r->target_count; i++) {
+            c->reach[r->targets[i]]++;
+        }
+    }
+    c->covered[0] = 0U;
+    for (uint16_t j = 0U; j < m->target_count; j++) {
+        const uint16_t t = priv->target_order[j];
+        const int32_t left = (int32_t)m->targets[t].need - (int32_t)c->reach[t];
+        c->need_left[j] = still_needed(left);
+        c->covered[0] = (uint16_t)(c->covered[0] + ((left <= 0) ? 1U : 0U));
+    }
+}
+
+sva_flow_cover_result_t sva_flow_cover_around(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                              sva_plan_t* plan, int64_t covered, uint16_t size,
+                                              uint64_t budget, uint16_t* nodes)
+{
+    sva_flow_work_t* w = &priv->flow;
+    sva_flow_cover_t* c = &w->cover;
+    const uint16_t n = m->target_count;
+    uint16_t count = 0U;
+    if ((covered >= (int64_t)n) || (size == 0U) || ((int32_t)n > (int32_t)SVA_FLOW_COVER_TARGETS) ||
+        !list_uavs(c, priv, m, &count) || (count <= size)) {
+        return SVA_FLOW_COVER_OPEN;
+    }
+    for (uint16_t k = 0U; k < count; k++) {
+        c->all[k] = c->uav[k];
+    }
+    for (uint16_t i = 0U; i < size; i++) {
+        c->freed[i] = (uint8_t)i;
+    }
+    w->work += fill_fuel_after(c, priv, m);
+    const uint64_t share = (budget > w->work) ? ((budget - w->work) / NEIGHBOURHOOD_SHARE) : 0U;
+    do {
+        if (w->work >= budget) {
+            return SVA_FLOW_COVER_OPEN;
+        }
+        set_free(c, priv, m, plan, count, size);
+        w->work += (uint64_t)n + (uint64_t)count;
+        const uint64_t room = (budget > w->work) ? (budget - w->work) : 0U;
+        const uint64_t end = w->work + ((room < share) ? room : share);
+        if (cover_search(priv, m, plan, size, (int32_t)covered + 1, end, nodes) ==
+            SVA_FLOW_COVER_FOUND) {
+            return SVA_FLOW_COVER_FOUND;
+        }
+    } while (cover_advance(c->freed, (uint8_t)size, (uint8_t)count));
+    return SVA_FLOW_COVER_OPEN;
+}
+
+// One part of sva_flow_cover_incumbent: the search (or its neighbourhoods), again after
+// each plan it finds, until `end`.
+static sva_flow_cover_result_t cover_until(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                           sva_plan_t* plan, uint64_t end, bool around)
+{
+    sva_flow_cover_result_t r = SVA_FLOW_COVER_FOUND;
+    while (r == SVA_FLOW_COVER_FOUND) {
+        int64_t cost = 0;
+        int64_t covered = 0;
+        sva_flow_incumbent(priv, m, plan, &cost, &covered);
+        if (around) {
+            const int32_t size = priv->flow.need_max + 1;
+            r = sva_flow_cover_around(priv, m, plan, covered, (uint16_t)size, end,
+                                      &plan->stats.flow_cover_nodes);
+        } else {
+            r = sva_flow_cover(priv, m, plan, covered, end, &plan->stats.flow_cover_nodes);
+        }
+        if (r == SVA_FLOW_COVER_FOUND) {
+            sva_flow_repair(priv, m, plan, true);
+        }
+    }
+    return r;
+}
+
 uint64_t sva_flow_cover_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m,
                                   sva_plan_t* plan, uint64_t work, bool incumbent_first,
                                   bool* proven)
 {
     const uint64_t from = priv->flow.work;
-    // incumbent_first: two halves, targets served first, then the incumbent's choices
-    // first; otherwise the first order only.
-    uint32_t halves = 1U;
+    // incumbent_first: three thirds, the search in its own order, the neighbourhoods,
+    // the search with the incumbent's choices first; otherwise the first order only.
+    uint64_t parts = 1U;
     if (incumbent_first) {
-        halves = 2U;
+        parts = 3U;
     }
     sva_flow_cover_result_t r = SVA_FLOW_COVER_OPEN;
-    for (uint32_t half = 0U; (half < halves) && (r == SVA_FLOW_COVER_OPEN); half++) {
-        priv->flow.cover.incumbent_first = (half == 1U);
+    for (uint64_t part = 0U; (part < parts) && (r == SVA_FLOW_COVER_OPEN); part++) {
+        priv->flow.cover.incumbent_first = incumbent_first && (part == 2U);
         uint64_t end = from + work;
-        if ((half + 1U) < halves) {
-            end = from + (work / 2U);
+        if ((part + 1U) < parts) {
+            end = from + ((work / parts) * (part + 1U));
         }
-        r = SVA_FLOW_COVER_FOUND;
-        while (r == SVA_FLOW_COVER_FOUND) {
-            int64_t cost = 0;
-            int64_t covered = 0;
-            sva_flow_incumbent(priv, m, plan, &cost, &covered);
-            r = sva_flow_cover(priv, m, plan, covered, end, &plan->stats.flow_cover_nodes);
-            if (r == SVA_FLOW_COVER_FOUND) {
-                sva_flow_repair(priv, m, plan, true);
-            }
+        r = cover_until(priv, m, plan, end, incumbent_first && (part == 1U));
+        if (incumbent_first && (part == 1U)) {
+            r = SVA_FLOW_COVER_OPEN;  // the neighbourhoods prove nothing
         }
     }
     priv->flow.cover.incumbent_first = false;
@@ -433,6 +572,20 @@ sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_missi
     (void)budget;
     (void)nodes;
     return (covered >= (int64_t)m->target_count) ? SVA_FLOW_COVER_PROVEN : SVA_FLOW_COVER_OPEN;
+}
+
+sva_flow_cover_result_t sva_flow_cover_around(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                              sva_plan_t* plan, int64_t covered, uint16_t size,
+                                              uint64_t budget, uint16_t* nodes)
+{
+    (void)priv;
+    (void)m;
+    (void)plan;
+    (void)covered;
+    (void)size;
+    (void)budget;
+    (void)nodes;
+    return SVA_FLOW_COVER_OPEN;
 }
 
 uint64_t sva_flow_cover_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m,
