@@ -187,8 +187,8 @@ typedef struct {
     uint16_t most[SVA_FLOW_COVER_U];         ///< bound: targets a UAV can still serve
     uint8_t reach[SVA_FLOW_COVER_T];         ///< bound: UAVs that can reach a target
     uint8_t need_left[SVA_FLOW_COVER_T];     ///< UAVs still to send (0: the kept routes cover it)
-    uint16_t all[SVA_FLOW_COVER_U];          ///< neighbourhoods: every UAV not stranded
-    uint8_t freed[SVA_FLOW_COVER_U];         ///< neighbourhoods: their UAVs, indices into all
+    uint16_t all[SVA_FLOW_COVER_U];          ///< every UAV not stranded (mission UAVs)
+    uint8_t freed[SVA_FLOW_COVER_U];         ///< the search's UAVs, indices into all
     uint16_t by_need[SVA_FLOW_COVER_U + 1];  ///< bound: those targets by need
     int32_t leg[SVA_FLOW_COVER_U];           ///< candidates: cells to the target
     bool incumbent_first;                    ///< a target the incumbent leaves is left first

@@ -389,7 +389,7 @@ static uint8_t still_needed(int32_t left)
 }
 
 // The UAVs that are not stranded, in id order (the plan does not depend on the
-// mission's order), into c->uav; false past SVA_FLOW_COVER_UAVS.
+// mission's order), into c->all; false past SVA_FLOW_COVER_UAVS.
 static bool list_uavs(sva_flow_cover_t* c, const sva_planner_priv_t* priv, const sva_mission_t* m,
                       uint16_t* uavs)
 {
@@ -403,7 +403,7 @@ static bool list_uavs(sva_flow_cover_t* c, const sva_planner_priv_t* priv, const
         if ((int32_t)*uavs == (int32_t)SVA_FLOW_COVER_UAVS) {
             return false;
         }
-        c->uav[*uavs] = u;
+        c->all[*uavs] = u;
         (*uavs)++;
     }
     return true;
@@ -418,31 +418,9 @@ static void start_states(sva_flow_cover_t* c, const sva_mission_t* m, uint16_t u
     }
 }
 
-sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_mission_t* m,
-                                       sva_plan_t* plan, int64_t covered, uint64_t budget,
-                                       uint16_t* nodes)
-{
-    sva_flow_work_t* w = &priv->flow;
-    sva_flow_cover_t* c = &w->cover;
-    const uint16_t n = m->target_count;
-    if (covered >= (int64_t)n) {
-        return SVA_FLOW_COVER_PROVEN;  // nothing is left to cover
-    }
-    uint16_t uavs = 0U;
-    if (((int32_t)n > (int32_t)SVA_FLOW_COVER_TARGETS) || !list_uavs(c, priv, m, &uavs)) {
-        return SVA_FLOW_COVER_OPEN;
-    }
-    start_states(c, m, uavs);
-    for (uint16_t j = 0U; j < n; j++) {
-        c->need_left[j] = still_needed(m->targets[priv->target_order[j]].need);
-    }
-    c->covered[0] = 0U;
-    w->work += fill_fuel_after(c, priv, m);
-    return cover_search(priv, m, plan, uavs, (int32_t)covered + 1, budget, nodes);
-}
-
-// Neighbourhood c->freed: those UAVs searched from their start, what the kept routes of
-// *plan leave to them in c->need_left and c->covered[0].
+// Neighbourhood c->freed (of c->all's `count`): those UAVs searched from their start,
+// what the kept routes of *plan leave to them in c->need_left and c->covered[0]. The
+// whole search frees them all.
 static void set_free(sva_flow_cover_t* c, const sva_planner_priv_t* priv, const sva_mission_t* m,
                      const sva_plan_t* plan, uint16_t count, uint16_t size)
 {
@@ -473,6 +451,28 @@ static void set_free(sva_flow_cover_t* c, const sva_planner_priv_t* priv, const 
     }
 }
 
+sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                       sva_plan_t* plan, int64_t covered, uint64_t budget,
+                                       uint16_t* nodes)
+{
+    sva_flow_work_t* w = &priv->flow;
+    sva_flow_cover_t* c = &w->cover;
+    const uint16_t n = m->target_count;
+    if (covered >= (int64_t)n) {
+        return SVA_FLOW_COVER_PROVEN;  // nothing is left to cover
+    }
+    uint16_t uavs = 0U;
+    if (((int32_t)n > (int32_t)SVA_FLOW_COVER_TARGETS) || !list_uavs(c, priv, m, &uavs)) {
+        return SVA_FLOW_COVER_OPEN;
+    }
+    for (uint16_t k = 0U; k < uavs; k++) {
+        c->freed[k] = (uint8_t)k;
+    }
+    set_free(c, priv, m, plan, uavs, uavs);
+    w->work += fill_fuel_after(c, priv, m);
+    return cover_search(priv, m, plan, uavs, (int32_t)covered + 1, budget, nodes);
+}
+
 sva_flow_cover_result_t sva_flow_cover_around(sva_planner_priv_t* priv, const sva_mission_t* m,
                                               sva_plan_t* plan, int64_t covered, uint16_t size,
                                               uint64_t budget, uint16_t* nodes)
@@ -484,9 +484,6 @@ sva_flow_cover_result_t sva_flow_cover_around(sva_planner_priv_t* priv, const sv
     if ((covered >= (int64_t)n) || (size == 0U) || ((int32_t)n > (int32_t)SVA_FLOW_COVER_TARGETS) ||
         !list_uavs(c, priv, m, &count) || (count <= size)) {
         return SVA_FLOW_COVER_OPEN;
-    }
-    for (uint16_t k = 0U; k < count; k++) {
-        c->all[k] = c->uav[k];
     }
     for (uint16_t i = 0U; i < size; i++) {
         c->freed[i] = (uint8_t)i;
