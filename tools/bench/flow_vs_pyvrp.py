@@ -65,10 +65,10 @@ def gen_command(name, count):
 
 
 def checked(m, plan):
-    """(covered, cost, solve_us, stats) of a plan the checker accepts, else None."""
+    """(covered, cost, solve_us, stats, plan) of a plan the checker accepts, else None."""
     if check.check_plan(m, plan):
         return None
-    return plan.covered, plan.cost, (plan.stats or {}).get("solve_us"), plan.stats or {}
+    return plan.covered, plan.cost, (plan.stats or {}).get("solve_us"), plan.stats or {}, plan
 
 
 def run_flow(m, path, budget):

@@ -22,10 +22,8 @@ coverage (the bound would be wrong).
 missions of 025x05_tight, PyVRP 0.2 s (a test).
 """
 import argparse
-import json
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
 
@@ -34,16 +32,7 @@ sys.path.insert(0, HERE)
 
 import flow_vs_pyvrp as fvp  # noqa: E402  (tools/bench: the sets, flow and PyVRP runs)
 
-from sva_tools import check, io, route_lp  # noqa: E402
-
-
-def flow_plan(m, path):
-    """flow's plan at its default budget, when the checker accepts it (else None)."""
-    out = subprocess.run([fvp.SVA, "plan", "--algo", "flow", path], capture_output=True, text=True)
-    if out.returncode != 0:
-        return None
-    plan = io.plan_from_json(json.loads(out.stdout))
-    return None if check.check_plan(m, plan) else plan
+from sva_tools import io, route_lp  # noqa: E402
 
 
 def pct(v):
@@ -80,14 +69,14 @@ def main(argv):
             with tempfile.TemporaryDirectory(prefix="route-lp-") as d:
                 path = os.path.join(d, f"{m.name}.json")
                 io.write_json(m.to_json(), path)
-                flow = flow_plan(m, path)
+                flow = fvp.run_flow(m, path, "default")
             if flow is None:
                 print(f"  {m.name}: flow failed or its plan was rejected")
                 wrong += 1
                 continue
-            covered, cost, stats = flow.covered, flow.cost, flow.stats or {}
+            covered, cost, _, stats, plan = flow
             pyvrp = fvp.run_pyvrp(m, args.time_limit, 1)
-            lp = route_lp.route_lp_bound(m, covered, [(r.uav, r.targets) for r in flow.routes],
+            lp = route_lp.route_lp_bound(m, covered, [(r.uav, r.targets) for r in plan.routes],
                                          time_limit=args.lp_time)
             best = min([cost] + ([pyvrp[1]] if pyvrp is not None and pyvrp[0] >= covered else []))
             finished += lp.converged

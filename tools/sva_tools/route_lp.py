@@ -28,7 +28,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Optional
 
-from .model import Mission, Target, Uav, can_follow, can_start, dist_pt, is_stranded, sorted_targets
+from .model import Mission, Target, Uav, can_follow, can_start, dist_pt, is_stranded, route_distance, sorted_targets
 
 # A label: (reduced cost so far, fuel used, path as nested (target id, previous) pairs).
 _Path = Optional[tuple[int, "_Path"]]
@@ -128,13 +128,7 @@ def route_lp_bound(m: Mission, covered: int, start_routes: Sequence[tuple[int, l
         if (key, tuple(path)) in seen:
             return False
         seen.add((key, tuple(path)))
-        uav = groups[key][0]
-        pos: Uav | Target = uav
-        cost = 0
-        for tid in path:
-            cost += dist_pt(pos, by_id[tid])
-            pos = by_id[tid]
-        cost += dist_pt(pos, m.depot)
+        cost = route_distance(m, groups[key][0], [by_id[tid] for tid in path])
         lam = solver.NumVar(0.0, inf, f"r{len(seen)}")
         objective.SetCoefficient(lam, float(cost))
         fleet[key].SetCoefficient(lam, 1.0)
