@@ -12,6 +12,9 @@
 //   changes no more routes than it set free, and passes the SPEC checker; when the
 //   neighbourhoods are as large as the routes that changed it finds one; it never
 //   claims a proof;
+// - its chain bound (flow_cover_chains.c) is, for every depth and number of chains, the
+//   most targets of a set with no antichain larger than the chains (brute force over
+//   subsets, 12 targets at most; Dilworth);
 // - flow with it: every plan checked, every "optimal" claim true, and the most
 //   coverage on every mission where the search ran.
 // Seeds are printed and replayable (SVA_TEST_SEED=...).
@@ -56,6 +59,7 @@ static void next_mission(test_rng_t* rng)
 static sva_flow_cover_result_t cover(int64_t covered, uint64_t budget, uint16_t* nodes)
 {
     sva_state_reset(&planner.priv, &mission, &plan);
+    sva_flow_cover_chains_forget(&planner.priv);
     planner.priv.flow.work = 0U;
     return sva_flow_cover(&planner.priv, &mission, &plan, covered, budget, nodes);
 }
@@ -198,6 +202,7 @@ static sva_flow_cover_result_t around(int covered, uint16_t size, uint64_t budge
         }
     }
     planner.priv.flow.work = 0U;
+    sva_flow_cover_chains_forget(&planner.priv);
     uint16_t nodes = 0U;
     return sva_flow_cover_around(&planner.priv, &mission, &plan, covered, size, budget, &nodes);
 }
@@ -283,6 +288,98 @@ void test_past_its_bounds_it_gives_up(void)
     TEST_ASSERT_EQUAL_INT(SVA_FLOW_COVER_OPEN, cover(0, UINT64_MAX / 2U, &nodes));
     TEST_ASSERT_EQUAL_INT(0U, nodes);
     TEST_ASSERT_EQUAL_INT(0U, planner.priv.flow.work);
+}
+
+// Whether the targets at depths a < b (window order) can be one UAV's, a first.
+static bool in_order(uint16_t a, uint16_t b)
+{
+    const sva_target_t* ta = &mission.targets[planner.priv.target_order[a]];
+    const sva_target_t* tb = &mission.targets[planner.priv.target_order[b]];
+    const int64_t leg = (int64_t)sva_distance(ta->x, ta->y, tb->x, tb->y);
+    return ((int64_t)ta->end_ticks + (leg * mission.ticks_per_cell)) <= (int64_t)tb->start_ticks;
+}
+
+#define CHAIN_TARGETS 12
+#define CHAIN_ROUNDS  400
+
+static bool antichain[1U << CHAIN_TARGETS];
+
+// By brute force: the most targets from depth d on in a set whose antichains have at
+// most k targets, for every k (into most[0..uavs]).
+static void brute_chains(uint16_t d, uint16_t n, uint16_t uavs, int* most)
+{
+    const uint32_t sets = 1U << (n - d);
+    for (uint32_t s = 0U; s < sets; s++) {
+        antichain[s] = true;
+        for (uint16_t a = 0U; (a < (n - d)) && antichain[s]; a++) {
+            for (uint16_t b = (uint16_t)(a + 1U); (b < (n - d)) && antichain[s]; b++) {
+                const bool both = ((s >> a) & 1U) && ((s >> b) & 1U);
+                antichain[s] = !(both && in_order((uint16_t)(d + a), (uint16_t)(d + b)));
+            }
+        }
+    }
+    for (uint16_t k = 0U; k <= uavs; k++) {
+        most[k] = 0;
+    }
+    for (uint32_t s = 0U; s < sets; s++) {
+        // The largest antichain within s: over its subsets.
+        int w = 0;
+        for (uint32_t sub = s;; sub = (sub - 1U) & s) {
+            if (antichain[sub] && (__builtin_popcount(sub) > w)) {
+                w = __builtin_popcount(sub);
+            }
+            if (sub == 0U) {
+                break;
+            }
+        }
+        for (uint16_t k = (uint16_t)w; k <= uavs; k++) {
+            if (__builtin_popcount(s) > most[k]) {
+                most[k] = __builtin_popcount(s);
+            }
+        }
+    }
+}
+
+void test_chain_bound_is_the_most_k_chains_hold(void)
+{
+    const uint64_t seed = test_seed(0xC4A1ULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    int tight = 0;  // cases where the most is below both the targets and k per depth
+    for (int round = 0; round < CHAIN_ROUNDS; round++) {
+        const int n = test_rng_range(
+            &rng, 1,
+            (SVA_FLOW_COVER_TARGETS < CHAIN_TARGETS) ? SVA_FLOW_COVER_TARGETS : CHAIN_TARGETS);
+        const test_gen_params_t p = {
+            n, test_rng_range(&rng, 1, 6), 20, 4, 30, test_rng_range(&rng, 30, 200), 2, 60, 90,
+            0, test_rng_range(&rng, 1, 2), 0,  0};
+        test_gen_mission(&rng, &p, &mission);
+        sva_state_reset(&planner.priv, &mission, &plan);
+        sva_flow_chains_t* chains = &planner.priv.flow.cover.chains;
+        sva_flow_cover_chains_forget(&planner.priv);
+        for (uint16_t d = 0U; d < (uint16_t)n; d++) {
+            int most[SVA_FLOW_COVER_U + 1];
+            brute_chains(d, (uint16_t)n, (uint16_t)SVA_FLOW_COVER_U, most);
+            // Each k in turn (the row grows), then down again (the row kept).
+            for (int pass = 0; pass < 2; pass++) {
+                for (uint16_t i = 0U; i <= (uint16_t)SVA_FLOW_COVER_U; i++) {
+                    const uint16_t k = (pass == 0) ? i : (uint16_t)(SVA_FLOW_COVER_U - i);
+                    uint64_t work = 0U;
+                    const int got =
+                        (int)sva_flow_cover_chains(chains, &planner.priv, &mission, d, k, &work);
+                    if (got != most[k]) {
+                        SVA_TEST_FAIL("seed %llu round %d depth %u: %u chains hold %d targets, "
+                                      "the bound says %d",
+                                      (unsigned long long)seed, round, (unsigned)d, (unsigned)k,
+                                      most[k], got);
+                    }
+                    tight += ((pass == 0) && (most[k] < (n - d)) && (most[k] > (int)k)) ? 1 : 0;
+                }
+            }
+        }
+    }
+    printf("# chain bound: %d cases below both the targets and one per chain\n", tight);
+    TEST_ASSERT_TRUE(tight > 0);
 }
 
 void test_flow_covers_the_most_where_the_search_ran(void)

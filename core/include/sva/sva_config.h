@@ -23,8 +23,8 @@
 ///                  + 14 * SVA_FLOW_LP_COLS                               (route master)
 ///                  + the coverage search (SVA_FLOW_COVER_TARGETS below)
 ///                  + large missions' granular moves (SVA_FLOW_NEAR below)
-///   (default profile: 740,376 B, of which flow's sva_flow_work_t is 594,456 B; large
-///   profile: 7,342,936 B, of which 6,560,000 B are flow's 656,000 arcs.)
+///   (default profile: 741,640 B, of which flow's sva_flow_work_t is 595,720 B; large
+///   profile: 7,344,200 B, of which 6,560,000 B are flow's 656,000 arcs.)
 
 #ifndef SVA_CONFIG_H
 #define SVA_CONFIG_H
@@ -298,8 +298,8 @@
 
 /// flow's coverage search (flow_cover.c): missions of at most this many targets and
 /// UAVs that are not stranded get it, while their coverage is not proven the most; 0
-/// turns it off. Cost: about 4 B * T * (T + 1) + 20 B * (T + 1) * U + 2 B * T * U + 9 B * T
-/// + 13 B * U (16,344 B at the default 32 x 16).
+/// turns it off. Cost: about 4 B * T * (T + 1) + 20 B * (T + 1) * U + 3 B * T * U + 32 B * T
+/// + 13 B * U (17,608 B at the default 32 x 16, 1,264 B of it the chain bound).
 #ifndef SVA_FLOW_COVER_TARGETS
 #    define SVA_FLOW_COVER_TARGETS ((SVA_MAX_TARGETS < 32) ? SVA_MAX_TARGETS : 32)
 #endif

@@ -170,6 +170,20 @@ typedef struct {
     uint16_t served;  ///< targets on its route so far
 } sva_flow_cover_uav_t;
 
+/// The coverage search's chain bound (flow_cover_chains.c): per depth d, the most
+/// targets from d on that k chains hold, and the flow that finds them.
+typedef struct {
+    uint8_t most[SVA_FLOW_COVER_T][SVA_FLOW_COVER_U + 1];  ///< [d][k]
+    uint8_t known[SVA_FLOW_COVER_T];                       ///< row d's chains computed
+    uint64_t after[SVA_FLOW_COVER_T];  ///< the later depths a depth precedes (bits)
+    bool after_known;
+    int32_t dist[(2 * SVA_FLOW_COVER_T) + 2];  ///< Bellman-Ford: cost from the source
+    uint8_t parent[(2 * SVA_FLOW_COVER_T) + 2];
+    uint8_t used[SVA_FLOW_COVER_T];  ///< on a chain
+    uint8_t pred[SVA_FLOW_COVER_T];  ///< the target before it on its chain (UINT8_MAX: none)
+    uint8_t succ[SVA_FLOW_COVER_T];  ///< the target after it on its chain (UINT8_MAX: none)
+} sva_flow_chains_t;
+
 /// The coverage search: a depth-first path over the targets in window order (depth d
 /// decides the d-th), every UAV's state at each depth.
 typedef struct {
@@ -192,6 +206,7 @@ typedef struct {
     uint16_t by_need[SVA_FLOW_COVER_U + 1];  ///< bound: those targets by need
     int32_t leg[SVA_FLOW_COVER_U];           ///< candidates: cells to the target
     bool incumbent_first;                    ///< a target the incumbent leaves is left first
+    sva_flow_chains_t chains;                ///< bound: the chains of the targets ahead
 } sva_flow_cover_t;
 #endif
 

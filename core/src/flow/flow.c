@@ -421,6 +421,9 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
     w->local_changed_only = false;
 #endif
     w->work = 0U;
+#if SVA_FLOW_COVER_TARGETS > 0
+    sva_flow_cover_chains_forget(priv);  // a new mission: the chain bound's rows again
+#endif
     w->local_work = sva_flow_local_work(m, budget);
 #if SVA_FLOW_LARGE
     w->budget = budget;

@@ -220,6 +220,18 @@ uint64_t sva_flow_cover_incumbent(sva_planner_priv_t* priv, const sva_mission_t*
                                   sva_plan_t* plan, uint64_t work, bool incumbent_first,
                                   bool* proven);
 
+// flow_cover_chains.c: the coverage search's chain bound.
+#if SVA_FLOW_COVER_TARGETS > 0
+/// The most targets from depth d on (window order) that k chains of the order "a UAV
+/// can serve a, then b" hold, k at most SVA_FLOW_COVER_UAVS (each depth computed once
+/// per plan as far as the chains asked for, its work added to *work).
+uint16_t sva_flow_cover_chains(sva_flow_chains_t* s, const sva_planner_priv_t* priv,
+                               const sva_mission_t* m, uint16_t d, uint16_t k, uint64_t* work);
+/// Forgets the chain bound's rows: a plan's mission is new (sva_run_flow, and whoever
+/// searches a mission after another with the same planner, calls it first).
+void sva_flow_cover_chains_forget(sva_planner_priv_t* priv);
+#endif
+
 // flow_standing.c: the standing plan (sva_replan()'s; SVA_FLOW_STANDING).
 /// Whether `standing` is a plan of the mission (*plan fresh from sva_state_reset): a
 /// replan, which starts from it. Sets w->standing to it when it is and the mission has

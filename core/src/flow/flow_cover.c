@@ -15,6 +15,8 @@
 // target a route flies to bounds the rest). The targets ahead that their need of UAVs
 // can reach, fewest UAVs needed first, cover c more only if the c smallest needs sum
 // to at most sum K(s), and to at most sum min(K(s), c): no UAV serves a target twice.
+// And c is at most what u / q chains of the targets ahead hold, u the UAVs able to serve
+// one, q the least need among them (flow_cover_chains.c: the time windows' bound).
 // UAVs in one state are interchangeable: a combination taking the second of two alike
 // UAVs must take the first. Combinations are tried in the order of their legs'
 // lengths, the target left last; in the last third of the coverage search that flow
@@ -139,6 +141,23 @@ static bool may_cover(sva_flow_cover_t* c, const sva_planner_priv_t* priv, const
         if ((need > 0) && ((int32_t)c->reach[j] >= need) && (need <= (int32_t)uavs)) {
             by_need[need]++;
         }
+    }
+    // The chain bound: the least need among those targets, and the UAVs able to serve
+    // any target, give the chains (flow_cover_chains.c). At need 1 only at the root:
+    // deeper, its rows cost more work than they save (the pooled bound below holds
+    // the fuel, which binds there).
+    uint16_t least = 0U;
+    for (uint16_t need = 1U; (need <= uavs) && (least == 0U); need++) {
+        least = (by_need[need] > 0U) ? need : 0U;
+    }
+    uint16_t able = 0U;
+    for (uint16_t k = 0U; k < uavs; k++) {
+        able = (uint16_t)(able + ((c->most[k] > 0U) ? 1U : 0U));
+    }
+    if (((least > 1U) || ((least == 1U) && (d == 0U))) &&
+        ((int32_t)sva_flow_cover_chains(&c->chains, priv, m, d, (uint16_t)(able / least), work) <
+         more)) {
+        return false;
     }
     int32_t got = 0;
     int64_t needs = 0;
