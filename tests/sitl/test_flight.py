@@ -183,6 +183,33 @@ def test_ctrl_c_while_starting_up_is_said_and_leaves_nothing(tmp_path):
         assert ours() == ([], []), delay
 
 
+def test_ctrl_c_before_the_run_inside_is_up_waits_for_it(tmp_path):
+    # The namespace helper starts 3 s late, so the stop comes while the tool waits for the
+    # run inside: passed on at once, it would end that run's interpreter in its start-up.
+    started = tmp_path / "helper-started"
+    slow = tmp_path / "slow_netns_run.sh"
+    helper = REPO / "tools" / "netns" / "netns_run.sh"
+    slow.write_text(f'#!/bin/sh\ntouch "{started}"\nsleep 3\nexec "{helper}" "$@"\n')
+    slow.chmod(0o755)
+    env = tool_env()
+    env["SVA_NETNS_RUN"] = str(slow)
+    p = subprocess.Popen([sys.executable, "-m", "sva_tools", "sitl", str(SCENARIO), "--quiet",
+                          "--out", str(tmp_path / "never.json")],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
+                         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    end = time.monotonic() + 60
+    while time.monotonic() < end and not started.exists():
+        time.sleep(0.05)
+    assert started.exists()
+    p.send_signal(signal.SIGINT)
+    _out, err = p.communicate(timeout=90)
+    assert p.returncode == 130, err
+    assert "vehicles, node and bridge stopped" in err and "Traceback" not in err, err
+    time.sleep(1)
+    assert ours() == ([], [])
+    assert not (tmp_path / "never.json").exists()
+
+
 def flight_process(outer, timeout=30):
     """The pid of the run inside the namespace: the namespace helper's child."""
     end = time.monotonic() + timeout

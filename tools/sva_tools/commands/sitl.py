@@ -30,6 +30,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 from .. import cbin, io
@@ -92,6 +93,11 @@ def _argv(args) -> list[str]:
 
 STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM)
 FOLDER_ENV = "SVA_SITL_FOLDER"  # the working folder the namespace's run uses (made outside)
+# In that folder once the run inside stops on SIGINT itself: before, its interpreter is
+# still starting, and a SIGINT there ends it with Python's fatal error, which no code of
+# the tool can catch. A stop asked before it is up waits for it (UP_WAIT_S at most).
+UP_MARK = ".up"
+UP_WAIT_S = 30.0
 
 
 def _default_signals() -> None:
@@ -139,14 +145,24 @@ def _netns(argv: list[str]) -> int:
     tools = str(Path(__file__).resolve().parents[2])
     env["PYTHONPATH"] = tools + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
     stopped = False
+    forwarded = False
+    asked = 0.0  # when the stop was asked (monotonic)
 
-    def forward(_signum, _frame):
-        nonlocal stopped
-        stopped = True
+    def pass_on() -> None:
+        nonlocal forwarded
+        forwarded = True
         try:
             os.killpg(proc.pid, signal.SIGINT)
         except ProcessLookupError:
             pass
+
+    def forward(_signum, _frame):
+        nonlocal stopped, asked
+        if not stopped:
+            stopped = True
+            asked = time.monotonic()
+        if os.path.exists(os.path.join(folder, UP_MARK)):
+            pass_on()
 
     # The run gets a session of its own; Ctrl-C or SIGTERM here is passed on to all of
     # it as SIGINT, so the run inside stops its vehicles, node and bridge and the helper
@@ -161,7 +177,15 @@ def _netns(argv: list[str]) -> int:
         for sig in STOP_SIGNALS:
             signal.signal(sig, forward)
         signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)
-        rc = proc.wait()
+        while True:
+            try:
+                rc = proc.wait(timeout=0.05)
+                break
+            except subprocess.TimeoutExpired:
+                if stopped and not forwarded and (
+                        os.path.exists(os.path.join(folder, UP_MARK))
+                        or time.monotonic() - asked > UP_WAIT_S):
+                    pass_on()
     finally:
         for sig, handler in old.items():
             signal.signal(sig, handler)
@@ -218,21 +242,24 @@ def run(args) -> int:
 
 def _stop(_signum, _frame):
     """The first SIGINT or SIGTERM stops the flight; later ones wait for its cleanup."""
+    from ..sitl.flight import ask_stop
+
     for sig in STOP_SIGNALS:
         signal.signal(sig, signal.SIG_IGN)
+    ask_stop()  # raised again by the flight's loop if this raise is lost
     raise KeyboardInterrupt
 
 
 def fly(args, settings) -> int:
-    import time
-
-    from ..sitl.flight import Flight
+    from ..sitl.flight import Flight, stop_asked
     from ..sitl.ground import GroundError
     from ..sitl.judge import end_line
     from ..sitl.vehicle import SitlError
 
     for sig in STOP_SIGNALS:
         signal.signal(sig, _stop)
+    if settings.folder is not None:
+        (settings.folder / UP_MARK).touch()  # the outside may pass a stop on from now
     flight: Flight | None = None
     try:
         flight = Flight(settings)
@@ -241,6 +268,8 @@ def fly(args, settings) -> int:
         flight.wall_s = time.monotonic() - flight.wall0
         flight.close(args.keep)
         log = flight.log()
+        if stop_asked():
+            raise KeyboardInterrupt  # asked after the last pump, its own raise lost
     except (SitlError, GroundError) as e:
         print(f"sva-tools: error: {shown(args.scenario)}: sitl: {shown(e)}", file=sys.stderr)
         return getattr(e, "status", 1)

@@ -68,6 +68,19 @@ def takeoff_allowance_s(alt_m: float) -> int:
 
 FOLDER_PREFIX = "sva-sitl-"
 
+# A stop asked by SIGINT or SIGTERM (ask_stop). The tool's signal handler raises
+# KeyboardInterrupt itself; where Python drops that raise ("Exception ignored": in an
+# at-fork hook while a process starts, in a finalizer), the next pump raises it, once.
+_STOP = {"asked": False, "raised": False}
+
+
+def ask_stop() -> None:
+    _STOP["asked"] = True
+
+
+def stop_asked() -> bool:
+    return _STOP["asked"]
+
 
 @dataclass
 class Settings:
@@ -177,6 +190,9 @@ class Flight:
         c.spells[-1]["home"] = list(cell)
 
     def _pump(self, timeout: float) -> None:
+        if _STOP["asked"] and not _STOP["raised"]:
+            _STOP["raised"] = True
+            raise KeyboardInterrupt
         fds = [c.fileno() for c in self.crafts if c.fileno() >= 0]
         fds += [fd for r in self.relays.values() for fd in r.fds()]
         if self.ground is not None:

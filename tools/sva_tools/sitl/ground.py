@@ -19,7 +19,7 @@ from pathlib import Path
 from typing import Any, Callable, TypedDict
 
 from ..lcm import wire
-from .vehicle import die_with_parent
+from .vehicle import start_child
 
 REPO = Path(__file__).resolve().parents[3]
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0"
@@ -114,12 +114,11 @@ class Ground:
     def start_node(self) -> None:
         exe = program("SVA_NODE", "sva_node")
         log = open(self.folder / "sva_node.log", "wb")
-        self.node = subprocess.Popen(
+        self.node = start_child(
             [str(exe), "--url", self.url, "--prefix", self.prefix, "--algo", self.algo,
              "--change-penalty", str(self.penalty), "--takeoff-ticks", str(self.takeoff),
              "--status-ms", "200"],
-            stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT,
-            preexec_fn=die_with_parent, start_new_session=True)
+            stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT)
 
     def start_bridge(self, vehicles: list[tuple[int, int, int]], report_ms: int,
                      heartbeat_timeout_ms: int, cruise_m_s: float) -> list[str]:
@@ -132,9 +131,8 @@ class Ground:
                "--cruise-speed", f"{cruise_m_s:g}"]
         for uid, port, sysid in vehicles:
             cmd += ["--vehicle", f"{uid}=tcp:127.0.0.1:{port}:{sysid}"]
-        self.bridge = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                                       stderr=open(self.folder / "bridge.err", "wb"),
-                                       preexec_fn=die_with_parent, start_new_session=True)
+        self.bridge = start_child(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                                  stderr=open(self.folder / "bridge.err", "wb"))
         stdout = self.bridge.stdout
         if stdout is None:  # cannot happen: stdout=PIPE
             raise GroundError("the bridge has no stdout pipe")

@@ -75,11 +75,34 @@ def sitl_binary(path: str | None = None) -> Path:
     return p
 
 
+HELD_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
 def die_with_parent() -> None:
-    """In a child before exec: SIGKILL when the tool dies. Children also get a session of
-    their own (start_new_session), so a Ctrl-C reaches the tool, which stops them."""
+    """In a child before exec: SIGKILL when the tool dies. A stop signal sent to the
+    tool's process group while the child was forming (start_child holds them blocked) is
+    dropped here; the program starts with both at their default."""
     libc = ctypes.CDLL(None, use_errno=True)
     libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+    for sig in HELD_SIGNALS:
+        signal.signal(sig, signal.SIG_IGN)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, HELD_SIGNALS)
+    for sig in HELD_SIGNALS:
+        signal.signal(sig, signal.SIG_DFL)
+
+
+def start_child(cmd: list[str], **kwargs: Any) -> subprocess.Popen[Any]:
+    """subprocess.Popen in a session of its own, so that a Ctrl-C reaches the tool, which
+    stops its children; the child dies with the tool. SIGINT and SIGTERM stay blocked over
+    the fork: between fork and its new session the child is in the tool's process group,
+    where a stop passed on to the group would run the tool's Python handler in the child
+    (its at-fork hooks then print "Exception ignored" and a traceback). A stop that comes
+    meanwhile reaches the tool once the child is started."""
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, HELD_SIGNALS)
+    try:
+        return subprocess.Popen(cmd, preexec_fn=die_with_parent, start_new_session=True, **kwargs)
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
 def write_extra_parameters(folder: Path) -> Path:
@@ -103,9 +126,8 @@ class Process:
         self.out = open(folder / "sitl.log", "wb")
         self.launched = time.monotonic()
         self.start_time_s = start_time_s
-        self.proc = subprocess.Popen(self.cmd, cwd=folder, stdin=subprocess.DEVNULL,
-                                     stdout=self.out, stderr=subprocess.STDOUT,
-                                     preexec_fn=die_with_parent, start_new_session=True)
+        self.proc = start_child(self.cmd, cwd=folder, stdin=subprocess.DEVNULL, stdout=self.out,
+                                stderr=subprocess.STDOUT)
 
     @property
     def serial0_port(self) -> int:
