@@ -20,6 +20,9 @@ SVA_STATIC_ASSERT(3L * SVA_FLOW_MAX_DEPTH <= 255L, flow_ban_levels_fit_uint8);
 sva_flow_incomplete_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission_t* m,
                                      const sva_plan_t* plan, bool pooled, sva_stats_t* stats);
 int32_t sva_flow_arc_cost(const sva_flow_work_t* w, uint32_t arc);
+/// Whether one UAV can serve targets a and b (mission indices), a first: a's end plus the
+/// flight from a to b is at most b's start.
+bool sva_flow_targets_chain(const sva_mission_t* m, uint16_t a, uint16_t b);
 
 // flow_ssp.c: the relaxation (successive shortest paths).
 /// Min-cost flow under the current branching rules; false if no flow meets them.
@@ -194,6 +197,7 @@ typedef enum {
     SVA_FLOW_COVER_PROVEN  ///< no plan covers more
 } sva_flow_cover_result_t;
 
+#if SVA_FLOW_COVER_TARGETS > 0
 /// Depth-first search for a plan covering more than `covered` targets, until the work
 /// reaches `budget` (missions of at most SVA_FLOW_COVER_TARGETS targets and
 /// SVA_FLOW_COVER_UAVS UAVs not stranded). FOUND: its routes are in *plan and
@@ -209,6 +213,7 @@ sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_missi
 sva_flow_cover_result_t sva_flow_cover_around(sva_planner_priv_t* priv, const sva_mission_t* m,
                                               sva_plan_t* plan, int64_t covered, uint16_t size,
                                               uint64_t budget, uint16_t* nodes);
+#endif
 /// The coverage search for one target more than the incumbent covers, again after each
 /// plan it finds (repaired and offered: it covers more, so it becomes the incumbent),
 /// within `work` units (incumbent_first: a third in the search's own order, a third on

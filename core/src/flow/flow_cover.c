@@ -525,31 +525,4 @@ sva_flow_cover_result_t sva_flow_cover_around(sva_planner_priv_t* priv, const sv
     return SVA_FLOW_COVER_OPEN;
 }
 
-#else  // the profile turns the search off
-
-sva_flow_cover_result_t sva_flow_cover(sva_planner_priv_t* priv, const sva_mission_t* m,
-                                       sva_plan_t* plan, int64_t covered, uint64_t budget,
-                                       uint16_t* nodes)
-{
-    (void)priv;
-    (void)plan;
-    (void)budget;
-    (void)nodes;
-    return (covered >= (int64_t)m->target_count) ? SVA_FLOW_COVER_PROVEN : SVA_FLOW_COVER_OPEN;
-}
-
-sva_flow_cover_result_t sva_flow_cover_around(sva_planner_priv_t* priv, const sva_mission_t* m,
-                                              sva_plan_t* plan, int64_t covered, uint16_t size,
-                                              uint64_t budget, uint16_t* nodes)
-{
-    (void)priv;
-    (void)m;
-    (void)plan;
-    (void)covered;
-    (void)size;
-    (void)budget;
-    (void)nodes;
-    return SVA_FLOW_COVER_OPEN;
-}
-
 #endif

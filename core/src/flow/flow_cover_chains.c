@@ -52,13 +52,9 @@ static void fill_after(sva_flow_chains_t* s, const sva_planner_priv_t* priv, con
 {
     const uint16_t n = m->target_count;
     for (uint16_t a = 0U; a < n; a++) {
-        const sva_target_t* ta = &m->targets[priv->target_order[a]];
         s->after[a] = 0U;
         for (uint16_t b = (uint16_t)(a + 1U); b < n; b++) {
-            const sva_target_t* tb = &m->targets[priv->target_order[b]];
-            const int32_t leg = sva_distance(ta->x, ta->y, tb->x, tb->y);
-            if (((int64_t)ta->end_ticks + ((int64_t)leg * m->ticks_per_cell)) <=
-                (int64_t)tb->start_ticks) {
+            if (sva_flow_targets_chain(m, priv->target_order[a], priv->target_order[b])) {
                 s->after[a] |= (uint64_t)1U << b;
             }
         }

@@ -124,7 +124,7 @@ static bool uav_in_time(const sva_mission_t* m, uint16_t u, uint16_t t)
     return (uav->ready_at_ticks + (leg * m->ticks_per_cell)) <= tg->start_ticks;
 }
 
-static bool targets_chain(const sva_mission_t* m, uint16_t a, uint16_t b)
+bool sva_flow_targets_chain(const sva_mission_t* m, uint16_t a, uint16_t b)
 {
     const sva_target_t* ta = &m->targets[a];
     const sva_target_t* tb = &m->targets[b];
@@ -165,7 +165,7 @@ static void fuel_labels(sva_planner_priv_t* priv, const sva_mission_t* m, const 
         for (uint16_t j = 0U; j < i; j++) {
             const uint16_t a = priv->target_order[j];
             const int64_t v = lead[a] + target_distance(m, a, t) + m->hover_fuel;
-            if ((lead[a] < (INT64_MAX / 4)) && targets_chain(m, a, t) && (v < lead[t])) {
+            if ((lead[a] < (INT64_MAX / 4)) && sva_flow_targets_chain(m, a, t) && (v < lead[t])) {
                 lead[t] = v;
             }
         }
@@ -177,7 +177,7 @@ static void fuel_labels(sva_planner_priv_t* priv, const sva_mission_t* m, const 
         for (uint16_t j = i; j < n; j++) {
             const uint16_t b = priv->target_order[j];
             const int64_t v = (int64_t)m->hover_fuel + target_distance(m, t, b) + tail[b];
-            if (targets_chain(m, t, b) && (v < tail[t])) {
+            if (sva_flow_targets_chain(m, t, b) && (v < tail[t])) {
                 tail[t] = v;
             }
         }
@@ -197,7 +197,7 @@ static bool copies_chain(const sva_mission_t* m, const sva_flow_work_t* w, uint1
 {
     const uint16_t a = w->copy_target[c];
     const uint16_t b = w->copy_target[d];
-    return targets_chain(m, a, b) &&
+    return sva_flow_targets_chain(m, a, b) &&
            ((w->target_lead[a] + target_distance(m, a, b) + w->target_tail[b]) <= 0);
 }
 
