@@ -20,11 +20,11 @@
 // replan has its own, flow_replan_work, and gives the search half);
 // if it does not finish, the Lagrangian phase (flow_lagrange.c) improves the bound
 // and the plan, ruin and recreate (flow_ruin.c) improves the plan, and the search
-// runs again on what is left. The bound comes from the nodes left open and from the
-// Lagrangian phase. With a need above 1 the pooled graph (one node per target) is
-// solved first: its routes are taken when they are a plan, and past
-// SVA_FLOW_MAX_ARCS it gives the bound and the first plan. No recursion: the path is
-// an explicit stack of frames.
+// runs again on what is left (not in a plan with a need above 1). The bound comes
+// from the nodes left open and from the Lagrangian phase. With a need above 1 the
+// pooled graph (one node per target) is solved first: its routes are taken when
+// they are a plan, and past SVA_FLOW_MAX_ARCS it gives the bound and the first plan.
+// No recursion: the path is an explicit stack of frames.
 #include "flow.h"
 #include "../paper/paper.h"
 
@@ -499,8 +499,12 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
         }
 #endif
         const bool proven = sva_flow_ruin_recreate(priv, m, plan, start + budget, proven_bound);
-        // Proven optimal already (the claim below): no second search.
-        if (!proven || !w->reward_exact) {
+        // Proven optimal already (the claim below): no second search. Nor in a plan with
+        // a target of need 2 or more: its copies are paired only by branching, so the
+        // search closes no gap there and finds no plan the phases before it missed
+        // (DESIGN.md section 8); the budget is left unspent.
+        const bool search_pays = (w->need_max == 1) || replan;
+        if ((!proven || !w->reward_exact) && search_pays) {
             sva_flow_incomplete_t again = finished;
             const int64_t open_again = search(priv, m, plan, start + budget, false, &again);
             open = (open_again > open) ? open_again : open;
