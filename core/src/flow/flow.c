@@ -44,6 +44,10 @@
 #define COVER_SHARE        16U
 #define REPLAN_COVER_SHARE 4U
 #define SYNC_COVER_SHARE   2U
+// With a target of need 2 or more, a plan does not run the search again; it ends with
+// rounds of ruin and recreate that accept a slightly dearer plan on the way
+// (flow_ruin.c), a quarter of the budget on top (DESIGN.md section 8).
+#define ACCEPTING_SHARE 4U
 
 static uint32_t find_arc(const sva_flow_work_t* w, uint16_t tail, uint16_t head)
 {
@@ -502,7 +506,7 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
         // Proven optimal already (the claim below): no second search. Nor in a plan with
         // a target of need 2 or more: its copies are paired only by branching, so the
         // search closes no gap there and finds no plan the phases before it missed
-        // (DESIGN.md section 8); the budget is left unspent.
+        // (DESIGN.md section 8); the rounds below (ACCEPTING_SHARE) do.
         const bool search_pays = (w->need_max == 1) || replan;
         if ((!proven || !w->reward_exact) && search_pays) {
             sva_flow_incomplete_t again = finished;
@@ -516,6 +520,14 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
         if ((w->need_max > 1) && !replan && !coverage_proven && (open != INT64_MAX)) {
             (void)sva_flow_cover_incumbent(priv, m, plan, budget / SYNC_COVER_SHARE, true,
                                            &coverage_proven);
+        }
+#endif
+#if SVA_FLOW_GRANULAR
+        // With a target of need 2 or more, last, the accepting rounds (ACCEPTING_SHARE):
+        // after the coverage search, so that a plan it finds is theirs to start from.
+        if ((w->need_max > 1) && !replan && !sva_flow_large(m)) {
+            sva_flow_ruin_accepting(priv, m, plan, w->work + (budget / ACCEPTING_SHARE),
+                                    coverage_proven ? lagrange_bound : -1);
         }
 #endif
     }

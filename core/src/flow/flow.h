@@ -136,6 +136,14 @@ void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_
 /// incumbent's cost: it is proven optimal.
 bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                             uint64_t end, int64_t proven_bound);
+#if SVA_FLOW_GRANULAR
+/// Rounds of ruin and recreate with threshold accepting, from the incumbent, until
+/// `end`: passes over the covered targets as seeds, group sizes 4, 7, 2, 9, 5, 12, 3, 6
+/// in turn, each round charged as a small mission's. Nothing when `proven_bound` (as
+/// above) reaches the incumbent's cost. Leaves the incumbent, never worse, in *plan.
+void sva_flow_ruin_accepting(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                             uint64_t end, int64_t proven_bound);
+#endif
 
 // flow_label.c: a UAV's best route under target prices.
 /// Scale of the target prices (1/SVA_FLOW_PRICE_SCALE cells).

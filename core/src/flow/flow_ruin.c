@@ -9,6 +9,7 @@
 // group's visits leave room. Then swaps: one covered target out, one uncovered in.
 // A large mission's rounds start from a current plan instead of the incumbent, which
 // a round's plan replaces when within a falling threshold of it (threshold accepting).
+// A plan with a need above 1 ends with such rounds (sva_flow_ruin_accepting).
 #include "flow.h"
 
 #define RUIN_ROUND_UNITS 8U   // work units per round, per target inserted x UAV
@@ -115,6 +116,60 @@ static void ruin(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* p
     }
 }
 
+#if SVA_FLOW_GRANULAR
+// One round from the current plan in *plan: s and the size - 1 visits most related to
+// it out, the repair (its local search only from the changed routes when `granular`),
+// `units` of work, the threshold's test over the rounds' span [from, to) for a plan
+// that started at start_cost; leaves the current plan in *plan.
+static void accepting_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                            uint16_t s, uint8_t size, bool backwards, bool granular, uint64_t units,
+                            uint64_t from, uint64_t to, int64_t start_cost)
+{
+    sva_flow_work_t* w = &priv->flow;
+    ruin(priv, m, plan, s, size);
+    w->insert_backwards = backwards;
+    w->local_changed_only = granular;
+    sva_flow_repair(priv, m, plan, true);
+    w->local_changed_only = false;
+    w->insert_backwards = false;
+    w->work += units;
+    plan->stats.flow_ruin_rounds++;
+    accept(priv, m, plan, from, to, start_cost);
+    sva_flow_write_current(priv, m, plan);
+}
+
+void sva_flow_ruin_accepting(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                             uint64_t end, int64_t proven_bound)
+{
+    // Group sizes, pass by pass; each pass starts its seeds three targets further on.
+    static const uint8_t sizes[] = {4U, 7U, 2U, 9U, 5U, 12U, 3U, 6U};
+    sva_flow_work_t* w = &priv->flow;
+    int64_t cost = 0;
+    int64_t covered = 0;
+    sva_flow_incumbent(priv, m, plan, &cost, &covered);
+    if ((proven_bound >= cost) || (m->target_count == 0U)) {
+        return;  // proven optimal
+    }
+    const uint64_t units = (uint64_t)m->target_count * m->uav_count * RUIN_ROUND_UNITS;
+    const uint64_t from = w->work;
+    sva_flow_keep_current(priv, m, plan, sva_flow_plan_value(priv, m, plan));
+    uint32_t pass = 0U;
+    while (w->work < end) {
+        const uint8_t size = sizes[pass % (uint32_t)(sizeof(sizes) / sizeof(sizes[0]))];
+        const uint32_t first = pass * 3U;
+        for (uint16_t k = 0U; (k < m->target_count) && (w->work < end); k++) {
+            const uint16_t s = (uint16_t)((first + k) % m->target_count);
+            if ((int32_t)priv->target_served[s] == m->targets[s].need) {
+                accepting_round(priv, m, plan, s, size, ((k + pass) % 2U) == 1U, false, units, from,
+                                end, cost);
+            }
+        }
+        pass++;
+    }
+    sva_flow_write_incumbent(priv, m, plan);
+}
+#endif
+
 bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                             uint64_t end, int64_t proven_bound)
 {
@@ -148,26 +203,21 @@ bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     for (size_t i = 0U; i < (sizeof(ruin_sizes) / sizeof(ruin_sizes[0])); i++) {
         for (uint16_t s = 0U; (s < m->target_count) && (w->work < budget); s++) {
             if ((int32_t)priv->target_served[s] == m->targets[s].need) {
-                ruin(priv, m, plan, s, ruin_sizes[i]);
-                w->insert_backwards = ((s + i) % 2U) == 1U;
-#if SVA_FLOW_GRANULAR
-                w->local_changed_only = large;
-#endif
-                sva_flow_repair(priv, m, plan, true);
-#if SVA_FLOW_GRANULAR
-                w->local_changed_only = false;
-#endif
-                w->insert_backwards = false;
-                w->work +=
-                    large ? ((uint64_t)m->target_count + (ruin_sizes[i] * uav_units)) : whole_units;
-                plan->stats.flow_ruin_rounds++;
+                const bool backwards = ((s + i) % 2U) == 1U;
 #if SVA_FLOW_GRANULAR
                 if (large) {
-                    accept(priv, m, plan, from, budget, cost);
-                    sva_flow_write_current(priv, m, plan);
+                    const uint64_t units = (uint64_t)m->target_count + (ruin_sizes[i] * uav_units);
+                    accepting_round(priv, m, plan, s, ruin_sizes[i], backwards, true, units, from,
+                                    budget, cost);
                     continue;
                 }
 #endif
+                ruin(priv, m, plan, s, ruin_sizes[i]);
+                w->insert_backwards = backwards;
+                sva_flow_repair(priv, m, plan, true);
+                w->insert_backwards = false;
+                w->work += whole_units;
+                plan->stats.flow_ruin_rounds++;
                 sva_flow_write_incumbent(priv, m, plan);
             }
         }
