@@ -482,8 +482,7 @@ static sva_plan_t third;
 // than the one they start from, and they spend the work they are given; a bound that
 // proves the plan optimal leaves it as it is and spends nothing. On missions of 12 to
 // 20 targets with needs up to 2 and fuel binding, under a budget the search cannot
-// finish, so that the plan has room to improve.
-
+// finish, so that the plan has room to improve. A plan covering nothing gets no round.
 void test_accepting_rounds_never_leave_a_worse_plan(void)
 {
 #if SVA_FLOW_GRANULAR
@@ -539,6 +538,16 @@ void test_accepting_rounds_never_leave_a_worse_plan(void)
         TEST_ASSERT_EQUAL_INT(again.covered, third.covered);
         TEST_ASSERT_EQUAL_INT(again.cost, third.cost);
     }
+    // A plan covering nothing seeds no round: they end at once (fuel for no target).
+    for (uint16_t u = 0U; u < mission.uav_count; u++) {
+        mission.uavs[u].fuel = 1;
+    }
+    must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, 40);
+    TEST_ASSERT_EQUAL_INT(0, plan.covered);
+    const uint64_t idle = planner.priv.flow.work;
+    again = plan;
+    sva_flow_ruin_accepting(&planner.priv, &mission, &again, idle + 40000U, -1);
+    TEST_ASSERT_EQUAL_UINT64(idle, planner.priv.flow.work);
     printf("# 40 missions: the rounds ran on %d, found a better plan on %d\n", ran, cheaper);
     TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
     TEST_ASSERT_TRUE(ran >= 10);

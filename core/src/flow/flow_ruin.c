@@ -147,21 +147,24 @@ void sva_flow_ruin_accepting(sva_planner_priv_t* priv, const sva_mission_t* m, s
     int64_t cost = 0;
     int64_t covered = 0;
     sva_flow_incumbent(priv, m, plan, &cost, &covered);
-    if ((proven_bound >= cost) || (m->target_count == 0U)) {
-        return;  // proven optimal
+    if ((proven_bound >= cost) || (covered == 0)) {
+        return;  // proven optimal, or no covered target to seed a round
     }
     const uint64_t units = (uint64_t)m->target_count * m->uav_count * RUIN_ROUND_UNITS;
     const uint64_t from = w->work;
     sva_flow_keep_current(priv, m, plan, sva_flow_plan_value(priv, m, plan));
     uint32_t pass = 0U;
-    while (w->work < end) {
+    bool seeded = true;  // a pass without a covered target to seed a round ends them
+    while (seeded && (w->work < end)) {
         const uint8_t size = sizes[pass % (uint32_t)(sizeof(sizes) / sizeof(sizes[0]))];
         const uint32_t first = pass * 3U;
+        seeded = false;
         for (uint16_t k = 0U; (k < m->target_count) && (w->work < end); k++) {
             const uint16_t s = (uint16_t)((first + k) % m->target_count);
             if ((int32_t)priv->target_served[s] == m->targets[s].need) {
                 accepting_round(priv, m, plan, s, size, ((k + pass) % 2U) == 1U, false, units, from,
                                 end, cost);
+                seeded = true;
             }
         }
         pass++;
