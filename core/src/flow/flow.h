@@ -140,7 +140,8 @@ bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
 /// Rounds of ruin and recreate with threshold accepting, from the incumbent, until
 /// `end`: passes over the covered targets as seeds, group sizes 4, 7, 2, 9, 5, 12, 3, 6
 /// in turn, each round charged as a small mission's. Nothing when `proven_bound` (as
-/// above) reaches the incumbent's cost. Leaves the incumbent, never worse, in *plan.
+/// above) reaches the incumbent's cost or the incumbent covers no target. Leaves the
+/// incumbent, never worse, in *plan.
 void sva_flow_ruin_accepting(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                              uint64_t end, int64_t proven_bound);
 #endif
