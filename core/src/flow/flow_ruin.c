@@ -116,24 +116,38 @@ static void ruin(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* p
     }
 }
 
-#if SVA_FLOW_GRANULAR
-// One round from the current plan in *plan: s and the size - 1 visits most related to
-// it out, the repair (its local search only from the changed routes when `granular`),
-// `units` of work, the threshold's test over the rounds' span [from, to) for a plan
-// that started at start_cost; leaves the current plan in *plan.
-static void accepting_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
-                            uint16_t s, uint8_t size, bool backwards, bool granular, uint64_t units,
-                            uint64_t from, uint64_t to, int64_t start_cost)
+// One round on the plan in *plan: s and the size - 1 covered targets most related to it
+// out, then the repair (insertions in reverse window order when `backwards`; its local
+// search only from the changed routes when `granular`), charged `units` of work.
+static void ruin_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                       uint16_t s, uint8_t size, bool backwards, bool granular, uint64_t units)
 {
     sva_flow_work_t* w = &priv->flow;
     ruin(priv, m, plan, s, size);
     w->insert_backwards = backwards;
+#if SVA_FLOW_GRANULAR
     w->local_changed_only = granular;
+#else
+    (void)granular;
+#endif
     sva_flow_repair(priv, m, plan, true);
+#if SVA_FLOW_GRANULAR
     w->local_changed_only = false;
+#endif
     w->insert_backwards = false;
     w->work += units;
     plan->stats.flow_ruin_rounds++;
+}
+
+#if SVA_FLOW_GRANULAR
+// A round from the current plan in *plan (ruin_round), then the threshold's test over
+// the rounds' span [from, to) for a plan that started at start_cost; leaves the current
+// plan in *plan.
+static void accepting_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                            uint16_t s, uint8_t size, bool backwards, bool granular, uint64_t units,
+                            uint64_t from, uint64_t to, int64_t start_cost)
+{
+    ruin_round(priv, m, plan, s, size, backwards, granular, units);
     accept(priv, m, plan, from, to, start_cost);
     sva_flow_write_current(priv, m, plan);
 }
@@ -147,14 +161,16 @@ void sva_flow_ruin_accepting(sva_planner_priv_t* priv, const sva_mission_t* m, s
     int64_t cost = 0;
     int64_t covered = 0;
     sva_flow_incumbent(priv, m, plan, &cost, &covered);
-    if ((proven_bound >= cost) || (covered == 0)) {
-        return;  // proven optimal, or no covered target to seed a round
+    if (proven_bound >= cost) {
+        return;  // proven optimal
     }
     const uint64_t units = (uint64_t)m->target_count * m->uav_count * RUIN_ROUND_UNITS;
     const uint64_t from = w->work;
     sva_flow_keep_current(priv, m, plan, sva_flow_plan_value(priv, m, plan));
     uint32_t pass = 0U;
-    bool seeded = true;  // a pass without a covered target to seed a round ends them
+    // A pass without a covered target to seed a round ends them: a plan covering
+    // nothing gets none.
+    bool seeded = true;
     while (seeded && (w->work < end)) {
         const uint8_t size = sizes[pass % (uint32_t)(sizeof(sizes) / sizeof(sizes[0]))];
         const uint32_t first = pass * 3U;
@@ -215,12 +231,7 @@ bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
                     continue;
                 }
 #endif
-                ruin(priv, m, plan, s, ruin_sizes[i]);
-                w->insert_backwards = backwards;
-                sva_flow_repair(priv, m, plan, true);
-                w->insert_backwards = false;
-                w->work += whole_units;
-                plan->stats.flow_ruin_rounds++;
+                ruin_round(priv, m, plan, s, ruin_sizes[i], backwards, false, whole_units);
                 sva_flow_write_incumbent(priv, m, plan);
             }
         }
