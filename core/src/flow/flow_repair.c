@@ -527,7 +527,15 @@ static void local_search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_p
                 }
             }
         }
-        for (uint16_t s = 0U; s < m->target_count; s++) {
+#if SVA_FLOW_LARGE
+        bool open = false;  // trades need an uncovered target: else no scan of every pair
+        for (uint16_t t = 0U; (t < m->target_count) && !open; t++) {
+            open = priv->target_served[t] == 0U;
+        }
+#else
+        const bool open = true;  // a small profile's scan is short, and keeps the flash
+#endif
+        for (uint16_t s = 0U; open && (s < m->target_count); s++) {
             if (((int32_t)priv->target_served[s] == m->targets[s].need) &&
                 trade(priv, m, plan, s)) {
                 better = true;
