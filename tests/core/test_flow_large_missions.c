@@ -7,6 +7,8 @@
 //   more than the better of them at equal coverage (their plans seed it);
 // - the same mission gives the same plan after another was planned: the index of the
 //   granular moves carries nothing over;
+// - a round's ruin takes strings of consecutive visits, one per route at most, through
+//   its seed, and the same preparation draws the same rounds;
 // - the Lagrangian heuristic's shortest paths on real paths are routes within fuel whose
 //   value is the one returned, never below the bound's (merged labels), and the flight
 //   flies only when its predicted work fits the plan's budget.
@@ -203,6 +205,122 @@ void test_flight_flies_only_within_the_budget(void)
     TEST_ASSERT_FALSE(w->lagrange.real_paths);
 #else
     TEST_IGNORE_MESSAGE("no mission is large in this profile");
+#endif
+}
+
+#if SVA_FLOW_GRANULAR
+// Whether route `after` is route `before` without one run of consecutive visits, all of
+// them in the round's list (`out`) and none of the kept ones; *taken counts the run.
+static bool one_string_out(const sva_route_t* before, const sva_route_t* after, const uint8_t* out,
+                           uint16_t* taken)
+{
+    uint16_t k = 0U;
+    uint16_t runs = 0U;
+    bool in_run = false;
+    *taken = 0U;
+    for (uint16_t i = 0U; i < before->target_count; i++) {
+        const uint16_t t = before->targets[i];
+        if (out[t] != 0U) {
+            runs += in_run ? 0U : 1U;
+            in_run = true;
+            (*taken)++;
+            continue;
+        }
+        in_run = false;
+        if ((k >= after->target_count) || (after->targets[k] != t)) {
+            return false;
+        }
+        k++;
+    }
+    return (k == after->target_count) && (runs <= 1U);
+}
+#endif
+
+// A large mission's ruin (flow_ruin.c), on flow's own plan of 100 x 20 missions, from
+// every covered target as the seed: the seed's visit goes; every route loses at most
+// one string of consecutive visits, no longer than the routes' mean length, and keeps
+// the rest in order; the visits taken out
+// are exactly those in the round's list, once each, no longer served, fewer than
+// SVA_FLOW_RUINED_MOST; some rounds take strings from several routes and some strings
+// are longer than one visit; the same preparation gives the same rounds again.
+void test_string_ruin_takes_strings_through_the_seed(void)
+{
+#if SVA_FLOW_GRANULAR
+    if (!fits_the_profile()) {
+        TEST_IGNORE_MESSAGE("the profile holds no 100 x 20 mission with flow's graph");
+    }
+    const uint64_t seed = test_seed(0x1A272ULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    sva_flow_work_t* w = &planner.priv.flow;
+    static uint8_t out[SVA_MAX_TARGETS];
+    static uint16_t first[SVA_MAX_TARGETS][SVA_FLOW_RUINED_MOST];
+    int rounds = 0;
+    int several_routes = 0;
+    int long_strings = 0;
+    planner.flow_max_work = 20000U;
+    const test_gen_params_t p = params(LARGE_TARGETS);
+    test_gen_mission(&rng, &p, &mission);
+    must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, 0);
+    TEST_ASSERT_TRUE(plan.covered > 0);
+    for (int pass = 0; pass < 2; pass++) {
+        sva_flow_ruin_prepare(w, &mission);
+        for (uint16_t s = 0U; s < mission.target_count; s++) {
+            sva_flow_write_incumbent(&planner.priv, &mission, &again);
+            if (planner.priv.target_served[s] == 0U) {
+                continue;
+            }
+            other = again;  // the routes before the ruin
+            sva_flow_ruin_strings(&planner.priv, &mission, &again, s);
+            const uint16_t n = w->ruined_count;
+            TEST_ASSERT_TRUE((n >= 1U) && (n < (uint16_t)SVA_FLOW_RUINED_MOST));
+            memset(out, 0, sizeof out);
+            for (uint16_t i = 0U; i < n; i++) {
+                const uint16_t t = w->ruined[i];
+                TEST_ASSERT_EQUAL_UINT8(0U, out[t]);  // once each
+                TEST_ASSERT_EQUAL_UINT16(0U, planner.priv.target_served[t]);
+                out[t] = 1U;
+            }
+            TEST_ASSERT_EQUAL_UINT8(1U, out[s]);
+            uint16_t routes = 0U;
+            uint16_t total = 0U;
+            uint16_t visits = 0U;
+            uint16_t used = 0U;
+            for (uint16_t u = 0U; u < mission.uav_count; u++) {
+                visits = (uint16_t)(visits + other.routes[u].target_count);
+                used += (other.routes[u].target_count > 0U) ? 1U : 0U;
+            }
+            for (uint16_t u = 0U; u < mission.uav_count; u++) {
+                uint16_t taken = 0U;
+                // One string, at most as long as the routes' mean length.
+                if (!one_string_out(&other.routes[u], &again.routes[u], out, &taken) ||
+                    (taken > (visits / used))) {
+                    SVA_TEST_FAIL("seed %llu target %u: route %u lost more than one string (%u)",
+                                  (unsigned long long)seed, (unsigned)s, (unsigned)u,
+                                  (unsigned)taken);
+                }
+                routes += (taken > 0U) ? 1U : 0U;
+                total = (uint16_t)(total + taken);
+                long_strings += (taken > 1U) ? 1 : 0;
+            }
+            TEST_ASSERT_EQUAL_UINT16(n, total);  // need 1: one visit each
+            several_routes += (routes > 1U) ? 1 : 0;
+            rounds++;
+            if (pass == 0) {
+                memcpy(first[s], w->ruined, sizeof first[s]);
+            } else {
+                TEST_ASSERT_EQUAL_MEMORY(first[s], w->ruined, n * sizeof(uint16_t));
+            }
+            w->ruined_count = 0U;
+        }
+    }
+    printf("# %d rounds: strings from several routes in %d, longer than one visit %d times\n",
+           rounds, several_routes, long_strings);
+    TEST_ASSERT_TRUE(rounds > 0);
+    TEST_ASSERT_TRUE(several_routes > 0);
+    TEST_ASSERT_TRUE(long_strings > 0);
+#else
+    TEST_IGNORE_MESSAGE("the profile has no string rounds (SVA_FLOW_GRANULAR 0)");
 #endif
 }
 

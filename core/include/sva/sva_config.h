@@ -231,15 +231,18 @@
 /// budget is flow_max_work * min(targets, 2 * SVA_FLOW_LARGE_FROM) /
 /// SVA_FLOW_LARGE_FROM (sva.h), its Lagrangian phase gets an eighth of that budget and
 /// its heuristic flies real paths when the flight fits the budget, and its ruin and
-/// recreate is granular (flow_ruin.c): a round costs work for the targets it ruins,
-/// not the whole mission, its local search starts from the routes the round changed
-/// and moves a visit only towards the routes serving its SVA_FLOW_NEAR most related
-/// targets (and the empty ones), and a round's plan within a falling threshold of the
-/// current one is accepted. Smaller missions plan exactly as without these rules.
+/// recreate is granular (flow_ruin.c): a round takes strings of visits out of the
+/// routes serving its seed's SVA_FLOW_NEAR most related targets and puts them back in
+/// an order drawn for the round, costs work for the targets it ruins, not the whole
+/// mission, its local search starts from the routes the round changed and moves a
+/// visit only towards the routes serving those related targets (and the empty ones),
+/// and a round's plan within a falling threshold of the current one is accepted; ruin
+/// and recreate gets at least half the budget, and no search follows it. Smaller
+/// missions plan exactly as without these rules.
 /// SVA_FLOW_NEAR 0 leaves the granular moves and the accepting out. Cost, when
 /// SVA_MAX_TARGETS > SVA_FLOW_LARGE_FROM: 24 B, and when SVA_FLOW_NEAR > 0 too:
 /// (2 * SVA_FLOW_NEAR + 12) B * SVA_MAX_TARGETS + 5 B * SVA_MAX_UAVS
-/// + 2 B * SVA_FLOW_MAX_COPIES + 8 B.
+/// + 2 B * SVA_FLOW_MAX_COPIES + 144 B.
 #ifndef SVA_FLOW_LARGE_FROM
 #    define SVA_FLOW_LARGE_FROM 64
 #endif
@@ -265,6 +268,9 @@
 #else
 #    define SVA_FLOW_GRANULAR 0
 #endif
+/// Derived: the most visits one ruin round of a large mission takes out (its strings,
+/// flow_ruin.c; they take out fewer than 4 * RUIN_STRING_MEAN = 60).
+#define SVA_FLOW_RUINED_MOST 64
 
 /// Subgradient iterations of one Lagrangian phase (each one resource-constrained
 /// shortest path per distinct UAV state; their label work counts against

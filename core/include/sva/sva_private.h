@@ -277,6 +277,11 @@ typedef struct {
     uint16_t cur_first[SVA_MAX_UAVS];
     uint16_t cur_next[SVA_FLOW_MAX_COPIES];
     int64_t cur_value;
+    /// A large mission's round: the visits its strings took out, in the order the repair
+    /// puts them back first (flow_ruin.c), and the rounds' pseudo-random state.
+    uint16_t ruined[SVA_FLOW_RUINED_MOST];
+    uint16_t ruined_count;
+    uint32_t ruin_random;
 #endif
     uint16_t spare_route[SVA_MAX_ROUTE_TARGETS];       ///< a route's tail in an exchange
     uint16_t trade_pos[SVA_MAX_UAVS];                  ///< where a traded target was

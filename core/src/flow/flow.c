@@ -423,6 +423,7 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
     w->insert_backwards = false;
 #if SVA_FLOW_GRANULAR
     w->local_changed_only = false;
+    w->ruined_count = 0U;
 #endif
     w->work = 0U;
 #if SVA_FLOW_COVER_TARGETS > 0
@@ -502,12 +503,14 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
                 sva_flow_known_bound(open, lagrange_bound, priv, m, plan, coverage_proven);
         }
 #endif
-        const bool proven = sva_flow_ruin_recreate(priv, m, plan, start + budget, proven_bound);
+        const bool proven = sva_flow_ruin_recreate(
+            priv, m, plan, sva_flow_ruin_end(m, start + budget, w->work, budget), proven_bound);
         // Proven optimal already (the claim below): no second search. Nor in a plan with
         // a target of need 2 or more: its copies are paired only by branching, so the
         // search closes no gap there and finds no plan the phases before it missed
-        // (DESIGN.md section 8); the rounds below (ACCEPTING_SHARE) do.
-        const bool search_pays = (w->need_max == 1) || replan;
+        // (DESIGN.md section 8); the rounds below (ACCEPTING_SHARE) do. Nor in a large
+        // mission's plan: ruin and recreate had the work the search would take.
+        const bool search_pays = replan || ((w->need_max == 1) && !sva_flow_large(m));
         if ((!proven || !w->reward_exact) && search_pays) {
             sva_flow_incomplete_t again = finished;
             const int64_t open_again = search(priv, m, plan, start + budget, false, &again);

@@ -97,6 +97,19 @@ bool sva_flow_best_place(sva_flow_work_t* w, const sva_mission_t* m, const sva_p
 /// Serves t with its `need` cheapest UAVs, if that many can take it.
 void sva_flow_try_insert(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                          uint16_t t);
+/// Serves the visits a large mission's round took out (w->ruined), in the order drawn
+/// for the round, as far as they fit; then none are left for the next repair.
+#if SVA_FLOW_GRANULAR
+void sva_flow_insert_ruined(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
+#else
+static inline void sva_flow_insert_ruined(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                          sva_plan_t* plan)
+{
+    (void)priv;
+    (void)m;
+    (void)plan;
+}
+#endif
 /// Puts t into route r of UAV u at the place sva_flow_best_place found.
 void sva_flow_insert_at(sva_flow_work_t* w, sva_route_t* r, uint16_t u, uint16_t t);
 /// Takes the k-th target out of route r of UAV u.
@@ -128,7 +141,8 @@ void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_
 
 // flow_ruin.c: ruin and recreate.
 /// Ruin and recreate: groups of related visits taken out of the incumbent (a large
-/// mission's: the current plan), then swaps (one covered target out, one uncovered in
+/// mission's: strings of visits out of the current plan, until the work runs out),
+/// then swaps (one covered target out, one uncovered in
 /// first); the repair completes and offers each plan. With three quarters of the work
 /// left before `end`, unless the incumbent is within 1/SVA_FLOW_CLOSE of
 /// `proven_bound`, a bound with its coverage proven the most (-1: none). Leaves the
@@ -144,6 +158,13 @@ bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
 /// incumbent, never worse, in *plan.
 void sva_flow_ruin_accepting(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                              uint64_t end, int64_t proven_bound);
+/// A large mission's rounds' preparation (each target's related targets,
+/// the draws' first state), and their ruin of the plan in *plan (with
+/// priv->target_served): strings of consecutive visits, one per route at most, through
+/// s and its related targets, left in w->ruined in the order drawn for the round.
+void sva_flow_ruin_prepare(sva_flow_work_t* w, const sva_mission_t* m);
+void sva_flow_ruin_strings(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                           uint16_t s);
 #endif
 
 // flow_label.c: a UAV's best route under target prices.
@@ -293,6 +314,10 @@ uint64_t sva_flow_budget(const sva_mission_t* m, uint64_t budget);
 uint64_t sva_flow_local_work(const sva_mission_t* m, uint64_t budget);
 uint64_t sva_flow_lagrange_end(const sva_mission_t* m, uint64_t start, uint64_t now,
                                uint64_t budget);
+/// Where ruin and recreate's work ends, given the end of the phases' shares: a large
+/// mission's gets at least half the budget from now (its root relaxation, seeds and
+/// Lagrangian phase can outgrow their shares).
+uint64_t sva_flow_ruin_end(const sva_mission_t* m, uint64_t end, uint64_t now, uint64_t budget);
 
 /// The incumbent written into *plan, and a bound on its cost that ruin and recreate may
 /// trust: sva_flow_cost_bound's when the coverage is proven and the rewards exact, else -1.
@@ -338,11 +363,30 @@ static inline uint64_t sva_flow_lagrange_end(const sva_mission_t* m, uint64_t st
     (void)now;
     return sva_flow_small_lagrange_end(start, budget);
 }
+
+static inline uint64_t sva_flow_ruin_end(const sva_mission_t* m, uint64_t end, uint64_t now,
+                                         uint64_t budget)
+{
+    (void)m;
+    (void)now;
+    (void)budget;
+    return end;
+}
 #endif
 
 /// A plan within cost / SVA_FLOW_CLOSE of a proven bound is close enough that neither
 /// ruin and recreate nor a large mission's Lagrangian phase works on it.
 #define SVA_FLOW_CLOSE 64
+
+/// Whether some target is served by no UAV (priv->target_served).
+static inline bool sva_flow_uncovered_left(const sva_planner_priv_t* priv, const sva_mission_t* m)
+{
+    bool left = false;
+    for (uint16_t t = 0U; (t < m->target_count) && !left; t++) {
+        left = priv->target_served[t] == 0U;
+    }
+    return left;
+}
 
 /// Whether a plan of this cost is that close to `bound` (negative: none proven).
 static inline bool sva_flow_close(int64_t cost, int64_t bound)

@@ -176,6 +176,19 @@ void sva_flow_try_insert(sva_planner_priv_t* priv, const sva_mission_t* m, sva_p
     priv->target_served[t] = (uint16_t)need;
 }
 
+#if SVA_FLOW_GRANULAR
+void sva_flow_insert_ruined(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+{
+    sva_flow_work_t* w = &priv->flow;
+    for (uint16_t i = 0U; i < w->ruined_count; i++) {
+        if (priv->target_served[w->ruined[i]] == 0U) {
+            sva_flow_try_insert(priv, m, plan, w->ruined[i]);
+        }
+    }
+    w->ruined_count = 0U;
+}
+#endif
+
 void sva_flow_insert_at(sva_flow_work_t* w, sva_route_t* r, uint16_t u, uint16_t t)
 {
     for (uint16_t k = r->target_count; k > w->insert_pos[u]; k--) {

@@ -5,7 +5,8 @@
 // its bound gains little from them, but its heuristic's flight finds good plans), and
 // none when the search's bound already certifies the plan; one local search gets an
 // eighth (a half otherwise); ruin and recreate is told the search's bound, and the
-// rest of the budget goes to it, its rounds granular (flow_ruin.c, flow_repair.c).
+// rest of the budget goes to it, at least half of the budget, its rounds granular
+// (flow_ruin.c, flow_repair.c); no search follows it.
 // These functions are out of flow.c so that sva_run_flow's frame, on the core's
 // deepest stack path, does not grow (docs/embedded.md).
 #include "flow.h"
@@ -46,6 +47,16 @@ uint64_t sva_flow_lagrange_end(const sva_mission_t* m, uint64_t start, uint64_t 
         end = now + (budget / LARGE_LAGRANGE_SHARE);
     }
     return end;
+}
+
+uint64_t sva_flow_ruin_end(const sva_mission_t* m, uint64_t end, uint64_t now, uint64_t budget)
+{
+    uint64_t grown = end;
+    const uint64_t half = now + (budget / 2U);
+    if (sva_flow_large(m) && (grown < half)) {
+        grown = half;  // at 200 x 40 the phases before leave it a tenth of the budget
+    }
+    return grown;
 }
 
 int64_t sva_flow_known_bound(int64_t open, int64_t lagrange_bound, sva_planner_priv_t* priv,

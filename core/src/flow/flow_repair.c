@@ -4,14 +4,14 @@
 //
 // The repair: drop every target served by fewer than `need` UAVs; while a route breaks
 // its fuel (or SVA_MAX_ROUTE_TARGETS), drop from every route the target whose removal
-// shortens that route most; then insert each uncovered target, in (start, end, id)
-// order, at the cheapest time- and fuel-feasible place of its `need` cheapest UAVs, or
-// leave it out (flow_insert.c); then the local search below. Removing a target keeps a
-// route feasible in time (triangle inequality), so every result is a plan. The plan
-// under construction lives in the caller's sva_plan_t (its routes and
-// priv->target_served), exactly as the other algorithms build theirs. The local search
-// is in this file so that the compiler can fold it into the repair's frame: flow's
-// worst stack path runs through it (docs/embedded.md).
+// shortens that route most; insert each uncovered target (a large mission's round: its
+// strings' first), in (start, end, id) order, at the cheapest time- and fuel-feasible
+// place of its `need` cheapest UAVs, or leave it out (flow_insert.c); then the local
+// search below. Removing a target keeps a route feasible in time (triangle
+// inequality), so every result is a plan. The plan under construction lives in the
+// caller's sva_plan_t (its routes and priv->target_served), as the other algorithms
+// build theirs. The local search is here so that the compiler can fold it into the
+// repair's frame: flow's worst stack path runs through it (docs/embedded.md).
 //
 // Local search: move one UAV's visit to another UAV, swap two UAVs' visits (each in
 // the other's slot), swap two routes' tails, or trade a covered target for an
@@ -528,10 +528,8 @@ static void local_search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_p
             }
         }
 #if SVA_FLOW_LARGE
-        bool open = false;  // trades need an uncovered target: else no scan of every pair
-        for (uint16_t t = 0U; (t < m->target_count) && !open; t++) {
-            open = priv->target_served[t] == 0U;
-        }
+        // Trades need an uncovered target: without one, no scan of every pair.
+        const bool open = sva_flow_uncovered_left(priv, m);
 #else
         const bool open = true;  // a small profile's scan is short, and keeps the flash
 #endif
@@ -563,6 +561,7 @@ void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_
             sva_flow_remove_target(priv, m, plan, r->targets[sva_flow_costliest_stop(m, u, r)]);
         }
     }
+    sva_flow_insert_ruined(priv, m, plan);  // a large mission's round: its strings first
     for (uint16_t i = 0U; i < m->target_count; i++) {
         const uint16_t t =
             priv->target_order[w->insert_backwards ? ((m->target_count - 1U) - i) : i];

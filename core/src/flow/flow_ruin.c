@@ -7,13 +7,26 @@
 // nearest to it (cells between them plus the ticks between their window starts, in
 // cells). With need 2 this is how a target short of its second UAV finds one: the
 // group's visits leave room. Then swaps: one covered target out, one uncovered in.
-// A large mission's rounds start from a current plan instead of the incumbent, which
-// a round's plan replaces when within a falling threshold of it (threshold accepting).
+// A large mission's rounds take strings of visits out instead (after SISR, Christiaens
+// and Vanden Berghe, 2020), put them back in an order drawn for the round, and start
+// from a current plan instead of the incumbent, which a round's plan replaces when
+// within a falling threshold of it (threshold accepting).
 // A plan with a need above 1 ends with such rounds (sva_flow_ruin_accepting).
 #include "flow.h"
 
 #define RUIN_ROUND_UNITS 8U   // work units per round, per target inserted x UAV
 #define ACCEPT_SHARE     100  // the threshold starts at the incumbent's cost / ACCEPT_SHARE
+// A large mission's string rounds: visits taken out on average (SISR's c-bar), a
+// string's longest, and a round's charge in targets inserted (as for a group of 7: a
+// unit's time stays near the search's, about 15 ns at 200 x 40).
+#define STRING_MEAN    15U
+#define STRING_LONGEST 10U
+#define STRING_CHARGE  7U
+#define RANDOM_SEED    0x9E3779B9U  // the draws' first state, the same for every plan
+#define ORDER_CHOICES  11U          // SISR's weights: random 4, window 4, far 2, near 1
+#define ORDER_RANDOM   4U
+#define ORDER_WINDOW   8U
+#define ORDER_FAR      10U
 
 static int64_t relatedness(const sva_mission_t* m, uint16_t a, uint16_t b)
 {
@@ -26,8 +39,9 @@ static int64_t relatedness(const sva_mission_t* m, uint16_t a, uint16_t b)
 
 #if SVA_FLOW_GRANULAR
 // Each target's SVA_FLOW_NEAR most related targets, nearest first (ties: lower index),
-// the local search's granular neighbourhood during ruin and recreate.
-static void find_near(sva_flow_work_t* w, const sva_mission_t* m)
+// the local search's granular neighbourhood and the strings' seeds during ruin and
+// recreate; and the draws' first state.
+void sva_flow_ruin_prepare(sva_flow_work_t* w, const sva_mission_t* m)
 {
     const uint16_t k_max = (m->target_count > (uint16_t)SVA_FLOW_NEAR)
                                ? (uint16_t)SVA_FLOW_NEAR
@@ -59,7 +73,81 @@ static void find_near(sva_flow_work_t* w, const sva_mission_t* m)
         w->uav_tried[u] = 0U;
     }
     w->try_epoch = 0U;
+    w->ruined_count = 0U;
+    w->ruin_random = RANDOM_SEED;
     w->work += (uint64_t)m->target_count * m->target_count;
+}
+
+// A draw in [0, below), below > 0: xorshift32 (Marsaglia, 2003), so that a mission
+// and a budget always give the same plan.
+static uint32_t draw(sva_flow_work_t* w, uint32_t below)
+{
+    uint32_t x = w->ruin_random;
+    x ^= x << 13U;
+    x ^= x >> 17U;
+    x ^= x << 5U;
+    w->ruin_random = x;
+    uint32_t drawn = 0U;
+    if (below > 0U) {
+        drawn = x % below;
+    }
+    return drawn;
+}
+
+// Where the repair puts target t back, by the round's order (smallest key first).
+static int64_t order_key(const sva_mission_t* m, uint16_t t, uint32_t order)
+{
+    const sva_target_t* tg = &m->targets[t];
+    const int64_t depot = sva_distance(m->depot_x, m->depot_y, tg->x, tg->y);
+    int64_t key = depot;
+    if (order < ORDER_WINDOW) {
+        key = tg->start_ticks;
+    } else if (order < ORDER_FAR) {
+        key = -depot;
+    } else {
+        // nearest the depot first
+    }
+    return key;
+}
+
+// The order the repair puts a round's visits back in, drawn for the round: at random,
+// by window start, farthest from the depot first, or nearest first.
+static void order_ruined(sva_flow_work_t* w, const sva_mission_t* m)
+{
+    const uint32_t order = draw(w, ORDER_CHOICES);
+    for (uint16_t i = 1U; i < w->ruined_count; i++) {
+        const uint16_t t = w->ruined[i];
+        uint16_t at = i;
+        if (order < ORDER_RANDOM) {
+            at = (uint16_t)draw(w, (uint32_t)i + 1U);  // Fisher-Yates, grown one by one
+            w->ruined[i] = w->ruined[at];
+        } else {
+            const int64_t key = order_key(m, t, order);
+            while ((at > 0U) && (order_key(m, w->ruined[at - 1U], order) > key)) {
+                w->ruined[at] = w->ruined[at - 1U];
+                at--;
+            }
+        }
+        w->ruined[at] = t;
+    }
+}
+
+// The route and place of a visit to t, the first route serving it; false when none.
+static bool find_visit(const sva_mission_t* m, const sva_plan_t* plan, uint16_t t, uint16_t* u,
+                       uint16_t* k)
+{
+    bool found = false;
+    for (uint16_t v = 0U; (v < m->uav_count) && !found; v++) {
+        const sva_route_t* r = &plan->routes[v];
+        for (uint16_t j = 0U; (j < r->target_count) && !found; j++) {
+            if (r->targets[j] == t) {
+                *u = v;
+                *k = j;
+                found = true;
+            }
+        }
+    }
+    return found;
 }
 
 // Threshold accepting (Dueck and Scheuer, 1990) for a large mission's rounds: a round's
@@ -88,17 +176,81 @@ static void accept(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t*
 }
 #endif
 
-// The incumbent without s and the size - 1 covered targets most related to it.
-static void ruin(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, uint16_t s,
-                 uint8_t size)
+// Before a ruin: every route's cells, and no route changed yet.
+static void ruin_begin(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan)
 {
-    sva_flow_work_t* w = &priv->flow;
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         w->route_cells[u] = sva_route_cells(m, u, &plan->routes[u]);
 #if SVA_FLOW_GRANULAR
         w->route_changed[u] = 0U;
 #endif
     }
+}
+
+#if SVA_FLOW_GRANULAR
+// The plan without strings of consecutive visits, each through one of s and its
+// related targets (in that order) in a route no string has touched yet: up to a drawn
+// number of strings, of drawn lengths up to the routes' mean length (at most
+// STRING_LONGEST), about STRING_MEAN visits in all. The visits are left in w->ruined,
+// in the order drawn for the round.
+void sva_flow_ruin_strings(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                           uint16_t s)
+{
+    sva_flow_work_t* w = &priv->flow;
+    ruin_begin(w, m, plan);
+    uint32_t visits = 0U;
+    uint32_t used = 0U;
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        visits += plan->routes[u].target_count;
+        used += (plan->routes[u].target_count > 0U) ? 1U : 0U;
+    }
+    uint32_t longest = STRING_LONGEST;
+    if ((used > 0U) && ((visits / used) < STRING_LONGEST)) {
+        longest = visits / used;  // at least 1
+    }
+    // Fewer than 4 * STRING_MEAN visits in all (SVA_FLOW_RUINED_MOST holds them).
+    const uint32_t strings = 1U + draw(w, ((4U * STRING_MEAN) / (1U + longest)) - 1U);
+    uint32_t taken = 0U;
+    w->ruined_count = 0U;
+    for (uint16_t i = 0U; (i <= w->near_count) && (taken < strings); i++) {
+        const uint16_t c = (i == 0U) ? s : w->near[s][i - 1U];
+        uint16_t u = 0U;
+        uint16_t k = 0U;
+        if (!find_visit(m, plan, c, &u, &k) || (w->route_changed[u] != 0U)) {
+            continue;  // not served, or its route gave a string already
+        }
+        const uint32_t count = plan->routes[u].target_count;
+        const uint32_t length = 1U + draw(w, (count < longest) ? count : longest);
+        // The string's first place: the string holds k and fits in the route.
+        const uint32_t end = (uint32_t)k + 1U;
+        uint32_t low = 0U;
+        if (end > length) {
+            low = end - length;
+        }
+        uint32_t high = k;
+        if ((count - length) < high) {
+            high = count - length;
+        }
+        const uint32_t first = low + draw(w, (high - low) + 1U);
+        SVA_ASSERT(((uint32_t)w->ruined_count + length) <= (uint32_t)SVA_FLOW_RUINED_MOST);
+        for (uint32_t j = 0U; j < length; j++) {
+            w->ruined[w->ruined_count + j] = plan->routes[u].targets[first + j];
+        }
+        for (uint32_t j = 0U; j < length; j++) {
+            sva_flow_remove_target(priv, m, plan, w->ruined[w->ruined_count + j]);
+        }
+        w->ruined_count = (uint16_t)(w->ruined_count + length);
+        taken++;
+    }
+    order_ruined(w, m);
+}
+#endif
+
+// The incumbent without s and the size - 1 covered targets most related to it.
+static void ruin(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan, uint16_t s,
+                 uint8_t size)
+{
+    ruin_begin(&priv->flow, m, plan);
     sva_flow_remove_target(priv, m, plan, s);
     for (uint8_t k = 1U; k < size; k++) {
         int32_t pick = -1;
@@ -117,13 +269,22 @@ static void ruin(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* p
 }
 
 // One round on the plan in *plan: s and the size - 1 covered targets most related to it
-// out, then the repair (insertions in reverse window order when `backwards`; its local
+// out (when `granular`, a large mission's: strings through s and its related targets),
+// then the repair (insertions in reverse window order when `backwards`; its local
 // search only from the changed routes when `granular`), charged `units` of work.
 static void ruin_round(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                        uint16_t s, uint8_t size, bool backwards, bool granular, uint64_t units)
 {
     sva_flow_work_t* w = &priv->flow;
+#if SVA_FLOW_GRANULAR
+    if (granular) {
+        sva_flow_ruin_strings(priv, m, plan, s);
+    } else {
+        ruin(priv, m, plan, s, size);
+    }
+#else
     ruin(priv, m, plan, s, size);
+#endif
     w->insert_backwards = backwards;
 #if SVA_FLOW_GRANULAR
     w->local_changed_only = granular;
@@ -187,6 +348,30 @@ void sva_flow_ruin_accepting(sva_planner_priv_t* priv, const sva_mission_t* m, s
     }
     sva_flow_write_incumbent(priv, m, plan);
 }
+
+// A large mission's rounds, from the current plan: passes over its covered targets as
+// seeds of string rounds until `end`, or until a pass seeds none.
+static void string_rounds(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                          uint64_t end, int64_t start_cost)
+{
+    sva_flow_work_t* w = &priv->flow;
+    const uint64_t units =
+        (uint64_t)m->target_count + ((uint64_t)STRING_CHARGE * m->uav_count * RUIN_ROUND_UNITS);
+    const uint64_t from = w->work;
+    uint32_t pass = 0U;
+    bool seeded = true;
+    while (seeded && (w->work < end)) {
+        seeded = false;
+        for (uint16_t s = 0U; (s < m->target_count) && (w->work < end); s++) {
+            if ((int32_t)priv->target_served[s] == m->targets[s].need) {
+                accepting_round(priv, m, plan, s, 0U, ((s + pass) % 2U) == 1U, true, units, from,
+                                end, start_cost);
+                seeded = true;
+            }
+        }
+        pass++;
+    }
+}
 #endif
 
 bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
@@ -204,46 +389,41 @@ bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     // the search, with the rest of the budget, may prove it.
     const bool near = sva_flow_close(cost, proven_bound);
     const uint64_t rest = ((end > w->work) && !near) ? (end - w->work) : 0U;
-    const uint64_t budget = w->work + (rest - (rest / 4U));
+    const bool large = sva_flow_large(m);
+    // The rounds stop at three quarters of the rest, for the swaps; they need an
+    // uncovered target, and a large mission's rounds take the rest when there is none.
+    const bool swaps = !large || sva_flow_uncovered_left(priv, m);
+    const uint64_t budget = w->work + (swaps ? (rest - (rest / 4U)) : rest);
     // A round's insertions: every target's, or past SVA_FLOW_LARGE_FROM targets
     // the ruined ones' (a swap round: two) and a scan of the targets.
-    const bool large = sva_flow_large(m);
     const uint64_t uav_units = (uint64_t)m->uav_count * RUIN_ROUND_UNITS;
     const uint64_t whole_units = (uint64_t)m->target_count * uav_units;
+    bool grouped = true;  // rounds of groups (a large mission's: of strings, below)
 #if SVA_FLOW_GRANULAR
-    const uint64_t from = w->work;
     if (large && (rest > 0U)) {
-        find_near(w, m);
+        sva_flow_ruin_prepare(w, m);
         sva_flow_keep_current(priv, m, plan, sva_flow_plan_value(priv, m, plan));
+        string_rounds(priv, m, plan, budget, cost);
+        sva_flow_write_incumbent(priv, m, plan);  // the swaps start from the incumbent
     }
+    grouped = !large;
 #endif
-    // *plan holds the incumbent (a large mission's rounds: the current plan) whenever a
-    // round is chosen (sva_flow_incumbent above, then a write after each round).
-    for (size_t i = 0U; i < (sizeof(ruin_sizes) / sizeof(ruin_sizes[0])); i++) {
+    // *plan holds the incumbent whenever a round is chosen (sva_flow_incumbent above,
+    // then a write after each round).
+    for (size_t i = 0U; grouped && (i < (sizeof(ruin_sizes) / sizeof(ruin_sizes[0]))); i++) {
         for (uint16_t s = 0U; (s < m->target_count) && (w->work < budget); s++) {
             if ((int32_t)priv->target_served[s] == m->targets[s].need) {
-                const bool backwards = ((s + i) % 2U) == 1U;
-#if SVA_FLOW_GRANULAR
-                if (large) {
-                    const uint64_t units = (uint64_t)m->target_count + (ruin_sizes[i] * uav_units);
-                    accepting_round(priv, m, plan, s, ruin_sizes[i], backwards, true, units, from,
-                                    budget, cost);
-                    continue;
-                }
-#endif
-                ruin_round(priv, m, plan, s, ruin_sizes[i], backwards, false, whole_units);
+                ruin_round(priv, m, plan, s, ruin_sizes[i], ((s + i) % 2U) == 1U, false,
+                           whole_units);
                 sva_flow_write_incumbent(priv, m, plan);
             }
         }
     }
-#if SVA_FLOW_GRANULAR
-    sva_flow_write_incumbent(priv, m, plan);  // the swaps start from the incumbent
-#endif
     // Swaps: a covered target c leaves, an uncovered target t goes in first (all its
     // need at once), and the repair puts the rest back. With need 2 a plan may cover
     // the right number of targets but the wrong ones; groups reinserted in window
     // order rarely change which.
-    for (uint16_t c = 0U; (c < m->target_count) && (w->work < budget); c++) {
+    for (uint16_t c = 0U; swaps && (c < m->target_count) && (w->work < budget); c++) {
         for (uint16_t t = 0U; (t < m->target_count) && (w->work < budget); t++) {
             if (((int32_t)priv->target_served[c] == m->targets[c].need) &&
                 (priv->target_served[t] == 0U)) {
