@@ -3,8 +3,9 @@
 
 Usage (from the repository root, after scripts/setup.sh and scripts/build.sh):
     nice -n 15 .venv/bin/python tools/bench/flow_vs_pyvrp.py [--sets NAME,...] [--missions N]
-        [--budgets default,N,...] [--time-limit S] [--pyvrp-seed N] [--no-ortools] [--results] [--quick]
-Sets (`sva-tools gen --need 1 --seed 7`, the first N missions):
+        [--budgets default,N,...] [--time-limit S] [--pyvrp-seed N] [--gen-seed N] [--no-ortools]
+        [--results] [--quick]
+Sets (`sva-tools gen --need 1 --seed 7`, the first N missions; --gen-seed another seed):
     025x05_tight  25 targets x 5 UAVs, --width 10:20 --hover 2 --fuel 80
     025x05_loose  25 targets x 5 UAVs, --width 10:20 --hover 2 --fuel 150
     100x20        100 targets x 20 UAVs, the generator's fuel (150) and windows (20 to 40)
@@ -23,8 +24,8 @@ Prints per set, per flow budget and per peer: flow's wins / ties / losses at equ
 the missions where it covers more or fewer (and by how many targets), the cost ratio
 flow / peer at equal coverage (median and worst), the median times and their ratio, and
 flow's certified gap (cost / lower_bound - 1, from its stats): median and worst.
---results writes docs/results/flow_vs_peer.pyvrp_<sets>.md (tools/bench/results.py) and
-reassembles docs/results.md. --quick: 3 missions of 025x05_tight, PyVRP 0.2 s (a test).
+--results writes docs/results/flow_vs_peer.pyvrp_<sets>.md (tools/bench/results.py; with
+`_seed<N>` for another --gen-seed) and reassembles docs/results.md. --quick: 3 missions of 025x05_tight, PyVRP 0.2 s (a test).
 """
 import argparse
 import json
@@ -52,16 +53,16 @@ SETS = {
 PEER_SOLUTION_LIMIT = 100
 
 
-def missions_of(name, count):
+def missions_of(name, count, seed=SEED):
     s = SETS[name]
     return [gen.generate(s["targets"], s["uavs"], width=s["width"], need=(1, 1), fuel=s["fuel"],
-                         hover=s["hover"], seed=SEED, index=i) for i in range(count)]
+                         hover=s["hover"], seed=seed, index=i) for i in range(count)]
 
 
-def gen_command(name, count):
+def gen_command(name, count, seed=SEED):
     s = SETS[name]
     return (f"sva-tools gen --targets {s['targets']} --uavs {s['uavs']} --width {s['width'][0]}:{s['width'][1]} "
-            f"--need 1 --fuel {s['fuel']} --hover {s['hover']} --seed {SEED} --count {count}")
+            f"--need 1 --fuel {s['fuel']} --hover {s['hover']} --seed {seed} --count {count}")
 
 
 def checked(m, plan):
@@ -143,6 +144,7 @@ def main(argv):
     ap.add_argument("--budgets", default="default", help="flow's --flow-work values, comma-separated")
     ap.add_argument("--time-limit", type=float, default=pyvrp_peer.TIME_LIMIT, help="PyVRP's limit, seconds")
     ap.add_argument("--pyvrp-seed", type=int, default=pyvrp_peer.SEED)
+    ap.add_argument("--gen-seed", type=int, default=SEED, help="the missions' generator seed")
     ap.add_argument("--no-ortools", action="store_true", help="leave the OR-tools peer out")
     ap.add_argument("--results", action="store_true", help="write this run's part of docs/results.md")
     ap.add_argument("--quick", action="store_true", help="3 missions of 025x05_tight, PyVRP 0.2 s")
@@ -158,7 +160,7 @@ def main(argv):
     peers = ["PyVRP"] + ([] if args.no_ortools else ["OR-tools"])
     rows = []
     for name in sets:
-        missions = missions_of(name, args.missions)
+        missions = missions_of(name, args.missions, args.gen_seed)
         with tempfile.TemporaryDirectory(prefix="flow-vs-pyvrp-") as d:
             paths = []
             for m in missions:
@@ -169,7 +171,7 @@ def main(argv):
         results = {"PyVRP": [run_pyvrp(m, args.time_limit, args.pyvrp_seed) for m in missions]}
         if not args.no_ortools:
             results["OR-tools"] = [run_ortools(m) for m in missions]
-        print(f"{name} ({gen_command(name, args.missions)}): {len(missions)} missions")
+        print(f"{name} ({gen_command(name, args.missions, args.gen_seed)}): {len(missions)} missions")
         for b in budgets:
             fails = sum(1 for f in flows[b] if f is None)
             med, worst = certified(flows[b])
@@ -196,10 +198,11 @@ def main(argv):
         import results  # tools/bench/results.py
         flags = ["--results", f"--sets {','.join(sets)}", f"--missions {args.missions}",
                  f"--budgets {','.join(budgets)}", f"--time-limit {args.time_limit:g}",
-                 f"--pyvrp-seed {args.pyvrp_seed}"] + (["--no-ortools"] if args.no_ortools else [])
+                 f"--pyvrp-seed {args.pyvrp_seed}"] + (["--no-ortools"] if args.no_ortools else []) \
+            + ([f"--gen-seed {args.gen_seed}"] if args.gen_seed != SEED else [])
         cmd = "nice -n 15 .venv/bin/python tools/bench/flow_vs_pyvrp.py " + " ".join(flags)
         body = "\n".join(
-            ["Missions: " + "; ".join(f"{n}: `{gen_command(n, args.missions)}`" for n in sets) + ". "
+            ["Missions: " + "; ".join(f"{n}: `{gen_command(n, args.missions, args.gen_seed)}`" for n in sets) + ". "
              f"PyVRP {pyvrp_version()} (tools/sva_tools/pyvrp_peer.py: prize-collecting, the exact "
              f"lexicographic objective on need-1 missions), {args.time_limit:g} s of wall clock, seed "
              f"{args.pyvrp_seed}, its time the wall time of the whole call. "
@@ -210,9 +213,11 @@ def main(argv):
                "Cost ratio: flow's cost over the peer's where both cover as many targets (above 1: flow "
                "costs more); ratio: the peer's median time over flow's.", "", *table])
         limit = "" if args.time_limit == pyvrp_peer.TIME_LIMIT else f"_pyvrp{args.time_limit:g}s"
-        results.write(results.ROOT, "flow_vs_peer.pyvrp_" + "_".join(sets) + limit.replace(".", "_"), cmd, body,
-                      title="flow against PyVRP: " + ", ".join(sets)
-                      + ("" if not limit else f", PyVRP {args.time_limit:g} s"), load_start=load_start)
+        seeded = "" if args.gen_seed == SEED else f"_seed{args.gen_seed}"
+        results.write(results.ROOT, "flow_vs_peer.pyvrp_" + "_".join(sets) + limit.replace(".", "_") + seeded, cmd,
+                      body, title="flow against PyVRP: " + ", ".join(sets)
+                      + ("" if not limit else f", PyVRP {args.time_limit:g} s")
+                      + ("" if not seeded else f", gen seed {args.gen_seed}"), load_start=load_start)
     return 0
 
 
