@@ -23,8 +23,8 @@
 ///                  + 14 * SVA_FLOW_LP_COLS                               (route master)
 ///                  + the coverage search (SVA_FLOW_COVER_TARGETS below)
 ///                  + large missions' granular moves (SVA_FLOW_NEAR below)
-///   (default profile: 741,640 B, of which flow's sva_flow_work_t is 595,720 B; large
-///   profile: 7,344,200 B, of which 6,560,000 B are flow's 656,000 arcs.)
+///   (default profile: 741,776 B, of which flow's sva_flow_work_t is 595,856 B; large
+///   profile: 7,344,336 B, of which 6,560,000 B are flow's 656,000 arcs.)
 
 #ifndef SVA_CONFIG_H
 #define SVA_CONFIG_H
