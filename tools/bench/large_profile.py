@@ -224,9 +224,10 @@ def main(argv):
             "2,000,000) and the most search nodes, Lagrangian iterations and ruin and recreate rounds of any plan: "
             + "; ".join(f"{f['set']}: median {f['work'][0]:,.0f}, {f['phases'][0]} / {f['phases'][1]} / "
                         f"{f['phases'][2]}" for f in figures) + ". Where the root relaxation alone passes the "
-            "budget, the plan is its rounding and the repaired `ga` and `sva` plans after the local search; "
-            "neither the search (which branches on fuel) nor the Lagrangian phase (which prices it into the "
-            "bound) runs, so with tight fuel the bound is the fuel-free relaxation's."])
+            "budget, the plan starts from its rounding and the repaired `ga` and `sva` plans after the local "
+            "search; the search (which branches on fuel) does not run and the Lagrangian phase (which prices "
+            "fuel into the bound) takes at most one step, so with tight fuel the bound is about the fuel-free "
+            "relaxation's; ruin and recreate then gets half the budget (the rounds above)."])
         results.write(results.ROOT, "large", cmd, body, title=None, load_start=load_start)
     return 1 if any(f["failures"] for f in figures) else 0
 
