@@ -269,7 +269,7 @@
 #    define SVA_FLOW_GRANULAR 0
 #endif
 /// Derived: the most visits one ruin round of a large mission takes out (its strings,
-/// flow_ruin.c; they take out fewer than 4 * RUIN_STRING_MEAN = 60).
+/// flow_ruin.c: at most 45, with its mean of 15 visits).
 #define SVA_FLOW_RUINED_MOST 64
 
 /// Subgradient iterations of one Lagrangian phase (each one resource-constrained

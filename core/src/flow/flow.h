@@ -141,13 +141,13 @@ void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_
 
 // flow_ruin.c: ruin and recreate.
 /// Ruin and recreate: groups of related visits taken out of the incumbent (a large
-/// mission's: strings of visits out of the current plan, until the work runs out),
-/// then swaps (one covered target out, one uncovered in
-/// first); the repair completes and offers each plan. With three quarters of the work
-/// left before `end`, unless the incumbent is within 1/SVA_FLOW_CLOSE of
-/// `proven_bound`, a bound with its coverage proven the most (-1: none). Leaves the
-/// incumbent in *plan. Returns true, doing nothing, when the bound reaches the
-/// incumbent's cost: it is proven optimal.
+/// mission's: strings of visits out of the current plan, until the work runs out), then
+/// swaps (one covered target out, one uncovered in first); the repair completes and
+/// offers each plan. With three quarters of the work left before `end` (a large
+/// mission's rounds, with no target uncovered for the swaps: all of it), unless the
+/// incumbent is within 1/SVA_FLOW_CLOSE of `proven_bound`, a bound with its coverage
+/// proven the most (-1: none). Leaves the incumbent in *plan. Returns true, doing
+/// nothing, when the bound reaches the incumbent's cost: it is proven optimal.
 bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                             uint64_t end, int64_t proven_bound);
 #if SVA_FLOW_GRANULAR

@@ -208,7 +208,8 @@ void sva_flow_ruin_strings(sva_planner_priv_t* priv, const sva_mission_t* m, sva
     if ((used > 0U) && ((visits / used) < STRING_LONGEST)) {
         longest = visits / used;  // at least 1
     }
-    // Fewer than 4 * STRING_MEAN visits in all (SVA_FLOW_RUINED_MOST holds them).
+    // 1 to 4 * STRING_MEAN / (1 + longest) - 1 strings of at most `longest` visits: at
+    // most 45 visits in all (longest 5), which SVA_FLOW_RUINED_MOST holds.
     const uint32_t strings = 1U + draw(w, ((4U * STRING_MEAN) / (1U + longest)) - 1U);
     uint32_t taken = 0U;
     w->ruined_count = 0U;
