@@ -236,13 +236,13 @@ static bool one_string_out(const sva_route_t* before, const sva_route_t* after, 
 }
 #endif
 
-// A large mission's ruin (flow_ruin.c), on flow's own plan of 100 x 20 missions, from
+// A large mission's ruin (flow_ruin.c), on flow's own plan of a 100 x 20 mission, from
 // every covered target as the seed: the seed's visit goes; every route loses at most
 // one string of consecutive visits, no longer than the routes' mean length, and keeps
-// the rest in order; the visits taken out
-// are exactly those in the round's list, once each, no longer served, fewer than
-// SVA_FLOW_RUINED_MOST; some rounds take strings from several routes and some strings
-// are longer than one visit; the same preparation gives the same rounds again.
+// the rest in order; the visits taken out are exactly those in the round's list, once
+// each, no longer served, fewer than SVA_FLOW_RUINED_MOST; some rounds take strings
+// from several routes and some strings are longer than one visit; the same
+// preparation gives the same rounds again.
 void test_string_ruin_takes_strings_through_the_seed(void)
 {
 #if SVA_FLOW_GRANULAR
