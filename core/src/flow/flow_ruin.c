@@ -11,7 +11,8 @@
 // and Vanden Berghe, 2020), put them back in an order drawn for the round, and start
 // from a current plan instead of the incumbent, which a round's plan replaces when
 // within a falling threshold of it (threshold accepting).
-// A plan with a need above 1 ends with such rounds (sva_flow_ruin_accepting).
+// A plan with a need above 1 ends with accepting rounds of groups
+// (sva_flow_ruin_accepting); both kinds run in accepting_passes.
 #include "flow.h"
 
 #define RUIN_ROUND_UNITS 8U   // work units per round, per target inserted x UAV
@@ -73,7 +74,6 @@ void sva_flow_ruin_prepare(sva_flow_work_t* w, const sva_mission_t* m)
         w->uav_tried[u] = 0U;
     }
     w->try_epoch = 0U;
-    w->ruined_count = 0U;
     w->ruin_random = RANDOM_SEED;
     w->work += (uint64_t)m->target_count * m->target_count;
 }
@@ -314,64 +314,48 @@ static void accepting_round(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     sva_flow_write_current(priv, m, plan);
 }
 
+// Rounds from the current plan (accepting_round), charged `units` each, until `end`:
+// passes over the covered targets as seeds, each pass's groups of the next size in
+// `sizes` with its seeds three targets further on, or (`strings`) a large mission's
+// strings from the first target on. A pass without a covered target to seed a round
+// ends them: a plan covering nothing gets none.
+static void accepting_passes(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                             uint64_t end, int64_t start_cost, uint64_t units, bool strings)
+{
+    static const uint8_t sizes[] = {4U, 7U, 2U, 9U, 5U, 12U, 3U, 6U};
+    sva_flow_work_t* w = &priv->flow;
+    const uint64_t from = w->work;
+    uint32_t pass = 0U;
+    bool seeded = true;
+    while (seeded && (w->work < end)) {
+        const uint8_t size = sizes[pass % (uint32_t)(sizeof(sizes) / sizeof(sizes[0]))];
+        const uint32_t first = strings ? 0U : (pass * 3U);
+        seeded = false;
+        for (uint16_t k = 0U; (k < m->target_count) && (w->work < end); k++) {
+            const uint16_t s = (uint16_t)((first + k) % m->target_count);
+            if ((int32_t)priv->target_served[s] == m->targets[s].need) {
+                accepting_round(priv, m, plan, s, size, ((k + pass) % 2U) == 1U, strings, units,
+                                from, end, start_cost);
+                seeded = true;
+            }
+        }
+        pass++;
+    }
+}
+
 void sva_flow_ruin_accepting(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                              uint64_t end, int64_t proven_bound)
 {
-    // Group sizes, pass by pass; each pass starts its seeds three targets further on.
-    static const uint8_t sizes[] = {4U, 7U, 2U, 9U, 5U, 12U, 3U, 6U};
-    sva_flow_work_t* w = &priv->flow;
     int64_t cost = 0;
     int64_t covered = 0;
     sva_flow_incumbent(priv, m, plan, &cost, &covered);
     if (proven_bound >= cost) {
         return;  // proven optimal
     }
-    const uint64_t units = (uint64_t)m->target_count * m->uav_count * RUIN_ROUND_UNITS;
-    const uint64_t from = w->work;
     sva_flow_keep_current(priv, m, plan, sva_flow_plan_value(priv, m, plan));
-    uint32_t pass = 0U;
-    // A pass without a covered target to seed a round ends them: a plan covering
-    // nothing gets none.
-    bool seeded = true;
-    while (seeded && (w->work < end)) {
-        const uint8_t size = sizes[pass % (uint32_t)(sizeof(sizes) / sizeof(sizes[0]))];
-        const uint32_t first = pass * 3U;
-        seeded = false;
-        for (uint16_t k = 0U; (k < m->target_count) && (w->work < end); k++) {
-            const uint16_t s = (uint16_t)((first + k) % m->target_count);
-            if ((int32_t)priv->target_served[s] == m->targets[s].need) {
-                accepting_round(priv, m, plan, s, size, ((k + pass) % 2U) == 1U, false, units, from,
-                                end, cost);
-                seeded = true;
-            }
-        }
-        pass++;
-    }
+    accepting_passes(priv, m, plan, end, cost,
+                     (uint64_t)m->target_count * m->uav_count * RUIN_ROUND_UNITS, false);
     sva_flow_write_incumbent(priv, m, plan);
-}
-
-// A large mission's rounds, from the current plan: passes over its covered targets as
-// seeds of string rounds until `end`, or until a pass seeds none.
-static void string_rounds(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
-                          uint64_t end, int64_t start_cost)
-{
-    sva_flow_work_t* w = &priv->flow;
-    const uint64_t units =
-        (uint64_t)m->target_count + ((uint64_t)STRING_CHARGE * m->uav_count * RUIN_ROUND_UNITS);
-    const uint64_t from = w->work;
-    uint32_t pass = 0U;
-    bool seeded = true;
-    while (seeded && (w->work < end)) {
-        seeded = false;
-        for (uint16_t s = 0U; (s < m->target_count) && (w->work < end); s++) {
-            if ((int32_t)priv->target_served[s] == m->targets[s].need) {
-                accepting_round(priv, m, plan, s, 0U, ((s + pass) % 2U) == 1U, true, units, from,
-                                end, start_cost);
-                seeded = true;
-            }
-        }
-        pass++;
-    }
 }
 #endif
 
@@ -404,7 +388,8 @@ bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     if (large && (rest > 0U)) {
         sva_flow_ruin_prepare(w, m);
         sva_flow_keep_current(priv, m, plan, sva_flow_plan_value(priv, m, plan));
-        string_rounds(priv, m, plan, budget, cost);
+        accepting_passes(priv, m, plan, budget, cost,
+                         (uint64_t)m->target_count + ((uint64_t)STRING_CHARGE * uav_units), true);
         sva_flow_write_incumbent(priv, m, plan);  // the swaps start from the incumbent
     }
     grouped = !large;
