@@ -9,6 +9,8 @@
 //   granular moves carries nothing over;
 // - a round's ruin takes strings of consecutive visits, one per route at most, through
 //   its seed, and the same preparation draws the same rounds;
+// - string rounds turn shallow only when at their rate they fall short of one round
+//   per target, and a shallow round's repair searches less than a full one;
 // - the Lagrangian heuristic's shortest paths on real paths are routes within fuel whose
 //   value is the one returned, never below the bound's (merged labels), and the flight
 //   flies only when its predicted work fits the plan's budget.
@@ -319,6 +321,124 @@ void test_string_ruin_takes_strings_through_the_seed(void)
     TEST_ASSERT_TRUE(rounds > 0);
     TEST_ASSERT_TRUE(several_routes > 0);
     TEST_ASSERT_TRUE(long_strings > 0);
+#else
+    TEST_IGNORE_MESSAGE("the profile has no string rounds (SVA_FLOW_GRANULAR 0)");
+#endif
+}
+
+// The rule that turns string rounds shallow: only after SVA_FLOW_SHALLOW_PROBE rounds,
+// and only when the rounds left at the rate so far would not reach one per target.
+void test_string_rounds_turn_shallow_only_when_they_fall_short(void)
+{
+#if SVA_FLOW_GRANULAR
+    const uint32_t probe = SVA_FLOW_SHALLOW_PROBE;
+    // Before the probe: never, even with no work left.
+    TEST_ASSERT_FALSE(sva_flow_rounds_fall_short(probe - 1U, 1000U, 0U, 100U));
+    // probe rounds of 1,000 units each (1 unit of rounding up): probe + 91 rounds left
+    // reach 99 of 100 targets; probe + 92 reach all 100.
+    const uint64_t used = (uint64_t)probe * 999U;
+    TEST_ASSERT_TRUE(sva_flow_rounds_fall_short(probe, used, (100U - probe - 1U) * 1000U, 100U));
+    TEST_ASSERT_FALSE(sva_flow_rounds_fall_short(probe, used, (100U - probe) * 1000U, 100U));
+    // More rounds done than targets: never.
+    TEST_ASSERT_FALSE(sva_flow_rounds_fall_short(probe * 2U, used, 0U, (uint16_t)probe));
+    // Shallow: one pass, within 1/SVA_FLOW_SHALLOW_REACH; else the full local search.
+    sva_flow_work_t* w = &planner.priv.flow;
+    w->local_shallow = true;
+    TEST_ASSERT_EQUAL_UINT32(1U, sva_flow_local_passes(w));
+    TEST_ASSERT_EQUAL_INT64(SVA_FLOW_SHALLOW_REACH, sva_flow_local_reach(w));
+    w->local_shallow = false;
+    TEST_ASSERT_EQUAL_UINT32(SVA_FLOW_LOCAL_PASSES, sva_flow_local_passes(w));
+    TEST_ASSERT_EQUAL_INT64(SVA_FLOW_LOCAL_REACH, sva_flow_local_reach(w));
+    TEST_ASSERT_TRUE(SVA_FLOW_SHALLOW_REACH > SVA_FLOW_LOCAL_REACH);
+#else
+    TEST_IGNORE_MESSAGE("the profile has no string rounds (SVA_FLOW_GRANULAR 0)");
+#endif
+}
+
+#if SVA_FLOW_GRANULAR
+#    define LOCAL_WORK 1000000U
+// A round's ruined plan, kept so that its repair can run twice from it.
+static uint16_t kept_served[SVA_MAX_TARGETS];
+static uint16_t kept_ruined[SVA_FLOW_RUINED_MOST];
+static uint8_t kept_changed[SVA_MAX_UAVS];
+
+// The repair of a string round on `ruined` (kept as above), shallow or not, in *out:
+// the work it spent. Without `reach` it forgets the incumbent first, so that its local
+// search runs whatever the plan's value.
+static uint64_t round_repair(const sva_plan_t* ruined, uint16_t ruined_count, bool shallow,
+                             bool reach, sva_plan_t* out)
+{
+    sva_flow_work_t* w = &planner.priv.flow;
+    *out = *ruined;
+    memcpy(planner.priv.target_served, kept_served, sizeof kept_served);
+    memcpy(w->ruined, kept_ruined, sizeof kept_ruined);
+    memcpy(w->route_changed, kept_changed, sizeof kept_changed);
+    w->ruined_count = ruined_count;
+    w->local_changed_only = true;
+    w->local_shallow = shallow;
+    w->local_work = LOCAL_WORK;  // room for every pass
+    const uint64_t before = w->work;
+    w->has_inc = w->has_inc && reach;  // no incumbent: the local search runs on any plan
+    sva_flow_repair(&planner.priv, &mission, out, true);
+    w->local_changed_only = false;
+    w->local_shallow = false;
+    return w->work - before;
+}
+#endif
+
+// A shallow round's repair searches less: from the same ruined plan, its local search
+// spends at most the work of the full one (its one pass is the full one's first, and
+// it starts on fewer plans), and less on some rounds.
+void test_shallow_rounds_search_less(void)
+{
+#if SVA_FLOW_GRANULAR
+    if (!fits_the_profile()) {
+        TEST_IGNORE_MESSAGE("the profile holds no 100 x 20 mission with flow's graph");
+    }
+    const uint64_t seed = test_seed(0x1A273ULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    sva_flow_work_t* w = &planner.priv.flow;
+    static sva_plan_t ruined;
+    planner.flow_max_work = 20000U;
+    const test_gen_params_t p = params(LARGE_TARGETS);
+    test_gen_mission(&rng, &p, &mission);
+    must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, 0);
+    TEST_ASSERT_TRUE(plan.covered > 0);
+    sva_flow_ruin_prepare(w, &mission);
+    int rounds = 0;
+    int less[2] = {0, 0};
+    for (uint16_t s = 0U; s < mission.target_count; s++) {
+        sva_flow_write_incumbent(&planner.priv, &mission, &ruined);
+        if (planner.priv.target_served[s] == 0U) {
+            continue;
+        }
+        sva_flow_ruin_strings(&planner.priv, &mission, &ruined, s);
+        const uint16_t n = w->ruined_count;
+        memcpy(kept_served, planner.priv.target_served, sizeof kept_served);
+        memcpy(kept_ruined, w->ruined, sizeof kept_ruined);
+        memcpy(kept_changed, w->route_changed, sizeof kept_changed);
+        // The full repair first: the incumbent it may improve only narrows the
+        // shallow one's reach.
+        // Without the incumbent both search the same plan: only their passes differ.
+        // Then against the incumbent: the shallow one's narrower reach, too.
+        for (int reach = 0; reach < 2; reach++) {
+            const uint64_t full = round_repair(&ruined, n, false, reach == 1, &other);
+            const uint64_t part = round_repair(&ruined, n, true, reach == 1, &again);
+            if (part > full) {
+                SVA_TEST_FAIL("seed %llu target %u: shallow repair spent %llu, the full one %llu",
+                              (unsigned long long)seed, (unsigned)s, (unsigned long long)part,
+                              (unsigned long long)full);
+            }
+            less[reach] += (part < full) ? 1 : 0;
+        }
+        rounds++;
+    }
+    printf("# %d rounds: the shallow repair spent less on %d (%d against the incumbent)\n", rounds,
+           less[0], less[1]);
+    TEST_ASSERT_TRUE(rounds > 0);
+    TEST_ASSERT_TRUE(less[0] > 0);
+    TEST_ASSERT_TRUE(less[1] > 0);
 #else
     TEST_IGNORE_MESSAGE("the profile has no string rounds (SVA_FLOW_GRANULAR 0)");
 #endif

@@ -281,6 +281,9 @@ typedef struct {
     /// puts them back first (flow_ruin.c), and the rounds' pseudo-random state.
     uint16_t ruined[SVA_FLOW_RUINED_MOST];
     uint16_t ruined_count;
+    /// The string rounds at their rate could not afford one round per target, and are
+    /// shallow now (flow_ruin.c): the local search's passes and reach are cut (flow.h).
+    bool local_shallow;
     uint32_t ruin_random;
 #endif
     uint16_t spare_route[SVA_MAX_ROUTE_TARGETS];       ///< a route's tail in an exchange

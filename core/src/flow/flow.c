@@ -423,6 +423,7 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
     w->insert_backwards = false;
 #if SVA_FLOW_GRANULAR
     w->local_changed_only = false;
+    w->local_shallow = false;
     w->ruined_count = 0U;
 #endif
     w->work = 0U;

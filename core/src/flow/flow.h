@@ -135,9 +135,35 @@ void sva_flow_take_relaxation(sva_planner_priv_t* priv, const sva_mission_t* m, 
 bool sva_flow_pooled_routes(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
 /// Makes the routes in *plan (with priv->target_served) a plan: drops half-covered
 /// targets and routes' excess, inserts what fits, improves it by local search if it
-/// beats the incumbent (or, with `polish`, comes within 1/16), and offers it.
+/// beats the incumbent (or, with `polish`, comes within reach: below), and offers it.
 void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                      bool polish);
+/// The repair's local search: at most SVA_FLOW_LOCAL_PASSES passes, and (with `polish`)
+/// only for a plan at most 1/SVA_FLOW_LOCAL_REACH of its routes' cells worse than the
+/// incumbent; in a large mission's shallow string rounds (w->local_shallow, flow_ruin.c)
+/// one pass, within 1/SVA_FLOW_SHALLOW_REACH.
+#define SVA_FLOW_LOCAL_PASSES  8U
+#define SVA_FLOW_LOCAL_REACH   16
+#define SVA_FLOW_SHALLOW_REACH 32
+static inline uint32_t sva_flow_local_passes(const sva_flow_work_t* w)
+{
+#if SVA_FLOW_GRANULAR
+    return w->local_shallow ? 1U : SVA_FLOW_LOCAL_PASSES;
+#else
+    (void)w;
+    return SVA_FLOW_LOCAL_PASSES;
+#endif
+}
+
+static inline int64_t sva_flow_local_reach(const sva_flow_work_t* w)
+{
+#if SVA_FLOW_GRANULAR
+    return w->local_shallow ? SVA_FLOW_SHALLOW_REACH : SVA_FLOW_LOCAL_REACH;
+#else
+    (void)w;
+    return SVA_FLOW_LOCAL_REACH;
+#endif
+}
 
 // flow_ruin.c: ruin and recreate.
 /// Ruin and recreate: groups of related visits taken out of the incumbent (a large
@@ -165,6 +191,20 @@ void sva_flow_ruin_accepting(sva_planner_priv_t* priv, const sva_mission_t* m, s
 void sva_flow_ruin_prepare(sva_flow_work_t* w, const sva_mission_t* m);
 void sva_flow_ruin_strings(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                            uint16_t s);
+/// String rounds measured before they may turn shallow.
+#    define SVA_FLOW_SHALLOW_PROBE 8U
+/// Whether a large mission's string rounds, `done` so far on `used` work, would at that
+/// rate spend the `left` work before one round per target: then the rest are shallow
+/// (w->local_shallow; sva_flow_local_passes). Never before SVA_FLOW_SHALLOW_PROBE rounds.
+static inline bool sva_flow_rounds_fall_short(uint32_t done, uint64_t used, uint64_t left,
+                                              uint16_t targets)
+{
+    if (done < SVA_FLOW_SHALLOW_PROBE) {
+        return false;
+    }
+    const uint64_t each = (used / done) + 1U;  // work per round, never 0
+    return ((uint64_t)done + (left / each)) < (uint64_t)targets;
+}
 #endif
 
 // flow_label.c: a UAV's best route under target prices.

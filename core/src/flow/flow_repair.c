@@ -16,11 +16,9 @@
 // Local search: move one UAV's visit to another UAV, swap two UAVs' visits (each in
 // the other's slot), swap two routes' tails, or trade a covered target for an
 // uncovered one of the same need, whenever the plan gets shorter. First improvement;
-// passes until none helps, at most LOCAL_PASSES, and no new pass once a call has used
-// w->local_work. Coverage never changes; every step keeps a plan.
+// passes until none helps, at most sva_flow_local_passes (flow.h), and no new pass once
+// a call has used w->local_work. Coverage never changes; every step keeps a plan.
 #include "flow.h"
-
-#define LOCAL_PASSES 8U
 
 static bool serves(const sva_route_t* r, uint16_t t)
 {
@@ -497,7 +495,8 @@ static void local_search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_p
     const bool granular = w->local_changed_only;
 #endif
     bool better = true;
-    for (uint32_t pass = 0U; better && (pass < LOCAL_PASSES) && (w->work < stop); pass++) {
+    const uint32_t passes = sva_flow_local_passes(w);
+    for (uint32_t pass = 0U; better && (pass < passes) && (w->work < stop); pass++) {
         better = false;
 #if SVA_FLOW_GRANULAR
         // The index, fresh for the pass (trades below change routes too).
@@ -578,10 +577,10 @@ void sva_flow_repair(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_
     // The plan before its local search, which may trade standing visits for cells.
     sva_flow_offer_standing(priv, m, plan);
     // Local search only for plans within reach of the best: better already, or (when
-    // `polish`) at most 1/16 of their length worse.
+    // `polish`) at most 1/sva_flow_local_reach of their length worse (flow.h).
     int64_t margin = 0;
     for (uint16_t u = 0U; polish && (u < m->uav_count); u++) {
-        margin += w->route_cells[u] / 16;
+        margin += w->route_cells[u] / sva_flow_local_reach(w);
     }
     if (w->has_inc && (sva_flow_plan_value(priv, m, plan) >= (w->inc_value + margin))) {
         (void)sva_flow_offer_plan(priv, m, plan);

@@ -318,7 +318,10 @@ static void accepting_round(sva_planner_priv_t* priv, const sva_mission_t* m, sv
 // passes over the covered targets as seeds, each pass's groups of the next size in
 // `sizes` with its seeds three targets further on, or (`strings`) a large mission's
 // strings from the first target on. A pass without a covered target to seed a round
-// ends them: a plan covering nothing gets none.
+// ends them: a plan covering nothing gets none. String rounds that at their rate so far
+// would not reach one round per target turn shallow (sva_flow_rounds_fall_short): more
+// rounds, each with less local search. At 200 x 40 a deep round costs about 11,000
+// units and half the budget affords about 180 of them.
 static void accepting_passes(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                              uint64_t end, int64_t start_cost, uint64_t units, bool strings)
 {
@@ -326,7 +329,9 @@ static void accepting_passes(sva_planner_priv_t* priv, const sva_mission_t* m, s
     sva_flow_work_t* w = &priv->flow;
     const uint64_t from = w->work;
     uint32_t pass = 0U;
+    uint32_t done = 0U;
     bool seeded = true;
+    w->local_shallow = false;
     while (seeded && (w->work < end)) {
         const uint8_t size = sizes[pass % (uint32_t)(sizeof(sizes) / sizeof(sizes[0]))];
         const uint32_t first = strings ? 0U : (pass * 3U);
@@ -337,10 +342,16 @@ static void accepting_passes(sva_planner_priv_t* priv, const sva_mission_t* m, s
                 accepting_round(priv, m, plan, s, size, ((k + pass) % 2U) == 1U, strings, units,
                                 from, end, start_cost);
                 seeded = true;
+                done++;
+                w->local_shallow = w->local_shallow ||
+                                   (strings && (w->work < end) &&
+                                    sva_flow_rounds_fall_short(done, w->work - from, end - w->work,
+                                                               m->target_count));
             }
         }
         pass++;
     }
+    w->local_shallow = false;
 }
 
 void sva_flow_ruin_accepting(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
