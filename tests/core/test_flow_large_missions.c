@@ -2,7 +2,8 @@
 // section 8): 100 targets x 20 UAVs where fuel binds.
 // - every plan passes the SPEC checker and its bound holds;
 // - the work budget grows with the targets: the work spent passes flow_max_work and
-//   stays within flow_max_work x targets / SVA_FLOW_LARGE_FROM and one round more;
+//   stays within flow_max_work x (targets / SVA_FLOW_LARGE_FROM)^2, at most twice
+//   flow_max_work, and one round more;
 // - ruin and recreate runs, and flow covers as many targets as sva and ga and costs no
 //   more than the better of them at equal coverage (their plans seed it);
 // - the same mission gives the same plan after another was planned: the index of the
@@ -62,6 +63,7 @@ void test_large_missions_plan_checked_within_their_grown_budget(void)
     test_rng_t rng;
     test_rng_seed(&rng, seed);
     uint64_t past_base = 0U;
+    uint64_t past_linear = 0U;  // 1/5 past flow_max_work x targets / SVA_FLOW_LARGE_FROM
     for (int round = 0; round < MISSIONS; round++) {
         const test_gen_params_t p = params(LARGE_TARGETS);
         test_gen_mission(&rng, &p, &mission);
@@ -69,13 +71,17 @@ void test_large_missions_plan_checked_within_their_grown_budget(void)
         must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
         check_certificate(&plan, seed, round);
         const uint64_t base = planner.flow_max_work;
-        const uint64_t grown = (base * LARGE_TARGETS) / (uint64_t)SVA_FLOW_LARGE_FROM;
+        const uint64_t from = (uint64_t)SVA_FLOW_LARGE_FROM;
+        const uint64_t square = (base * LARGE_TARGETS * LARGE_TARGETS) / (from * from);
+        const uint64_t grown = (square < (2U * base)) ? square : (2U * base);
         printf("# round %d: covered %d cost %lld bound %lld work %llu (budget %llu) ruin %u\n",
                round, plan.covered, (long long)plan.cost, (long long)plan.stats.lower_bound,
                (unsigned long long)plan.stats.flow_work, (unsigned long long)grown,
                (unsigned)plan.stats.flow_ruin_rounds);
         TEST_ASSERT_TRUE(plan.stats.flow_work <= grown + (grown * OVERSHOOT_NUM) / OVERSHOOT_DEN);
         past_base += (plan.stats.flow_work > base) ? 1U : 0U;
+        const uint64_t linear = (base * LARGE_TARGETS) / from;
+        past_linear += (plan.stats.flow_work > (linear + (linear / 5U))) ? 1U : 0U;
         TEST_ASSERT_TRUE(plan.stats.optimal || (plan.stats.flow_ruin_rounds > 0U));
         const sva_algorithm_t seeds[] = {SVA_ALGO_SVA, SVA_ALGO_GA};
         for (size_t i = 0U; i < (sizeof(seeds) / sizeof(seeds[0])); i++) {
@@ -84,8 +90,10 @@ void test_large_missions_plan_checked_within_their_grown_budget(void)
             TEST_ASSERT_TRUE((plan.covered > other.covered) || (plan.cost <= other.cost));
         }
     }
-    // Fuel binds here: a 100-target mission is not solved within the small budget.
+    // Fuel binds here: a 100-target mission is not solved within the small budget, and
+    // its budget grows faster than its targets.
     TEST_ASSERT_TRUE(past_base > 0U);
+    TEST_ASSERT_TRUE(past_linear > 0U);
 }
 
 void test_large_plans_do_not_depend_on_the_planners_history(void)

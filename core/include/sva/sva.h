@@ -392,8 +392,8 @@ typedef struct sva_planner {
     /// core): the search stops there and returns its best plan, not proven optimal.
     /// sva_planner_init sets SVA_FLOW_MAX_WORK; any value in [1000, SVA_FLOW_MAX_WORK]
     /// may be set between runs (others are clamped into that range). A mission of more
-    /// than SVA_FLOW_LARGE_FROM targets gets this budget times min(targets, 2 *
-    /// SVA_FLOW_LARGE_FROM) / SVA_FLOW_LARGE_FROM (sva_config.h).
+    /// than SVA_FLOW_LARGE_FROM targets gets this budget times (targets /
+    /// SVA_FLOW_LARGE_FROM)^2, at most twice this budget (sva_config.h).
     uint32_t flow_max_work;
     /// flow's work budget in sva_replan() with a standing plan, if smaller:
     /// sva_planner_init sets SVA_FLOW_REPLAN_WORK (clamped and scaled as flow_max_work).

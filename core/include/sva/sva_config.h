@@ -228,8 +228,8 @@
 #endif
 
 /// A mission of more than SVA_FLOW_LARGE_FROM targets is large for flow: its work
-/// budget is flow_max_work * min(targets, 2 * SVA_FLOW_LARGE_FROM) /
-/// SVA_FLOW_LARGE_FROM (sva.h), its Lagrangian phase gets an eighth of that budget and
+/// budget is flow_max_work * (targets / SVA_FLOW_LARGE_FROM)^2, at most twice
+/// flow_max_work (sva.h), its Lagrangian phase gets an eighth of that budget and
 /// its heuristic flies real paths when the flight fits the budget, and its ruin and
 /// recreate is granular (flow_ruin.c): a round takes strings of visits out of the
 /// routes serving its seed's SVA_FLOW_NEAR most related targets and puts them back in

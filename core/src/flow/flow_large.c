@@ -1,6 +1,7 @@
 // flow_large.c -- flow's rules for large missions, of more than SVA_FLOW_LARGE_FROM
-// targets (DESIGN.md section 8): their work budget grows with their targets (up to
-// twice the planner's, at twice SVA_FLOW_LARGE_FROM targets); the Lagrangian phase
+// targets (DESIGN.md section 8): their work budget grows with the square of their
+// targets (up to twice the planner's, from 91 targets: a round's work grows with the
+// targets and with the fleet, which grows with them); the Lagrangian phase
 // gets an eighth of it from its own start (its subgradient steps are long there and
 // its bound gains little from them, but its heuristic's flight finds good plans), and
 // none when the search's bound already certifies the plan; one local search gets an
@@ -19,11 +20,13 @@
 
 uint64_t sva_flow_budget(const sva_mission_t* m, uint64_t budget)
 {
-    const uint64_t most = 2U * (uint64_t)SVA_FLOW_LARGE_FROM;
-    const uint64_t targets = (m->target_count < most) ? m->target_count : most;
+    const uint64_t from = (uint64_t)SVA_FLOW_LARGE_FROM;
+    const uint64_t targets = m->target_count;
     uint64_t grown = budget;
     if (sva_flow_large(m)) {
-        grown = (budget / (uint64_t)SVA_FLOW_LARGE_FROM) * targets;
+        const uint64_t most = 2U * budget;
+        grown = ((budget * targets) * targets) / (from * from);  // budget <= SVA_FLOW_MAX_WORK
+        grown = (grown > most) ? most : grown;
     }
     return grown;
 }
