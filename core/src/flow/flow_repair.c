@@ -386,9 +386,10 @@ static void new_try(sva_flow_work_t* w, uint16_t uav_count)
     }
 }
 
-// Moves route a's k-th visit t into route b when that saves cells (b untried so far).
+// Moves route a's k-th visit t, whose removal saves `saving` cells, into route b when
+// that saves cells (b untried so far).
 static bool relocate_to(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, uint16_t a,
-                        uint16_t k, uint16_t b)
+                        uint16_t k, uint16_t b, int64_t saving)
 {
     sva_route_t* ra = &plan->routes[a];
     sva_route_t* rb = &plan->routes[b];
@@ -398,8 +399,8 @@ static bool relocate_to(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* 
     }
     w->uav_tried[b] = w->try_epoch;
     w->work += 1U + rb->target_count;
-    if (serves(rb, t) || !sva_flow_best_place(w, m, plan, b, t) ||
-        (w->insert_delta[b] >= sva_flow_stop_saving(m, a, ra, k))) {
+    if (!sva_flow_place_may_save(m, plan, b, t, saving) || serves(rb, t) ||
+        !sva_flow_best_place(w, m, plan, b, t) || (w->insert_delta[b] >= saving)) {
         return false;
     }
     sva_flow_remove_at(m, w, ra, a, k);
@@ -413,18 +414,19 @@ static bool granular_move(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t
                           uint16_t k)
 {
     const uint16_t t = plan->routes[a].targets[k];
+    const int64_t saving = sva_flow_stop_saving(m, a, &plan->routes[a], k);
     uint16_t b = 0U;
     uint16_t j = 0U;
     new_try(w, m->uav_count);
     for (uint16_t n = 0U; n < w->near_count; n++) {
         if (located(w, m, plan, w->near[t][n], a, &b, &j) &&
-            (relocate_to(w, m, plan, a, k, b) || swap_pair(w, m, plan, a, k, b, j))) {
+            (relocate_to(w, m, plan, a, k, b, saving) || swap_pair(w, m, plan, a, k, b, j))) {
             return true;
         }
     }
     for (b = 0U; b < m->uav_count; b++) {
         if ((b != a) && (plan->routes[b].target_count == 0U) && !plan->routes[b].stranded &&
-            relocate_to(w, m, plan, a, k, b)) {
+            relocate_to(w, m, plan, a, k, b, saving)) {
             return true;
         }
     }
@@ -444,7 +446,8 @@ static bool granular_move(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t
             }
             indexed_pieces(w, &plan->routes[a], i, 0U);
             indexed_pieces(w, &plan->routes[b], jc, 1U);
-            if (cut_saves(w, m, plan, a, b, i, jc, before)) {
+            if (sva_flow_cut_may_save(w, m, plan, a, b, i, jc, before) &&
+                cut_saves(w, m, plan, a, b, i, jc, before)) {
                 return true;
             }
         }
