@@ -81,8 +81,9 @@ static uint64_t fill_fuel_after(sva_flow_cover_t* c, const sva_planner_priv_t* p
 
 // Whether UAV state s reaches target t (the j-th) by its start and still gets home
 // from there; *leg gets the cells flown.
-static bool reaches(const sva_flow_cover_t* c, const sva_mission_t* m,
-                    const sva_flow_cover_uav_t* s, uint16_t j, const sva_target_t* t, int32_t* leg)
+static inline bool reaches(const sva_flow_cover_t* c, const sva_mission_t* m,
+                           const sva_flow_cover_uav_t* s, uint16_t j, const sva_target_t* t,
+                           int32_t* leg)
 {
     *leg = sva_distance(s->x, s->y, t->x, t->y);
     return ((int32_t)s->served < (int32_t)SVA_MAX_ROUTE_TARGETS) &&
@@ -111,9 +112,13 @@ static bool may_cover(sva_flow_cover_t* c, const sva_planner_priv_t* priv, const
             }
             c->reach[j]++;
             const int64_t left = (int64_t)s->fuel - leg - m->hover_fuel;
-            // The most k with fuel_after[j][k] <= left; k = 0 fits (reaches).
-            int32_t lo = 0;
+            // The most k with fuel_after[j][k] <= left (k = 0 fits: reaches), sought
+            // only when it passes `most`: from `most` on, if that fits.
+            int32_t lo = most;
             int32_t hi = (int32_t)n - 1 - (int32_t)j;
+            if ((lo > hi) || ((int64_t)c->fuel_after[j][lo] > left)) {
+                continue;
+            }
             while (lo < hi) {
                 const int32_t mid = (lo + hi + 1) / 2;
                 if ((int64_t)c->fuel_after[j][mid] <= left) {
@@ -122,8 +127,7 @@ static bool may_cover(sva_flow_cover_t* c, const sva_planner_priv_t* priv, const
                     hi = mid - 1;
                 }
             }
-            const int32_t reachable = lo + 1;
-            most = (reachable > most) ? reachable : most;
+            most = lo + 1;
         }
         const int32_t room = (int32_t)SVA_MAX_ROUTE_TARGETS - (int32_t)s->served;
         most = (most < room) ? most : room;
