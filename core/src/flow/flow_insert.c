@@ -26,17 +26,13 @@ void sva_flow_remove_target(sva_planner_priv_t* priv, const sva_mission_t* m, sv
 {
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         sva_route_t* r = &plan->routes[u];
-        uint16_t kept = 0U;
-        for (uint16_t k = 0U; k < r->target_count; k++) {
-            if (r->targets[k] != t) {
-                r->targets[kept] = r->targets[k];
-                kept++;
+        uint16_t k = 0U;
+        while (k < r->target_count) {
+            if (r->targets[k] == t) {
+                sva_flow_remove_at(m, &priv->flow, r, u, k);
+            } else {
+                k++;
             }
-        }
-        if (kept != r->target_count) {
-            r->target_count = kept;
-            priv->flow.route_cells[u] = sva_route_cells(m, u, r);
-            sva_flow_changed(&priv->flow, u);
         }
     }
     priv->target_served[t] = 0U;
@@ -203,11 +199,11 @@ void sva_flow_insert_at(sva_flow_work_t* w, sva_route_t* r, uint16_t u, uint16_t
 void sva_flow_remove_at(const sva_mission_t* m, sva_flow_work_t* w, sva_route_t* r, uint16_t u,
                         uint16_t k)
 {
+    w->route_cells[u] -= sva_flow_stop_saving(m, u, r, k);
     for (uint16_t j = k; (j + 1U) < r->target_count; j++) {
         r->targets[j] = r->targets[j + 1U];
     }
     r->target_count--;
-    w->route_cells[u] = sva_route_cells(m, u, r);
     sva_flow_changed(w, u);
 }
 
