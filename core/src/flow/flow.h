@@ -196,11 +196,11 @@ void sva_flow_ruin_strings(sva_planner_priv_t* priv, const sva_mission_t* m, sva
 /// sva_flow_best_place tries for fewer than `saving` more cells.
 bool sva_flow_place_may_save(const sva_mission_t* m, const sva_plan_t* plan, uint16_t u, uint16_t t,
                              int64_t saving);
-/// Whether the tail exchange of routes a and b at cut (i, j) (a keeps
-/// its first i targets and takes b's from j on, b the other way round; the cut's
-/// pieces in w->piece_pre/piece_post, [0] for a, [1] for b) meets time at both joints
-/// and flies fewer than `before` cells. Fuel, route length and repeated targets are
-/// left to the exchange itself.
+/// Whether the tail exchange of routes a and b at cut (i, j) (a keeps its first i
+/// targets and takes b's from j on, b the other way round; the cut's pieces in
+/// w->piece_pre/piece_post, [0] for a, [1] for b) meets time at both joints and flies
+/// fewer than `before` cells. Fuel, route length and repeated targets are left to the
+/// exchange itself.
 bool sva_flow_cut_may_save(const sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
                            uint16_t a, uint16_t b, uint16_t i, uint16_t j, int64_t before);
 /// String rounds measured before they may turn shallow.
