@@ -157,7 +157,7 @@ static bool is_deficit(const sva_flow_work_t* w, const flow_shape_t* s, uint16_t
 }
 
 // Offers h the distance d through pred code p from node v.
-static void offer(sva_flow_work_t* w, uint16_t v, uint16_t h, int64_t cost, int32_t p)
+static inline void offer(sva_flow_work_t* w, uint16_t v, uint16_t h, int64_t cost, int32_t p)
 {
     if (((w->node_mark[h] & MARK_LIVE) == 0U) || ((w->node_mark[h] & MARK_DONE) != 0U)) {
         return;
