@@ -1,13 +1,14 @@
 // Tests of the granular moves' quick tests (flow_granular.c; DESIGN.md section 8): the
 // local search of a large mission's rounds skips a relocation or a tail exchange they
-// turn down, so they must turn down only moves that cannot save cells. Each is held
-// against the routes the move would make, built out and checked stop by stop here:
+// turn down, so they must turn down only moves that cannot save cells. Each must
+// answer exactly as the routes the move would make, built out and checked stop by stop
+// here:
 // - a relocation: some place of the route where the target meets time (every
 //   place, not only those the search tries) with a detour below the saving;
 // - a tail exchange: both spliced routes meet time, and fly fewer cells together.
-// Fuel is no part of either (the moves check it). Both answers must come up on each
-// mission. The plans are flow's on 100 targets x 20 UAVs, UAVs at the depot and
-// scattered (a route's first leg from where its UAV is, free from its ready time).
+// Fuel is no part of either (the moves check it). Both answers must come up. The plans
+// are flow's on 100 targets x 20 UAVs, UAVs at the depot and scattered (a route's
+// first leg from where its UAV is, free from its ready time).
 // Seeds are printed and replayable (SVA_TEST_SEED=...).
 #include <stdint.h>
 #include <stdio.h>
