@@ -12,6 +12,7 @@
 //   its seed, and the same preparation draws the same rounds;
 // - string rounds turn shallow only when at their rate they fall short of one round
 //   per target, and a shallow round's repair searches less than a full one;
+// - a plan ends where the full local search finds nothing;
 // - the Lagrangian heuristic's shortest paths on real paths are routes within fuel whose
 //   value is the one returned, never below the bound's (merged labels), and the flight
 //   flies only when its predicted work fits the plan's budget.
@@ -447,6 +448,50 @@ void test_shallow_rounds_search_less(void)
     TEST_ASSERT_TRUE(rounds > 0);
     TEST_ASSERT_TRUE(less[0] > 0);
     TEST_ASSERT_TRUE(less[1] > 0);
+#else
+    TEST_IGNORE_MESSAGE("the profile has no string rounds (SVA_FLOW_GRANULAR 0)");
+#endif
+}
+
+// A large mission's plan ends with the full local search (every move between every
+// pair of routes), again while it betters the plan: the full search from the plan flow
+// returns finds nothing. 200 targets x 40 UAVs, windows spread over 600 ticks, where a
+// plan without that polish is left with a better one next to it.
+void test_large_plans_end_where_the_full_local_search_finds_nothing(void)
+{
+#if SVA_FLOW_GRANULAR
+    if ((SVA_MAX_TARGETS < 200) || (SVA_MAX_UAVS < 40) || (SVA_FLOW_MAX_ARCS < 32000L)) {
+        TEST_IGNORE_MESSAGE("the profile holds no 200 x 40 mission with flow's graph");
+    }
+    const uint64_t seed = test_seed(0x1A274ULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    sva_flow_work_t* w = &planner.priv.flow;
+    for (int round = 0; round < MISSIONS; round++) {
+        test_gen_params_t p = params(200);
+        p.uavs = 40;
+        p.grid = 20;
+        p.horizon = 600;
+        test_gen_mission(&rng, &p, &mission);
+        TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
+        must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
+        sva_flow_write_incumbent(&planner.priv, &mission, &other);
+        const int64_t before = sva_flow_plan_value(&planner.priv, &mission, &other);
+        w->local_changed_only = false;
+        w->local_shallow = false;
+        w->has_inc = false;  // the search runs on the plan whatever its value
+        sva_flow_repair(&planner.priv, &mission, &other, true);
+        const int64_t after = sva_flow_plan_value(&planner.priv, &mission, &other);
+        printf("# round %d: covered %d cost %lld, ruin rounds %u; value %lld, after the full "
+               "search %lld\n",
+               round, plan.covered, (long long)plan.cost, (unsigned)plan.stats.flow_ruin_rounds,
+               (long long)before, (long long)after);
+        if (after < before) {
+            SVA_TEST_FAIL("seed %llu round %d: the full local search took the plan's value from "
+                          "%lld to %lld",
+                          (unsigned long long)seed, round, (long long)before, (long long)after);
+        }
+    }
 #else
     TEST_IGNORE_MESSAGE("the profile has no string rounds (SVA_FLOW_GRANULAR 0)");
 #endif

@@ -172,8 +172,10 @@ static inline int64_t sva_flow_local_reach(const sva_flow_work_t* w)
 /// offers each plan. With three quarters of the work left before `end` (a large
 /// mission's rounds, with no target uncovered for the swaps: all of it), unless the
 /// incumbent is within 1/SVA_FLOW_CLOSE of `proven_bound`, a bound with its coverage
-/// proven the most (-1: none). Leaves the incumbent in *plan. Returns true, doing
-/// nothing, when the bound reaches the incumbent's cost: it is proven optimal.
+/// proven the most (-1: none). A large mission's rounds end with the full local search
+/// from the incumbent, again while it betters it. Leaves the incumbent in *plan.
+/// Returns true, doing nothing, when the bound reaches the incumbent's cost: it is
+/// proven optimal.
 bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                             uint64_t end, int64_t proven_bound);
 #if SVA_FLOW_GRANULAR

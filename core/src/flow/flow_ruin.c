@@ -10,7 +10,8 @@
 // A large mission's rounds take strings of visits out instead (after SISR, Christiaens
 // and Vanden Berghe, 2020), put them back in an order drawn for the round, and start
 // from a current plan instead of the incumbent, which a round's plan replaces when
-// within a falling threshold of it (threshold accepting).
+// within a falling threshold of it (threshold accepting); the incumbent they leave gets
+// the full local search last, again while it betters it (their own search is granular).
 // A plan with a need above 1 ends with accepting rounds of groups
 // (sva_flow_ruin_accepting); both kinds run in accepting_passes.
 #include "flow.h"
@@ -370,6 +371,24 @@ void sva_flow_ruin_accepting(sva_planner_priv_t* priv, const sva_mission_t* m, s
 }
 #endif
 
+#if SVA_FLOW_GRANULAR
+// The incumbent (in *plan) repaired with the full local search, every move between
+// every pair of routes, again while that betters it, within one local search's work
+// (w->local_work): a large mission's rounds search only near their strings, and the
+// last insertions of a repair follow its search. Leaves the incumbent in *plan.
+static void polish(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+{
+    sva_flow_work_t* w = &priv->flow;
+    const uint64_t end = w->work + w->local_work;
+    int64_t before = 0;
+    do {
+        before = w->inc_value;
+        sva_flow_repair(priv, m, plan, true);
+        sva_flow_write_incumbent(priv, m, plan);
+    } while ((w->inc_value < before) && (w->work < end));
+}
+#endif
+
 bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                             uint64_t end, int64_t proven_bound)
 {
@@ -435,5 +454,10 @@ bool sva_flow_ruin_recreate(sva_planner_priv_t* priv, const sva_mission_t* m, sv
             }
         }
     }
+#if SVA_FLOW_GRANULAR
+    if (large && (rest > 0U)) {
+        polish(priv, m, plan);
+    }
+#endif
     return false;
 }
