@@ -4,8 +4,9 @@
 // - the work budget grows with the targets: the work spent passes flow_max_work and
 //   stays within flow_max_work x (targets / SVA_FLOW_LARGE_FROM)^2, at most twice
 //   flow_max_work, and one round more;
-// - ruin and recreate runs, and flow covers as many targets as sva and ga and costs no
-//   more than the better of them at equal coverage (their plans seed it);
+// - ruin and recreate runs (unless the plan is optimal or within 1/SVA_FLOW_CLOSE of its
+//   bound), and flow covers as many targets as sva and ga and costs no more than the
+//   better of them at equal coverage (their plans seed it);
 // - the same mission gives the same plan after another was planned: the index of the
 //   granular moves carries nothing over;
 // - a round's ruin takes strings of consecutive visits, one per route at most, through
@@ -83,7 +84,9 @@ void test_large_missions_plan_checked_within_their_grown_budget(void)
         past_base += (plan.stats.flow_work > base) ? 1U : 0U;
         const uint64_t linear = (base * LARGE_TARGETS) / from;
         past_linear += (plan.stats.flow_work > (linear + (linear / 5U))) ? 1U : 0U;
-        TEST_ASSERT_TRUE(plan.stats.optimal || (plan.stats.flow_ruin_rounds > 0U));
+        // Rounds ran, unless the plan is optimal or within 1/SVA_FLOW_CLOSE of its bound.
+        TEST_ASSERT_TRUE(plan.stats.optimal || (plan.stats.flow_ruin_rounds > 0U) ||
+                         sva_flow_close(plan.cost, plan.stats.lower_bound));
         const sva_algorithm_t seeds[] = {SVA_ALGO_SVA, SVA_ALGO_GA};
         for (size_t i = 0U; i < (sizeof(seeds) / sizeof(seeds[0])); i++) {
             must_plan_checked(&planner, &mission, seeds[i], &other, seed, round);
