@@ -373,9 +373,9 @@ void sva_flow_ruin_accepting(sva_planner_priv_t* priv, const sva_mission_t* m, s
 
 #if SVA_FLOW_GRANULAR
 // The incumbent (in *plan) repaired with the full local search, every move between
-// every pair of routes, again while that betters it, within one local search's work
-// (w->local_work): a large mission's rounds search only near their strings, and the
-// last insertions of a repair follow its search. Leaves the incumbent in *plan.
+// every pair of routes: a large mission's rounds search only near their strings. Again
+// while that betters it (a repair inserts what it can after its search, which may open
+// moves), within one local search's work (w->local_work). Leaves the incumbent in *plan.
 static void polish(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
 {
     sva_flow_work_t* w = &priv->flow;
