@@ -261,8 +261,26 @@ typedef enum {
 /// SVA_FLOW_LP_COVER: the master of "cover `covered` targets" without costs, whose
 /// prices (mu = S) are for the coverage phase. SVA_FLOW_LP_RESUME: no new master
 /// (`covered` unused), the last one solved again from its basis.
+#if SVA_FLOW_LP_ROWS >= 2
 bool sva_flow_lp_prices(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
                         int64_t covered, sva_flow_lp_mode_t mode, uint64_t budget, int64_t* mu);
+#else
+// SVA_FLOW_LP_ROWS 1 (a profile with little RAM): no master, so no prices and no dive,
+// inline here so that their callers' code for them compiles away.
+static inline bool sva_flow_lp_prices(sva_flow_work_t* w, const sva_mission_t* m,
+                                      const sva_plan_t* plan, int64_t covered,
+                                      sva_flow_lp_mode_t mode, uint64_t budget, int64_t* mu)
+{
+    (void)w;
+    (void)m;
+    (void)plan;
+    (void)covered;
+    (void)mode;
+    (void)budget;
+    (void)mu;
+    return false;
+}
+#endif
 
 /// flow_dive.c: a dive on the route master as sva_flow_lp_prices last left it (cost master, after a
 /// true return): the route with the largest value is fixed (as many UAVs as its whole
@@ -271,8 +289,20 @@ bool sva_flow_lp_prices(sva_flow_work_t* w, const sva_mission_t* m, const sva_pl
 /// until no route is left in the master's solution or the work reaches `budget`. The
 /// fixed routes go to *plan's routes and priv->target_served, for the caller's
 /// sva_flow_repair to complete and offer. False if nothing was fixed.
+#if SVA_FLOW_LP_ROWS >= 2
 bool sva_flow_lp_dive(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                       uint64_t budget);
+#else
+static inline bool sva_flow_lp_dive(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                    sva_plan_t* plan, uint64_t budget)
+{
+    (void)priv;
+    (void)m;
+    (void)plan;
+    (void)budget;
+    return false;
+}
+#endif
 
 // flow_cover.c: the coverage search.
 typedef enum {

@@ -171,16 +171,4 @@ bool sva_flow_lp_dive(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
     return true;
 }
 
-#else  // SVA_FLOW_LP_ROWS 1: no master (a profile with little RAM)
-
-bool sva_flow_lp_dive(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
-                      uint64_t budget)
-{
-    (void)priv;
-    (void)m;
-    (void)plan;
-    (void)budget;
-    return false;
-}
-
-#endif
+#endif  // SVA_FLOW_LP_ROWS >= 2

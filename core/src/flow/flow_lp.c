@@ -256,19 +256,4 @@ bool sva_flow_lp_prices(sva_flow_work_t* w, const sva_mission_t* m, const sva_pl
     return true;
 }
 
-#else  // SVA_FLOW_LP_ROWS 1: no master (a profile with little RAM)
-
-bool sva_flow_lp_prices(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
-                        int64_t covered, sva_flow_lp_mode_t mode, uint64_t budget, int64_t* mu)
-{
-    (void)w;
-    (void)m;
-    (void)plan;
-    (void)covered;
-    (void)mode;
-    (void)budget;
-    (void)mu;
-    return false;
-}
-
-#endif
+#endif  // SVA_FLOW_LP_ROWS >= 2
