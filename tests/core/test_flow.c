@@ -437,6 +437,83 @@ void test_ruin_and_recreate_plans_hold(void)
     TEST_ASSERT_TRUE(c.best >= c.ran / 2);
 }
 
+// The cost every plan of the mission has modulo 2, worked out from the mission alone:
+// a route's length has the parity of its UAV's distance home (a closed walk on the grid
+// is even), and a UAV that can get home flies there even with nothing to serve.
+static int64_t plans_parity(const sva_mission_t* m)
+{
+    int64_t sum = 0;
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        const int64_t dx = (int64_t)m->uavs[u].x - m->depot_x;
+        const int64_t dy = (int64_t)m->uavs[u].y - m->depot_y;
+        const int64_t home = ((dx < 0) ? -dx : dx) + ((dy < 0) ? -dy : dy);
+        sum += ((int64_t)m->uavs[u].fuel >= home) ? home : 0;
+    }
+    return sum % 2;
+}
+
+// flow raises every bound to the plans' parity (sva_flow_cost_floor). On small missions,
+// half of them with UAVs scattered away from the depot: every algorithm's plan has the
+// parity worked out above, flow's bound has it whenever it is one (above 0) and never
+// passes the brute-force optimum; with the Lagrangian phase forced on (a small budget)
+// and with the default budget.
+void test_bounds_take_the_plans_parity(void)
+{
+    const uint64_t seed = test_seed(0x9A21ULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    const int rounds = 300;
+    int odd = 0;
+    int bounded = 0;
+    for (int round = 0; round < rounds; round++) {
+        const test_gen_params_t p = {test_rng_range(&rng, 4, 6),
+                                     test_rng_range(&rng, 2, 4),
+                                     20,
+                                     4,
+                                     15,
+                                     60,
+                                     test_rng_range(&rng, 1, 2),
+                                     test_rng_range(&rng, 30, 60),
+                                     70,
+                                     2,
+                                     1,
+                                     round % 2,
+                                     0};
+        test_gen_mission(&rng, &p, &mission);
+        const int64_t parity = plans_parity(&mission);
+        odd += (int)parity;
+        const brute_result_t best = brute_force_optimum(&mission);
+        for (int a = 0; a < (int)SVA_ALGO_COUNT_; a++) {
+            must_plan_checked(&planner, &mission, (sva_algorithm_t)a, &other, seed, round);
+            if ((other.cost % 2) != parity) {
+                SVA_TEST_FAIL("seed %llu round %d: %s's plan costs %lld, not of parity %lld",
+                              (unsigned long long)seed, round,
+                              sva_algorithm_name((sva_algorithm_t)a), (long long)other.cost,
+                              (long long)parity);
+            }
+        }
+        for (int budget = 0; budget < 2; budget++) {
+            if (budget == 0) {
+                planner.flow_max_work = 1000U;
+            } else {
+                TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
+            }
+            must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
+            check_against_optimum(&plan, &best, seed, round);
+            if ((plan.stats.lower_bound > 0) && ((plan.stats.lower_bound % 2) != parity)) {
+                SVA_TEST_FAIL("seed %llu round %d budget %s: bound %lld, plans of parity %lld",
+                              (unsigned long long)seed, round, (budget == 0) ? "1000" : "default",
+                              (long long)plan.stats.lower_bound, (long long)parity);
+            }
+            bounded += (plan.stats.lower_bound > 0) ? 1 : 0;
+        }
+    }
+    printf("# %d missions, %d of odd parity; %d of %d plans with a bound\n", rounds, odd, bounded,
+           2 * rounds);
+    TEST_ASSERT_TRUE(odd >= rounds / 10);  // the scattered UAVs make both parities
+    TEST_ASSERT_TRUE(bounded >= rounds);
+}
+
 static sva_mission_t second;
 static sva_plan_t again;
 

@@ -221,7 +221,8 @@ typedef struct {
     int64_t reward_whole;                         ///< W: reward of a covered target
     int32_t need_max;                             ///< the mission's largest need
     bool reward_exact;                            ///< need * (W / need) == W for all
-    int32_t node_x[SVA_FLOW_NODES];               ///< arc cost = Manhattan distance
+    uint8_t cost_parity;             ///< every plan's cost modulo 2 (flow.h, sva_flow_cost_floor)
+    int32_t node_x[SVA_FLOW_NODES];  ///< arc cost = Manhattan distance
     int32_t node_y[SVA_FLOW_NODES];
     uint32_t out_start[SVA_FLOW_NODES + 1];  ///< arcs by tail (CSR)
     uint32_t in_start[SVA_FLOW_NODES + 1];   ///< arc ids by head

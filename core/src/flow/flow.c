@@ -203,6 +203,15 @@ static bool root_is_plan(sva_planner_priv_t* priv, const sva_mission_t* m, sva_p
     return true;
 }
 
+// Whether the node's relaxation shows no plan under it better than the incumbent. Its
+// value bounds theirs; with exact rewards (W even) every plan's value has the parity of
+// its cost, which is the same for all plans (sva_flow_cost_floor), so none is worth one
+// less than the incumbent and a bound one below it is enough.
+static bool no_better(const sva_flow_work_t* w)
+{
+    return w->value >= (w->inc_value - (w->reward_exact ? 1 : 0));
+}
+
 // Depth-first search from the root relaxation (already solved and still in the graph
 // when root_solved); returns the least bound left open (INT64_MAX when the search
 // finished, -INT64_MAX when the budget was already spent) and sets *incomplete.
@@ -227,11 +236,11 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
             return INT64_MIN / 4;
         }
     }
-    if (w->value >= w->inc_value) {
+    if (no_better(w)) {
         return open;
     }
     sva_flow_round(priv, m, plan, true);  // the root's plan is worth polishing
-    if ((w->value < w->inc_value) && choose_branch(priv, m, plan, &w->stack[0])) {
+    if (!no_better(w) && choose_branch(priv, m, plan, &w->stack[0])) {
         w->stack[0].bound = w->value;
         w->depth = 1U;
         stats->flow_max_depth = 1U;
@@ -265,11 +274,11 @@ static int64_t search(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan
         apply_child(w, f, child, 1);
         f->active_child = child;
         stats->search_nodes++;
-        if (!sva_flow_solve(w, stats) || (w->value >= w->inc_value)) {
+        if (!sva_flow_solve(w, stats) || no_better(w)) {
             continue;  // infeasible, or no better than the best plan
         }
         sva_flow_round(priv, m, plan, false);
-        if (w->value >= w->inc_value) {
+        if (no_better(w)) {
             continue;  // the relaxation was a plan, or rounding reached its bound
         }
         if (w->depth >= (uint16_t)SVA_FLOW_MAX_DEPTH) {
@@ -394,7 +403,8 @@ static int64_t pooled_first(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     }
     plan->stats = kept;
     sva_state_reset(priv, m, plan);
-    *proven = w->has_inc && w->reward_exact && (w->inc_value <= pooled);
+    // With exact rewards no plan is worth one less than the incumbent (no_better).
+    *proven = w->has_inc && w->reward_exact && (w->inc_value <= (pooled + 1));
     return pooled;
 }
 

@@ -472,6 +472,13 @@ static inline bool sva_flow_uncovered_left(const sva_planner_priv_t* priv, const
     return left;
 }
 
+/// The least number at least `bound` that a plan's cost can be. A route's length has
+/// the parity of its UAV's distance home (a closed walk on the grid is even), and a UAV
+/// that is not stranded flies home even with no target (SPEC section 1), so all plans of
+/// a mission cost the same modulo 2 (w->cost_parity, flow_graph.c). `bound` < INT64_MAX.
+/// O(1).
+int64_t sva_flow_cost_floor(const sva_flow_work_t* w, int64_t bound);
+
 /// Whether a plan of this cost is that close to `bound` (negative: none proven).
 static inline bool sva_flow_close(int64_t cost, int64_t bound)
 {

@@ -41,7 +41,9 @@ static void set_rewards(sva_flow_work_t* w, const sva_mission_t* m, int64_t wide
         slots += m->targets[t].need;
     }
     const int64_t max_cost = ((int64_t)w->uavs + slots) * widest_leg;
-    const int64_t base = max_cost + 1 + ((int64_t)m->target_count * (int64_t)need_max);
+    // Even, so that a plan's value keeps its cost's parity (flow.c, no_better).
+    int64_t base = max_cost + 1 + ((int64_t)m->target_count * (int64_t)need_max);
+    base += base % 2;
     const int64_t room = FLOW_INT64_LIMIT / (base * ((int64_t)m->target_count + 1));
     int64_t lcm = 1;
     bool exact = true;
@@ -282,11 +284,17 @@ sva_flow_incomplete_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission
     const uint16_t depot = (uint16_t)(u_count + (2U * c_count));
     const uint32_t nodes = (uint32_t)depot + 2U;
     w->arcs = 0U;
+    // Every plan's cost modulo 2 (sva_flow_cost_floor): each UAV that is not stranded
+    // flies a route, even an empty one, as long as its distance home modulo 2, and
+    // |dx| + |dy| has the parity of x + y + the depot's x + y.
+    uint32_t parity = 0U;
     for (uint16_t u = 0U; u < u_count; u++) {
         w->out_start[u] = w->arcs;
         if (plan->routes[u].stranded) {
             continue;
         }
+        parity ^= (uint32_t)m->uavs[u].x ^ (uint32_t)m->uavs[u].y ^ (uint32_t)m->depot_x ^
+                  (uint32_t)m->depot_y;
         for (uint16_t d = 0U; d < c_count; d++) {
             if (uav_reaches(m, w, u, d)) {
                 add_arc(w, u, (uint16_t)(u_count + d));
@@ -306,6 +314,7 @@ sva_flow_incomplete_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission
         }
         add_arc(w, (uint16_t)(u_count + c_count + a), depot);
     }
+    w->cost_parity = (uint8_t)(parity & 1U);
     w->out_start[depot] = w->arcs;
     w->out_start[depot + 1U] = w->arcs;
     w->out_start[nodes] = w->arcs;

@@ -237,6 +237,13 @@ void sva_flow_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_pl
     }
 }
 
+int64_t sva_flow_cost_floor(const sva_flow_work_t* w, int64_t bound)
+{
+    // The low bit of the two's complement, which is the parity for negatives too.
+    const uint64_t off = ((uint64_t)bound ^ (uint64_t)w->cost_parity) & 1U;
+    return bound + (int64_t)off;
+}
+
 bool sva_flow_cost_bound(const sva_planner_priv_t* priv, const sva_mission_t* m, int64_t open,
                          int64_t lagrange_bound, bool coverage_known, int64_t* cost, int64_t* bound)
 {
@@ -258,7 +265,7 @@ bool sva_flow_cost_bound(const sva_planner_priv_t* priv, const sva_mission_t* m,
     const int64_t floor_value = (w->inc_value < open) ? w->inc_value : open;
     *bound = floor_value + (covered * least_whole);
     *bound = (*bound < lagrange_bound) ? lagrange_bound : *bound;
-    *bound = (*bound < 0) ? 0 : *bound;
+    *bound = (*bound > 0) ? sva_flow_cost_floor(w, *bound) : 0;  // 0: no bound (SPEC)
     // No open node holds a plan covering one target more: such a plan's value is at
     // most max_cost - (covered + 1) * least_whole.
     return coverage_known || (floor_value > (w->max_cost - ((covered + 1) * least_whole)));

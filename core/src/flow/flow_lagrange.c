@@ -58,6 +58,16 @@ static int64_t ceil_div(int64_t a, int64_t b)
     return -floor_div(-a, b);
 }
 
+// Whether the steps may stop: the bound `best` (prices' units) reaches the incumbent's
+// cost, or comes within one of it when every target is covered (no plan costs one less:
+// all plans of a mission cost the same modulo 2, sva_flow_cost_floor). Short of full
+// coverage the steps' flights may still find a plan covering more.
+static bool cost_reached(int64_t best, int64_t cost, bool full)
+{
+    return full ? (best > (SVA_FLOW_PRICE_SCALE * (cost - 2)))
+                : (best >= (SVA_FLOW_PRICE_SCALE * cost));
+}
+
 static int64_t clamp64(int64_t v, int64_t lo, int64_t hi)
 {
     return (v < lo) ? lo : ((v > hi) ? hi : v);
@@ -270,6 +280,7 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
 {
     sva_flow_work_t* w = &priv->flow;
     const int64_t s = SVA_FLOW_PRICE_SCALE;
+    const int64_t targets = (int64_t)m->target_count;
     int64_t cost = 0;
     int64_t covered = 0;
     sva_flow_incumbent(priv, m, plan, &cost, &covered);
@@ -289,7 +300,8 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     uint16_t rotate = 0U;
     const uint64_t cost_budget = w->work + ((left / 4U) * 3U);  // the rest: coverage
     while ((ph.iters < (uint32_t)SVA_FLOW_LAGRANGE_ITERS) && (w->work < cost_budget) &&
-           (ph.theta >= THETA_MIN) && (ph.best < ph.target) && (lp_value < ph.target)) {
+           (ph.theta >= THETA_MIN) && !cost_reached(ph.best, cost, covered == targets) &&
+           !cost_reached(lp_value, cost, covered == targets)) {
         int64_t grad_mu = 0;
         const int64_t value = evaluate(w, m, plan, &ph, &grad_mu);
         progress(&ph, value);
@@ -322,17 +334,16 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     // already proves a plan covering every target.
     plan->stats.flow_dive_routes = 0U;
     const int64_t before_dive = (ph.best > lp_value) ? ph.best : lp_value;
-    const bool proven_full = (covered == (int64_t)m->target_count) && (before_dive != NO_BOUND) &&
-                             (ceil_div(before_dive, s) >= cost);
+    const bool proven_full = (covered == targets) && cost_reached(before_dive, cost, true);
     if (master_solved && !proven_full && sva_flow_lp_dive(priv, m, plan, w->work + (left / 8U))) {
         plan->stats.flow_dive_routes = w->lp.fixed_count;
         sva_flow_repair(priv, m, plan, true);
         sva_flow_incumbent(priv, m, plan, &cost, &covered);
     }
     const int64_t best = (ph.best > lp_value) ? ph.best : lp_value;
-    const int64_t bound = (best == NO_BOUND) ? 0 : ceil_div(best, s);
+    const int64_t bound = (best == NO_BOUND) ? 0 : sva_flow_cost_floor(w, ceil_div(best, s));
     // Optimality needs both; the coverage phase runs once the cost is proven.
-    *coverage_proven = *coverage_proven || (covered == (int64_t)m->target_count) ||
+    *coverage_proven = *coverage_proven || (covered == targets) ||
                        ((bound >= cost) && prove_coverage(w, m, plan, covered, budget, iters));
     // Coverage comes first (SPEC 1): while c is not proven the most, a dive on the
     // cost master for c + 1 targets looks for a plan covering one more. Any bound for
