@@ -285,7 +285,7 @@ sva_flow_incomplete_t sva_flow_build(sva_planner_priv_t* priv, const sva_mission
     const uint32_t nodes = (uint32_t)depot + 2U;
     w->arcs = 0U;
     // Every plan's cost modulo 2 (sva_flow_cost_floor): each UAV that is not stranded
-    // flies a route, even an empty one, as long as its distance home modulo 2, and
+    // flies a route (an empty one too) whose length is its distance home modulo 2, and
     // |dx| + |dy| has the parity of x + y + the depot's x + y.
     uint32_t parity = 0U;
     for (uint16_t u = 0U; u < u_count; u++) {
