@@ -3,8 +3,9 @@
 
 Each benchmark writes its own fragment when run with `--results` (scripts/bench.sh,
 scripts/instructions.sh, tests/footprint/footprint.py results, tools/bench/flow_vs_ref.py,
-tools/bench/flow_vs_peer.py, tools/bench/large_profile.py, tools/bench/live_bench.py,
-tools/bench/campaign_bench.py, `sva-tools bench`, tools/bench/lcm_latency.sh), then this script assembles docs/results.md; re-running a bench
+tools/bench/flow_vs_peer.py, tools/bench/flow_latency.py, tools/bench/large_profile.py,
+tools/bench/live_bench.py, tools/bench/campaign_bench.py, `sva-tools bench`,
+tools/bench/lcm_latency.sh), then this script assembles docs/results.md; re-running a bench
 rewrites only its own fragment.
 A fragment is docs/results/SECTION.md (the section's text) or docs/results/SECTION.PART.md
 (one part of it, e.g. one mission set; parts follow the section's own fragment, in name
