@@ -301,8 +301,10 @@ def test_a_tcp_link_reconnects_to_a_restarted_vehicle():
     a.close()
     time.sleep(1.0)
     lat, lon = mavcheck.position_e7(FRAME_MIDNIGHT, -1.0, 4.0)
-    b = StandIn("tcp", port, 1, lat_e7=lat, lon_e7=lon, gps_at_boot_ms=FI["t0_ms"] + 2_000_000)
+    # Taken before the new vehicle listens: the link cannot come back earlier, and the
+    # tool's reader may see it come back before this thread runs again.
     b_started = time.monotonic()
+    b = StandIn("tcp", port, 1, lat_e7=lat, lon_e7=lon, gps_at_boot_ms=FI["t0_ms"] + 2_000_000)
     try:
         t.join(60)
         lines, rc, err = box["out"]
