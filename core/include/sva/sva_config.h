@@ -22,9 +22,10 @@
 ///                  + 8 * SVA_FLOW_LP_ROWS^2 + 68 * SVA_FLOW_LP_ROWS
 ///                  + 14 * SVA_FLOW_LP_COLS                               (route master)
 ///                  + the coverage search (SVA_FLOW_COVER_TARGETS below)
+///                  + the route enumeration (SVA_FLOW_ENUM_ROUTES below)
 ///                  + large missions' granular moves (SVA_FLOW_NEAR below)
-///   (default profile: 741,776 B, of which flow's sva_flow_work_t is 595,856 B; large
-///   profile: 7,344,336 B, of which 6,560,000 B are flow's 656,000 arcs.)
+///   (default profile: 755,112 B, of which flow's sva_flow_work_t is 609,192 B; large
+///   profile: 7,358,952 B, of which 6,560,000 B are flow's 656,000 arcs.)
 
 #ifndef SVA_CONFIG_H
 #define SVA_CONFIG_H
@@ -300,6 +301,18 @@
 #endif
 #if (SVA_FLOW_LP_COLS < 1) || (SVA_FLOW_LP_COLS > 4096)
 #    error "SVA_FLOW_LP_COLS must be in [1, 4096]"
+#endif
+
+/// Routes flow keeps to prove a plan optimal from the route master's prices
+/// (flow_enum.c): every route that a plan cheaper than the incumbent could fly, on
+/// missions of at most 64 targets, need 1, every target covered. 0 turns it off; so
+/// does SVA_FLOW_LP_ROWS 1 (no prices), where it defaults to 0. Cost: 18 B per route
+/// + 20 B per UAV + 2,840 B (13,336 B by default).
+#ifndef SVA_FLOW_ENUM_ROUTES
+#    define SVA_FLOW_ENUM_ROUTES ((SVA_FLOW_LP_ROWS >= 2) ? 512 : 0)
+#endif
+#if (SVA_FLOW_ENUM_ROUTES < 0) || (SVA_FLOW_ENUM_ROUTES > 65535)
+#    error "SVA_FLOW_ENUM_ROUTES must be in [0, 65535]"
 #endif
 
 /// flow's coverage search (flow_cover.c): missions of at most this many targets and

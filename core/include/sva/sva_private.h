@@ -156,7 +156,40 @@ typedef struct {
     uint16_t rows;
 } sva_flow_lp_t;
 
-// flow's coverage search (flow_cover.c), when SVA_FLOW_COVER_TARGETS is not 0.
+// flow's proof from the master's prices (flow_enum.c), when SVA_FLOW_ENUM_ROUTES is not 0.
+#if SVA_FLOW_ENUM_ROUTES > 0
+#    define SVA_FLOW_ENUM_TARGETS 64  ///< a route's targets are one uint64_t
+
+/// The routes a plan cheaper than the incumbent could fly, and the two depth-first
+/// searches: the routes' (over the DAG of targets) and the exact cover's (over them).
+typedef struct {
+    uint64_t mask[SVA_FLOW_ENUM_ROUTES];   ///< a route's targets, bit c = copy c
+    int64_t slack[SVA_FLOW_ENUM_ROUTES];   ///< its value over its state's best (prices')
+    uint16_t state[SVA_FLOW_ENUM_ROUTES];  ///< its UAV state (first UAV, lagrange.group)
+    uint16_t count;                        ///< routes kept
+    int64_t price[SVA_FLOW_ENUM_TARGETS];  ///< the master's prices (prices' units)
+    bool has_prices;                       ///< price[] holds them for this mission
+    /// Routes first[c] .. first[c + 1] - 1 start with copy c.
+    uint16_t first[SVA_FLOW_ENUM_TARGETS + 1];
+    int64_t tail[SVA_FLOW_ENUM_TARGETS];  ///< least value from copy c home, fuel ignored
+    int64_t best[SVA_MAX_UAVS];           ///< a state's best route value (a lower bound)
+    int64_t empty[SVA_MAX_UAVS];          ///< the slack of a state's empty route
+    uint16_t members[SVA_MAX_UAVS];       ///< a state's UAVs
+    uint16_t used[SVA_MAX_UAVS];          ///< the cover's routes of a state
+    // The routes' search: the copy, its next arc, value and fuel at each depth.
+    uint16_t at[SVA_FLOW_ENUM_TARGETS];
+    uint32_t arc[SVA_FLOW_ENUM_TARGETS];
+    int64_t value[SVA_FLOW_ENUM_TARGETS];
+    int64_t fuel[SVA_FLOW_ENUM_TARGETS];
+    // The cover's search: the route taken at each depth, and the best cover found.
+    uint16_t pick[SVA_FLOW_ENUM_TARGETS + 1];
+    uint16_t chosen[SVA_FLOW_ENUM_TARGETS];
+    uint16_t chosen_count;
+} sva_flow_enum_t;
+#endif
+
+// flow's coverage search (flow_cover.c), when SVA_FLOW_COVER_TARGETS is not 0.// flow's coverage
+// search (flow_cover.c), when SVA_FLOW_COVER_TARGETS is not 0.
 #if SVA_FLOW_COVER_TARGETS > 0
 #    define SVA_FLOW_COVER_T SVA_FLOW_COVER_TARGETS
 #    define SVA_FLOW_COVER_U ((SVA_FLOW_COVER_UAVS > 0) ? SVA_FLOW_COVER_UAVS : 1)
@@ -313,6 +346,9 @@ typedef struct {
     sva_flow_frame_t stack[SVA_FLOW_MAX_DEPTH];
     sva_flow_lagrange_t lagrange;
     sva_flow_lp_t lp;
+#if SVA_FLOW_ENUM_ROUTES > 0
+    sva_flow_enum_t enumeration;
+#endif
 #if SVA_FLOW_COVER_TARGETS > 0
     sva_flow_cover_t cover;
 #endif

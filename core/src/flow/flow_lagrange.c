@@ -275,6 +275,24 @@ static bool prove_coverage(sva_flow_work_t* w, const sva_mission_t* m, const sva
     return false;
 }
 
+#if SVA_FLOW_ENUM_ROUTES > 0
+// The proof of flow_enum.c for the incumbent, when it covers every target, within a
+// quarter of the phase's work (`left`); *cost becomes the incumbent's (a cover it finds
+// is cheaper).
+static bool enum_proves(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                        int64_t* cost, uint64_t left)
+{
+    int64_t covered = 0;
+    sva_flow_incumbent(priv, m, plan, cost, &covered);
+    if ((covered != (int64_t)m->target_count) ||
+        !sva_flow_enum_prove(priv, m, plan, *cost, priv->flow.work + (left / 4U))) {
+        return false;
+    }
+    sva_flow_incumbent(priv, m, plan, cost, &covered);
+    return true;
+}
+#endif
+
 int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                           uint64_t budget, bool* coverage_proven, uint32_t* iters)
 {
@@ -290,6 +308,18 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     plan->stats.flow_lp_columns = 0U;
     const int64_t lp_covered = covered;
     int64_t lp_value = master_value(w, m, plan, covered, w->work + (left / 2U));
+#if SVA_FLOW_ENUM_ROUTES > 0
+    // Every target covered: the master's prices may prove the plan optimal at once, or
+    // give the optimum (flow_enum.c); then the phase has nothing left to do.
+    sva_flow_enum_prices(w, m, (lp_value != NO_BOUND) && (covered == targets));
+    if (enum_proves(priv, m, plan, &cost, left)) {
+        *iters = 0U;
+        *coverage_proven = true;
+        plan->stats.flow_dive_routes = 0U;
+        plan->stats.flow_cover_dive = (uint8_t)SVA_FLOW_COVER_DIVE_NOT_RUN;
+        return cost;
+    }
+#endif
     start_prices(w, m);
     int64_t most = 0;
     for (uint16_t t = 0U; t < m->target_count; t++) {
@@ -362,5 +392,12 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
         }
     }
     plan->stats.flow_cover_dive = (uint8_t)dive;
+#if SVA_FLOW_ENUM_ROUTES > 0
+    // Again with the phase's incumbent (its cost is lower now, so fewer routes).
+    if ((bound < cost) && enum_proves(priv, m, plan, &cost, left)) {
+        *coverage_proven = true;
+        return cost;
+    }
+#endif
     return (bound < 0) ? 0 : bound;
 }

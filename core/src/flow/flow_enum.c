@@ -1,0 +1,339 @@
+// flow_enum.c -- a proof, or the optimum, from the route master's prices when its bound
+// comes near the incumbent's cost (DESIGN.md section 8, "Route enumeration").
+//
+// Prices pi (the master's duals) and, for each UAV state g, a lower bound B_g on the
+// value of its routes (value(r) = S x cells(r) - the prices of r's targets, S the
+// prices' scale; the labels' shortest path, merged labels included) give, for every plan
+// P that covers every target with one UAV each (need 1):
+//     S x cost(P) = sum_g n_g B_g + sum_t pi_t + sum over P's routes of (value(r) - B_g),
+// every term of the last sum at least 0. A plan cheaper than the incumbent costs at most
+// its cost - 2 (every plan of a mission has one parity, sva_flow_cost_floor), so its
+// routes' slacks (value(r) - B_g) sum to at most gap = S x (cost - 2) - sum_g n_g B_g -
+// sum_t pi_t, and each is at most gap. The routes' search lists every route with a slack
+// that small, depth first over the DAG of targets, pruned by a completion bound that
+// ignores fuel; the cover's search then takes, depth first, one route for the first
+// target in window order not yet covered, among the routes that start there (every
+// target before it is covered), within the UAVs of each state and the gap, which
+// shrinks to a cover's own slack sum less 2 S each time it finds one. The last cover it
+// finds is the optimum; if it finds none, the incumbent is. It gives up (no claim) when
+// the routes outgrow SVA_FLOW_ENUM_ROUTES or the work reaches its end. Arc steps and
+// the routes tried count as work.
+#include "flow.h"
+
+#if SVA_FLOW_ENUM_ROUTES > 0
+
+static int64_t least(int64_t a, int64_t b)
+{
+    return (a < b) ? a : b;
+}
+
+// The cells from copy c's target home.
+static int64_t home_of(const sva_flow_work_t* w, const sva_mission_t* m, uint16_t c)
+{
+    const sva_target_t* t = &m->targets[w->copy_target[c]];
+    return sva_distance(t->x, t->y, m->depot_x, m->depot_y);
+}
+
+// The cells from copy a's target to copy b's.
+static int64_t leg_of(const sva_flow_work_t* w, const sva_mission_t* m, uint16_t a, uint16_t b)
+{
+    const sva_target_t* s = &m->targets[w->copy_target[a]];
+    const sva_target_t* t = &m->targets[w->copy_target[b]];
+    return sva_distance(s->x, s->y, t->x, t->y);
+}
+
+// Each state's best route value and UAVs; returns sum_g n_g B_g + sum_t pi_t, the
+// Lagrangian value of plans covering every target (prices' units).
+static int64_t state_bounds(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan)
+{
+    sva_flow_lagrange_t* lg = &w->lagrange;
+    sva_flow_enum_t* e = &w->enumeration;
+    int64_t value = 0;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        lg->closed[t] = 0U;
+        lg->path_price[t] = e->price[t];
+        value += e->price[t];
+    }
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        e->members[u] = 0U;
+        e->used[u] = 0U;
+    }
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        if (!plan->routes[u].stranded) {
+            e->members[lg->group[u]]++;
+        }
+    }
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        if ((e->members[u] > 0U) && (lg->group[u] == u)) {
+            e->best[u] = sva_flow_best_route(w, m, u, SVA_FLOW_PRICE_SCALE);
+            const sva_uav_t* uav = &m->uavs[u];
+            const int64_t home = sva_distance(uav->x, uav->y, m->depot_x, m->depot_y);
+            e->empty[u] = (SVA_FLOW_PRICE_SCALE * home) - e->best[u];
+            value += (int64_t)e->members[u] * e->best[u];
+        }
+    }
+    return value;
+}
+
+// tail[c]: the least value from copy c's target home over the DAG, fuel ignored (a
+// bound on any route's rest from there), by the copies' topological order backwards.
+static void completion_bounds(sva_flow_work_t* w, const sva_mission_t* m)
+{
+    sva_flow_enum_t* e = &w->enumeration;
+    const uint16_t out_base = (uint16_t)(w->uavs + w->copies);
+    for (uint16_t k = w->copies; k > 0U; k--) {
+        const uint16_t c = (uint16_t)(k - 1U);
+        int64_t best = SVA_FLOW_PRICE_SCALE * home_of(w, m, c);
+        for (uint32_t a = w->out_start[out_base + c]; a < w->out_start[out_base + c + 1U]; a++) {
+            const uint16_t h = w->arc_head[a];
+            if (h < out_base) {
+                const uint16_t d = (uint16_t)(h - w->uavs);
+                best = least(best, (SVA_FLOW_PRICE_SCALE * leg_of(w, m, c, d)) -
+                                       e->price[w->copy_target[d]] + e->tail[d]);
+            }
+        }
+        e->tail[c] = best;
+    }
+}
+
+// Keeps the route of depth `depth` (its copies: e->at[0..depth]); false when full.
+static bool keep(sva_flow_enum_t* e, uint16_t state, uint16_t depth, int64_t slack)
+{
+    if (e->count >= (uint16_t)SVA_FLOW_ENUM_ROUTES) {
+        return false;
+    }
+    uint64_t mask = 0U;
+    for (uint16_t k = 0U; k <= depth; k++) {
+        mask |= (uint64_t)1U << e->at[k];
+    }
+    e->mask[e->count] = mask;
+    e->slack[e->count] = slack;
+    e->state[e->count] = state;
+    e->count++;
+    return true;
+}
+
+// Every route of state u that starts with copy c, of slack at most gap, into the list;
+// false when the list is full or the work reaches `end`.
+static bool routes_from(sva_flow_work_t* w, const sva_mission_t* m, uint16_t u, uint16_t c,
+                        int64_t gap, uint64_t end)
+{
+    sva_flow_enum_t* e = &w->enumeration;
+    const sva_uav_t* uav = &m->uavs[u];
+    const int64_t s = SVA_FLOW_PRICE_SCALE;
+    const int64_t hover = m->hover_fuel;
+    const uint16_t out_base = (uint16_t)(w->uavs + w->copies);
+    const sva_target_t* first = &m->targets[w->copy_target[c]];
+    const int64_t leg = sva_distance(uav->x, uav->y, first->x, first->y);
+    if ((leg + w->target_tail[w->copy_target[c]]) > uav->fuel) {
+        return true;
+    }
+    e->at[0] = c;
+    e->value[0] = (s * leg) - e->price[w->copy_target[c]];
+    e->fuel[0] = leg + hover;
+    e->arc[0] = w->out_start[out_base + c];
+    if ((e->value[0] + e->tail[c] - e->best[u]) > gap) {
+        return true;
+    }
+    const int64_t slack0 = e->value[0] + (s * home_of(w, m, c)) - e->best[u];
+    if ((slack0 <= gap) && !keep(e, u, 0U, slack0)) {
+        return false;
+    }
+    uint16_t depth = 0U;
+    bool going = true;
+    while (going) {
+        const uint16_t a = e->at[depth];
+        const uint32_t arc = e->arc[depth];
+        if ((arc >= w->out_start[out_base + a + 1U]) || (w->arc_head[arc] >= out_base) ||
+            (((uint32_t)depth + 1U) >= (uint32_t)SVA_MAX_ROUTE_TARGETS)) {
+            // This copy's arcs are done (the depot's comes last): back up.
+            going = depth > 0U;
+            depth = going ? (uint16_t)(depth - 1U) : 0U;
+            continue;
+        }
+        e->arc[depth] = arc + 1U;
+        w->work++;
+        const uint16_t d = (uint16_t)(w->arc_head[arc] - w->uavs);
+        const uint16_t t = w->copy_target[d];
+        const int64_t step = leg_of(w, m, a, d);
+        const int64_t value = e->value[depth] + (s * step) - e->price[t];
+        if (((e->fuel[depth] + step + w->target_tail[t]) > uav->fuel) ||
+            ((value + e->tail[d] - e->best[u]) > gap)) {
+            continue;
+        }
+        depth++;
+        e->at[depth] = d;
+        e->value[depth] = value;
+        e->fuel[depth] = e->fuel[depth - 1U] + step + hover;
+        e->arc[depth] = w->out_start[out_base + d];
+        const int64_t slack = value + (s * home_of(w, m, d)) - e->best[u];
+        if (((slack <= gap) && !keep(e, u, depth, slack)) || (w->work >= end)) {
+            return false;
+        }
+    }
+    return w->work < end;
+}
+
+// The list: for each copy in order, every state's routes that start there.
+static bool list_routes(sva_flow_work_t* w, const sva_mission_t* m, int64_t gap, uint64_t end)
+{
+    sva_flow_enum_t* e = &w->enumeration;
+    e->count = 0U;
+    for (uint16_t c = 0U; c < w->copies; c++) {
+        e->first[c] = e->count;
+        for (uint16_t u = 0U; u < m->uav_count; u++) {
+            if ((e->members[u] == 0U) || (w->lagrange.group[u] != u)) {
+                continue;
+            }
+            for (uint32_t a = w->out_start[u]; a < w->out_start[u + 1U]; a++) {
+                if ((w->arc_head[a] == (uint16_t)(w->uavs + c)) &&
+                    !routes_from(w, m, u, c, gap, end)) {
+                    return false;
+                }
+            }
+        }
+    }
+    e->first[w->copies] = e->count;
+    return true;
+}
+
+// The first copy not in `covered` (w->copies when all are).
+static uint16_t first_open(const sva_flow_work_t* w, uint64_t covered)
+{
+    uint16_t c = 0U;
+    while ((c < w->copies) && (((covered >> c) & 1U) != 0U)) {
+        c++;
+    }
+    return c;
+}
+
+// The cover's search: sets e->chosen to the best cover of slack sum at most gap (none
+// found: chosen_count 0); false when the work reaches `end` first.
+static bool cover(sva_flow_work_t* w, const sva_mission_t* m, int64_t gap, uint64_t end)
+{
+    sva_flow_enum_t* e = &w->enumeration;
+    int64_t limit = gap;
+    int64_t sum = 0;
+    uint64_t covered = 0U;
+    uint16_t depth = 0U;
+    e->chosen_count = 0U;
+    e->pick[0] = e->first[first_open(w, covered)];
+    for (;;) {
+        const uint16_t c = first_open(w, covered);
+        if (c == w->copies) {
+            // Every target covered: the other UAVs fly home.
+            int64_t total = sum;
+            for (uint16_t u = 0U; u < m->uav_count; u++) {
+                if ((e->members[u] > 0U) && (w->lagrange.group[u] == u)) {
+                    const int64_t idle = (int64_t)e->members[u] - (int64_t)e->used[u];
+                    total += idle * e->empty[u];
+                }
+            }
+            if (total <= limit) {
+                for (uint16_t k = 0U; k < depth; k++) {
+                    e->chosen[k] = e->pick[k];
+                }
+                e->chosen_count = depth;
+                limit = total - (2 * (int64_t)SVA_FLOW_PRICE_SCALE);
+            }
+        } else {
+            // The next route for c that fits, from pick[depth] on.
+            uint16_t r = e->pick[depth];
+            while ((r < e->first[c + 1U]) &&
+                   (((e->mask[r] & covered) != 0U) || ((sum + e->slack[r]) > limit) ||
+                    (e->used[e->state[r]] >= e->members[e->state[r]]))) {
+                r++;
+                w->work++;
+            }
+            w->work++;
+            if (w->work >= end) {
+                return false;
+            }
+            if (r < e->first[c + 1U]) {
+                e->pick[depth] = r;
+                covered |= e->mask[r];
+                sum += e->slack[r];
+                e->used[e->state[r]]++;
+                depth++;
+                e->pick[depth] = e->first[first_open(w, covered)];
+                continue;
+            }
+        }
+        // Back up: undo the route of the depth above and try its next.
+        if (depth == 0U) {
+            return true;
+        }
+        depth--;
+        const uint16_t r = e->pick[depth];
+        covered &= ~e->mask[r];
+        sum -= e->slack[r];
+        e->used[e->state[r]]--;
+        e->pick[depth] = (uint16_t)(r + 1U);
+    }
+}
+
+// The cover found, as the plan's routes, offered as the incumbent.
+static void offer_cover(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+{
+    sva_flow_work_t* w = &priv->flow;
+    const sva_flow_enum_t* e = &w->enumeration;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        priv->target_served[t] = 0U;
+    }
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        plan->routes[u].target_count = 0U;
+    }
+    for (uint16_t k = 0U; k < e->chosen_count; k++) {
+        const uint16_t r = e->chosen[k];
+        uint16_t v = 0U;
+        while ((v < m->uav_count) &&
+               (plan->routes[v].stranded || (w->lagrange.group[v] != e->state[r]) ||
+                (plan->routes[v].target_count > 0U))) {
+            v++;
+        }
+        SVA_ASSERT(v < m->uav_count);  // the cover takes at most a state's UAVs
+        sva_route_t* route = &plan->routes[v];
+        for (uint16_t c = 0U; c < w->copies; c++) {
+            if (((e->mask[r] >> c) & 1U) != 0U) {
+                const uint16_t t = w->copy_target[c];
+                route->targets[route->target_count] = t;
+                route->target_count++;
+                priv->target_served[t]++;
+            }
+        }
+    }
+    (void)sva_flow_offer_plan(priv, m, plan);
+}
+
+void sva_flow_enum_prices(sva_flow_work_t* w, const sva_mission_t* m, bool taken)
+{
+    sva_flow_enum_t* e = &w->enumeration;
+    e->has_prices = taken && (m->target_count <= (uint16_t)SVA_FLOW_ENUM_TARGETS);
+    for (uint16_t t = 0U; e->has_prices && (t < m->target_count); t++) {
+        e->price[t] = w->lagrange.price[t];
+    }
+}
+
+bool sva_flow_enum_prove(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                         int64_t cost, uint64_t end)
+{
+    sva_flow_work_t* w = &priv->flow;
+    if (!w->enumeration.has_prices || (w->need_max != 1) || !w->reward_exact ||
+        (w->copies > (uint16_t)SVA_FLOW_ENUM_TARGETS) || (w->copies != m->target_count)) {
+        return false;
+    }
+    const int64_t gap = (SVA_FLOW_PRICE_SCALE * (cost - 2)) - state_bounds(w, m, plan);
+    if (gap < 0) {
+        return true;  // no plan costs cost - 2 or less
+    }
+    completion_bounds(w, m);
+    if (!list_routes(w, m, gap, end) || !cover(w, m, gap, end)) {
+        return false;
+    }
+    if (w->enumeration.chosen_count > 0U) {
+        offer_cover(priv, m, plan);
+    }
+    return true;
+}
+
+#endif  // SVA_FLOW_ENUM_ROUTES > 0
