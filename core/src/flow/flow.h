@@ -487,6 +487,18 @@ static inline bool sva_flow_uncovered_left(const sva_planner_priv_t* priv, const
     return left;
 }
 
+#if SVA_FLOW_LP_ROWS >= 2
+/// Empties every route of *plan and priv->target_served, for routes written anew (the
+/// master's dive, the route enumeration's cover). O(T + U).
+void sva_flow_clear_routes(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan);
+
+/// The first UAV that is not stranded, whose route in *plan is still empty and whose
+/// state key state[v] (w->lagrange.group, or the master's group_row) is `want`;
+/// m->uav_count when none is left. O(U).
+uint16_t sva_flow_idle_uav(const sva_mission_t* m, const sva_plan_t* plan, const uint16_t* state,
+                           uint16_t want);
+#endif
+
 /// The least number at least `bound` that a plan's cost can be. A route's length has
 /// the parity of its UAV's distance home (a closed walk on the grid is even), and a UAV
 /// that is not stranded flies home even with no target (SPEC section 1), so all plans of

@@ -68,20 +68,10 @@ static void fix_route(sva_flow_lp_t* lp, uint16_t col, int64_t k)
 static void write_fixed(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
 {
     const sva_flow_lp_t* lp = &priv->flow.lp;
-    for (uint16_t t = 0U; t < m->target_count; t++) {
-        priv->target_served[t] = 0U;
-    }
-    for (uint16_t u = 0U; u < m->uav_count; u++) {
-        plan->routes[u].target_count = 0U;
-    }
+    sva_flow_clear_routes(priv, m, plan);
     for (uint16_t f = 0U; f < lp->fixed_count; f++) {
         const uint16_t col = lp->fixed[f];
-        const uint16_t row = state_row(lp, col);
-        uint16_t v = 0U;
-        while ((v < m->uav_count) && (plan->routes[v].stranded || (lp->group_row[v] != row) ||
-                                      (plan->routes[v].target_count > 0U))) {
-            v++;
-        }
+        const uint16_t v = sva_flow_idle_uav(m, plan, lp->group_row, state_row(lp, col));
         if (v == m->uav_count) {
             continue;  // (cannot be: a state's row caps its routes at its UAVs)
         }

@@ -277,20 +277,10 @@ static void offer_cover(sva_planner_priv_t* priv, const sva_mission_t* m, sva_pl
 {
     sva_flow_work_t* w = &priv->flow;
     const sva_flow_enum_t* e = &w->enumeration;
-    for (uint16_t t = 0U; t < m->target_count; t++) {
-        priv->target_served[t] = 0U;
-    }
-    for (uint16_t u = 0U; u < m->uav_count; u++) {
-        plan->routes[u].target_count = 0U;
-    }
+    sva_flow_clear_routes(priv, m, plan);
     for (uint16_t k = 0U; k < e->chosen_count; k++) {
         const uint16_t r = e->chosen[k];
-        uint16_t v = 0U;
-        while ((v < m->uav_count) &&
-               (plan->routes[v].stranded || (w->lagrange.group[v] != e->state[r]) ||
-                (plan->routes[v].target_count > 0U))) {
-            v++;
-        }
+        const uint16_t v = sva_flow_idle_uav(m, plan, w->lagrange.group, e->state[r]);
         SVA_ASSERT(v < m->uav_count);  // the cover takes at most a state's UAVs
         sva_route_t* route = &plan->routes[v];
         for (uint16_t c = 0U; c < w->copies; c++) {

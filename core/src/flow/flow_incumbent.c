@@ -237,6 +237,29 @@ void sva_flow_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_pl
     }
 }
 
+#if SVA_FLOW_LP_ROWS >= 2
+void sva_flow_clear_routes(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+{
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        priv->target_served[t] = 0U;
+    }
+    for (uint16_t u = 0U; u < m->uav_count; u++) {
+        plan->routes[u].target_count = 0U;
+    }
+}
+
+uint16_t sva_flow_idle_uav(const sva_mission_t* m, const sva_plan_t* plan, const uint16_t* state,
+                           uint16_t want)
+{
+    uint16_t v = 0U;
+    while ((v < m->uav_count) && (plan->routes[v].stranded || (state[v] != want) ||
+                                  (plan->routes[v].target_count > 0U))) {
+        v++;
+    }
+    return v;
+}
+#endif
+
 int64_t sva_flow_cost_floor(const sva_flow_work_t* w, int64_t bound)
 {
     // The low bit of the two's complement, which is the parity for negatives too.
