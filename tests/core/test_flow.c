@@ -204,12 +204,13 @@ typedef struct {
     int best;    // of those, with a plan as good as the optimum
 } phase_counts_t;
 
-// `rounds` small missions (min_targets..6 targets, 2..4 UAVs, fuel often binding)
-// planned by flow under `budget` and checked against brute force (bound at or below
-// the optimum, every "optimal" claim true, the plan checked); counts the missions
-// `ran` says the phase under test ran on.
+// `rounds` small missions (min_targets..6 targets, 2..4 UAVs, needs up to need_max,
+// fuel often binding) planned by flow under `budget` and checked against brute force
+// (bound at or below the optimum, every "optimal" claim true, the plan checked); counts
+// the missions `ran` says the phase under test ran on.
 static phase_counts_t against_brute_force(uint64_t seed_default, int rounds, uint32_t budget,
-                                          int min_targets, bool (*ran)(const sva_plan_t*))
+                                          int min_targets, int need_max,
+                                          bool (*ran)(const sva_plan_t*))
 {
     const uint64_t seed = test_seed(seed_default);
     test_rng_t rng;
@@ -223,7 +224,7 @@ static phase_counts_t against_brute_force(uint64_t seed_default, int rounds, uin
                                      4,
                                      15,
                                      60,
-                                     test_rng_range(&rng, 1, 2),
+                                     test_rng_range(&rng, 1, need_max),
                                      test_rng_range(&rng, 30, 60),
                                      70,
                                      2,
@@ -271,12 +272,35 @@ static bool ruin_ran(const sva_plan_t* p)
 void test_lagrangian_phase_bound_and_claims_hold(void)
 {
     const int rounds = 400;
-    const phase_counts_t c = against_brute_force(0x1A6EULL, rounds, 1000U, 4, lagrangian_phase_ran);
+    const phase_counts_t c =
+        against_brute_force(0x1A6EULL, rounds, 1000U, 4, 2, lagrangian_phase_ran);
     printf(
         "# %d missions: Lagrangian phase ran on %d, proved %d, bound equal to the optimum on %d\n",
         rounds, c.ran, c.proven, c.tight);
     TEST_ASSERT_TRUE(c.ran >= rounds / 10);
     TEST_ASSERT_TRUE(c.tight > 0);
+}
+
+static bool proven_optimal(const sva_plan_t* p)
+{
+    return p->stats.optimal;
+}
+
+// The route enumeration (flow_enum.c) where it runs: need 1, at a budget that leaves the
+// master room and at the default. Every bound and "optimal" claim holds against brute
+// force, and most plans are proven (the enumeration's own tests are test_flow_enum.c).
+void test_route_enumeration_claims_hold(void)
+{
+    const int rounds = 300;
+    const uint32_t budgets[] = {6000U, (uint32_t)SVA_FLOW_MAX_WORK};
+    for (int b = 0; b < 2; b++) {
+        const phase_counts_t c =
+            against_brute_force(0xE1A2ULL + (uint64_t)b, rounds, budgets[b], 4, 1, proven_optimal);
+        printf("# %d need-1 missions, budget %u: proven optimal %d, equal to the optimum %d\n",
+               rounds, (unsigned)budgets[b], c.ran, c.best);
+        TEST_ASSERT_TRUE(c.ran > rounds / 2);
+        TEST_ASSERT_EQUAL_INT(c.ran, c.best);
+    }
 }
 
 // The route master's prices (flow_lp.c), at a budget that leaves the master room
@@ -286,7 +310,7 @@ void test_lagrangian_phase_bound_and_claims_hold(void)
 void test_route_master_bound_and_claims_hold(void)
 {
     const int rounds = 300;
-    const phase_counts_t c = against_brute_force(0x10C0ULL, rounds, 6000U, 5, route_master_ran);
+    const phase_counts_t c = against_brute_force(0x10C0ULL, rounds, 6000U, 5, 2, route_master_ran);
     printf(
         "# %d missions: the route master ran on %d, proved %d, bound equal to the optimum on %d\n",
         rounds, c.ran, c.proven, c.tight);
@@ -304,7 +328,7 @@ void test_route_master_bound_and_claims_hold(void)
 void test_route_master_dive_plans_hold(void)
 {
     const int rounds = 300;
-    const phase_counts_t c = against_brute_force(0xD17EULL, rounds, 6000U, 5, dive_ran);
+    const phase_counts_t c = against_brute_force(0xD17EULL, rounds, 6000U, 5, 2, dive_ran);
     printf("# %d missions: the dive ran on %d; flow's plan optimal on %d of them\n", rounds, c.ran,
            c.best);
 #if SVA_FLOW_LP_ROWS >= 2
@@ -430,7 +454,7 @@ void test_route_master_holds_only_real_routes(void)
 void test_ruin_and_recreate_plans_hold(void)
 {
     const int rounds = 500;
-    const phase_counts_t c = against_brute_force(0x2E1ULL, rounds, 6000U, 5, ruin_ran);
+    const phase_counts_t c = against_brute_force(0x2E1ULL, rounds, 6000U, 5, 2, ruin_ran);
     printf("# %d missions: ruin and recreate ran on %d; flow's plan optimal on %d of them\n",
            rounds, c.ran, c.best);
     TEST_ASSERT_TRUE(c.ran >= 30);
@@ -455,8 +479,10 @@ static int64_t plans_parity(const sva_mission_t* m)
 // flow raises every bound to the plans' parity (sva_flow_cost_floor). On small missions,
 // half of them with UAVs scattered away from the depot: every algorithm's plan has the
 // parity worked out above, flow's bound has it whenever it is one (above 0) and never
-// passes the brute-force optimum; with the Lagrangian phase forced on (a small budget)
-// and with the default budget.
+// passes the brute-force optimum, and every "optimal" claim is true; with the Lagrangian
+// phase forced on (a budget of 1000), with room for the route master and its route
+// enumeration (6000; flow_enum.c, whose own tests are test_flow_enum.c) and with the
+// default budget.
 void test_bounds_take_the_plans_parity(void)
 {
     const uint64_t seed = test_seed(0x9A21ULL);
@@ -492,24 +518,25 @@ void test_bounds_take_the_plans_parity(void)
                               (long long)parity);
             }
         }
-        for (int budget = 0; budget < 2; budget++) {
-            if (budget == 0) {
-                planner.flow_max_work = 1000U;
-            } else {
-                TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
+        static const uint32_t budgets[] = {1000U, 6000U, 0U};  // 0: the default
+        for (int budget = 0; budget < 3; budget++) {
+            TEST_ASSERT_EQUAL_INT(SVA_OK, sva_planner_init(&planner));
+            if (budgets[budget] > 0U) {
+                planner.flow_max_work = budgets[budget];
             }
             must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
             check_against_optimum(&plan, &best, seed, round);
             if ((plan.stats.lower_bound > 0) && ((plan.stats.lower_bound % 2) != parity)) {
-                SVA_TEST_FAIL("seed %llu round %d budget %s: bound %lld, plans of parity %lld",
-                              (unsigned long long)seed, round, (budget == 0) ? "1000" : "default",
+                SVA_TEST_FAIL("seed %llu round %d budget %u (0: the default): bound %lld, plans of "
+                              "parity %lld",
+                              (unsigned long long)seed, round, (unsigned)budgets[budget],
                               (long long)plan.stats.lower_bound, (long long)parity);
             }
             bounded += (plan.stats.lower_bound > 0) ? 1 : 0;
         }
     }
     printf("# %d missions, %d of odd parity; %d of %d plans with a bound\n", rounds, odd, bounded,
-           2 * rounds);
+           3 * rounds);
     TEST_ASSERT_TRUE(odd >= rounds / 10);  // the scattered UAVs make both parities
     TEST_ASSERT_TRUE(bounded >= rounds);
 }
