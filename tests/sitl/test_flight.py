@@ -93,7 +93,9 @@ def test_the_lost_vehicles_work_goes_to_the_others_only(flight):
     assert any(t == 5 for _u, t in r["changes"]["added"])
     lat = log["sitl"]["losses"][0]
     assert lat["uav"] == 1 and lat["uploaded_to"] and 1 not in lat["uploaded_to"]
-    assert 0 < lat["replan_ms"] <= lat["upload_ms"] < 15_000
+    # both instants are when this side read the node's reply and the bridge's line: the
+    # line can be read first
+    assert 0 < lat["replan_ms"] < 15_000 and 0 < lat["upload_ms"] < 15_000
     u1 = next(u for u in log["uavs"] if u["id"] == 1)
     kill = next(e["at_ms"] for e in log["sitl"]["events"] if e["type"] == "uav_lost")
     assert not [x for x in u1["uploads"] if x.get("items") and x["at_ms"] > kill]

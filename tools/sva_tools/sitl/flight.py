@@ -148,7 +148,9 @@ class Flight:
     # --- clocks ----------------------------------------------------------------------
 
     def fleet_utc_ms(self) -> float | None:
-        """The fleet's clock: the median of the clocks of the vehicles in service."""
+        """The fleet's clock: the median of the clocks of the vehicles in service. It never
+        runs back (the median can, when a vehicle leaves or joins the service), so that
+        the record's instants keep the order in which this process saw them."""
         clocks = sorted(c for c in (k.utc_ms() for k in self.crafts if k.in_service and k.ready)
                         if c is not None)
         if not clocks:
@@ -157,6 +159,8 @@ class Flight:
             at, host = self._last_fleet  # nobody in service: the last clock, run on
             return at + (time.monotonic() - host) * 1000.0 * self.s.speedup
         now = clocks[len(clocks) // 2]
+        if self._last_fleet is not None:
+            now = max(now, self._last_fleet[0])
         self._last_fleet = (now, time.monotonic())
         return now
 

@@ -249,15 +249,14 @@ def _losses(log: dict[str, Any]) -> list[dict[str, Any]]:
             row["replan_ms"] = rp["at_ms"] - kill
             row["replan_at"] = rp["at"]
             row["dropped"] = rp["changes"]["dropped"]
-            # the uploads of the replan's own plan (the bridge's lines name it); without
-            # plan ids, those before the next replan
+            # the uploads of the replan's own plan (the bridge's lines name it, at whatever
+            # instant they were read); without plan ids, those between it and the next replan
             pid = ((rp.get("plan") or {}).get("stats") or {}).get("plan_id")
             nxt = next((x["at_ms"] for x in replans if x["at_ms"] > rp["at_ms"]), None)
             ups = [(u["at_ms"], v["id"]) for v in log["uavs"] for u in v["uploads"]
                    if u.get("items") is not None and u["at_ms"] is not None
-                   and u["at_ms"] >= rp["at_ms"]
                    and (str(u.get("plan")) == str(pid) if pid is not None
-                        else (nxt is None or u["at_ms"] <= nxt))]
+                        else (rp["at_ms"] <= u["at_ms"] and (nxt is None or u["at_ms"] <= nxt)))]
             if ups:
                 row["upload_ms"] = max(a for a, _ in ups) - kill
                 row["uploaded_to"] = sorted({u for _a, u in ups})
