@@ -1,8 +1,10 @@
 // Tests of flow's proof from the route master's prices (flow_enum.c; DESIGN.md section
-// 8, "Route enumeration"), on tiny need-1 missions that brute force covers in full:
+// 8, "Route enumeration"), on tiny need-1 missions that brute force solves, some covered
+// in full and some not (then at the optimum's coverage, which no plan exceeds):
 // - its arithmetic holds for any prices, so given prices (zero, and drawn at random)
 //   and an incumbent cost 2 or 4 above the optimum, it must return a proof and leave an
-//   incumbent of the optimum's cost, which the independent SPEC checker accepts;
+//   incumbent of the optimum's cost and coverage, which the independent SPEC checker
+//   accepts;
 // - given the optimum's own cost, it must prove it and offer no plan.
 // flow's own claims with the enumeration on (a budget that leaves the master room) are
 // held to brute force by test_flow.c's test_bounds_take_the_plans_parity.
@@ -43,9 +45,10 @@ static void draw_mission(test_rng_t* rng, int round)
     test_gen_mission(rng, &p, &mission);
 }
 
-// Runs the proof on the mission with these prices and an incumbent of this cost (none
-// offered before); true when it proves, with the incumbent it leaves in plan (when any).
-static bool prove(test_rng_t* rng, bool random_prices, int64_t cost, bool* offered)
+// Runs the proof on the mission with these prices and an incumbent of this cost and
+// coverage (none offered before); true when it proves, with the incumbent it leaves in
+// plan (when any).
+static bool prove(test_rng_t* rng, bool random_prices, int64_t cost, int64_t covered, bool* offered)
 {
     sva_flow_work_t* w = &planner.priv.flow;
     sva_state_reset(&planner.priv, &mission, &plan);
@@ -60,7 +63,8 @@ static bool prove(test_rng_t* rng, bool random_prices, int64_t cost, bool* offer
     sva_flow_enum_prices(w, &mission, true);
     w->has_inc = false;
     w->work = 0U;
-    const bool proved = sva_flow_enum_prove(&planner.priv, &mission, &plan, cost, UINT64_MAX / 4U);
+    const bool proved =
+        sva_flow_enum_prove(&planner.priv, &mission, &plan, cost, covered, UINT64_MAX / 4U);
     *offered = w->has_inc;
     if (*offered) {
         sva_flow_write_incumbent(&planner.priv, &mission, &plan);
@@ -81,19 +85,19 @@ void test_enumeration_finds_or_proves_the_optimum(void)
     test_rng_seed(&rng, seed);
     const int rounds = 400;
     int tried = 0;
+    int partial = 0;
     int fuel_binds = 0;
     char msg[256];
     for (int round = 0; round < rounds; round++) {
         draw_mission(&rng, round);
         const brute_result_t best = brute_force_optimum(&mission);
-        if (best.covered != (int)mission.target_count) {
-            continue;  // the proof is for plans covering every target
-        }
         tried++;
+        partial += (best.covered < (int)mission.target_count) ? 1 : 0;
         for (int k = 0; k < 6; k++) {
             const int64_t above = (k < 2) ? 0 : ((k < 4) ? 2 : 4);
             bool offered = false;
-            const bool proved = prove(&rng, (k % 2) == 1, best.cost + above, &offered);
+            const bool proved =
+                prove(&rng, (k % 2) == 1, best.cost + above, best.covered, &offered);
             if (!proved || (offered != (above > 0))) {
                 SVA_TEST_FAIL("seed %llu round %d try %d: incumbent %lld, the optimum %lld: "
                               "proved %d, offered %d",
@@ -103,7 +107,7 @@ void test_enumeration_finds_or_proves_the_optimum(void)
             if (!offered) {
                 continue;  // at the optimum: nothing to offer
             }
-            if ((plan.cost != best.cost) || (plan.covered != (uint16_t)mission.target_count)) {
+            if ((plan.cost != best.cost) || (plan.covered != (uint16_t)best.covered)) {
                 SVA_TEST_FAIL("seed %llu round %d try %d: cost %lld covering %u, the optimum "
                               "%lld covering %d",
                               (unsigned long long)seed, round, k, (long long)plan.cost,
@@ -114,15 +118,18 @@ void test_enumeration_finds_or_proves_the_optimum(void)
                               msg);
             }
         }
-        // Fuel binds when the optimum with unbounded fuel costs less.
+        // Fuel binds when the optimum with unbounded fuel covers more or costs less.
         free_fuel = mission;
         for (uint16_t u = 0U; u < free_fuel.uav_count; u++) {
             free_fuel.uavs[u].fuel = SVA_MAX_FUEL;
         }
-        fuel_binds += (brute_force_optimum(&free_fuel).cost < best.cost) ? 1 : 0;
+        const brute_result_t unbound = brute_force_optimum(&free_fuel);
+        fuel_binds += ((unbound.covered > best.covered) || (unbound.cost < best.cost)) ? 1 : 0;
     }
-    printf("# %d missions covered in full, fuel binding on %d\n", tried, fuel_binds);
-    TEST_ASSERT_TRUE(tried >= rounds / 4);
+    printf("# %d missions, %d not covered in full, fuel binding on %d\n", tried, partial,
+           fuel_binds);
+    TEST_ASSERT_TRUE(partial >= rounds / 10);
+    TEST_ASSERT_TRUE((tried - partial) >= rounds / 4);
     TEST_ASSERT_TRUE(fuel_binds > 0);
 #else
     TEST_IGNORE_MESSAGE("the profile keeps no routes (SVA_FLOW_ENUM_ROUTES 0)");

@@ -169,6 +169,12 @@ typedef struct {
     uint16_t count;                        ///< routes kept
     int64_t price[SVA_FLOW_ENUM_TARGETS];  ///< the master's prices (prices' units)
     bool has_prices;                       ///< price[] holds them for this mission
+    // A covered target's reward mu, the targets a plan covers at least (least) and so
+    // the targets a cover may leave (skips).
+    int64_t mu;
+    int64_t least;
+    uint16_t skips;
+    uint64_t skipped;  ///< the cover's search: the copies it leaves
     /// Routes first[c] .. first[c + 1] - 1 start with copy c.
     uint16_t first[SVA_FLOW_ENUM_TARGETS + 1];
     int64_t tail[SVA_FLOW_ENUM_TARGETS];  ///< least value from copy c home, fuel ignored

@@ -305,18 +305,19 @@ static inline bool sva_flow_lp_dive(sva_planner_priv_t* priv, const sva_mission_
 #endif
 
 #if SVA_FLOW_ENUM_ROUTES > 0
-/// flow_enum.c: keeps w->lagrange.price, the route master's prices for plans covering
-/// every target, when `taken` (else forgets any kept before), for sva_flow_enum_prove.
+/// flow_enum.c: keeps w->lagrange.price, the cost master's prices, when `taken` (else
+/// forgets any kept before), for sva_flow_enum_prove.
 void sva_flow_enum_prices(sva_flow_work_t* w, const sva_mission_t* m, bool taken);
 
-/// flow_enum.c: with the prices kept and an incumbent of this cost covering every
-/// target (need 1, at most 64 targets), every route a cheaper plan could fly, then an
-/// exact cover of the targets by them; a cover found (the optimum) is offered as the
-/// incumbent. True when the incumbent is then proven optimal; false (no claim) without
-/// prices, past its bounds, when the routes outgrow SVA_FLOW_ENUM_ROUTES or when the
-/// work reaches `end`.
+/// flow_enum.c: with the prices kept and an incumbent of this cost covering `covered`
+/// targets (need 1, at most 64 targets), every route a cheaper plan covering as many or
+/// more could fly, then a cover of the targets by them; the cheapest cover found is
+/// offered as the incumbent. True when no plan covering `covered` targets or more costs
+/// less than the incumbent then (its cost is a bound); false (no claim) without prices,
+/// past its bounds, when a cover found covers more, when the routes outgrow
+/// SVA_FLOW_ENUM_ROUTES or when the work reaches `end`.
 bool sva_flow_enum_prove(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
-                         int64_t cost, uint64_t end);
+                         int64_t cost, int64_t covered, uint64_t end);
 #endif
 
 // flow_cover.c: the coverage search.// flow_cover.c: the coverage search.

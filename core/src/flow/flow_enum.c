@@ -1,23 +1,30 @@
-// flow_enum.c -- a proof, or the optimum, from the route master's prices when its bound
-// comes near the incumbent's cost (DESIGN.md section 8, "Route enumeration").
+// flow_enum.c -- a proof, or a cheaper plan, from the route master's prices when its
+// bound comes near the incumbent's cost (DESIGN.md section 8, "Route enumeration").
 //
-// Prices pi (the master's duals) and, for each UAV state g, a lower bound B_g on the
-// value of its routes (value(r) = S x cells(r) - the prices of r's targets, S the
-// prices' scale; the labels' shortest path, merged labels included) give, for every plan
-// P that covers every target with one UAV each (need 1):
-//     S x cost(P) = sum_g n_g B_g + sum_t pi_t + sum over P's routes of (value(r) - B_g),
-// every term of the last sum at least 0. A plan cheaper than the incumbent costs at most
-// its cost - 2 (every plan of a mission has one parity, sva_flow_cost_floor), so its
-// routes' slacks (value(r) - B_g) sum to at most gap = S x (cost - 2) - sum_g n_g B_g -
-// sum_t pi_t, and each is at most gap. The routes' search lists every route with a slack
-// that small, depth first over the DAG of targets, pruned by a completion bound that
-// ignores fuel; the cover's search then takes, depth first, one route for the first
-// target in window order not yet covered, among the routes that start there (every
-// target before it is covered), within the UAVs of each state and the gap, which
-// shrinks to a cover's own slack sum less 2 S each time it finds one. The last cover it
-// finds is the optimum; if it finds none, the incumbent is. It gives up (no claim) when
-// the routes outgrow SVA_FLOW_ENUM_ROUTES or the work reaches its end. Arc steps and
-// the routes tried count as work.
+// Prices pi (the master's duals), a covered target's reward mu >= 0 and, for each UAV
+// state g, a lower bound B_g on the value of its routes (value(r) = S x cells(r) - the
+// prices of r's targets, S the prices' scale; the labels' shortest path, merged labels
+// included) give, for every plan P (need 1) covering a set C of at least k targets:
+//     S x cost(P) - mu (|C| - k) = L + E(P),
+//     L = sum_g n_g B_g + sum_t min(0, pi_t - mu) + mu k,
+//     E(P) = sum over P's routes of (value(r) - B_g) + sum_{t in C} max(0, pi_t - mu)
+//            + sum_{t not in C} max(0, mu - pi_t),
+// every term of E at least 0. With k the incumbent's coverage, a plan covering as many
+// targets or more and cheaper than the incumbent costs at most its cost - 2 (every plan
+// of a mission has one parity, sva_flow_cost_floor), so its E is at most gap = S x
+// (cost - 2) - L. mu is the one that makes L largest: the (k+1)-th least price, or above
+// every price when k is every target (then E is the routes' slacks alone).
+// A route's slack (value(r) - B_g, plus its targets' excess) is then at most gap. The
+// routes' search lists every route with a slack that small, depth first over the DAG of
+// targets, pruned by a completion bound that ignores fuel; the cover's search then
+// takes, depth first, for the first target in window order not yet decided, one route
+// that starts there (every target before it is decided), or leaves it (at most as many
+// as k allows), within the UAVs of each state and the gap, which shrinks to a cover's
+// own sum less 2 S each time it finds one. The last cover it finds is the cheapest of
+// coverage k or more; if it finds none, the incumbent is. It gives up (no claim) when
+// the routes outgrow SVA_FLOW_ENUM_ROUTES, the work reaches its end, or a cover covers
+// more than k (a better plan, offered, but not proven the best). Arc steps and the
+// routes tried count as work.
 #include "flow.h"
 
 #if SVA_FLOW_ENUM_ROUTES > 0
@@ -42,17 +49,29 @@ static int64_t leg_of(const sva_flow_work_t* w, const sva_mission_t* m, uint16_t
     return sva_distance(s->x, s->y, t->x, t->y);
 }
 
-// Each state's best route value and UAVs; returns sum_g n_g B_g + sum_t pi_t, the
-// Lagrangian value of plans covering every target (prices' units).
+// The reward's excess of copy c's target when covered, and when left.
+static int64_t covered_excess(const sva_flow_enum_t* e, const sva_flow_work_t* w, uint16_t c)
+{
+    const int64_t d = e->price[w->copy_target[c]] - e->mu;
+    return (d > 0) ? d : 0;
+}
+
+static int64_t left_excess(const sva_flow_enum_t* e, const sva_flow_work_t* w, uint16_t c)
+{
+    const int64_t d = e->mu - e->price[w->copy_target[c]];
+    return (d > 0) ? d : 0;
+}
+
+// Each state's best route value and UAVs; returns L (prices' units).
 static int64_t state_bounds(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan)
 {
     sva_flow_lagrange_t* lg = &w->lagrange;
     sva_flow_enum_t* e = &w->enumeration;
-    int64_t value = 0;
+    int64_t value = e->mu * e->least;
     for (uint16_t t = 0U; t < m->target_count; t++) {
         lg->closed[t] = 0U;
         lg->path_price[t] = e->price[t];
-        value += e->price[t];
+        value += least(0, e->price[t] - e->mu);
     }
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         e->members[u] = 0U;
@@ -96,18 +115,25 @@ static void completion_bounds(sva_flow_work_t* w, const sva_mission_t* m)
     }
 }
 
-// Keeps the route of depth `depth` (its copies: e->at[0..depth]); false when full.
-static bool keep(sva_flow_enum_t* e, uint16_t state, uint16_t depth, int64_t slack)
+// Keeps the route of depth `depth` (its copies: e->at[0..depth]) when its slack, its
+// targets' excess added, is at most gap; false when the list is full.
+static bool keep(const sva_flow_work_t* w, sva_flow_enum_t* e, uint16_t state, uint16_t depth,
+                 int64_t slack, int64_t gap)
 {
+    uint64_t mask = 0U;
+    int64_t sum = slack;
+    for (uint16_t k = 0U; k <= depth; k++) {
+        mask |= (uint64_t)1U << e->at[k];
+        sum += covered_excess(e, w, e->at[k]);
+    }
+    if (sum > gap) {
+        return true;
+    }
     if (e->count >= (uint16_t)SVA_FLOW_ENUM_ROUTES) {
         return false;
     }
-    uint64_t mask = 0U;
-    for (uint16_t k = 0U; k <= depth; k++) {
-        mask |= (uint64_t)1U << e->at[k];
-    }
     e->mask[e->count] = mask;
-    e->slack[e->count] = slack;
+    e->slack[e->count] = sum;
     e->state[e->count] = state;
     e->count++;
     return true;
@@ -136,7 +162,7 @@ static bool routes_from(sva_flow_work_t* w, const sva_mission_t* m, uint16_t u, 
         return true;
     }
     const int64_t slack0 = e->value[0] + (s * home_of(w, m, c)) - e->best[u];
-    if ((slack0 <= gap) && !keep(e, u, 0U, slack0)) {
+    if ((slack0 <= gap) && !keep(w, e, u, 0U, slack0, gap)) {
         return false;
     }
     uint16_t depth = 0U;
@@ -167,7 +193,7 @@ static bool routes_from(sva_flow_work_t* w, const sva_mission_t* m, uint16_t u, 
         e->fuel[depth] = e->fuel[depth - 1U] + step + hover;
         e->arc[depth] = w->out_start[out_base + d];
         const int64_t slack = value + (s * home_of(w, m, d)) - e->best[u];
-        if (((slack <= gap) && !keep(e, u, depth, slack)) || (w->work >= end)) {
+        if (((slack <= gap) && !keep(w, e, u, depth, slack, gap)) || (w->work >= end)) {
             return false;
         }
     }
@@ -197,32 +223,50 @@ static bool list_routes(sva_flow_work_t* w, const sva_mission_t* m, int64_t gap,
     return true;
 }
 
-// The first copy not in `covered` (w->copies when all are).
-static uint16_t first_open(const sva_flow_work_t* w, uint64_t covered)
+// The first copy not in `decided` (w->copies when all are).
+static uint16_t first_open(const sva_flow_work_t* w, uint64_t decided)
 {
     uint16_t c = 0U;
-    while ((c < w->copies) && (((covered >> c) & 1U) != 0U)) {
+    while ((c < w->copies) && (((decided >> c) & 1U) != 0U)) {
         c++;
     }
     return c;
 }
 
-// The cover's search: sets e->chosen to the best cover of slack sum at most gap (none
-// found: chosen_count 0); false when the work reaches `end` first.
-static bool cover(sva_flow_work_t* w, const sva_mission_t* m, int64_t gap, uint64_t end)
+#    define LEAVE 0xFFFFU  // the cover's search leaves the copy of this depth
+
+// The copy left last (leaves go in copy order): the highest of e->skipped, not empty.
+static uint16_t last_left(const sva_flow_enum_t* e)
+{
+    uint16_t c = (uint16_t)SVA_FLOW_ENUM_TARGETS;
+    c--;
+    while ((c > 0U) && (((e->skipped >> c) & 1U) == 0U)) {
+        c--;
+    }
+    return c;
+}
+
+// The cover's search: sets e->chosen to the last cover found of sum at most gap; *found:
+// there is one, *wider: one covers more than e->least.
+// False when the work reaches `end` first.
+static bool cover(sva_flow_work_t* w, const sva_mission_t* m, int64_t gap, uint64_t end,
+                  bool* found, bool* wider)
 {
     sva_flow_enum_t* e = &w->enumeration;
     int64_t limit = gap;
     int64_t sum = 0;
     uint64_t covered = 0U;
+    uint16_t left = 0U;
     uint16_t depth = 0U;
+    e->skipped = 0U;
     e->chosen_count = 0U;
     e->pick[0] = e->first[first_open(w, covered)];
     for (;;) {
-        const uint16_t c = first_open(w, covered);
+        const uint16_t c = first_open(w, covered | e->skipped);
         if (c == w->copies) {
-            // Every target covered: the other UAVs fly home.
-            int64_t total = sum;
+            // Every copy decided: the other UAVs fly home. total = S cost - L.
+            const int64_t taken = (int64_t)w->copies - (int64_t)left;
+            int64_t total = sum + (e->mu * (taken - e->least));
             for (uint16_t u = 0U; u < m->uav_count; u++) {
                 if ((e->members[u] > 0U) && (w->lagrange.group[u] == u)) {
                     const int64_t idle = (int64_t)e->members[u] - (int64_t)e->used[u];
@@ -230,18 +274,23 @@ static bool cover(sva_flow_work_t* w, const sva_mission_t* m, int64_t gap, uint6
                 }
             }
             if (total <= limit) {
+                e->chosen_count = 0U;
                 for (uint16_t k = 0U; k < depth; k++) {
-                    e->chosen[k] = e->pick[k];
+                    if (e->pick[k] != LEAVE) {
+                        e->chosen[e->chosen_count] = e->pick[k];
+                        e->chosen_count++;
+                    }
                 }
-                e->chosen_count = depth;
+                *found = true;
+                *wider = *wider || (taken > e->least);
                 limit = total - (2 * (int64_t)SVA_FLOW_PRICE_SCALE);
             }
         } else {
-            // The next route for c that fits, from pick[depth] on.
+            // The next route for c that fits, from pick[depth] on; then leaving c.
             uint16_t r = e->pick[depth];
-            while ((r < e->first[c + 1U]) &&
-                   (((e->mask[r] & covered) != 0U) || ((sum + e->slack[r]) > limit) ||
-                    (e->used[e->state[r]] >= e->members[e->state[r]]))) {
+            const uint16_t last = e->first[c + 1U];
+            while ((r < last) && (((e->mask[r] & covered) != 0U) || ((sum + e->slack[r]) > limit) ||
+                                  (e->used[e->state[r]] >= e->members[e->state[r]]))) {
                 r++;
                 w->work++;
             }
@@ -249,26 +298,47 @@ static bool cover(sva_flow_work_t* w, const sva_mission_t* m, int64_t gap, uint6
             if (w->work >= end) {
                 return false;
             }
-            if (r < e->first[c + 1U]) {
+            if (r < last) {
                 e->pick[depth] = r;
                 covered |= e->mask[r];
                 sum += e->slack[r];
                 e->used[e->state[r]]++;
                 depth++;
-                e->pick[depth] = e->first[first_open(w, covered)];
+                e->pick[depth] = e->first[first_open(w, covered | e->skipped)];
+                continue;
+            }
+            if ((r == last) && (left < e->skips) && ((sum + left_excess(e, w, c)) <= limit)) {
+                e->pick[depth] = LEAVE;
+                e->skipped |= (uint64_t)1U << c;
+                sum += left_excess(e, w, c);
+                left++;
+                depth++;
+                e->pick[depth] = e->first[first_open(w, covered | e->skipped)];
                 continue;
             }
         }
-        // Back up: undo the route of the depth above and try its next.
-        if (depth == 0U) {
-            return true;
+        // Back up: undo the choices above until one has a next route to try (leaving a
+        // copy is its last choice).
+        bool next = false;
+        while (!next) {
+            if (depth == 0U) {
+                return true;
+            }
+            depth--;
+            const uint16_t r = e->pick[depth];
+            if (r == LEAVE) {
+                const uint16_t l = last_left(e);
+                e->skipped &= ~((uint64_t)1U << l);
+                sum -= left_excess(e, w, l);
+                left--;
+            } else {
+                covered &= ~e->mask[r];
+                sum -= e->slack[r];
+                e->used[e->state[r]]--;
+                e->pick[depth] = (uint16_t)(r + 1U);
+                next = true;
+            }
         }
-        depth--;
-        const uint16_t r = e->pick[depth];
-        covered &= ~e->mask[r];
-        sum -= e->slack[r];
-        e->used[e->state[r]]--;
-        e->pick[depth] = (uint16_t)(r + 1U);
     }
 }
 
@@ -304,26 +374,74 @@ void sva_flow_enum_prices(sva_flow_work_t* w, const sva_mission_t* m, bool taken
     }
 }
 
-bool sva_flow_enum_prove(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
-                         int64_t cost, uint64_t end)
+// Whether the searches apply: need 1, exact rewards, at most 64 targets.
+static bool applies(const sva_flow_work_t* w, const sva_mission_t* m)
+{
+    return (w->need_max == 1) && w->reward_exact &&
+           (w->copies <= (uint16_t)SVA_FLOW_ENUM_TARGETS) && (w->copies == m->target_count);
+}
+
+// Both searches for plans of S cost - mu (|C| - least) at most `target`; a cover found
+// is offered. False (no claim) when they do not finish.
+static bool search_covers(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                          int64_t target, uint64_t end, bool* found, bool* wider)
 {
     sva_flow_work_t* w = &priv->flow;
-    if (!w->enumeration.has_prices || (w->need_max != 1) || !w->reward_exact ||
-        (w->copies > (uint16_t)SVA_FLOW_ENUM_TARGETS) || (w->copies != m->target_count)) {
-        return false;
-    }
-    const int64_t gap = (SVA_FLOW_PRICE_SCALE * (cost - 2)) - state_bounds(w, m, plan);
+    *found = false;
+    *wider = false;
+    const int64_t gap = target - state_bounds(w, m, plan);
     if (gap < 0) {
-        return true;  // no plan costs cost - 2 or less
+        return true;  // no such plan
     }
     completion_bounds(w, m);
-    if (!list_routes(w, m, gap, end) || !cover(w, m, gap, end)) {
+    if (!list_routes(w, m, gap, end) || !cover(w, m, gap, end, found, wider)) {
         return false;
     }
-    if (w->enumeration.chosen_count > 0U) {
+    if (*found) {
         offer_cover(priv, m, plan);
     }
     return true;
+}
+
+// The reward that makes L largest for plans covering at least k targets: the (k+1)-th
+// least price (at least 0), or one above every price when k is every target.
+static int64_t best_reward(const sva_flow_enum_t* e, uint16_t targets, int64_t k)
+{
+    int64_t mu = 0;
+    for (uint16_t t = 0U; t < targets; t++) {
+        if (k == (int64_t)targets) {
+            mu = (e->price[t] > mu) ? e->price[t] : mu;
+        } else {
+            int64_t below = 0;
+            int64_t at_most = 0;
+            for (uint16_t v = 0U; v < targets; v++) {
+                below += (e->price[v] < e->price[t]) ? 1 : 0;
+                at_most += (e->price[v] <= e->price[t]) ? 1 : 0;
+            }
+            if ((below <= k) && (at_most > k)) {
+                mu = (e->price[t] > 0) ? e->price[t] : 0;
+            }
+        }
+    }
+    return mu;
+}
+
+bool sva_flow_enum_prove(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                         int64_t cost, int64_t covered, uint64_t end)
+{
+    sva_flow_work_t* w = &priv->flow;
+    sva_flow_enum_t* e = &w->enumeration;
+    if (!e->has_prices || !applies(w, m) || (covered < 0) || (covered > (int64_t)m->target_count)) {
+        return false;
+    }
+    e->least = covered;
+    const int64_t skips = (int64_t)m->target_count - covered;
+    e->skips = (uint16_t)skips;
+    e->mu = best_reward(e, m->target_count, covered);
+    bool found = false;
+    bool wider = false;
+    return search_covers(priv, m, plan, SVA_FLOW_PRICE_SCALE * (cost - 2), end, &found, &wider) &&
+           !wider;
 }
 
 #endif  // SVA_FLOW_ENUM_ROUTES > 0

@@ -276,20 +276,17 @@ static bool prove_coverage(sva_flow_work_t* w, const sva_mission_t* m, const sva
 }
 
 #if SVA_FLOW_ENUM_ROUTES > 0
-// The proof of flow_enum.c for the incumbent, when it covers every target, within a
-// quarter of the phase's work (`left`); *cost becomes the incumbent's (a cover it finds
-// is cheaper).
+// The proof of flow_enum.c for the incumbent's cost among plans covering as many targets
+// or more, within a quarter of the phase's work (`left`); *cost and *covered become the
+// incumbent's (a cover it finds is cheaper).
 static bool enum_proves(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
-                        int64_t* cost, uint64_t left)
+                        int64_t* cost, int64_t* covered, uint64_t left)
 {
-    int64_t covered = 0;
-    sva_flow_incumbent(priv, m, plan, cost, &covered);
-    if ((covered != (int64_t)m->target_count) ||
-        !sva_flow_enum_prove(priv, m, plan, *cost, priv->flow.work + (left / 4U))) {
-        return false;
-    }
-    sva_flow_incumbent(priv, m, plan, cost, &covered);
-    return true;
+    sva_flow_incumbent(priv, m, plan, cost, covered);
+    const bool proved =
+        sva_flow_enum_prove(priv, m, plan, *cost, *covered, priv->flow.work + (left / 4U));
+    sva_flow_incumbent(priv, m, plan, cost, covered);
+    return proved;
 }
 #endif
 
@@ -308,11 +305,14 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     plan->stats.flow_lp_columns = 0U;
     const int64_t lp_covered = covered;
     int64_t lp_value = master_value(w, m, plan, covered, w->work + (left / 2U));
+    bool cost_proven = false;
 #if SVA_FLOW_ENUM_ROUTES > 0
-    // Every target covered: the master's prices may prove the plan optimal at once, or
-    // give the optimum (flow_enum.c); then the phase has nothing left to do.
-    sva_flow_enum_prices(w, m, (lp_value != NO_BOUND) && (covered == targets));
-    if (enum_proves(priv, m, plan, &cost, left)) {
+    // The master's prices may prove the plan's cost at once, or give a cheaper plan
+    // (flow_enum.c). Every target covered, the phase then has nothing left to do; else
+    // the steps and the dive are skipped, and coverage remains to prove.
+    sva_flow_enum_prices(w, m, lp_value != NO_BOUND);
+    cost_proven = enum_proves(priv, m, plan, &cost, &covered, left);
+    if (cost_proven && (covered == targets)) {
         *iters = 0U;
         *coverage_proven = true;
         plan->stats.flow_dive_routes = 0U;
@@ -329,8 +329,9 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     phase_t ph = {s, most + s, covered, NO_BOUND, s * cost, THETA_START, 0, 0U};
     uint16_t rotate = 0U;
     const uint64_t cost_budget = w->work + ((left / 4U) * 3U);  // the rest: coverage
-    while ((ph.iters < (uint32_t)SVA_FLOW_LAGRANGE_ITERS) && (w->work < cost_budget) &&
-           (ph.theta >= THETA_MIN) && !cost_reached(ph.best, cost, covered == targets) &&
+    while (!cost_proven && (ph.iters < (uint32_t)SVA_FLOW_LAGRANGE_ITERS) &&
+           (w->work < cost_budget) && (ph.theta >= THETA_MIN) &&
+           !cost_reached(ph.best, cost, covered == targets) &&
            !cost_reached(lp_value, cost, covered == targets)) {
         int64_t grad_mu = 0;
         const int64_t value = evaluate(w, m, plan, &ph, &grad_mu);
@@ -361,17 +362,19 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
         lp_value = (again > lp_value) ? again : lp_value;
     }
     // A dive on the cost master last solved: a plan from its routes, unless the bound
-    // already proves a plan covering every target.
+    // already proves a plan covering every target, or the enumeration the plan's cost.
     plan->stats.flow_dive_routes = 0U;
     const int64_t before_dive = (ph.best > lp_value) ? ph.best : lp_value;
     const bool proven_full = (covered == targets) && cost_reached(before_dive, cost, true);
-    if (master_solved && !proven_full && sva_flow_lp_dive(priv, m, plan, w->work + (left / 8U))) {
+    if (master_solved && !proven_full && !cost_proven &&
+        sva_flow_lp_dive(priv, m, plan, w->work + (left / 8U))) {
         plan->stats.flow_dive_routes = w->lp.fixed_count;
         sva_flow_repair(priv, m, plan, true);
         sva_flow_incumbent(priv, m, plan, &cost, &covered);
     }
     const int64_t best = (ph.best > lp_value) ? ph.best : lp_value;
-    const int64_t bound = (best == NO_BOUND) ? 0 : sva_flow_cost_floor(w, ceil_div(best, s));
+    int64_t bound = (best == NO_BOUND) ? 0 : sva_flow_cost_floor(w, ceil_div(best, s));
+    bound = (cost_proven && (cost > bound)) ? cost : bound;
     // Optimality needs both; the coverage phase runs once the cost is proven.
     *coverage_proven = *coverage_proven || (covered == targets) ||
                        ((bound >= cost) && prove_coverage(w, m, plan, covered, budget, iters));
@@ -393,9 +396,11 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     }
     plan->stats.flow_cover_dive = (uint8_t)dive;
 #if SVA_FLOW_ENUM_ROUTES > 0
-    // Again with the phase's incumbent (its cost is lower now, so fewer routes).
-    if ((bound < cost) && enum_proves(priv, m, plan, &cost, left)) {
-        *coverage_proven = true;
+    // Again with the phase's incumbent (its cost is lower now, so fewer routes); a cost
+    // so proven short of every target leaves coverage to prove, as above.
+    if ((bound < cost) && enum_proves(priv, m, plan, &cost, &covered, left)) {
+        *coverage_proven = *coverage_proven || (covered == targets) ||
+                           prove_coverage(w, m, plan, covered, budget, iters);
         return cost;
     }
 #endif
