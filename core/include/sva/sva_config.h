@@ -24,8 +24,8 @@
 ///                  + the coverage search (SVA_FLOW_COVER_TARGETS below)
 ///                  + the route enumeration (SVA_FLOW_ENUM_ROUTES below)
 ///                  + large missions' granular moves (SVA_FLOW_NEAR below)
-///   (default profile: 755,112 B, of which flow's sva_flow_work_t is 609,192 B; large
-///   profile: 7,358,952 B, of which 6,560,000 B are flow's 656,000 arcs.)
+///   (default profile: 755,152 B, of which flow's sva_flow_work_t is 609,232 B; large
+///   profile: 7,358,992 B, of which 6,560,000 B are flow's 656,000 arcs.)
 
 #ifndef SVA_CONFIG_H
 #define SVA_CONFIG_H
@@ -307,7 +307,7 @@
 /// (flow_enum.c): every route that a plan cheaper than the incumbent could fly, on
 /// missions of at most 64 targets, need 1, every target covered. 0 turns it off; so
 /// does SVA_FLOW_LP_ROWS 1 (no prices), where it defaults to 0. Cost: 18 B per route
-/// + 20 B per UAV + 2,840 B (13,336 B by default).
+/// + 20 B per UAV + 2,880 B (13,376 B by default).
 #ifndef SVA_FLOW_ENUM_ROUTES
 #    define SVA_FLOW_ENUM_ROUTES ((SVA_FLOW_LP_ROWS >= 2) ? 512 : 0)
 #endif
