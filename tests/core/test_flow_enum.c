@@ -72,6 +72,33 @@ static bool prove(test_rng_t* rng, bool random_prices, int64_t cost, int64_t cov
     }
     return proved;
 }
+
+// Runs the coverage question on the mission with these prices (the coverage master's
+// scale: a target worth SVA_FLOW_PRICE_SCALE) and an incumbent covering `covered`;
+// true when it proves no plan covers more, with the plan it offers (when any) in plan.
+static bool prove_coverage(test_rng_t* rng, bool random_prices, int64_t covered, bool* offered)
+{
+    sva_flow_work_t* w = &planner.priv.flow;
+    sva_state_reset(&planner.priv, &mission, &plan);
+    TEST_ASSERT_EQUAL_INT(SVA_FLOW_COMPLETE,
+                          sva_flow_build(&planner.priv, &mission, &plan, false, &plan.stats));
+    for (uint16_t t = 0U; t < mission.target_count; t++) {
+        w->lagrange.price[t] =
+            random_prices ? (int64_t)test_rng_range(rng, 0, 2 * SVA_FLOW_PRICE_SCALE) : 0;
+    }
+    w->has_inc = false;
+    w->work = 0U;
+    bool more = false;
+    const bool proved =
+        sva_flow_enum_cover(&planner.priv, &mission, &plan, covered, UINT64_MAX / 4U, &more);
+    *offered = w->has_inc;
+    TEST_ASSERT_TRUE(more == *offered);
+    if (*offered) {
+        sva_flow_write_incumbent(&planner.priv, &mission, &plan);
+        sva_plan_finish(&planner.priv, &mission, &plan);
+    }
+    return proved;
+}
 #endif
 
 // Below an incumbent 2 or 4 above the optimum it must prove and leave an incumbent of
@@ -131,6 +158,73 @@ void test_enumeration_finds_or_proves_the_optimum(void)
     TEST_ASSERT_TRUE(partial >= rounds / 10);
     TEST_ASSERT_TRUE((tried - partial) >= rounds / 4);
     TEST_ASSERT_TRUE(fuel_binds > 0);
+#else
+    TEST_IGNORE_MESSAGE("the profile keeps no routes (SVA_FLOW_ENUM_ROUTES 0)");
+#endif
+}
+
+// Coverage: at the optimum's coverage it must prove that no plan covers more and offer
+// nothing; one target below it, it must not, and with zero prices (every route listed)
+// it must offer a checked plan of the optimum's coverage. Random prices may make it
+// claim nothing, never a wrong claim; a plan it offers is checked.
+void test_enumeration_proves_the_coverage_or_covers_more(void)
+{
+#if SVA_FLOW_ENUM_ROUTES > 0
+    const uint64_t seed = test_seed(0xE1A1ULL);
+    test_rng_t rng;
+    test_rng_seed(&rng, seed);
+    const int rounds = 300;
+    int proofs = 0;
+    int found = 0;
+    char msg[256];
+    for (int round = 0; round < rounds; round++) {
+        draw_mission(&rng, round);
+        const brute_result_t best = brute_force_optimum(&mission);
+        for (int k = 0; k < 4; k++) {
+            const bool random_prices = (k % 2) == 1;
+            const int64_t covered = best.covered - ((k < 2) ? 0 : 1);
+            if ((covered < 0) || (covered >= (int64_t)mission.target_count)) {
+                continue;  // nothing to ask: every target covered, or none below
+            }
+            bool offered = false;
+            const bool proved = prove_coverage(&rng, random_prices, covered, &offered);
+            const bool at_optimum = covered == best.covered;
+            // With zero prices every route is listed, so the answer is exact.
+            const bool wrong = at_optimum ? (!proved && !random_prices) : proved;
+            if (wrong) {
+                SVA_TEST_FAIL("seed %llu round %d try %d: coverage %lld, the optimum's %d: "
+                              "proved %d",
+                              (unsigned long long)seed, round, k, (long long)covered, best.covered,
+                              proved ? 1 : 0);
+            }
+            if (at_optimum && offered) {
+                SVA_TEST_FAIL("seed %llu round %d try %d: a plan offered at the optimum's "
+                              "coverage %d",
+                              (unsigned long long)seed, round, k, best.covered);
+            }
+            if (!at_optimum && !random_prices && !offered) {
+                SVA_TEST_FAIL("seed %llu round %d try %d: no plan covering %d offered",
+                              (unsigned long long)seed, round, k, best.covered);
+            }
+            proofs += proved ? 1 : 0;
+            if (!offered) {
+                continue;
+            }
+            found++;
+            if (plan.covered != (uint16_t)best.covered) {
+                SVA_TEST_FAIL("seed %llu round %d try %d: covers %u, the optimum %d",
+                              (unsigned long long)seed, round, k, (unsigned)plan.covered,
+                              best.covered);
+            }
+            if (spec_check_plan(&mission, &plan, msg, sizeof msg) != 0) {
+                SVA_TEST_FAIL("seed %llu round %d try %d: %s", (unsigned long long)seed, round, k,
+                              msg);
+            }
+        }
+    }
+    printf("# coverage proved %d times, a plan covering more offered %d times\n", proofs, found);
+    TEST_ASSERT_TRUE(proofs >= rounds / 4);
+    TEST_ASSERT_TRUE(found >= rounds / 4);
 #else
     TEST_IGNORE_MESSAGE("the profile keeps no routes (SVA_FLOW_ENUM_ROUTES 0)");
 #endif

@@ -24,8 +24,8 @@
 ///                  + the coverage search (SVA_FLOW_COVER_TARGETS below)
 ///                  + the route enumeration (SVA_FLOW_ENUM_ROUTES below)
 ///                  + large missions' granular moves (SVA_FLOW_NEAR below)
-///   (default profile: 755,152 B, of which flow's sva_flow_work_t is 609,232 B; large
-///   profile: 7,358,992 B, of which 6,560,000 B are flow's 656,000 arcs.)
+///   (default profile: 783,336 B, of which flow's sva_flow_work_t is 637,416 B; large
+///   profile: 7,387,176 B, of which 6,560,000 B are flow's 656,000 arcs.)
 
 #ifndef SVA_CONFIG_H
 #define SVA_CONFIG_H
@@ -304,12 +304,12 @@
 #endif
 
 /// Routes flow keeps to prove a plan optimal from the route master's prices
-/// (flow_enum.c): every route that a plan cheaper than the incumbent could fly, on
-/// missions of at most 64 targets, need 1, every target covered. 0 turns it off; so
-/// does SVA_FLOW_LP_ROWS 1 (no prices), where it defaults to 0. Cost: 18 B per route
-/// + 20 B per UAV + 2,880 B (13,376 B by default).
+/// (flow_enum.c), on missions of at most 64 targets, need 1: every route that a plan
+/// cheaper than the incumbent could fly (at most 512 of them), or one covering more
+/// targets (all of them). 0 turns it off; so does SVA_FLOW_LP_ROWS 1 (no prices),
+/// where it defaults to 0. Cost: 18 B per route + 20 B per UAV + 3,416 B (41,560 B by default).
 #ifndef SVA_FLOW_ENUM_ROUTES
-#    define SVA_FLOW_ENUM_ROUTES ((SVA_FLOW_LP_ROWS >= 2) ? 512 : 0)
+#    define SVA_FLOW_ENUM_ROUTES ((SVA_FLOW_LP_ROWS >= 2) ? 2048 : 0)
 #endif
 #if (SVA_FLOW_ENUM_ROUTES < 0) || (SVA_FLOW_ENUM_ROUTES > 65535)
 #    error "SVA_FLOW_ENUM_ROUTES must be in [0, 65535]"

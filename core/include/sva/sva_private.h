@@ -169,8 +169,14 @@ typedef struct {
     uint16_t count;                        ///< routes kept
     int64_t price[SVA_FLOW_ENUM_TARGETS];  ///< the master's prices (prices' units)
     bool has_prices;                       ///< price[] holds them for this mission
-    // A covered target's reward mu, the targets a plan covers at least (least) and so
-    // the targets a cover may leave (skips).
+    // The question asked: the prices in use (price, or the coverage master's), a cell's
+    // weight (S for cost, 0 for coverage), the routes it may list, a covered target's
+    // reward mu, the targets a plan covers at least (least) and so the targets a cover
+    // may leave (skips).
+    const int64_t* pi;
+    int64_t alpha;
+    uint16_t cap;
+    int64_t share[SVA_FLOW_ENUM_TARGETS];  ///< the cover's bound on what a copy adds
     int64_t mu;
     int64_t least;
     uint16_t skips;

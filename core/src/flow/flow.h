@@ -318,6 +318,14 @@ void sva_flow_enum_prices(sva_flow_work_t* w, const sva_mission_t* m, bool taken
 /// SVA_FLOW_ENUM_ROUTES or when the work reaches `end`.
 bool sva_flow_enum_prove(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                          int64_t cost, int64_t covered, uint64_t end);
+
+/// flow_enum.c: with w->lagrange.price the coverage master's prices (a covered target
+/// worth SVA_FLOW_PRICE_SCALE), whether a plan covers more than `covered` targets (need
+/// 1, at most 64 targets): true when none does. False when it finds one (offered as the
+/// incumbent; *more), and (no claim) past its bounds, when the routes outgrow
+/// SVA_FLOW_ENUM_ROUTES or when the work reaches `end`.
+bool sva_flow_enum_cover(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                         int64_t covered, uint64_t end, bool* more);
 #endif
 
 // flow_cover.c: the coverage search.// flow_cover.c: the coverage search.

@@ -29,6 +29,8 @@
 
 #if SVA_FLOW_ENUM_ROUTES > 0
 
+#    define COST_ROUTES 512  // the list's bound for cost; coverage may take all of it
+
 static int64_t least(int64_t a, int64_t b)
 {
     return (a < b) ? a : b;
@@ -52,13 +54,13 @@ static int64_t leg_of(const sva_flow_work_t* w, const sva_mission_t* m, uint16_t
 // The reward's excess of copy c's target when covered, and when left.
 static int64_t covered_excess(const sva_flow_enum_t* e, const sva_flow_work_t* w, uint16_t c)
 {
-    const int64_t d = e->price[w->copy_target[c]] - e->mu;
+    const int64_t d = e->pi[w->copy_target[c]] - e->mu;
     return (d > 0) ? d : 0;
 }
 
 static int64_t left_excess(const sva_flow_enum_t* e, const sva_flow_work_t* w, uint16_t c)
 {
-    const int64_t d = e->mu - e->price[w->copy_target[c]];
+    const int64_t d = e->mu - e->pi[w->copy_target[c]];
     return (d > 0) ? d : 0;
 }
 
@@ -70,8 +72,8 @@ static int64_t state_bounds(sva_flow_work_t* w, const sva_mission_t* m, const sv
     int64_t value = e->mu * e->least;
     for (uint16_t t = 0U; t < m->target_count; t++) {
         lg->closed[t] = 0U;
-        lg->path_price[t] = e->price[t];
-        value += least(0, e->price[t] - e->mu);
+        lg->path_price[t] = e->pi[t];
+        value += least(0, e->pi[t] - e->mu);
     }
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         e->members[u] = 0U;
@@ -84,10 +86,10 @@ static int64_t state_bounds(sva_flow_work_t* w, const sva_mission_t* m, const sv
     }
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         if ((e->members[u] > 0U) && (lg->group[u] == u)) {
-            e->best[u] = sva_flow_best_route(w, m, u, SVA_FLOW_PRICE_SCALE);
+            e->best[u] = sva_flow_best_route(w, m, u, e->alpha);
             const sva_uav_t* uav = &m->uavs[u];
             const int64_t home = sva_distance(uav->x, uav->y, m->depot_x, m->depot_y);
-            e->empty[u] = (SVA_FLOW_PRICE_SCALE * home) - e->best[u];
+            e->empty[u] = (e->alpha * home) - e->best[u];
             value += (int64_t)e->members[u] * e->best[u];
         }
     }
@@ -102,13 +104,13 @@ static void completion_bounds(sva_flow_work_t* w, const sva_mission_t* m)
     const uint16_t out_base = (uint16_t)(w->uavs + w->copies);
     for (uint16_t k = w->copies; k > 0U; k--) {
         const uint16_t c = (uint16_t)(k - 1U);
-        int64_t best = SVA_FLOW_PRICE_SCALE * home_of(w, m, c);
+        int64_t best = e->alpha * home_of(w, m, c);
         for (uint32_t a = w->out_start[out_base + c]; a < w->out_start[out_base + c + 1U]; a++) {
             const uint16_t h = w->arc_head[a];
             if (h < out_base) {
                 const uint16_t d = (uint16_t)(h - w->uavs);
-                best = least(best, (SVA_FLOW_PRICE_SCALE * leg_of(w, m, c, d)) -
-                                       e->price[w->copy_target[d]] + e->tail[d]);
+                best = least(best, (e->alpha * leg_of(w, m, c, d)) - e->pi[w->copy_target[d]] +
+                                       e->tail[d]);
             }
         }
         e->tail[c] = best;
@@ -129,7 +131,7 @@ static bool keep(const sva_flow_work_t* w, sva_flow_enum_t* e, uint16_t state, u
     if (sum > gap) {
         return true;
     }
-    if (e->count >= (uint16_t)SVA_FLOW_ENUM_ROUTES) {
+    if (e->count >= e->cap) {
         return false;
     }
     e->mask[e->count] = mask;
@@ -146,7 +148,7 @@ static bool routes_from(sva_flow_work_t* w, const sva_mission_t* m, uint16_t u, 
 {
     sva_flow_enum_t* e = &w->enumeration;
     const sva_uav_t* uav = &m->uavs[u];
-    const int64_t s = SVA_FLOW_PRICE_SCALE;
+    const int64_t s = e->alpha;
     const int64_t hover = m->hover_fuel;
     const uint16_t out_base = (uint16_t)(w->uavs + w->copies);
     const sva_target_t* first = &m->targets[w->copy_target[c]];
@@ -155,7 +157,7 @@ static bool routes_from(sva_flow_work_t* w, const sva_mission_t* m, uint16_t u, 
         return true;
     }
     e->at[0] = c;
-    e->value[0] = (s * leg) - e->price[w->copy_target[c]];
+    e->value[0] = (s * leg) - e->pi[w->copy_target[c]];
     e->fuel[0] = leg + hover;
     e->arc[0] = w->out_start[out_base + c];
     if ((e->value[0] + e->tail[c] - e->best[u]) > gap) {
@@ -182,7 +184,7 @@ static bool routes_from(sva_flow_work_t* w, const sva_mission_t* m, uint16_t u, 
         const uint16_t d = (uint16_t)(w->arc_head[arc] - w->uavs);
         const uint16_t t = w->copy_target[d];
         const int64_t step = leg_of(w, m, a, d);
-        const int64_t value = e->value[depth] + (s * step) - e->price[t];
+        const int64_t value = e->value[depth] + (s * step) - e->pi[t];
         if (((e->fuel[depth] + step + w->target_tail[t]) > uav->fuel) ||
             ((value + e->tail[d] - e->best[u]) > gap)) {
             continue;
@@ -223,6 +225,48 @@ static bool list_routes(sva_flow_work_t* w, const sva_mission_t* m, int64_t gap,
     return true;
 }
 
+#    define NO_SHARE (INT64_C(1) << 50)  // a copy no route covers and no cover may leave
+
+// share[c]: a lower bound on what deciding copy c adds to a cover's sum (a route's slack
+// split evenly over its copies, or the excess of leaving c); then each route's slack
+// less its copies' shares, so that the cover's sum, started at the sum of the shares,
+// is at every depth a lower bound on the sum of any cover it leads to. Returns that
+// start.
+static int64_t shares(sva_flow_work_t* w)
+{
+    sva_flow_enum_t* e = &w->enumeration;
+    int64_t start = 0;
+    for (uint16_t c = 0U; c < w->copies; c++) {
+        e->share[c] = (e->skips > 0U) ? left_excess(e, w, c) : NO_SHARE;
+    }
+    for (uint16_t r = 0U; r < e->count; r++) {
+        int64_t size = 0;
+        for (uint16_t c = 0U; c < w->copies; c++) {
+            size += (((e->mask[r] >> c) & 1U) != 0U) ? 1 : 0;
+        }
+        // Rounded down (a slack is at least 0 with a true bound B_g; below, still down).
+        const int64_t part =
+            (e->slack[r] >= 0) ? (e->slack[r] / size) : -(((-e->slack[r]) + size - 1) / size);
+        for (uint16_t c = 0U; c < w->copies; c++) {
+            if (((e->mask[r] >> c) & 1U) != 0U) {
+                e->share[c] = least(e->share[c], part);
+            }
+        }
+    }
+    for (uint16_t r = 0U; r < e->count; r++) {
+        for (uint16_t c = 0U; c < w->copies; c++) {
+            if (((e->mask[r] >> c) & 1U) != 0U) {
+                e->slack[r] -= e->share[c];
+            }
+        }
+    }
+    for (uint16_t c = 0U; c < w->copies; c++) {
+        start += e->share[c];
+    }
+    w->work += 2U * (uint64_t)e->count * (uint64_t)w->copies;
+    return start;
+}
+
 // The first copy not in `decided` (w->copies when all are).
 static uint16_t first_open(const sva_flow_work_t* w, uint64_t decided)
 {
@@ -254,7 +298,7 @@ static bool cover(sva_flow_work_t* w, const sva_mission_t* m, int64_t gap, uint6
 {
     sva_flow_enum_t* e = &w->enumeration;
     int64_t limit = gap;
-    int64_t sum = 0;
+    int64_t sum = shares(w);
     uint64_t covered = 0U;
     uint16_t left = 0U;
     uint16_t depth = 0U;
@@ -283,6 +327,9 @@ static bool cover(sva_flow_work_t* w, const sva_mission_t* m, int64_t gap, uint6
                 }
                 *found = true;
                 *wider = *wider || (taken > e->least);
+                if (e->alpha == 0) {
+                    return true;  // coverage: a plan covering more is enough
+                }
                 limit = total - (2 * (int64_t)SVA_FLOW_PRICE_SCALE);
             }
         } else {
@@ -307,10 +354,11 @@ static bool cover(sva_flow_work_t* w, const sva_mission_t* m, int64_t gap, uint6
                 e->pick[depth] = e->first[first_open(w, covered | e->skipped)];
                 continue;
             }
-            if ((r == last) && (left < e->skips) && ((sum + left_excess(e, w, c)) <= limit)) {
+            if ((r == last) && (left < e->skips) &&
+                ((sum + left_excess(e, w, c) - e->share[c]) <= limit)) {
                 e->pick[depth] = LEAVE;
                 e->skipped |= (uint64_t)1U << c;
-                sum += left_excess(e, w, c);
+                sum += left_excess(e, w, c) - e->share[c];
                 left++;
                 depth++;
                 e->pick[depth] = e->first[first_open(w, covered | e->skipped)];
@@ -329,7 +377,7 @@ static bool cover(sva_flow_work_t* w, const sva_mission_t* m, int64_t gap, uint6
             if (r == LEAVE) {
                 const uint16_t l = last_left(e);
                 e->skipped &= ~((uint64_t)1U << l);
-                sum -= left_excess(e, w, l);
+                sum -= left_excess(e, w, l) - e->share[l];
                 left--;
             } else {
                 covered &= ~e->mask[r];
@@ -381,26 +429,19 @@ static bool applies(const sva_flow_work_t* w, const sva_mission_t* m)
            (w->copies <= (uint16_t)SVA_FLOW_ENUM_TARGETS) && (w->copies == m->target_count);
 }
 
-// Both searches for plans of S cost - mu (|C| - least) at most `target`; a cover found
-// is offered. False (no claim) when they do not finish.
-static bool search_covers(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
-                          int64_t target, uint64_t end, bool* found, bool* wider)
+// Both searches for plans within `gap` (target - L); false (no claim) when they do not
+// finish. The callers work out L (state_bounds) and offer the cover found, so that
+// neither the labels' stack nor the offer's is under the searches'.
+static bool search_covers(sva_flow_work_t* w, const sva_mission_t* m, int64_t gap, uint64_t end,
+                          bool* found, bool* wider)
 {
-    sva_flow_work_t* w = &priv->flow;
     *found = false;
     *wider = false;
-    const int64_t gap = target - state_bounds(w, m, plan);
     if (gap < 0) {
         return true;  // no such plan
     }
     completion_bounds(w, m);
-    if (!list_routes(w, m, gap, end) || !cover(w, m, gap, end, found, wider)) {
-        return false;
-    }
-    if (*found) {
-        offer_cover(priv, m, plan);
-    }
-    return true;
+    return list_routes(w, m, gap, end) && cover(w, m, gap, end, found, wider);
 }
 
 // The reward that makes L largest for plans covering at least k targets: the (k+1)-th
@@ -410,16 +451,16 @@ static int64_t best_reward(const sva_flow_enum_t* e, uint16_t targets, int64_t k
     int64_t mu = 0;
     for (uint16_t t = 0U; t < targets; t++) {
         if (k == (int64_t)targets) {
-            mu = (e->price[t] > mu) ? e->price[t] : mu;
+            mu = (e->pi[t] > mu) ? e->pi[t] : mu;
         } else {
             int64_t below = 0;
             int64_t at_most = 0;
             for (uint16_t v = 0U; v < targets; v++) {
-                below += (e->price[v] < e->price[t]) ? 1 : 0;
-                at_most += (e->price[v] <= e->price[t]) ? 1 : 0;
+                below += (e->pi[v] < e->pi[t]) ? 1 : 0;
+                at_most += (e->pi[v] <= e->pi[t]) ? 1 : 0;
             }
             if ((below <= k) && (at_most > k)) {
-                mu = (e->price[t] > 0) ? e->price[t] : 0;
+                mu = (e->pi[t] > 0) ? e->pi[t] : 0;
             }
         }
     }
@@ -434,14 +475,46 @@ bool sva_flow_enum_prove(sva_planner_priv_t* priv, const sva_mission_t* m, sva_p
     if (!e->has_prices || !applies(w, m) || (covered < 0) || (covered > (int64_t)m->target_count)) {
         return false;
     }
+    e->pi = e->price;
+    e->alpha = SVA_FLOW_PRICE_SCALE;
+    e->cap = (uint16_t)least(COST_ROUTES, SVA_FLOW_ENUM_ROUTES);
     e->least = covered;
     const int64_t skips = (int64_t)m->target_count - covered;
     e->skips = (uint16_t)skips;
     e->mu = best_reward(e, m->target_count, covered);
     bool found = false;
     bool wider = false;
-    return search_covers(priv, m, plan, SVA_FLOW_PRICE_SCALE * (cost - 2), end, &found, &wider) &&
-           !wider;
+    const int64_t gap = (SVA_FLOW_PRICE_SCALE * (cost - 2)) - state_bounds(w, m, plan);
+    const bool done = search_covers(w, m, gap, end, &found, &wider);
+    if (done && found) {
+        offer_cover(priv, m, plan);
+    }
+    return done && !wider;
+}
+
+bool sva_flow_enum_cover(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                         int64_t covered, uint64_t end, bool* more)
+{
+    sva_flow_work_t* w = &priv->flow;
+    sva_flow_enum_t* e = &w->enumeration;
+    *more = false;
+    if (!applies(w, m) || (covered < 0) || (covered >= (int64_t)m->target_count)) {
+        return false;
+    }
+    e->pi = w->lagrange.price;
+    e->alpha = 0;
+    e->cap = (uint16_t)SVA_FLOW_ENUM_ROUTES;
+    const int64_t skips = (int64_t)m->target_count - covered - 1;
+    e->least = covered + 1;
+    e->skips = (uint16_t)skips;
+    e->mu = SVA_FLOW_PRICE_SCALE;
+    bool wider = false;
+    const int64_t gap = -state_bounds(w, m, plan);
+    const bool done = search_covers(w, m, gap, end, more, &wider);
+    if (done && *more) {
+        offer_cover(priv, m, plan);
+    }
+    return done && !*more;
 }
 
 #endif  // SVA_FLOW_ENUM_ROUTES > 0

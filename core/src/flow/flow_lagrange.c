@@ -241,20 +241,26 @@ static int64_t master_value(sva_flow_work_t* w, const sva_mission_t* m, sva_plan
     return value;
 }
 
-// Coverage phase: true if no plan covers more than `covered` targets.
-static bool prove_coverage(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
-                           int64_t covered, uint64_t budget, uint32_t* iters)
+// The coverage master's prices for `covered` + 1 targets (left in lg->price): true
+// when its Lagrangian proves that no plan covers more; *priced: the master gave prices.
+static bool cover_master(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
+                         int64_t covered, uint64_t budget, bool* priced)
+{
+    const int64_t s = SVA_FLOW_PRICE_SCALE;
+    const phase_t ph = {0, s, 0, NO_BOUND, -s * covered, THETA_START, 0, 0U};
+    int64_t mu = 0;
+    *priced = sva_flow_lp_prices(w, m, plan, covered + 1, SVA_FLOW_LP_COVER, budget, &mu);
+    int64_t grad_mu = 0;
+    return *priced && (evaluate(w, m, plan, &ph, &grad_mu) > (-s * (covered + 1)));
+}
+
+// The coverage phase's steps: true when they prove that no plan covers more.
+static bool cover_steps(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
+                        int64_t covered, uint64_t budget, uint32_t* iters)
 {
     sva_flow_lagrange_t* lg = &w->lagrange;
     const int64_t s = SVA_FLOW_PRICE_SCALE;
     phase_t ph = {0, s, 0, NO_BOUND, -s * covered, THETA_START, 0, 0U};
-    int64_t mu = 0;
-    if (sva_flow_lp_prices(w, m, plan, covered + 1, SVA_FLOW_LP_COVER, budget, &mu)) {
-        int64_t grad_mu = 0;
-        if (evaluate(w, m, plan, &ph, &grad_mu) > (-s * (covered + 1))) {
-            return true;
-        }
-    }
     for (uint16_t t = 0U; t < m->target_count; t++) {
         lg->price[t] = s / m->targets[t].need;
     }
@@ -273,6 +279,29 @@ static bool prove_coverage(sva_flow_work_t* w, const sva_mission_t* m, const sva
     }
     *iters += ph.iters;
     return false;
+}
+
+// Coverage phase: true if no plan covers more than `covered` targets. After the coverage
+// master's prices, the route enumeration (flow_enum.c) under them may prove it, or offer
+// a plan covering more (then false); then the steps.
+static bool prove_coverage(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                           int64_t covered, uint64_t budget, uint32_t* iters)
+{
+    sva_flow_work_t* w = &priv->flow;
+    bool priced = false;
+    if (cover_master(w, m, plan, covered, budget, &priced)) {
+        return true;
+    }
+#if SVA_FLOW_ENUM_ROUTES > 0
+    if (priced) {
+        const uint64_t room = (budget > w->work) ? (budget - w->work) : 0U;
+        bool more = false;
+        if (sva_flow_enum_cover(priv, m, plan, covered, w->work + (room / 2U), &more) || more) {
+            return !more;  // proven, or a plan covering more found
+        }
+    }
+#endif
+    return cover_steps(w, m, plan, covered, budget, iters);
 }
 
 #if SVA_FLOW_ENUM_ROUTES > 0
@@ -308,8 +337,9 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     bool cost_proven = false;
 #if SVA_FLOW_ENUM_ROUTES > 0
     // The master's prices may prove the plan's cost at once, or give a cheaper plan
-    // (flow_enum.c). Every target covered, the phase then has nothing left to do; else
-    // the steps and the dive are skipped, and coverage remains to prove.
+    // (flow_enum.c). Every target covered, the phase then has nothing left to do. Short
+    // of that, the cost holds as the bound; the steps and the dive still run unless the
+    // coverage is proven too, for their flights may cover more.
     sva_flow_enum_prices(w, m, lp_value != NO_BOUND);
     cost_proven = enum_proves(priv, m, plan, &cost, &covered, left);
     if (cost_proven && (covered == targets)) {
@@ -320,6 +350,10 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
         return cost;
     }
 #endif
+    // The bound proven, for plans covering as many targets or more: it stays one when
+    // the steps' flights find a plan covering more.
+    const int64_t proven_cost = cost_proven ? cost : 0;
+    const bool settled = cost_proven && *coverage_proven;
     start_prices(w, m);
     int64_t most = 0;
     for (uint16_t t = 0U; t < m->target_count; t++) {
@@ -329,9 +363,8 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     phase_t ph = {s, most + s, covered, NO_BOUND, s * cost, THETA_START, 0, 0U};
     uint16_t rotate = 0U;
     const uint64_t cost_budget = w->work + ((left / 4U) * 3U);  // the rest: coverage
-    while (!cost_proven && (ph.iters < (uint32_t)SVA_FLOW_LAGRANGE_ITERS) &&
-           (w->work < cost_budget) && (ph.theta >= THETA_MIN) &&
-           !cost_reached(ph.best, cost, covered == targets) &&
+    while (!settled && (ph.iters < (uint32_t)SVA_FLOW_LAGRANGE_ITERS) && (w->work < cost_budget) &&
+           (ph.theta >= THETA_MIN) && !cost_reached(ph.best, cost, covered == targets) &&
            !cost_reached(lp_value, cost, covered == targets)) {
         int64_t grad_mu = 0;
         const int64_t value = evaluate(w, m, plan, &ph, &grad_mu);
@@ -362,11 +395,11 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
         lp_value = (again > lp_value) ? again : lp_value;
     }
     // A dive on the cost master last solved: a plan from its routes, unless the bound
-    // already proves a plan covering every target, or the enumeration the plan's cost.
+    // already proves a plan covering every target, or the plan is settled above.
     plan->stats.flow_dive_routes = 0U;
     const int64_t before_dive = (ph.best > lp_value) ? ph.best : lp_value;
     const bool proven_full = (covered == targets) && cost_reached(before_dive, cost, true);
-    if (master_solved && !proven_full && !cost_proven &&
+    if (master_solved && !proven_full && !settled &&
         sva_flow_lp_dive(priv, m, plan, w->work + (left / 8U))) {
         plan->stats.flow_dive_routes = w->lp.fixed_count;
         sva_flow_repair(priv, m, plan, true);
@@ -374,10 +407,14 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     }
     const int64_t best = (ph.best > lp_value) ? ph.best : lp_value;
     int64_t bound = (best == NO_BOUND) ? 0 : sva_flow_cost_floor(w, ceil_div(best, s));
-    bound = (cost_proven && (cost > bound)) ? cost : bound;
-    // Optimality needs both; the coverage phase runs once the cost is proven.
-    *coverage_proven = *coverage_proven || (covered == targets) ||
-                       ((bound >= cost) && prove_coverage(w, m, plan, covered, budget, iters));
+    bound = (proven_cost > bound) ? proven_cost : bound;
+    // Optimality needs both; the coverage phase runs once the cost is proven. When the
+    // enumeration proved it short of full coverage, the dive below goes first: a plan
+    // covering more is likely there, and a proof for the old coverage would be wasted.
+    const bool dive_first = cost_proven && !*coverage_proven;
+    *coverage_proven =
+        *coverage_proven || (covered == targets) ||
+        (!dive_first && (bound >= cost) && prove_coverage(priv, m, plan, covered, budget, iters));
     // Coverage comes first (SPEC 1): while c is not proven the most, a dive on the
     // cost master for c + 1 targets looks for a plan covering one more. Any bound for
     // coverage c holds for more.
@@ -395,12 +432,15 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
         }
     }
     plan->stats.flow_cover_dive = (uint8_t)dive;
+    *coverage_proven = *coverage_proven || (covered == targets) ||
+                       (dive_first && (dive != SVA_FLOW_COVER_DIVE_FOUND) && (bound >= cost) &&
+                        prove_coverage(priv, m, plan, covered, budget, iters));
 #if SVA_FLOW_ENUM_ROUTES > 0
     // Again with the phase's incumbent (its cost is lower now, so fewer routes); a cost
     // so proven short of every target leaves coverage to prove, as above.
     if ((bound < cost) && enum_proves(priv, m, plan, &cost, &covered, left)) {
         *coverage_proven = *coverage_proven || (covered == targets) ||
-                           prove_coverage(w, m, plan, covered, budget, iters);
+                           prove_coverage(priv, m, plan, covered, budget, iters);
         return cost;
     }
 #endif
