@@ -307,7 +307,8 @@
 /// (flow_enum.c), on missions of at most 64 targets, need 1: every route that a plan
 /// cheaper than the incumbent could fly (at most 512 of them), or one covering more
 /// targets (all of them). 0 turns it off; so does SVA_FLOW_LP_ROWS 1 (no prices),
-/// where it defaults to 0. Cost: 18 B per route + 20 B per UAV + 3,416 B (41,560 B by default).
+/// where it defaults to 0. Cost: 18 B per route + 20 B per UAV + 3,416 B (41,560 B
+/// by default).
 #ifndef SVA_FLOW_ENUM_ROUTES
 #    define SVA_FLOW_ENUM_ROUTES ((SVA_FLOW_LP_ROWS >= 2) ? 2048 : 0)
 #endif
