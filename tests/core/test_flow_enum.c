@@ -5,9 +5,13 @@
 //   and an incumbent cost 2 or 4 above the optimum, it must return a proof and leave an
 //   incumbent of the optimum's cost and coverage, which the independent SPEC checker
 //   accepts;
-// - given the optimum's own cost, it must prove it and offer no plan.
+// - given the optimum's own cost, it must prove it and offer no plan;
+// - for coverage (cells free), at the optimum's coverage it must prove that no plan
+//   covers more (with zero prices every route is listed, so it must), one below it never,
+//   and with zero prices there it must offer a checked plan of the optimum's coverage.
 // flow's own claims with the enumeration on (a budget that leaves the master room) are
-// held to brute force by test_flow.c's test_bounds_take_the_plans_parity.
+// held to brute force by test_flow.c's test_bounds_take_the_plans_parity and to ref's
+// optima by tests/tools/test_optima.py (fixtures/optima).
 // Seeds are printed and replayable (SVA_TEST_SEED=...).
 #include <stdint.h>
 #include <stdio.h>
