@@ -49,31 +49,59 @@ static void draw_mission(test_rng_t* rng, int round)
     test_gen_mission(rng, &p, &mission);
 }
 
-// Runs the proof on the mission with these prices and an incumbent of this cost and
-// coverage (none offered before); true when it proves, with the incumbent it leaves in
-// plan (when any).
-static bool prove(test_rng_t* rng, bool random_prices, int64_t cost, int64_t covered, bool* offered)
+// The mission's graph built, the prices w->lagrange.price set (0, or drawn in
+// [lo, hi]), no incumbent and no work yet.
+static sva_flow_work_t* set_up(test_rng_t* rng, bool random_prices, int64_t lo, int64_t hi)
 {
     sva_flow_work_t* w = &planner.priv.flow;
     sva_state_reset(&planner.priv, &mission, &plan);
     TEST_ASSERT_EQUAL_INT(SVA_FLOW_COMPLETE,
                           sva_flow_build(&planner.priv, &mission, &plan, false, &plan.stats));
     for (uint16_t t = 0U; t < mission.target_count; t++) {
-        w->lagrange.price[t] = random_prices
-                                   ? (int64_t)test_rng_range(rng, -20 * SVA_FLOW_PRICE_SCALE,
-                                                             40 * SVA_FLOW_PRICE_SCALE)
-                                   : 0;
+        w->lagrange.price[t] = random_prices ? (int64_t)test_rng_range(rng, lo, hi) : 0;
     }
-    sva_flow_enum_prices(w, &mission, true);
     w->has_inc = false;
     w->work = 0U;
-    const bool proved =
-        sva_flow_enum_prove(&planner.priv, &mission, &plan, cost, covered, UINT64_MAX / 4U);
-    *offered = w->has_inc;
-    if (*offered) {
+    return w;
+}
+
+// Whether the enumeration offered a plan; if so, it is written to `plan`.
+static bool take_offer(const sva_flow_work_t* w)
+{
+    if (w->has_inc) {
         sva_flow_write_incumbent(&planner.priv, &mission, &plan);
         sva_plan_finish(&planner.priv, &mission, &plan);
     }
+    return w->has_inc;
+}
+
+// An offered plan must cover as many targets as the optimum (at its cost too, when
+// `with_cost`) and pass the independent SPEC checker.
+static void check_offer(uint64_t seed, int round, int k, const brute_result_t* best, bool with_cost)
+{
+    char msg[256];
+    if ((plan.covered != (uint16_t)best->covered) || (with_cost && (plan.cost != best->cost))) {
+        SVA_TEST_FAIL("seed %llu round %d try %d: cost %lld covering %u, the optimum %lld "
+                      "covering %d",
+                      (unsigned long long)seed, round, k, (long long)plan.cost,
+                      (unsigned)plan.covered, best->cost, best->covered);
+    }
+    if (spec_check_plan(&mission, &plan, msg, sizeof msg) != 0) {
+        SVA_TEST_FAIL("seed %llu round %d try %d: %s", (unsigned long long)seed, round, k, msg);
+    }
+}
+
+// Runs the proof on the mission with these prices and an incumbent of this cost and
+// coverage (none offered before); true when it proves, with the incumbent it leaves in
+// plan (when any).
+static bool prove(test_rng_t* rng, bool random_prices, int64_t cost, int64_t covered, bool* offered)
+{
+    sva_flow_work_t* w =
+        set_up(rng, random_prices, -20 * SVA_FLOW_PRICE_SCALE, 40 * SVA_FLOW_PRICE_SCALE);
+    sva_flow_enum_prices(w, &mission, true);
+    const bool proved =
+        sva_flow_enum_prove(&planner.priv, &mission, &plan, cost, covered, UINT64_MAX / 4U);
+    *offered = take_offer(w);
     return proved;
 }
 
@@ -82,25 +110,12 @@ static bool prove(test_rng_t* rng, bool random_prices, int64_t cost, int64_t cov
 // true when it proves no plan covers more, with the plan it offers (when any) in plan.
 static bool prove_coverage(test_rng_t* rng, bool random_prices, int64_t covered, bool* offered)
 {
-    sva_flow_work_t* w = &planner.priv.flow;
-    sva_state_reset(&planner.priv, &mission, &plan);
-    TEST_ASSERT_EQUAL_INT(SVA_FLOW_COMPLETE,
-                          sva_flow_build(&planner.priv, &mission, &plan, false, &plan.stats));
-    for (uint16_t t = 0U; t < mission.target_count; t++) {
-        w->lagrange.price[t] =
-            random_prices ? (int64_t)test_rng_range(rng, 0, 2 * SVA_FLOW_PRICE_SCALE) : 0;
-    }
-    w->has_inc = false;
-    w->work = 0U;
+    sva_flow_work_t* w = set_up(rng, random_prices, 0, 2 * SVA_FLOW_PRICE_SCALE);
     bool more = false;
     const bool proved =
         sva_flow_enum_cover(&planner.priv, &mission, &plan, covered, UINT64_MAX / 4U, &more);
-    *offered = w->has_inc;
+    *offered = take_offer(w);
     TEST_ASSERT_TRUE(more == *offered);
-    if (*offered) {
-        sva_flow_write_incumbent(&planner.priv, &mission, &plan);
-        sva_plan_finish(&planner.priv, &mission, &plan);
-    }
     return proved;
 }
 #endif
@@ -118,7 +133,6 @@ void test_enumeration_finds_or_proves_the_optimum(void)
     int tried = 0;
     int partial = 0;
     int fuel_binds = 0;
-    char msg[256];
     for (int round = 0; round < rounds; round++) {
         draw_mission(&rng, round);
         const brute_result_t best = brute_force_optimum(&mission);
@@ -135,18 +149,8 @@ void test_enumeration_finds_or_proves_the_optimum(void)
                               (unsigned long long)seed, round, k, best.cost + above, best.cost,
                               proved ? 1 : 0, offered ? 1 : 0);
             }
-            if (!offered) {
-                continue;  // at the optimum: nothing to offer
-            }
-            if ((plan.cost != best.cost) || (plan.covered != (uint16_t)best.covered)) {
-                SVA_TEST_FAIL("seed %llu round %d try %d: cost %lld covering %u, the optimum "
-                              "%lld covering %d",
-                              (unsigned long long)seed, round, k, (long long)plan.cost,
-                              (unsigned)plan.covered, best.cost, best.covered);
-            }
-            if (spec_check_plan(&mission, &plan, msg, sizeof msg) != 0) {
-                SVA_TEST_FAIL("seed %llu round %d try %d: %s", (unsigned long long)seed, round, k,
-                              msg);
+            if (offered) {
+                check_offer(seed, round, k, &best, true);
             }
         }
         // Fuel binds when the optimum with unbounded fuel covers more or costs less.
@@ -180,7 +184,6 @@ void test_enumeration_proves_the_coverage_or_covers_more(void)
     const int rounds = 300;
     int proofs = 0;
     int found = 0;
-    char msg[256];
     for (int round = 0; round < rounds; round++) {
         draw_mission(&rng, round);
         const brute_result_t best = brute_force_optimum(&mission);
@@ -211,18 +214,9 @@ void test_enumeration_proves_the_coverage_or_covers_more(void)
                               (unsigned long long)seed, round, k, best.covered);
             }
             proofs += proved ? 1 : 0;
-            if (!offered) {
-                continue;
-            }
-            found++;
-            if (plan.covered != (uint16_t)best.covered) {
-                SVA_TEST_FAIL("seed %llu round %d try %d: covers %u, the optimum %d",
-                              (unsigned long long)seed, round, k, (unsigned)plan.covered,
-                              best.covered);
-            }
-            if (spec_check_plan(&mission, &plan, msg, sizeof msg) != 0) {
-                SVA_TEST_FAIL("seed %llu round %d try %d: %s", (unsigned long long)seed, round, k,
-                              msg);
+            if (offered) {
+                found++;
+                check_offer(seed, round, k, &best, false);
             }
         }
     }
