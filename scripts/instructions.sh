@@ -34,14 +34,16 @@ mkdir -p "$out/missions" "$out/callgrind"
 # Two builds of the CLI: the host's (x86-64, build/bin/sva) and a static 32-bit i686
 # one. A Cortex-M4 is a 32-bit machine: the core's int64_t arithmetic takes two or
 # more instructions there as on i686, so the i686 count is the basis of the estimate.
-# (-O2 as the host build; the firmware example uses -Os.)
+# (-O2 as the host build; the firmware example uses -Os. No PROJ for i686: the frame
+# port's geodesy is left out, as in the cross builds.)
 declare -A cli=([x86-64]=build/bin/sva)
 prefix=build/cross/i686/prefix
 if command -v i686-linux-gnu-gcc >/dev/null && [ -f "$prefix/lib/libjansson.a" ]; then
     i686-linux-gnu-gcc -std=c99 -O2 -g -static -DNDEBUG \
-        -Icore/include -Icore/profiles -Iport/json/include -Iport/json/src -I"$prefix/include" \
-        -DSVA_CONFIG_HEADER='"sva_profile_default.h"' \
-        core/src/*/*.c core/src/*.c tools/cli/*.c port/json/src/*.c "$prefix/lib/libjansson.a" -o "$out/sva-i686"
+        -Icore/include -Icore/profiles -Iport/json/include -Iport/json/src -Iport/frame/include \
+        -I"$prefix/include" -DSVA_CONFIG_HEADER='"sva_profile_default.h"' \
+        core/src/*/*.c core/src/*.c tools/cli/*.c port/json/src/*.c port/frame/src/frame.c \
+        port/frame/src/geodesy_none.c "$prefix/lib/libjansson.a" -o "$out/sva-i686"
     cli[i686]=$out/sva-i686
     archs="x86-64 i686"
 else
@@ -53,11 +55,14 @@ base_arch=${archs##* }
 
 # Missions: the paper's protocol as in scripts/bench.sh (20x20 grid, windows of 10 to
 # 20 ticks, need 1, hover fuel 2), seeded, written by the host tools' generator.
+# (gen writes one mission to a file, more into a folder.)
 for size in $sizes; do
     t=${size%x*}; u=${size#*x}
+    dest="$out/missions/$size"
+    if [ "$per_size" -eq 1 ]; then mkdir -p "$dest"; dest="$dest/m${size}.json"; fi
     .venv/bin/sva-tools gen --targets "$t" --uavs "$u" --need 1 --hover 2 --width 10:20 \
         --max-coord 20 --seed "$seed" --count "$per_size" --name "m${size}" \
-        -o "$out/missions/$size" >/dev/null
+        -o "$dest" >/dev/null
 done
 
 # Instructions inside sva_plan for one run, or "-" when the plan fails (bfa over its
