@@ -8,7 +8,8 @@ at or above ref's bound, and its plan must pass the independent checker; on
 `optimum_*` missions it must also reach the optimum's cost. These are missions flow once missed (a target short, or a costlier
 plan): see fixtures/README.md. On `proven_*` missions flow's Lagrangian phase proves
 its plan optimal, and flow must stop there instead of spending the rest of its work
-budget.
+budget. On `certified_*` missions flow must prove its plan optimal within its default
+budget: its lower bound reaches ref's optimum.
 """
 import json
 import subprocess
@@ -46,8 +47,11 @@ def test_flow_reaches_the_proven_optimum(sva_bin, ref_path, tmp_path):
     assert ref["cost"] >= flow["stats"]["lower_bound"]
     # Nothing covering as many targets costs less than ref's optimum, or its proven bound.
     assert flow["cost"] >= (ref["cost"] if optimal else ref["stats"]["lower_bound"])
-    if ref_path.name.startswith(("optimum_", "proven_")):
+    if ref_path.name.startswith(("optimum_", "proven_", "certified_")):
         assert flow["cost"] == ref["cost"]
+    if ref_path.name.startswith("certified_"):
+        assert flow["stats"]["lower_bound"] == ref["cost"]
+        assert flow["stats"]["optimal"] is True
 
 
 BUDGET = 2_000_000  # flow's default work budget (SVA_FLOW_MAX_WORK)
@@ -67,4 +71,5 @@ def test_flow_stops_once_its_bound_proves_the_plan(sva_bin, ref_path):
 
 def test_the_fixtures_are_there():
     names = [p.name for p in proven_plans()]
-    assert all(any(n.startswith(kind) for n in names) for kind in ("optimum_", "cover_", "proven_"))
+    kinds = ("optimum_", "cover_", "proven_", "certified_")
+    assert all(any(n.startswith(kind) for n in names) for kind in kinds)

@@ -432,8 +432,14 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
         }
     }
     plan->stats.flow_cover_dive = (uint8_t)dive;
+    if (dive == SVA_FLOW_COVER_DIVE_FOUND) {
+        // The bounds so far hold for fewer targets: the cost master's for the new coverage.
+        const int64_t again = master_value(w, m, plan, covered, budget);
+        const int64_t raised = (again == NO_BOUND) ? 0 : sva_flow_cost_floor(w, ceil_div(again, s));
+        bound = (raised > bound) ? raised : bound;
+    }
     *coverage_proven = *coverage_proven || (covered == targets) ||
-                       (dive_first && (dive != SVA_FLOW_COVER_DIVE_FOUND) && (bound >= cost) &&
+                       ((dive_first || (dive == SVA_FLOW_COVER_DIVE_FOUND)) && (bound >= cost) &&
                         prove_coverage(priv, m, plan, covered, budget, iters));
 #if SVA_FLOW_ENUM_ROUTES > 0
     // Again with the phase's incumbent (its cost is lower now, so fewer routes); a cost
