@@ -292,6 +292,7 @@ typedef struct {
     int64_t value;      ///< relaxation: cost - rewards
     uint64_t work;
     uint64_t local_work;  ///< work one local search may start
+    uint64_t proof_end;   ///< the Lagrangian phase's coverage proof may work until (flow.c)
 #if SVA_FLOW_LARGE
     uint64_t budget;  ///< this plan's work budget (flow.c)
 #endif

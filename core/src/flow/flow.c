@@ -503,6 +503,9 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
             lagrange_end = w->work;  // the search's bound nearly certifies the plan
         }
 #endif
+        // A proof of coverage at the plan's proven cost ends the planning: it may take the
+        // work of the phases after it (not a large mission's: ruin and recreate needs it).
+        w->proof_end = sva_flow_large(m) ? lagrange_end : (start + budget);
         lagrange_bound = sva_flow_lagrange(priv, m, plan, lagrange_end, &coverage_proven,
                                            &stats->flow_lagrange_iters);
         int64_t proven_bound = coverage_proven ? lagrange_bound : -1;

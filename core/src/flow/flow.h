@@ -241,8 +241,9 @@ int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t
 /// Subgradient phases until the work reaches `budget`: improves the incumbent, and
 /// returns a lower bound on the cost of every plan covering at least as many targets
 /// as the incumbent (0 when it has none); *coverage_proven: no plan covers more (true
-/// on entry: known already, and not sought again).
-/// *iters gets the subgradient steps taken.
+/// on entry: known already, and not sought again). Once the bound reaches the plan's
+/// cost, the proof of its coverage, which would end the planning, may go on to
+/// w->proof_end when that is later than `budget`. *iters gets the subgradient steps taken.
 int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                           uint64_t budget, bool* coverage_proven, uint32_t* iters);
 

@@ -285,9 +285,12 @@ static bool cover_steps(sva_flow_work_t* w, const sva_mission_t* m, const sva_pl
 // master's prices, the route enumeration (flow_enum.c) under them may prove it, or offer
 // a plan covering more (then false); then the steps.
 static bool prove_coverage(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
-                           int64_t covered, uint64_t budget, uint32_t* iters)
+                           int64_t covered, uint64_t phase_end, uint32_t* iters)
 {
     sva_flow_work_t* w = &priv->flow;
+    // Called at the plan's proven cost: a proof ends the planning, so it may go on to
+    // w->proof_end (flow.c).
+    const uint64_t budget = (w->proof_end > phase_end) ? w->proof_end : phase_end;
     bool priced = false;
     if (cover_master(w, m, plan, covered, budget, &priced)) {
         return true;
