@@ -200,8 +200,7 @@ typedef struct {
 } sva_flow_enum_t;
 #endif
 
-// flow's coverage search (flow_cover.c), when SVA_FLOW_COVER_TARGETS is not 0.// flow's coverage
-// search (flow_cover.c), when SVA_FLOW_COVER_TARGETS is not 0.
+// flow's coverage search (flow_cover.c), when SVA_FLOW_COVER_TARGETS is not 0.
 #if SVA_FLOW_COVER_TARGETS > 0
 #    define SVA_FLOW_COVER_T SVA_FLOW_COVER_TARGETS
 #    define SVA_FLOW_COVER_U ((SVA_FLOW_COVER_UAVS > 0) ? SVA_FLOW_COVER_UAVS : 1)
