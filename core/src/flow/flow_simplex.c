@@ -49,11 +49,15 @@ static sva_divisor_t divisor_of(int64_t d)
     return v;
 }
 
-// The int64 whose two's complement is u.
+// The int64 whose two's complement is u: its low 63 bits, less 2^63 when the top bit is
+// set (as twice 2^62, within int64), without a branch (the quotients' signs vary).
 static int64_t from_twos(uint64_t u)
 {
-    const uint64_t flipped = ~u;  // below 2^63 when u is not
-    return (u <= (uint64_t)INT64_MAX) ? (int64_t)u : (-(int64_t)flipped - 1);
+    const uint64_t low_bits = u & (uint64_t)INT64_MAX;
+    const uint64_t top = (u >> 63U) << 62U;
+    const int64_t low = (int64_t)low_bits;
+    const int64_t half = (int64_t)top;
+    return (low - half) - half;
 }
 
 // num / D when D divides num: num shifted right (arithmetically) by D's power of two,
