@@ -12,6 +12,9 @@
 #   SVA_CPI     cycles per instruction assumed on the Cortex-M4 (default 1.5)
 #   SVA_SIZES   "TARGETSxUAVS ..." (default: the paper's 3x3 5x3 7x5 10x5 25x5)
 #   SVA_SEED    generator seed (default 2024)
+#   SVA_INSTRUCTIONS_OUT  where the missions and callgrind files go (default
+#               build/instructions)
+#   SVA_NO_BUILD  1: use build/ as it is (its test, tests/tools/test_instructions.py)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
@@ -26,8 +29,8 @@ sizes=${SVA_SIZES:-3x3 5x3 7x5 10x5 25x5}
 seed=${SVA_SEED:-2024}
 mhz=168
 
-scripts/build.sh >/dev/null
-out=build/instructions
+if [ "${SVA_NO_BUILD:-0}" != 1 ]; then scripts/build.sh >/dev/null; fi
+out=${SVA_INSTRUCTIONS_OUT:-build/instructions}
 rm -rf "$out"
 mkdir -p "$out/missions" "$out/callgrind"
 
