@@ -394,6 +394,28 @@ static bool column_is_route(const sva_flow_lp_t* lp, uint16_t col, uint16_t u)
 }
 #endif
 
+// A mission of 25 targets x 5 UAVs (fewer where the profile's bounds are smaller)
+// where fuel 80 binds, planned by flow into plan and checked: the route master runs
+// on most of them.
+static void plan_where_fuel_binds(test_rng_t* rng, uint64_t seed, int round)
+{
+    const test_gen_params_t p = {SVA_MAX_TARGETS < 25 ? SVA_MAX_TARGETS : 25,
+                                 SVA_MAX_UAVS < 5 ? SVA_MAX_UAVS : 5,
+                                 20,
+                                 10,
+                                 20,
+                                 375,
+                                 1,
+                                 80,
+                                 80,
+                                 2,
+                                 1,
+                                 0,
+                                 0};
+    test_gen_mission(rng, &p, &mission);
+    must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
+}
+
 // Every route column of the route master, after flow has planned, is a route its UAV
 // state can fly. Where fuel binds, the labels' merging (flow_lagrange.c) yields paths
 // that break fuel: pricing must pass over them.
@@ -404,21 +426,7 @@ void test_route_master_holds_only_real_routes(void)
     test_rng_seed(&rng, seed);
     int columns = 0;
     for (int round = 0; round < 12; round++) {
-        const test_gen_params_t p = {SVA_MAX_TARGETS < 25 ? SVA_MAX_TARGETS : 25,
-                                     SVA_MAX_UAVS < 5 ? SVA_MAX_UAVS : 5,
-                                     20,
-                                     10,
-                                     20,
-                                     375,
-                                     1,
-                                     80,
-                                     80,
-                                     2,
-                                     1,
-                                     0,
-                                     0};
-        test_gen_mission(&rng, &p, &mission);
-        must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
+        plan_where_fuel_binds(&rng, seed, round);
 #if SVA_FLOW_LP_ROWS >= 2
         const sva_flow_lp_t* lp = &planner.priv.flow.lp;
         const uint16_t cols =
@@ -495,21 +503,7 @@ void test_route_master_basis_and_duals_are_exact(void)
     int ran = 0;
     int checked = 0;
     for (int round = 0; round < 40; round++) {
-        const test_gen_params_t p = {SVA_MAX_TARGETS < 25 ? SVA_MAX_TARGETS : 25,
-                                     SVA_MAX_UAVS < 5 ? SVA_MAX_UAVS : 5,
-                                     20,
-                                     10,
-                                     20,
-                                     375,
-                                     1,
-                                     80,
-                                     80,
-                                     2,
-                                     1,
-                                     0,
-                                     0};
-        test_gen_mission(&rng, &p, &mission);
-        must_plan_checked(&planner, &mission, SVA_ALGO_FLOW, &plan, seed, round);
+        plan_where_fuel_binds(&rng, seed, round);
         if (plan.stats.flow_lp_columns == 0U) {
             continue;  // the master did not run: another mission's state
         }
