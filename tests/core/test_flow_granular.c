@@ -99,23 +99,30 @@ static bool some_place_saves(uint16_t u, uint16_t t, int64_t saving)
     return false;
 }
 
-// Cells from route r's first stop to its i-th, and from its i-th on to the depot:
-// the pieces the index hands the exchange.
-static void pieces(const sva_route_t* r, uint16_t i, int32_t* pre, int32_t* post)
+// Route u's index as the local search keeps it (flow_repair.c), built out here: for
+// each of its targets the cells from the UAV to it and from it on to the depot.
+static void index_route(sva_flow_work_t* w, uint16_t u)
 {
-    *pre = 0;
-    *post = 0;
-    for (uint16_t k = 1U; k < i; k++) {
-        const sva_target_t* a = &mission.targets[r->targets[k - 1U]];
-        const sva_target_t* b = &mission.targets[r->targets[k]];
-        *pre += (int32_t)manhattan(a->x, a->y, b->x, b->y);
+    const sva_route_t* r = &plan.routes[u];
+    int64_t x = mission.uavs[u].x;
+    int64_t y = mission.uavs[u].y;
+    int64_t lead = 0;
+    for (uint16_t k = 0U; k < r->target_count; k++) {
+        const sva_target_t* t = &mission.targets[r->targets[k]];
+        lead += manhattan(x, y, t->x, t->y);
+        w->lead_of[r->targets[k]] = (int32_t)lead;
+        x = t->x;
+        y = t->y;
     }
-    for (uint16_t k = i; k < r->target_count; k++) {
-        const sva_target_t* a = &mission.targets[r->targets[k]];
-        const bool last = (k + 1U) == r->target_count;
-        const int64_t nx = last ? mission.depot_x : mission.targets[r->targets[k + 1U]].x;
-        const int64_t ny = last ? mission.depot_y : mission.targets[r->targets[k + 1U]].y;
-        *post += (int32_t)manhattan(a->x, a->y, nx, ny);
+    int64_t post = 0;
+    x = mission.depot_x;
+    y = mission.depot_y;
+    for (uint16_t k = r->target_count; k > 0U; k--) {
+        const sva_target_t* t = &mission.targets[r->targets[k - 1U]];
+        post += manhattan(t->x, t->y, x, y);
+        w->post_of[r->targets[k - 1U]] = (int32_t)post;
+        x = t->x;
+        y = t->y;
     }
 }
 
@@ -207,10 +214,10 @@ void test_exchange_quick_test_turns_down_only_cuts_that_cannot_save(void)
                     continue;
                 }
                 const int64_t before = cells_now(a) + cells_now(b);
+                index_route(w, a);  // need 1: no target in both routes
+                index_route(w, b);
                 for (uint16_t i = 0U; i <= ra->target_count; i++) {
                     for (uint16_t j = 0U; j <= rb->target_count; j++) {
-                        pieces(ra, i, &w->piece_pre[0][i], &w->piece_post[0][i]);
-                        pieces(rb, j, &w->piece_pre[1][j], &w->piece_post[1][j]);
                         const bool quick =
                             sva_flow_cut_may_save(w, &mission, &plan, a, b, i, j, before);
                         if (quick != exchange_saves(a, b, i, j, before)) {

@@ -314,7 +314,7 @@ typedef struct {
     uint16_t near_count;
     uint16_t route_of[SVA_MAX_TARGETS];  ///< a route serving the target (checked on use)
     uint16_t pos_of[SVA_MAX_TARGETS];    ///< its place there
-    int32_t pre_of[SVA_MAX_TARGETS];     ///< cells from that route's first target to it
+    int32_t lead_of[SVA_MAX_TARGETS];    ///< cells from that route's UAV to it
     int32_t post_of[SVA_MAX_TARGETS];    ///< and from it to the depot
     uint16_t uav_tried[SVA_MAX_UAVS];    ///< try_epoch: already tried for this visit
     uint16_t try_epoch;

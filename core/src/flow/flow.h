@@ -87,10 +87,10 @@ uint16_t sva_flow_costliest_stop(const sva_mission_t* m, uint16_t u, const sva_r
 /// Whether a UAV free at free_at in (x, y) reaches target tg by its start.
 bool sva_flow_arrives_in_time(const sva_mission_t* m, int64_t free_at, int32_t x, int32_t y,
                               const sva_target_t* tg);
-/// Target t flown between route u's first p targets and its stop `next`: whether both
-/// windows are met, and in *cells the detour over flying that leg directly.
-bool sva_flow_detour(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t p,
-                     uint16_t next, uint16_t t, int64_t* cells);
+/// Whether target t fits route u's k-th slot in time in place of its target there, and
+/// in *delta how many cells longer the route gets with t in that slot.
+bool sva_flow_slot_delta(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t k,
+                         const sva_target_t* t, int64_t* delta);
 /// Cheapest feasible place for t in route u: sets insert_delta/insert_pos, or false.
 bool sva_flow_best_place(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
                          uint16_t u, uint16_t t);
@@ -199,8 +199,8 @@ void sva_flow_ruin_strings(sva_planner_priv_t* priv, const sva_mission_t* m, sva
 bool sva_flow_place_may_save(const sva_mission_t* m, const sva_plan_t* plan, uint16_t u, uint16_t t,
                              int64_t saving);
 /// Whether the tail exchange of routes a and b at cut (i, j) (a keeps its first i
-/// targets and takes b's from j on, b the other way round; the cut's pieces in
-/// w->piece_pre/piece_post, [0] for a, [1] for b) meets time at both joints and flies
+/// targets and takes b's from j on, b the other way round; the routes' pieces in their
+/// index, w->lead_of and w->post_of, flow_repair.c) meets time at both joints and flies
 /// fewer than `before` cells. Fuel, route length and repeated targets are left to the
 /// exchange itself.
 bool sva_flow_cut_may_save(const sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,

@@ -8,40 +8,9 @@
 
 #if SVA_FLOW_GRANULAR
 
-// Route r of UAV u cut after its first i targets, to go on with route `next`'s stops
-// from j on: the cells up to the cut (its first target's leg, then the pieces) plus the
-// joint, or -1 when the joint breaks time. pre_i: cells from r's first target to its
-// i-th (the scratch pieces).
-static inline int64_t cut_cells(const sva_mission_t* m, uint16_t u, const sva_route_t* r,
-                                uint16_t i, int32_t pre_i, const sva_route_t* next, uint16_t j)
-{
-    const sva_uav_t* uav = &m->uavs[u];
-    int32_t x = uav->x;
-    int32_t y = uav->y;
-    int64_t free_at = uav->ready_at_ticks;
-    int64_t cells = 0;
-    if (i > 0U) {
-        const sva_target_t* first = &m->targets[r->targets[0]];
-        const sva_target_t* last = &m->targets[r->targets[i - 1U]];
-        cells = (int64_t)sva_distance(x, y, first->x, first->y) + pre_i;
-        x = last->x;
-        y = last->y;
-        free_at = last->end_ticks;
-    }
-    if (j >= next->target_count) {
-        return cells + sva_distance(x, y, m->depot_x, m->depot_y);
-    }
-    const sva_target_t* to = &m->targets[next->targets[j]];
-    const int64_t joint = sva_distance(x, y, to->x, to->y);
-    if ((free_at + (joint * m->ticks_per_cell)) > to->start_ticks) {
-        return -1;
-    }
-    return cells + joint;
-}
-
 // Target tg flown after route r's first p targets (UAV u) and before its stop `next`
-// (the depot at its end): the detour in *cells, as sva_flow_detour finds it, and
-// whether both windows are met.
+// (the depot at its end): the detour in *cells, as flow_insert.c's place_detour finds
+// it, and whether both windows are met.
 static inline bool detour(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t p,
                           uint16_t next, const sva_target_t* tg, int64_t* cells)
 {
@@ -85,17 +54,60 @@ bool sva_flow_place_may_save(const sva_mission_t* m, const sva_plan_t* plan, uin
     return false;
 }
 
+// Where UAV u is after route r's first i stops, and when it is free there.
+static inline void cut_end(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t i,
+                           int32_t* x, int32_t* y, int64_t* free_at)
+{
+    if (i == 0U) {
+        *x = m->uavs[u].x;
+        *y = m->uavs[u].y;
+        *free_at = m->uavs[u].ready_at_ticks;
+    } else {
+        const sva_target_t* last = &m->targets[r->targets[i - 1U]];
+        *x = last->x;
+        *y = last->y;
+        *free_at = last->end_ticks;
+    }
+}
+
+// The joint from UAV u's route r after its first i stops to route `next`'s stop j (the
+// depot when j is its length): its cells, or -1 when it is late.
+static inline int64_t joint_cells(const sva_mission_t* m, uint16_t u, const sva_route_t* r,
+                                  uint16_t i, const sva_route_t* next, uint16_t j)
+{
+    int32_t x = 0;
+    int32_t y = 0;
+    int64_t free_at = 0;
+    cut_end(m, u, r, i, &x, &y, &free_at);
+    if (j >= next->target_count) {
+        return sva_distance(x, y, m->depot_x, m->depot_y);
+    }
+    const sva_target_t* to = &m->targets[next->targets[j]];
+    const int64_t joint = sva_distance(x, y, to->x, to->y);
+    return ((free_at + (joint * m->ticks_per_cell)) > to->start_ticks) ? -1 : joint;
+}
+
+// Route r's pieces at cut i from the index: the cells from its UAV to its (i-1)-th stop
+// plus those from its i-th stop to the depot (0 at either end).
+static inline int64_t indexed_cells(const sva_flow_work_t* w, const sva_route_t* r, uint16_t i)
+{
+    const int64_t lead = (i == 0U) ? 0 : w->lead_of[r->targets[i - 1U]];
+    const int64_t tail = (i == r->target_count) ? 0 : w->post_of[r->targets[i]];
+    return lead + tail;
+}
+
 bool sva_flow_cut_may_save(const sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
                            uint16_t a, uint16_t b, uint16_t i, uint16_t j, int64_t before)
 {
     const sva_route_t* ra = &plan->routes[a];
     const sva_route_t* rb = &plan->routes[b];
-    const int64_t ca = cut_cells(m, a, ra, i, w->piece_pre[0][i], rb, j);
-    if (ca < 0) {
+    const int64_t joint_a = joint_cells(m, a, ra, i, rb, j);
+    if (joint_a < 0) {
         return false;
     }
-    const int64_t cb = cut_cells(m, b, rb, j, w->piece_pre[1][j], ra, i);
-    return (cb >= 0) && (((ca + w->piece_post[1][j]) + (cb + w->piece_post[0][i])) < before);
+    const int64_t joint_b = joint_cells(m, b, rb, j, ra, i);
+    return (joint_b >= 0) &&
+           ((((joint_a + joint_b) + indexed_cells(w, ra, i)) + indexed_cells(w, rb, j)) < before);
 }
 
 #endif  // SVA_FLOW_GRANULAR

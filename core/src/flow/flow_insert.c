@@ -82,8 +82,8 @@ bool sva_flow_arrives_in_time(const sva_mission_t* m, int64_t free_at, int32_t x
 // Target t flown between where route u is after its first p targets and its stop
 // `next` (the depot when next is its length): whether both windows are still met in
 // time, and in *cells how much longer the route gets than flying that leg directly.
-bool sva_flow_detour(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t p,
-                     uint16_t next, uint16_t t, int64_t* cells)
+static bool place_detour(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t p,
+                         uint16_t next, uint16_t t, int64_t* cells)
 {
     int32_t px = 0;
     int32_t py = 0;
@@ -108,6 +108,36 @@ bool sva_flow_detour(const sva_mission_t* m, uint16_t u, const sva_route_t* r, u
     return true;
 }
 
+bool sva_flow_slot_delta(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t k,
+                         const sva_target_t* t, int64_t* delta)
+{
+    const sva_target_t* s = &m->targets[r->targets[k]];
+    int32_t px = 0;
+    int32_t py = 0;
+    int64_t free_at = 0;
+    sva_flow_leg_ends(m, u, r, k, &px, &py, &free_at);
+    const int64_t in = sva_distance(px, py, t->x, t->y);
+    if ((free_at + (in * m->ticks_per_cell)) > t->start_ticks) {
+        return false;
+    }
+    int32_t nx = m->depot_x;
+    int32_t ny = m->depot_y;
+    if ((k + 1U) < r->target_count) {
+        const sva_target_t* after = &m->targets[r->targets[k + 1U]];
+        nx = after->x;
+        ny = after->y;
+    }
+    const int64_t out = sva_distance(t->x, t->y, nx, ny);
+    if (((k + 1U) < r->target_count) &&
+        ((t->end_ticks + (out * m->ticks_per_cell)) > m->targets[r->targets[k + 1U]].start_ticks)) {
+        return false;
+    }
+    // The leg that skips the slot is in both the detour and the saving: it cancels out.
+    *delta =
+        (in + out) - ((int64_t)sva_distance(px, py, s->x, s->y) + sva_distance(s->x, s->y, nx, ny));
+    return true;
+}
+
 // Cheapest feasible place for t in route u: sets insert_delta/insert_pos, or false.
 bool sva_flow_best_place(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
                          uint16_t u, uint16_t t)
@@ -128,7 +158,7 @@ bool sva_flow_best_place(sva_flow_work_t* w, const sva_mission_t* m, const sva_p
             break;  // routes keep time order: no later place is free by t's start either
         }
         int64_t delta = 0;
-        if (!sva_flow_detour(m, u, r, p, p, t, &delta) ||
+        if (!place_detour(m, u, r, p, p, t, &delta) ||
             !sva_flow_fits(m, u, w->route_cells[u] + delta, (uint32_t)r->target_count + 1U)) {
             continue;
         }

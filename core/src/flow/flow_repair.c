@@ -61,19 +61,6 @@ static bool relocate(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* pla
     return false;
 }
 
-// Whether target t fits the slot of route u's k-th target in time; *delta gets the
-// cells the route grows by with t in that slot.
-static bool slot_delta(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t k,
-                       uint16_t t, int64_t* delta)
-{
-    int64_t cells = 0;
-    if (!sva_flow_detour(m, u, r, k, (uint16_t)(k + 1U), t, &cells)) {
-        return false;
-    }
-    *delta = cells - sva_flow_stop_saving(m, u, r, k);
-    return true;
-}
-
 // Swaps the k-th visit of route a with the j-th of route b, each taking the other's
 // slot, when that saves cells.
 static bool swap_pair(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, uint16_t a,
@@ -86,7 +73,8 @@ static bool swap_pair(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* pl
     w->work++;
     int64_t da = 0;
     int64_t db = 0;
-    if (!slot_delta(m, a, ra, k, t, &da) || !slot_delta(m, b, rb, j, s, &db) || ((da + db) >= 0) ||
+    if (!sva_flow_slot_delta(m, a, ra, k, &m->targets[t], &da) ||
+        !sva_flow_slot_delta(m, b, rb, j, &m->targets[s], &db) || ((da + db) >= 0) ||
         !sva_flow_fits(m, a, w->route_cells[a] + da, ra->target_count) ||
         !sva_flow_fits(m, b, w->route_cells[b] + db, rb->target_count) || serves(ra, t) ||
         serves(rb, s)) {
@@ -164,7 +152,7 @@ static bool trade(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* 
     return false;
 }
 
-// Cells of route u's pieces: pre[i] from the UAV to its i-th target (pre[0] = 0),
+// Cells of route u's pieces: pre[i] from the UAV's start to its i-th target (pre[0] = 0),
 // post[i] from its i-th target on to the depot (post[n] = 0).
 static void piece_cells(const sva_mission_t* m, uint16_t u, const sva_route_t* r, int32_t* pre,
                         int32_t* post)
@@ -174,7 +162,7 @@ static void piece_cells(const sva_mission_t* m, uint16_t u, const sva_route_t* r
     pre[0] = 0;
     for (uint16_t k = 0U; k < r->target_count; k++) {
         const sva_target_t* t = &m->targets[r->targets[k]];
-        pre[k + 1U] = pre[k] + ((k == 0U) ? 0 : sva_distance(x, y, t->x, t->y));
+        pre[k + 1U] = pre[k] + sva_distance(x, y, t->x, t->y);
         x = t->x;
         y = t->y;
     }
@@ -209,13 +197,7 @@ static int64_t spliced_cells(const sva_mission_t* m, uint16_t u, const sva_route
         nx = next->x;
         ny = next->y;
     }
-    // pre_a[i] counts from ra's first target; the UAV's first leg is in the joint
-    // when i == 0, else it is leg 0 of ra.
-    const int64_t first =
-        (i == 0U) ? 0
-                  : sva_distance(m->uavs[u].x, m->uavs[u].y, m->targets[ra->targets[0]].x,
-                                 m->targets[ra->targets[0]].y);
-    return first + pre_a[i] + sva_distance(x, y, nx, ny) + post_b[j];
+    return (int64_t)pre_a[i] + sva_distance(x, y, nx, ny) + post_b[j];
 }
 
 // No target both in ra's first i and in rb's from j on (needs above 1).
@@ -338,7 +320,7 @@ static void index_route(sva_flow_work_t* w, const sva_mission_t* m, const sva_pl
     for (uint16_t k = 0U; k < r->target_count; k++) {
         w->route_of[r->targets[k]] = u;
         w->pos_of[r->targets[k]] = k;
-        w->pre_of[r->targets[k]] = w->piece_pre[0][k + 1U];
+        w->lead_of[r->targets[k]] = w->piece_pre[0][k + 1U];
         w->post_of[r->targets[k]] = w->piece_post[0][k];
     }
 }
@@ -347,7 +329,7 @@ static void index_route(sva_flow_work_t* w, const sva_mission_t* m, const sva_pl
 // (what cut_saves reads): up to its i-th stop, and from it on.
 static void indexed_pieces(sva_flow_work_t* w, const sva_route_t* r, uint16_t i, uint16_t side)
 {
-    w->piece_pre[side][i] = (i == 0U) ? 0 : w->pre_of[r->targets[i - 1U]];
+    w->piece_pre[side][i] = (i == 0U) ? 0 : w->lead_of[r->targets[i - 1U]];
     w->piece_post[side][i] = (i == r->target_count) ? 0 : w->post_of[r->targets[i]];
 }
 
@@ -366,12 +348,13 @@ static bool located(const sva_flow_work_t* w, const sva_mission_t* m, const sva_
     return (*j < r->target_count) && (r->targets[*j] == v);
 }
 
-// Whether the index holds route u's pieces around cut i (a target of need above 1 may
-// be indexed under another of its routes).
+// Whether the index holds route u's pieces around cut i: a target of need above 1 may
+// be indexed under another of its routes; every other one is where the index says (each
+// edit marks the routes it changes, and they are indexed again after it).
 static bool fresh(const sva_flow_work_t* w, const sva_route_t* r, uint16_t u, uint16_t i)
 {
-    return ((i == 0U) || (w->route_of[r->targets[i - 1U]] == u)) &&
-           ((i == r->target_count) || (w->route_of[r->targets[i]] == u));
+    return (w->need_max == 1) || (((i == 0U) || (w->route_of[r->targets[i - 1U]] == u)) &&
+                                  ((i == r->target_count) || (w->route_of[r->targets[i]] == u)));
 }
 
 // A new mark over the UAVs: none tried yet for the visit at hand.
@@ -444,10 +427,12 @@ static bool granular_move(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t
             if (!fresh(w, &plan->routes[a], a, i) || !fresh(w, &plan->routes[b], b, jc)) {
                 continue;
             }
+            if (!sva_flow_cut_may_save(w, m, plan, a, b, i, jc, before)) {
+                continue;
+            }
             indexed_pieces(w, &plan->routes[a], i, 0U);
             indexed_pieces(w, &plan->routes[b], jc, 1U);
-            if (sva_flow_cut_may_save(w, m, plan, a, b, i, jc, before) &&
-                cut_saves(w, m, plan, a, b, i, jc, before)) {
+            if (cut_saves(w, m, plan, a, b, i, jc, before)) {
                 return true;
             }
         }
