@@ -2,7 +2,7 @@
 // section 8): 100 targets x 20 UAVs where fuel binds.
 // - every plan passes the SPEC checker and its bound holds;
 // - the work budget grows with the targets: the work spent passes flow_max_work and
-//   stays within flow_max_work x (targets / SVA_FLOW_LARGE_FROM)^2, at most twice
+//   stays within flow_max_work x (targets / SVA_FLOW_LARGE_FROM)^2, at most 2.5 times
 //   flow_max_work, and one round more;
 // - ruin and recreate runs (unless the plan is optimal or within 1/SVA_FLOW_CLOSE of its
 //   bound), and flow covers as many targets as sva and ga and costs no more than the
@@ -75,7 +75,8 @@ void test_large_missions_plan_checked_within_their_grown_budget(void)
         const uint64_t base = planner.flow_max_work;
         const uint64_t from = (uint64_t)SVA_FLOW_LARGE_FROM;
         const uint64_t square = (base * LARGE_TARGETS * LARGE_TARGETS) / (from * from);
-        const uint64_t grown = (square < (2U * base)) ? square : (2U * base);
+        const uint64_t most = (5U * base) / 2U;  // 2.5 times, from 102 targets
+        const uint64_t grown = (square < most) ? square : most;
         printf("# round %d: covered %d cost %lld bound %lld work %llu (budget %llu) ruin %u\n",
                round, plan.covered, (long long)plan.cost, (long long)plan.stats.lower_bound,
                (unsigned long long)plan.stats.flow_work, (unsigned long long)grown,

@@ -1,8 +1,8 @@
 // flow_large.c -- flow's rules for large missions, of more than SVA_FLOW_LARGE_FROM
 // targets (DESIGN.md section 8): their work budget grows with the square of their
-// targets (up to twice the planner's, from 91 targets: a round's work grows with the
-// targets and with the fleet, which grows with them); the Lagrangian phase
-// gets an eighth of it from its own start (its subgradient steps are long there and
+// targets (up to 2.5 times the planner's, from 102 targets: a round's work grows with
+// the targets and with the fleet, which grows with them); the Lagrangian phase gets
+// an eighth of it from its own start (its subgradient steps are long there and
 // its bound gains little from them, but its heuristic's flight finds good plans), and
 // none when the search's bound already certifies the plan; one local search gets an
 // eighth (a half otherwise); ruin and recreate is told the search's bound, and the
@@ -24,7 +24,7 @@ uint64_t sva_flow_budget(const sva_mission_t* m, uint64_t budget)
     const uint64_t targets = m->target_count;
     uint64_t grown = budget;
     if (sva_flow_large(m)) {
-        const uint64_t most = 2U * budget;
+        const uint64_t most = (5U * budget) / 2U;
         grown = ((budget * targets) * targets) / (from * from);  // budget <= SVA_FLOW_MAX_WORK
         grown = (grown > most) ? most : grown;
     }
