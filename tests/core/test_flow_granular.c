@@ -9,6 +9,8 @@
 // Fuel is no part of either (the moves check it). Both answers must come up. The plans
 // are flow's on 100 targets x 20 UAVs, UAVs at the depot and scattered (a route's
 // first leg from where its UAV is, free from its ready time).
+// The search looks only at visits an edit came next to (don't-look bits): every edit of
+// a route must wake exactly the visits whose neighbours it changed.
 // Seeds are printed and replayable (SVA_TEST_SEED=...).
 #include <stdint.h>
 #include <stdio.h>
@@ -235,6 +237,73 @@ void test_exchange_quick_test_turns_down_only_cuts_that_cannot_save(void)
     printf("# exchanges: %d may save, %d cannot\n", answers[1], answers[0]);
     TEST_ASSERT_TRUE(answers[0] > 0);
     TEST_ASSERT_TRUE(answers[1] > 0);
+#else
+    TEST_IGNORE_MESSAGE("the profile has no granular moves (SVA_FLOW_GRANULAR 0)");
+#endif
+}
+
+#if SVA_FLOW_GRANULAR
+static void sleep_all(sva_flow_work_t* w)
+{
+    for (uint16_t t = 0U; t < mission.target_count; t++) {
+        w->visit_awake[t] = 0U;
+    }
+}
+
+// Whether the awake targets are exactly route r's visits at places place - 1 to
+// place + 1 (those that exist), and route u is marked changed.
+static bool awake_around(const sva_flow_work_t* w, const sva_route_t* r, uint16_t u, int place)
+{
+    bool exact = w->route_changed[u] != 0U;
+    for (uint16_t t = 0U; t < mission.target_count; t++) {
+        bool near_edit = false;
+        for (int i = place - 1; i <= (place + 1); i++) {
+            near_edit =
+                near_edit || ((i >= 0) && (i < (int)r->target_count) && (r->targets[i] == t));
+        }
+        exact = exact && ((w->visit_awake[t] != 0U) == near_edit);
+    }
+    return exact;
+}
+#endif
+
+// The granular search looks only at awake visits (don't-look bits): each edit must wake
+// the visits whose neighbours it changes, and no other. A removal at place k: the two
+// it joins (now at k - 1 and k) and the next; an insertion at k: the visit and both
+// its neighbours. Every place of every route, ends included.
+void test_edits_wake_the_visits_next_to_them(void)
+{
+#if SVA_FLOW_GRANULAR
+    const uint64_t seed = test_seed(0x6A43ULL);
+    sva_flow_work_t* w = &planner.priv.flow;
+    plan_a_mission(seed, 1);
+    int edits = 0;
+    for (uint16_t u = 0U; u < mission.uav_count; u++) {
+        sva_route_t* r = &plan.routes[u];
+        for (uint16_t k = 0U; k < r->target_count; k++) {
+            const uint16_t t = r->targets[k];
+            sleep_all(w);
+            w->route_changed[u] = 0U;
+            sva_flow_remove_at(&mission, w, r, u, k);
+            if (!awake_around(w, r, u, (int)k)) {
+                SVA_TEST_FAIL("seed %llu: UAV %u, place %u: the removal woke the wrong visits",
+                              (unsigned long long)seed, (unsigned)u, (unsigned)k);
+            }
+            sleep_all(w);
+            w->route_changed[u] = 0U;
+            w->insert_pos[u] = k;
+            w->insert_delta[u] = 0;
+            sva_flow_insert_at(w, r, u, t);
+            TEST_ASSERT_EQUAL_UINT16(t, r->targets[k]);
+            if (!awake_around(w, r, u, (int)k)) {
+                SVA_TEST_FAIL("seed %llu: UAV %u, place %u: the insertion woke the wrong visits",
+                              (unsigned long long)seed, (unsigned)u, (unsigned)k);
+            }
+            edits += 2;
+        }
+    }
+    printf("# edits checked: %d\n", edits);
+    TEST_ASSERT_TRUE(edits > 0);
 #else
     TEST_IGNORE_MESSAGE("the profile has no granular moves (SVA_FLOW_GRANULAR 0)");
 #endif

@@ -24,8 +24,8 @@
 ///                  + the coverage search (SVA_FLOW_COVER_TARGETS below)
 ///                  + the route enumeration (SVA_FLOW_ENUM_ROUTES below)
 ///                  + large missions' granular moves (SVA_FLOW_NEAR below)
-///   (default profile: 783,336 B, of which flow's sva_flow_work_t is 637,416 B; large
-///   profile: 7,387,176 B, of which 6,560,000 B are flow's 656,000 arcs.)
+///   (default profile: 783,600 B on x86-64, of which flow's sva_flow_work_t is 637,680 B;
+///   large profile: 7,388,208 B, of which 6,560,000 B are flow's 656,000 arcs.)
 
 #ifndef SVA_CONFIG_H
 #define SVA_CONFIG_H
@@ -242,7 +242,7 @@
 /// missions plan exactly as without these rules.
 /// SVA_FLOW_NEAR 0 leaves the granular moves and the accepting out. Cost, when
 /// SVA_MAX_TARGETS > SVA_FLOW_LARGE_FROM: 24 B, and when SVA_FLOW_NEAR > 0 too:
-/// (2 * SVA_FLOW_NEAR + 12) B * SVA_MAX_TARGETS + 5 B * SVA_MAX_UAVS
+/// (2 * SVA_FLOW_NEAR + 13) B * SVA_MAX_TARGETS + 5 B * SVA_MAX_UAVS
 /// + 2 B * SVA_FLOW_MAX_COPIES + 144 B.
 #ifndef SVA_FLOW_LARGE_FROM
 #    define SVA_FLOW_LARGE_FROM 64

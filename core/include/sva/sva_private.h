@@ -306,9 +306,12 @@ typedef struct {
     bool insert_backwards;  ///< the repair inserts in reverse window order (ruin and recreate)
 #if SVA_FLOW_GRANULAR
     /// Past SVA_FLOW_LARGE_FROM targets: ruin and recreate's local search starts
-    /// only from routes changed since it last looked at them, with granular moves.
-    bool local_changed_only;              ///< the local search is in that mode now
-    uint8_t route_changed[SVA_MAX_UAVS];  ///< route u changed (set by every edit)
+    /// only from routes changed since it last looked at them, with granular moves, and
+    /// there only from the visits next to a change (don't-look bits).
+    bool local_changed_only;               ///< the local search is in that mode now
+    uint8_t route_changed[SVA_MAX_UAVS];   ///< route u changed (set by every edit)
+    uint8_t visit_awake[SVA_MAX_TARGETS];  ///< an edit came next to the visit since
+                                           ///< the search last looked at it
     /// Each target's most related targets, nearest first (flow_ruin.c); near_count each.
     uint16_t near[SVA_MAX_TARGETS][SVA_FLOW_NEAR];
     uint16_t near_count;

@@ -533,14 +533,23 @@ static inline bool sva_flow_large(const sva_mission_t* m)
 #endif
 }
 
-/// Notes that route u changed (for the granular local search; nothing without it).
-static inline void sva_flow_changed(sva_flow_work_t* w, uint16_t u)
+/// Notes that route u (r) changed at its k-th place, for the granular local search
+/// (nothing without it): the route, and the visits now at places k - 1 to k + 1, the
+/// ones whose neighbours the edit may have changed, are to be looked at again.
+static inline void sva_flow_changed(sva_flow_work_t* w, uint16_t u, const sva_route_t* r,
+                                    uint16_t k)
 {
 #if SVA_FLOW_GRANULAR
     w->route_changed[u] = 1U;
+    const uint16_t first = (k > 0U) ? (uint16_t)(k - 1U) : 0U;
+    for (uint16_t i = first; (i <= (k + 1U)) && (i < r->target_count); i++) {
+        w->visit_awake[r->targets[i]] = 1U;
+    }
 #else
     (void)w;
     (void)u;
+    (void)r;
+    (void)k;
 #endif
 }
 

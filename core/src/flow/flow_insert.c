@@ -223,7 +223,7 @@ void sva_flow_insert_at(sva_flow_work_t* w, sva_route_t* r, uint16_t u, uint16_t
     r->targets[w->insert_pos[u]] = t;
     r->target_count++;
     w->route_cells[u] += w->insert_delta[u];
-    sva_flow_changed(w, u);
+    sva_flow_changed(w, u, r, w->insert_pos[u]);
 }
 
 void sva_flow_remove_at(const sva_mission_t* m, sva_flow_work_t* w, sva_route_t* r, uint16_t u,
@@ -234,7 +234,7 @@ void sva_flow_remove_at(const sva_mission_t* m, sva_flow_work_t* w, sva_route_t*
         r->targets[j] = r->targets[j + 1U];
     }
     r->target_count--;
-    sva_flow_changed(w, u);
+    sva_flow_changed(w, u, r, k);
 }
 
 // Cheapest UAV other than `skip` that can take single-UAV target t; -1 if none.

@@ -84,8 +84,8 @@ static bool swap_pair(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* pl
     rb->targets[j] = s;
     w->route_cells[a] += da;
     w->route_cells[b] += db;
-    sva_flow_changed(w, a);
-    sva_flow_changed(w, b);
+    sva_flow_changed(w, a, ra, k);
+    sva_flow_changed(w, b, rb, j);
     return true;
 }
 
@@ -245,8 +245,8 @@ static bool cut_saves(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* pl
     rb->target_count = nb;
     w->route_cells[a] = ca;
     w->route_cells[b] = cb;
-    sva_flow_changed(w, a);
-    sva_flow_changed(w, b);
+    sva_flow_changed(w, a, ra, i);
+    sva_flow_changed(w, b, rb, j);
     return true;
 }
 
@@ -440,11 +440,18 @@ static bool granular_move(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t
     return false;
 }
 
-// The local search's pass over route a with granular moves; true if one saved cells.
+// The local search's pass over route a with granular moves, from its awake visits
+// (each falls asleep as it is looked at, and wakes at an edit next to it; after
+// Bentley, 1992); true if one saved cells.
 static bool granular_pass(sva_flow_work_t* w, const sva_mission_t* m, sva_plan_t* plan, uint16_t a)
 {
     bool better = false;
     for (uint16_t k = 0U; k < plan->routes[a].target_count; k++) {
+        const uint16_t t = plan->routes[a].targets[k];
+        if (w->visit_awake[t] == 0U) {
+            continue;
+        }
+        w->visit_awake[t] = 0U;
         if (granular_move(w, m, plan, a, k)) {
             better = true;
             for (uint16_t u = 0U; u < m->uav_count; u++) {

@@ -177,7 +177,7 @@ static void accept(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t*
 }
 #endif
 
-// Before a ruin: every route's cells, and no route changed yet.
+// Before a ruin: every route's cells, and no route changed yet, no visit awake.
 static void ruin_begin(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan)
 {
     for (uint16_t u = 0U; u < m->uav_count; u++) {
@@ -186,6 +186,11 @@ static void ruin_begin(sva_flow_work_t* w, const sva_mission_t* m, const sva_pla
         w->route_changed[u] = 0U;
 #endif
     }
+#if SVA_FLOW_GRANULAR
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        w->visit_awake[t] = 0U;
+    }
+#endif
 }
 
 #if SVA_FLOW_GRANULAR
