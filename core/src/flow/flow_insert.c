@@ -120,16 +120,12 @@ bool sva_flow_slot_delta(const sva_mission_t* m, uint16_t u, const sva_route_t* 
     if ((free_at + (in * m->ticks_per_cell)) > t->start_ticks) {
         return false;
     }
-    int32_t nx = m->depot_x;
-    int32_t ny = m->depot_y;
-    if ((k + 1U) < r->target_count) {
-        const sva_target_t* after = &m->targets[r->targets[k + 1U]];
-        nx = after->x;
-        ny = after->y;
-    }
+    const sva_target_t* after =
+        ((k + 1U) < r->target_count) ? &m->targets[r->targets[k + 1U]] : NULL;
+    const int32_t nx = (after != NULL) ? after->x : m->depot_x;
+    const int32_t ny = (after != NULL) ? after->y : m->depot_y;
     const int64_t out = sva_distance(t->x, t->y, nx, ny);
-    if (((k + 1U) < r->target_count) &&
-        ((t->end_ticks + (out * m->ticks_per_cell)) > m->targets[r->targets[k + 1U]].start_ticks)) {
+    if ((after != NULL) && ((t->end_ticks + (out * m->ticks_per_cell)) > after->start_ticks)) {
         return false;
     }
     // The leg that skips the slot is in both the detour and the saving: it cancels out.
