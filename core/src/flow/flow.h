@@ -74,9 +74,22 @@ void sva_flow_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_pl
 
 // flow_insert.c: edits of the plan under construction in *plan (its routes,
 // priv->target_served, priv->flow.route_cells).
-/// Where route r of UAV u is after its first p targets: position and free time.
-void sva_flow_leg_ends(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t p,
-                       int32_t* x, int32_t* y, int64_t* free_at);
+/// Where route r of UAV u is after its first p targets: position and free time
+/// (inline: the granular search's quick tests call it for every cut they try).
+static inline void sva_flow_leg_ends(const sva_mission_t* m, uint16_t u, const sva_route_t* r,
+                                     uint16_t p, int32_t* x, int32_t* y, int64_t* free_at)
+{
+    if (p == 0U) {
+        *x = m->uavs[u].x;
+        *y = m->uavs[u].y;
+        *free_at = m->uavs[u].ready_at_ticks;
+    } else {
+        const sva_target_t* t = &m->targets[r->targets[p - 1U]];
+        *x = t->x;
+        *y = t->y;
+        *free_at = t->end_ticks;
+    }
+}
 /// Takes target t out of every route (and its route_cells).
 void sva_flow_remove_target(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                             uint16_t t);

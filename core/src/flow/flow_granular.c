@@ -54,22 +54,6 @@ bool sva_flow_place_may_save(const sva_mission_t* m, const sva_plan_t* plan, uin
     return false;
 }
 
-// Where UAV u is after route r's first i stops, and when it is free there.
-static inline void cut_end(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t i,
-                           int32_t* x, int32_t* y, int64_t* free_at)
-{
-    if (i == 0U) {
-        *x = m->uavs[u].x;
-        *y = m->uavs[u].y;
-        *free_at = m->uavs[u].ready_at_ticks;
-    } else {
-        const sva_target_t* last = &m->targets[r->targets[i - 1U]];
-        *x = last->x;
-        *y = last->y;
-        *free_at = last->end_ticks;
-    }
-}
-
 // The joint from UAV u's route r after its first i stops to route `next`'s stop j (the
 // depot when j is its length): its cells, or -1 when it is late.
 static inline int64_t joint_cells(const sva_mission_t* m, uint16_t u, const sva_route_t* r,
@@ -78,7 +62,7 @@ static inline int64_t joint_cells(const sva_mission_t* m, uint16_t u, const sva_
     int32_t x = 0;
     int32_t y = 0;
     int64_t free_at = 0;
-    cut_end(m, u, r, i, &x, &y, &free_at);
+    sva_flow_leg_ends(m, u, r, i, &x, &y, &free_at);
     if (j >= next->target_count) {
         return sva_distance(x, y, m->depot_x, m->depot_y);
     }

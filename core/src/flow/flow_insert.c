@@ -6,21 +6,6 @@
 // time (triangle inequality).
 #include "flow.h"
 
-void sva_flow_leg_ends(const sva_mission_t* m, uint16_t u, const sva_route_t* r, uint16_t p,
-                       int32_t* x, int32_t* y, int64_t* free_at)
-{
-    if (p == 0U) {
-        *x = m->uavs[u].x;
-        *y = m->uavs[u].y;
-        *free_at = m->uavs[u].ready_at_ticks;
-    } else {
-        const sva_target_t* t = &m->targets[r->targets[p - 1U]];
-        *x = t->x;
-        *y = t->y;
-        *free_at = t->end_ticks;
-    }
-}
-
 void sva_flow_remove_target(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                             uint16_t t)
 {
