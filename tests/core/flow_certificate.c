@@ -28,6 +28,10 @@ void check_certificate(const sva_plan_t* p, uint64_t seed, int round)
                       (unsigned long long)seed, round, (long long)p->stats.lower_bound,
                       (long long)p->cost);
     }
+    if (p->stats.optimal && !p->stats.coverage_proven) {
+        SVA_TEST_FAIL("seed %llu round %d: optimal but its coverage not proven",
+                      (unsigned long long)seed, round);
+    }
 }
 
 void check_against_optimum(const sva_plan_t* p, const brute_result_t* best, uint64_t seed,
@@ -44,6 +48,10 @@ void check_against_optimum(const sva_plan_t* p, const brute_result_t* best, uint
                       (unsigned long long)seed, round, p->covered, (long long)p->cost,
                       best->covered, best->cost);
     }
+    if (p->stats.coverage_proven && (p->covered != best->covered)) {
+        SVA_TEST_FAIL("seed %llu round %d: flow claims no plan covers more than %d, the most is %d",
+                      (unsigned long long)seed, round, p->covered, best->covered);
+    }
     if (p->covered <= best->covered && p->stats.lower_bound > best->cost) {
         SVA_TEST_FAIL("seed %llu round %d: bound %lld above the optimum %lld (covering %d <= %d)",
                       (unsigned long long)seed, round, (long long)p->stats.lower_bound, best->cost,
@@ -57,6 +65,7 @@ void check_same_plan(const sva_plan_t* again, const sva_plan_t* plan)
     TEST_ASSERT_EQUAL_INT(again->covered, plan->covered);
     TEST_ASSERT_EQUAL_INT(again->stats.lower_bound, plan->stats.lower_bound);
     TEST_ASSERT_EQUAL_INT(again->stats.optimal, plan->stats.optimal);
+    TEST_ASSERT_EQUAL_INT(again->stats.coverage_proven, plan->stats.coverage_proven);
     TEST_ASSERT_EQUAL_INT(again->stats.flow_work, plan->stats.flow_work);
     TEST_ASSERT_EQUAL_INT(again->stats.flow_ruin_rounds, plan->stats.flow_ruin_rounds);
     TEST_ASSERT_EQUAL_INT(again->route_count, plan->route_count);

@@ -48,6 +48,9 @@
 // rounds of ruin and recreate that accept a slightly dearer plan on the way
 // (flow_ruin.c), a quarter of the budget on top (DESIGN.md section 8).
 #define ACCEPTING_SHARE 4U
+// With a target of need 2 or more, the coverage master's proof after ruin and recreate
+// (the Lagrangian phase asks it only once the cost is proven): at most a sixteenth.
+#define COVER_PROOF_SHARE 4U
 
 static uint32_t find_arc(const sva_flow_work_t* w, uint16_t tail, uint16_t head)
 {
@@ -333,8 +336,20 @@ static void fall_back(sva_planner_t* self, const sva_mission_t* m, sva_plan_t* p
     plan->stats.has_bound = true;
     plan->stats.lower_bound = 0;
     plan->stats.optimal = false;
+    plan->stats.coverage_proven = false;
     plan->stats.flow_incomplete = (uint8_t)why;
 }
+
+#if SVA_FLOW_COVER_TARGETS > 0
+// The targets the incumbent covers.
+static int64_t incumbent_covered(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
+{
+    int64_t cost = 0;
+    int64_t covered = 0;
+    sva_flow_incumbent(priv, m, plan, &cost, &covered);
+    return covered;
+}
+#endif
 
 #define NO_POOLED (-(INT64_MAX / 4))  // pooled_first: no pooled relaxation
 
@@ -358,6 +373,7 @@ static void finish(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t*
     stats->optimal =
         w->reward_exact && (((incomplete == SVA_FLOW_COMPLETE) && (open == INT64_MAX)) ||
                             (coverage_proven && (bound >= cost)));
+    stats->coverage_proven = coverage_proven || stats->optimal;
     stats->flow_incomplete = stats->optimal ? (uint8_t)SVA_FLOW_COMPLETE : (uint8_t)incomplete;
     stats->flow_work = w->work;
     sva_flow_standing_finish(priv, m, plan);
@@ -531,12 +547,26 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
             open = (open_again > open) ? open_again : open;
             incomplete = (open_again == INT64_MAX) ? again : incomplete;
         }
+        // With a target of need 2 or more the Lagrangian phase seldom proves the cost,
+        // and so seldom asks for the coverage's proof: the coverage master is asked now,
+        // for the incumbent the phases left (COVER_PROOF_SHARE above).
+        const bool synchronised = (w->need_max > 1) && !replan && (open != INT64_MAX);
+        if (synchronised && !coverage_proven) {
+            coverage_proven =
+                sva_flow_cover_proof(priv, m, plan, w->work + (budget / COVER_PROOF_SHARE));
+        }
 #if SVA_FLOW_COVER_TARGETS > 0
         // With a target of need 2 or more and the coverage unproven, the coverage search
-        // once more, last, from the final incumbent (SYNC_COVER_SHARE above).
-        if ((w->need_max > 1) && !replan && !coverage_proven && (open != INT64_MAX)) {
+        // once more, last, from the final incumbent (SYNC_COVER_SHARE above); the master
+        // again if it found a plan covering more.
+        if (synchronised && !coverage_proven) {
+            const int64_t before = incumbent_covered(priv, m, plan);
             (void)sva_flow_cover_incumbent(priv, m, plan, budget / SYNC_COVER_SHARE, true,
                                            &coverage_proven);
+            if (!coverage_proven && (incumbent_covered(priv, m, plan) > before)) {
+                coverage_proven =
+                    sva_flow_cover_proof(priv, m, plan, w->work + (budget / COVER_PROOF_SHARE));
+            }
         }
 #endif
 #if SVA_FLOW_GRANULAR

@@ -260,6 +260,12 @@ int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t
 int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                           uint64_t budget, bool* coverage_proven, uint32_t* iters);
 
+/// Whether the coverage master (its Lagrangian at the duals of "cover c + 1 targets",
+/// costs left out) proves that no plan covers more than the incumbent's c targets,
+/// within the work `budget`; true at once when every target is covered.
+bool sva_flow_cover_proof(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
+                          uint64_t budget);
+
 // flow_lp.c, flow_simplex.c, flow_dive.c: the route master (its layout: flow_master.h).
 typedef enum {
     SVA_FLOW_LP_COST,   ///< a new cost master

@@ -230,6 +230,7 @@ static void index_heads(sva_flow_work_t* w, uint32_t nodes)
 // The shortest paths start as a bound's (only the heuristic's flights ask for real paths).
 static void group_uavs(sva_flow_lagrange_t* lg, const sva_mission_t* m)
 {
+    lg->labels = (uint16_t)SVA_FLOW_LABELS;
 #if SVA_FLOW_LARGE
     lg->real_paths = false;
 #endif

@@ -3,7 +3,7 @@
 // pricing (flow_lp.c) run (DESIGN.md section 8).
 //
 // The DAG of targets is the first copies of flow_graph.c's graph, fuel the resource:
-// labels (reduced cost, fuel used), Pareto-best, at most SVA_FLOW_LABELS per target;
+// labels (reduced cost, fuel used), Pareto-best, at most lg->labels per target;
 // past that two merge into one that dominates both, which can only weaken a bound.
 // A merged label's path may break fuel, so a heuristic that flies the paths can ask
 // for real ones instead (lg->real_paths): of the two, the cheaper label is kept as it
@@ -31,7 +31,7 @@ static inline bool keeps_real_paths(const sva_flow_lagrange_t* lg)
 // that only labels that go in pay for the call to add_label.
 static inline bool dominated(const sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t fuel)
 {
-    const uint32_t base = (uint32_t)t * (uint32_t)SVA_FLOW_LABELS;
+    const uint32_t base = (uint32_t)t * (uint32_t)lg->labels;
     const uint32_t end = base + lg->label_count[t];
     for (uint32_t j = base; j < end; j++) {
         if ((lg->label_fuel[j] <= fuel) && (lg->label_cost[j] <= cost)) {
@@ -45,12 +45,12 @@ static inline bool dominated(const sva_flow_lagrange_t* lg, uint16_t t, int64_t 
 static void add_label(sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t fuel,
                       uint32_t pred)
 {
-    const uint32_t base = (uint32_t)t * (uint32_t)SVA_FLOW_LABELS;
+    const uint32_t base = (uint32_t)t * (uint32_t)lg->labels;
     uint32_t n = lg->label_count[t];
     int64_t new_cost = cost;
     int32_t new_fuel = fuel;
     uint32_t new_pred = pred;
-    if (n == (uint32_t)SVA_FLOW_LABELS) {
+    if (n == (uint32_t)lg->labels) {
         // Full: merge into the label nearest in fuel (min of both: dominates both),
         // which leaves the set to be re-added; for real paths, keep the cheaper.
         uint32_t near = base;
@@ -93,7 +93,7 @@ void sva_flow_label_path(sva_flow_lagrange_t* lg, uint32_t l)
 {
     lg->path_len = 0U;
     for (uint32_t k = l; k != SVA_FLOW_NO_LABEL; k = lg->label_pred[k]) {
-        lg->path[lg->path_len] = (uint16_t)(k / (uint32_t)SVA_FLOW_LABELS);
+        lg->path[lg->path_len] = (uint16_t)(k / (uint32_t)lg->labels);
         lg->path_len++;
     }
     for (uint16_t i = 0U; i < (lg->path_len / 2U); i++) {
@@ -137,7 +137,7 @@ int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t
             continue;
         }
         const sva_target_t* tg = &m->targets[t];
-        const uint32_t base = (uint32_t)t * (uint32_t)SVA_FLOW_LABELS;
+        const uint32_t base = (uint32_t)t * (uint32_t)lg->labels;
         const uint16_t tail = (uint16_t)(out_base + c);
         // Labels of t are final here: every arc into t comes from an earlier copy.
         const uint32_t end = base + lg->label_count[t];

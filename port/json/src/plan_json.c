@@ -64,12 +64,14 @@ static json_t* stranded_json(const sva_plan_t* plan)
     return list;
 }
 
-// flow's certificate: a lower bound on any plan covering as many targets, and
-// whether this plan is proven optimal; plus its search counters.
+// flow's certificate: a lower bound on any plan covering as many targets, whether
+// this plan is proven optimal and whether its coverage is proven the most; plus its
+// search counters.
 static bool flow_stats(json_t* o, const sva_stats_t* s)
 {
     return put_int(o, "lower_bound", s->lower_bound) &&
            put(o, "optimal", json_boolean(s->optimal)) &&
+           put(o, "coverage_proven", json_boolean(s->coverage_proven)) &&
            put_int(o, "flow_solves", s->flow_solves) &&
            put_int(o, "flow_augmentations", s->flow_augmentations) &&
            put_int(o, "flow_work", (int64_t)s->flow_work) &&
