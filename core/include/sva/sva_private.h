@@ -116,8 +116,9 @@ typedef struct {
     int32_t label_fuel[SVA_MAX_TARGETS * SVA_FLOW_LABELS];   ///< fuel used so far
     uint32_t label_pred[SVA_MAX_TARGETS * SVA_FLOW_LABELS];  ///< previous label or none
     uint8_t label_count[SVA_MAX_TARGETS];
-    /// Labels kept per target: SVA_FLOW_LABELS, or more when fewer targets leave room
-    /// (the coverage master, flow_lagrange.c); target t's labels start at t * labels.
+    /// Labels kept per target by the last shortest path: SVA_FLOW_LABELS, or more with
+    /// cells free when fewer targets leave room (flow_label.c); target t's labels start
+    /// at t * labels.
     uint16_t labels;
     uint16_t group[SVA_MAX_UAVS];    ///< first UAV in the same state (flow_graph.c)
     uint16_t path[SVA_MAX_TARGETS];  ///< the last shortest path's targets

@@ -351,6 +351,29 @@ static int64_t incumbent_covered(sva_planner_priv_t* priv, const sva_mission_t* 
 }
 #endif
 
+// A plan (not a replan) with a target of need 2 or more, its coverage unproven at the
+// end of its phases: the Lagrangian phase seldom proves the cost there, and so seldom
+// asks for the coverage's proof, so the coverage master is asked now, for the incumbent
+// the phases left (COVER_PROOF_SHARE); then the coverage search once more, last, from
+// it (SYNC_COVER_SHARE), and the master again if that search found a plan covering
+// more. True when the coverage is proven the most.
+static bool synchronised_coverage(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                  sva_plan_t* plan, uint64_t budget)
+{
+    sva_flow_work_t* w = &priv->flow;
+    bool proven = sva_flow_cover_proof(priv, m, plan, w->work + (budget / COVER_PROOF_SHARE));
+#if SVA_FLOW_COVER_TARGETS > 0
+    if (!proven) {
+        const int64_t before = incumbent_covered(priv, m, plan);
+        (void)sva_flow_cover_incumbent(priv, m, plan, budget / SYNC_COVER_SHARE, true, &proven);
+        if (!proven && (incumbent_covered(priv, m, plan) > before)) {
+            proven = sva_flow_cover_proof(priv, m, plan, w->work + (budget / COVER_PROOF_SHARE));
+        }
+    }
+#endif
+    return proven;
+}
+
 #define NO_POOLED (-(INT64_MAX / 4))  // pooled_first: no pooled relaxation
 
 // The incumbent into *plan with its stats: the lower bound and whether it is proven
@@ -547,28 +570,10 @@ sva_status_t sva_run_flow(sva_planner_t* self, const sva_mission_t* m, const sva
             open = (open_again > open) ? open_again : open;
             incomplete = (open_again == INT64_MAX) ? again : incomplete;
         }
-        // With a target of need 2 or more the Lagrangian phase seldom proves the cost,
-        // and so seldom asks for the coverage's proof: the coverage master is asked now,
-        // for the incumbent the phases left (COVER_PROOF_SHARE above).
-        const bool synchronised = (w->need_max > 1) && !replan && (open != INT64_MAX);
-        if (synchronised && !coverage_proven) {
-            coverage_proven =
-                sva_flow_cover_proof(priv, m, plan, w->work + (budget / COVER_PROOF_SHARE));
+        // With a target of need 2 or more: the coverage's proof, and the search for more.
+        if ((w->need_max > 1) && !replan && !coverage_proven && (open != INT64_MAX)) {
+            coverage_proven = synchronised_coverage(priv, m, plan, budget);
         }
-#if SVA_FLOW_COVER_TARGETS > 0
-        // With a target of need 2 or more and the coverage unproven, the coverage search
-        // once more, last, from the final incumbent (SYNC_COVER_SHARE above); the master
-        // again if it found a plan covering more.
-        if (synchronised && !coverage_proven) {
-            const int64_t before = incumbent_covered(priv, m, plan);
-            (void)sva_flow_cover_incumbent(priv, m, plan, budget / SYNC_COVER_SHARE, true,
-                                           &coverage_proven);
-            if (!coverage_proven && (incumbent_covered(priv, m, plan) > before)) {
-                coverage_proven =
-                    sva_flow_cover_proof(priv, m, plan, w->work + (budget / COVER_PROOF_SHARE));
-            }
-        }
-#endif
 #if SVA_FLOW_GRANULAR
         // With a target of need 2 or more, last, the accepting rounds (ACCEPTING_SHARE):
         // after the coverage search, so that a plan it finds is theirs to start from.

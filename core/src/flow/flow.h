@@ -260,11 +260,33 @@ int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t
 int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                           uint64_t budget, bool* coverage_proven, uint32_t* iters);
 
+#if SVA_FLOW_LP_ROWS >= 2
 /// Whether the coverage master (its Lagrangian at the duals of "cover c + 1 targets",
 /// costs left out) proves that no plan covers more than the incumbent's c targets,
 /// within the work `budget`; true at once when every target is covered.
 bool sva_flow_cover_proof(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                           uint64_t budget);
+/// Labels kept per target (the coverage master may keep more than SVA_FLOW_LABELS).
+static inline uint32_t sva_flow_label_stride(const sva_flow_lagrange_t* lg)
+{
+    return lg->labels;
+}
+#else
+static inline bool sva_flow_cover_proof(sva_planner_priv_t* priv, const sva_mission_t* m,
+                                        sva_plan_t* plan, uint64_t budget)
+{
+    (void)priv;
+    (void)m;
+    (void)plan;
+    (void)budget;
+    return false;  // no route master: no proof
+}
+static inline uint32_t sva_flow_label_stride(const sva_flow_lagrange_t* lg)
+{
+    (void)lg;
+    return (uint32_t)SVA_FLOW_LABELS;
+}
+#endif
 
 // flow_lp.c, flow_simplex.c, flow_dive.c: the route master (its layout: flow_master.h).
 typedef enum {

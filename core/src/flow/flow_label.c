@@ -3,12 +3,15 @@
 // pricing (flow_lp.c) run (DESIGN.md section 8).
 //
 // The DAG of targets is the first copies of flow_graph.c's graph, fuel the resource:
-// labels (reduced cost, fuel used), Pareto-best, at most lg->labels per target;
-// past that two merge into one that dominates both, which can only weaken a bound.
+// labels (reduced cost, fuel used), Pareto-best, at most SVA_FLOW_LABELS per target
+// (more with cells free: labels_for); past that two merge into one that dominates
+// both, which can only weaken a bound.
 // A merged label's path may break fuel, so a heuristic that flies the paths can ask
 // for real ones instead (lg->real_paths): of the two, the cheaper label is kept as it
 // is, which keeps every path flyable but is no bound.
 #include "flow.h"
+
+#define COVER_LABELS 64U  // labels per target with cells free, at most (uint8_t counts)
 
 // Copy d is the first copy of its target (the DAG of targets uses only those).
 static bool first_copy(const sva_flow_work_t* w, uint16_t d)
@@ -31,7 +34,7 @@ static inline bool keeps_real_paths(const sva_flow_lagrange_t* lg)
 // that only labels that go in pay for the call to add_label.
 static inline bool dominated(const sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t fuel)
 {
-    const uint32_t base = (uint32_t)t * (uint32_t)lg->labels;
+    const uint32_t base = (uint32_t)t * sva_flow_label_stride(lg);
     const uint32_t end = base + lg->label_count[t];
     for (uint32_t j = base; j < end; j++) {
         if ((lg->label_fuel[j] <= fuel) && (lg->label_cost[j] <= cost)) {
@@ -45,12 +48,12 @@ static inline bool dominated(const sva_flow_lagrange_t* lg, uint16_t t, int64_t 
 static void add_label(sva_flow_lagrange_t* lg, uint16_t t, int64_t cost, int32_t fuel,
                       uint32_t pred)
 {
-    const uint32_t base = (uint32_t)t * (uint32_t)lg->labels;
+    const uint32_t base = (uint32_t)t * sva_flow_label_stride(lg);
     uint32_t n = lg->label_count[t];
     int64_t new_cost = cost;
     int32_t new_fuel = fuel;
     uint32_t new_pred = pred;
-    if (n == (uint32_t)lg->labels) {
+    if (n == sva_flow_label_stride(lg)) {
         // Full: merge into the label nearest in fuel (min of both: dominates both),
         // which leaves the set to be re-added; for real paths, keep the cheaper.
         uint32_t near = base;
@@ -93,7 +96,7 @@ void sva_flow_label_path(sva_flow_lagrange_t* lg, uint32_t l)
 {
     lg->path_len = 0U;
     for (uint32_t k = l; k != SVA_FLOW_NO_LABEL; k = lg->label_pred[k]) {
-        lg->path[lg->path_len] = (uint16_t)(k / (uint32_t)lg->labels);
+        lg->path[lg->path_len] = (uint16_t)(k / sva_flow_label_stride(lg));
         lg->path_len++;
     }
     for (uint16_t i = 0U; i < (lg->path_len / 2U); i++) {
@@ -102,6 +105,20 @@ void sva_flow_label_path(sva_flow_lagrange_t* lg, uint32_t l)
         lg->path[lg->path_len - 1U - i] = k;
     }
 }
+
+#if SVA_FLOW_LP_ROWS >= 2
+// Labels per target for a route with cells weighted by alpha: with cells at no cost (alpha 0:
+// the coverage questions, flow_lagrange.c and flow_lp.c), a UAV's Pareto set of
+// (reduced cost, fuel) is long and merged labels weaken the coverage bound, so as many
+// as the label store holds for the mission's targets, at most COVER_LABELS; otherwise
+// SVA_FLOW_LABELS.
+static uint16_t labels_for(const sva_mission_t* m, int64_t alpha)
+{
+    const uint32_t room = ((uint32_t)SVA_MAX_TARGETS * (uint32_t)SVA_FLOW_LABELS) / m->target_count;
+    const uint32_t wide = (room < COVER_LABELS) ? room : COVER_LABELS;
+    return (uint16_t)((alpha == 0) ? wide : (uint32_t)SVA_FLOW_LABELS);
+}
+#endif
 
 // UAV u's best route under lg->path_price (targets with lg->closed skipped):
 // min over routes of alpha * cells - sum of prices, flying home at once included.
@@ -112,6 +129,9 @@ int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t
     const sva_uav_t* uav = &m->uavs[u];
     const int64_t hover = m->hover_fuel;
     const uint16_t out_base = (uint16_t)(w->uavs + w->copies);
+#if SVA_FLOW_LP_ROWS >= 2
+    lg->labels = labels_for(m, alpha);
+#endif
     for (uint16_t t = 0U; t < m->target_count; t++) {
         lg->label_count[t] = 0U;
     }
@@ -137,7 +157,7 @@ int64_t sva_flow_best_route(sva_flow_work_t* w, const sva_mission_t* m, uint16_t
             continue;
         }
         const sva_target_t* tg = &m->targets[t];
-        const uint32_t base = (uint32_t)t * (uint32_t)lg->labels;
+        const uint32_t base = (uint32_t)t * sva_flow_label_stride(lg);
         const uint16_t tail = (uint16_t)(out_base + c);
         // Labels of t are final here: every arc into t comes from an earlier copy.
         const uint32_t end = base + lg->label_count[t];

@@ -32,7 +32,6 @@
 #define HEURISTIC_EVERY 4
 #define GAP_CAP         INT64_C(68719476736)  // 2^36: keeps theta * gap * grad within int64
 #define NO_BOUND        (-INT64_MAX)
-#define COVER_LABELS    64U  // the coverage master's labels per target, at most (uint8_t counts)
 
 typedef struct {
     int64_t alpha;    // S in the cost phase, 0 in the coverage phase
@@ -255,16 +254,6 @@ static bool cover_master(sva_flow_work_t* w, const sva_mission_t* m, const sva_p
     return *priced && (evaluate(w, m, plan, &ph, &grad_mu) > (-s * (covered + 1)));
 }
 
-// The labels per target of a coverage proof: as many as the label store holds for the
-// mission's targets, up to COVER_LABELS. With cells free a UAV's Pareto set of (reduced
-// cost, fuel) is long, merged labels weaken the bound, and a proof needs it within a
-// target of the master's optimum.
-static uint16_t cover_labels(const sva_mission_t* m)
-{
-    const uint32_t room = ((uint32_t)SVA_MAX_TARGETS * (uint32_t)SVA_FLOW_LABELS) / m->target_count;
-    return (uint16_t)((room < COVER_LABELS) ? room : COVER_LABELS);
-}
-
 // The coverage phase's steps: true when they prove that no plan covers more.
 static bool cover_steps(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
                         int64_t covered, uint64_t budget, uint32_t* iters)
@@ -294,21 +283,22 @@ static bool cover_steps(sva_flow_work_t* w, const sva_mission_t* m, const sva_pl
 
 // Coverage phase: true if no plan covers more than `covered` targets. After the coverage
 // master's prices, the route enumeration (flow_enum.c) under them may prove it, or offer
-// a plan covering more (then false); then the steps. `master_only`: the master alone,
-// within phase_end (sva_flow_cover_proof).
+// a plan covering more (then false); then the steps, whose count goes to *iters. With
+// iters NULL, the master alone, within phase_end (sva_flow_cover_proof).
 static bool prove_coverage(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
-                           int64_t covered, uint64_t phase_end, bool master_only, uint32_t* iters)
+                           int64_t covered, uint64_t phase_end, uint32_t* iters)
 {
     sva_flow_work_t* w = &priv->flow;
     // Called at the plan's proven cost: a proof ends the planning, so it may go on to
     // w->proof_end (flow.c).
-    const uint64_t budget = (!master_only && (w->proof_end > phase_end)) ? w->proof_end : phase_end;
+    const uint64_t budget =
+        ((iters != NULL) && (w->proof_end > phase_end)) ? w->proof_end : phase_end;
     bool priced = false;
-    w->lagrange.labels = cover_labels(m);
-    const bool proven = cover_master(w, m, plan, covered, budget, &priced);
-    w->lagrange.labels = (uint16_t)SVA_FLOW_LABELS;
-    if (proven || master_only) {
-        return proven;
+    if (cover_master(w, m, plan, covered, budget, &priced)) {
+        return true;
+    }
+    if (iters == NULL) {
+        return false;  // the master alone
     }
 #if SVA_FLOW_ENUM_ROUTES > 0
     if (priced) {
@@ -322,6 +312,7 @@ static bool prove_coverage(sva_planner_priv_t* priv, const sva_mission_t* m, sva
     return cover_steps(w, m, plan, covered, budget, iters);
 }
 
+#if SVA_FLOW_LP_ROWS >= 2
 bool sva_flow_cover_proof(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                           uint64_t budget)
 {
@@ -331,9 +322,9 @@ bool sva_flow_cover_proof(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     if (covered == (int64_t)m->target_count) {
         return true;
     }
-    uint32_t iters = 0U;
-    return prove_coverage(priv, m, plan, covered, budget, true, &iters);
+    return prove_coverage(priv, m, plan, covered, budget, NULL);
 }
+#endif
 
 #if SVA_FLOW_ENUM_ROUTES > 0
 // The proof of flow_enum.c for the incumbent's cost among plans covering as many targets
@@ -443,9 +434,9 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     // enumeration proved it short of full coverage, the dive below goes first: a plan
     // covering more is likely there, and a proof for the old coverage would be wasted.
     const bool dive_first = cost_proven && !*coverage_proven;
-    *coverage_proven = *coverage_proven || (covered == targets) ||
-                       (!dive_first && (bound >= cost) &&
-                        prove_coverage(priv, m, plan, covered, budget, false, iters));
+    *coverage_proven =
+        *coverage_proven || (covered == targets) ||
+        (!dive_first && (bound >= cost) && prove_coverage(priv, m, plan, covered, budget, iters));
     // Coverage comes first (SPEC 1): while c is not proven the most, a dive on the
     // cost master for c + 1 targets looks for a plan covering one more. Any bound for
     // coverage c holds for more.
@@ -471,13 +462,13 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
     }
     *coverage_proven = *coverage_proven || (covered == targets) ||
                        ((dive_first || (dive == SVA_FLOW_COVER_DIVE_FOUND)) && (bound >= cost) &&
-                        prove_coverage(priv, m, plan, covered, budget, false, iters));
+                        prove_coverage(priv, m, plan, covered, budget, iters));
 #if SVA_FLOW_ENUM_ROUTES > 0
     // Again with the phase's incumbent (its cost is lower now, so fewer routes); a cost
     // so proven short of every target leaves coverage to prove, as above.
     if ((bound < cost) && enum_proves(priv, m, plan, &cost, &covered, left)) {
         *coverage_proven = *coverage_proven || (covered == targets) ||
-                           prove_coverage(priv, m, plan, covered, budget, false, iters);
+                           prove_coverage(priv, m, plan, covered, budget, iters);
         return cost;
     }
 #endif
