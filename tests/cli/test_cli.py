@@ -25,8 +25,8 @@ STATS_KEYS = ["solve_us", "pivots", "clusters", "transport_problems", "largest_c
               "largest_sinks", "largest_tableau_cells", "max_pivots", "dropped_sources", "chunked_clusters",
               "search_nodes", "truncated_searches"]
 # flow adds its certificate and search counters.
-FLOW_STATS_KEYS = ["lower_bound", "optimal", "coverage_proven", "flow_solves", "flow_augmentations", "flow_work", "flow_graph_arcs",
-                   "flow_max_depth", "flow_lagrange_iters", "flow_lp_columns", "flow_dive_routes",
+FLOW_STATS_KEYS = ["lower_bound", "optimal", "coverage_proven", "flow_solves", "flow_augmentations", "flow_work",
+                   "flow_graph_arcs", "flow_max_depth", "flow_lagrange_iters", "flow_lp_columns", "flow_dive_routes",
                    "flow_cover_dive", "flow_cover_nodes", "flow_ruin_rounds",
                    "flow_incomplete"]
 TRACE_KEYS = ["algorithm", "source_uavs", "supply", "sink_targets", "demand", "dropped", "cost", "flow",

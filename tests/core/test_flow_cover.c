@@ -481,9 +481,9 @@ void test_cover_master_proves_only_the_most(void)
 #endif
 }
 
-// flow's own claim: coverage_proven only where brute force finds no plan covering more,
-// at need 2 and 3 where flow asks the coverage master (a budget the search does not
-// finish within).
+// flow's own claim: coverage_proven only where brute force finds no plan covering more
+// (needs 1 to 3; small budgets, so that the first search often does not finish and the
+// phases after it, the coverage master's proof among them, run).
 void test_flow_coverage_claims_hold(void)
 {
     const uint64_t seed = test_seed(0xC1A1ULL);

@@ -108,7 +108,8 @@ def main(argv):
              "| flow proven optimal | median | p95 |",
              "|---|---|---|---|---|---|---|---|---|---|---|"]
     below_all = []
-    false_claims = [n for _, n, fl, ref in rows if fl["stats"].get("coverage_proven") and ref["covered"] > fl["covered"]]
+    false_claims = [n for _, n, fl, ref in rows
+                    if fl["stats"].get("coverage_proven") and ref["covered"] > fl["covered"]]
     for s in SETS + [None]:
         rs = [r for r in rows if s is None or r[0] == s]
         name = "all" if s is None else f"{s[0]}x{s[1]} need {s[2]} fuel {s[3]}"

@@ -318,7 +318,8 @@ typedef struct {
     int64_t lower_bound;
     /// The plan is proven optimal under SPEC section 1 (lower_bound == cost).
     bool optimal;
-    /// No plan of the mission covers more targets than this one (true when optimal).
+    /// No plan of the mission covers more targets than this one (flow only; true when
+    /// optimal).
     bool coverage_proven;
     uint16_t flow_cover_nodes;     ///< coverage search nodes (0: did not run; at most 65,535)
     uint32_t flow_solves;          ///< min-cost flow relaxations solved

@@ -49,7 +49,7 @@
 // (flow_ruin.c), a quarter of the budget on top (DESIGN.md section 8).
 #define ACCEPTING_SHARE 4U
 // With a target of need 2 or more, the coverage master's proof after ruin and recreate
-// (the Lagrangian phase asks it only once the cost is proven): at most a sixteenth.
+// (the Lagrangian phase asks it only once the cost is proven): at most a quarter.
 #define COVER_PROOF_SHARE 4U
 
 static uint32_t find_arc(const sva_flow_work_t* w, uint16_t tail, uint16_t head)

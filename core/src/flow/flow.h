@@ -266,7 +266,8 @@ int64_t sva_flow_lagrange(sva_planner_priv_t* priv, const sva_mission_t* m, sva_
 /// within the work `budget`; true at once when every target is covered.
 bool sva_flow_cover_proof(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan,
                           uint64_t budget);
-/// Labels kept per target (the coverage master may keep more than SVA_FLOW_LABELS).
+/// Labels kept per target by the last shortest path (more than SVA_FLOW_LABELS with
+/// cells at no cost: flow_label.c).
 static inline uint32_t sva_flow_label_stride(const sva_flow_lagrange_t* lg)
 {
     return lg->labels;

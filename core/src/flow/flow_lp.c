@@ -144,7 +144,7 @@ static bool start(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* 
 static int64_t label_rc(const sva_flow_work_t* w, const sva_mission_t* m, uint16_t u, uint32_t l)
 {
     const sva_flow_lagrange_t* lg = &w->lagrange;
-    const sva_target_t* t = &m->targets[l / (uint32_t)lg->labels];
+    const sva_target_t* t = &m->targets[l / sva_flow_label_stride(lg)];
     const int64_t home = sva_distance(t->x, t->y, m->depot_x, m->depot_y);
     if (((int64_t)lg->label_fuel[l] + home) > m->uavs[u].fuel) {
         return 0;
@@ -181,7 +181,7 @@ static bool price_routes(sva_flow_work_t* w, const sva_mission_t* m, const sva_p
             uint32_t pick = SVA_FLOW_NO_LABEL;
             int64_t pick_rc = 0;
             for (uint16_t t = 0U; t < m->target_count; t++) {
-                const uint32_t base = (uint32_t)t * (uint32_t)lg->labels;
+                const uint32_t base = (uint32_t)t * sva_flow_label_stride(lg);
                 for (uint32_t l = base; l < (base + lg->label_count[t]); l++) {
                     const int64_t rc = label_rc(w, m, u, l);
                     const bool after = (rc > above) || ((rc == above) && (l > last));
@@ -208,7 +208,7 @@ static bool price_routes(sva_flow_work_t* w, const sva_mission_t* m, const sva_p
                 entered++;
             }
         }
-        w->work += (uint64_t)k * (uint64_t)m->target_count * (uint64_t)lg->labels;
+        w->work += (uint64_t)k * (uint64_t)m->target_count * (uint64_t)sva_flow_label_stride(lg);
     }
     return added;
 }
