@@ -412,7 +412,8 @@ void test_flow_covers_the_most_where_the_search_ran(void)
 }
 
 #if SVA_FLOW_LP_ROWS >= 2
-static sva_plan_t offered;
+static sva_plan_t offered;  // static: plans are too large for a target's stack
+static sva_plan_t most;     // a plan covering the most
 
 // Whether the coverage master proves *p's coverage the most, *p the only plan offered
 // (the graph built anew, no work spent).
@@ -455,7 +456,7 @@ void test_cover_master_proves_only_the_most(void)
         uint16_t nodes = 0U;
         TEST_ASSERT_EQUAL_INT(SVA_FLOW_COVER_FOUND,
                               cover(best.covered - 1, UINT64_MAX / 2U, &nodes));
-        const sva_plan_t most = plan;
+        most = plan;
         TEST_ASSERT_EQUAL_INT(best.covered, covered_by(&most));
         proven += master_proves(&most) ? 1 : 0;
         for (uint16_t x = 0U; x < mission.uav_count; x++) {
