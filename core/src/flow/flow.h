@@ -43,6 +43,8 @@ bool sva_flow_route_fits(const sva_mission_t* m, uint16_t u, const uint16_t* cop
 /// cells less the rewards of the targets it covers.
 int64_t sva_flow_plan_value(const sva_planner_priv_t* priv, const sva_mission_t* m,
                             const sva_plan_t* plan);
+/// The targets priv->target_served shows covered (each served by its need of UAVs).
+uint16_t sva_flow_covered_now(const sva_planner_priv_t* priv, const sva_mission_t* m);
 /// Keeps the plan in *plan (routes + priv->target_served) if it beats the incumbent
 /// (offering it to sva_flow_offer_standing first).
 bool sva_flow_offer_plan(sva_planner_priv_t* priv, const sva_mission_t* m, const sva_plan_t* plan);

@@ -46,6 +46,16 @@ int64_t sva_flow_plan_value(const sva_planner_priv_t* priv, const sva_mission_t*
     return value;
 }
 
+uint16_t sva_flow_covered_now(const sva_planner_priv_t* priv, const sva_mission_t* m)
+{
+    uint16_t covered = 0U;
+    for (uint16_t t = 0U; t < m->target_count; t++) {
+        covered = (uint16_t)(covered +
+                             (((int32_t)priv->target_served[t] == m->targets[t].need) ? 1U : 0U));
+    }
+    return covered;
+}
+
 // The routes of *plan as successor lists over copies (first[u], next[c]).
 static void link_routes(sva_flow_work_t* w, const sva_mission_t* m, const sva_plan_t* plan,
                         uint16_t* first, uint16_t* next)
@@ -93,11 +103,7 @@ void sva_flow_offer_standing(sva_planner_priv_t* priv, const sva_mission_t* m,
     if (standing == NULL) {
         return;
     }
-    uint16_t covered = 0U;
-    for (uint16_t t = 0U; t < m->target_count; t++) {
-        covered = (uint16_t)(covered +
-                             (((int32_t)priv->target_served[t] == m->targets[t].need) ? 1U : 0U));
-    }
+    const uint16_t covered = sva_flow_covered_now(priv, m);
     if (w->has_pen && (covered < w->pen_covered)) {
         return;
     }
@@ -226,15 +232,12 @@ void sva_flow_incumbent(sva_planner_priv_t* priv, const sva_mission_t* m, sva_pl
 {
     sva_flow_write_incumbent(priv, m, plan);
     *cost = 0;
-    *covered = 0;
     for (uint16_t u = 0U; u < m->uav_count; u++) {
         if (!plan->routes[u].stranded) {
             *cost += sva_route_cells(m, u, &plan->routes[u]);
         }
     }
-    for (uint16_t t = 0U; t < m->target_count; t++) {
-        *covered += ((int32_t)priv->target_served[t] == m->targets[t].need) ? 1 : 0;
-    }
+    *covered = (int64_t)sva_flow_covered_now(priv, m);
 }
 
 #if SVA_FLOW_LP_ROWS >= 2

@@ -81,26 +81,15 @@ void sva_flow_seed_standing(sva_planner_priv_t* priv, const sva_mission_t* m, sv
     plan->stats = kept;
 }
 
-// The targets the plan last written covers (priv->target_served).
-static uint16_t covered_now(const sva_planner_priv_t* priv, const sva_mission_t* m)
-{
-    uint16_t covered = 0U;
-    for (uint16_t t = 0U; t < m->target_count; t++) {
-        covered = (uint16_t)(covered +
-                             (((int32_t)priv->target_served[t] == m->targets[t].need) ? 1U : 0U));
-    }
-    return covered;
-}
-
 void sva_flow_standing_finish(sva_planner_priv_t* priv, const sva_mission_t* m, sva_plan_t* plan)
 {
-    const uint16_t incumbent_covered = covered_now(priv, m);
+    const uint16_t incumbent_covered = sva_flow_covered_now(priv, m);
     if (!sva_flow_write_standing_pick(priv, m, plan)) {
         return;
     }
     // The coverage proven is the incumbent's: the pick keeps the claim if it covers as many.
     plan->stats.coverage_proven =
-        plan->stats.coverage_proven && (covered_now(priv, m) == incumbent_covered);
+        plan->stats.coverage_proven && (priv->flow.pen_covered == incumbent_covered);
     // Optimal only if it costs what the proven incumbent does (then it covers as many
     // targets: optimal needs exact rewards). lower_bound stays a bound on the cost.
     sva_stats_t* stats = &plan->stats;
